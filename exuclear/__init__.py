@@ -1,0 +1,56 @@
+"""exuclear: revolute clearance joints for the Exudyn multibody engine.
+
+Physics (pure Python, no exudyn): :mod:`~exuclear.contact`, :mod:`~exuclear.friction`,
+:mod:`~exuclear.materials`, :mod:`~exuclear.geometry`, :mod:`~exuclear.joint`.
+Engine glue: :mod:`~exuclear.exudyn_element`.  See ``shared/spec/MODEL.md`` for the
+equations.
+"""
+from .contact import (
+    CONTACT_LAWS,
+    DEFAULT_LAW,
+    V_MIN_DEFAULT,
+    ContactLaw,
+    Flores,
+    Hertz,
+    HuntCrossley,
+    LankaraniNikravesh,
+    WangLiu,
+    contact_law,
+)
+from .exudyn_element import (
+    OUTPUT_COLUMNS,
+    ClearanceJointHandle,
+    SimulationResult,
+    add_clearance_joint,
+    simulate,
+    simulation_settings,
+)
+from .friction import (
+    FRICTION_NAMES,
+    NO_FRICTION,
+    Coulomb,
+    FrictionLaw,
+    ModifiedCoulomb,
+    NoFriction,
+    friction_law,
+    smooth_step,
+)
+from .geometry import BearingGeometry, ContactKinematics, JointLoads, contact_kinematics, joint_loads
+from .joint import ClearanceJoint, ContactHistory, JointResponse, make_joint
+from .materials import MATERIALS, Material, composite_modulus, material
+from .settings import METHODS, SolverSettings
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
+    "LankaraniNikravesh", "WangLiu", "contact_law",
+    "OUTPUT_COLUMNS", "ClearanceJointHandle", "SimulationResult", "add_clearance_joint", "simulate",
+    "simulation_settings",
+    "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
+    "friction_law", "smooth_step",
+    "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",
+    "ClearanceJoint", "ContactHistory", "JointResponse", "make_joint",
+    "MATERIALS", "Material", "composite_modulus", "material",
+    "METHODS", "SolverSettings",
+]

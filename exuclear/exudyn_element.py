@@ -1,0 +1,352 @@
+"""Exudyn glue: the clearance joint as an Exudyn item, and the solver driver.
+
+This is the only module of exuclear that imports exudyn or reads engine state.
+
+Element.  The joint is an ``ObjectGenericODE2`` over the nodes of the journal body
+and the bearing body, without mass, stiffness or damping matrices: only its
+``forceUserFunction`` adds the generalized forces of MODEL.md section 4 to the
+nodes' equations.  Exudyn differentiates that function numerically for the implicit
+solvers' Jacobian.  A compiled backend can replace the Python force function by an
+Exudyn symbolic one on the same object, and a minimal-coordinate body (a link of an
+``ObjectKinematicTree``) by another ``_Side`` class; the physics in
+:mod:`exuclear.joint` stays as it is.
+
+Contact history.  ``v0`` changes once per accepted step: a pre-step user function,
+called by Exudyn before every step with the state at the start of the step (the last
+accepted state), calls :meth:`ContactHistory.accept`.  That is idempotent, so the
+repeated pre-step calls after a rejected DOPRI5 step do no harm.  Exudyn has one
+pre-step function per system; exuclear installs one that serves all joints and
+then calls any function the user had installed before.  A function installed
+*after* the joints would replace it; :func:`simulate` detects that and refuses.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import ObjectGenericODE2, SensorUserFunction
+
+from ._checks import check_real
+from .geometry import ContactKinematics, JointLoads, contact_kinematics
+from .joint import ClearanceJoint, ContactHistory, make_joint
+from .settings import METHODS, SolverSettings
+
+_REGISTRY_KEY = "exuclear.joints"
+
+#: Columns of a joint's recorded output (after ``time``), SI units.
+OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force",
+                  "tangential_force", "slip_velocity", "v0", "in_contact")
+
+
+# -- the two sides of a joint ------------------------------------------------------------
+class _GroundSide:
+    """A point fixed in space (journal or bearing on the ground)."""
+
+    n_coordinates = 0
+
+    def __init__(self, x: float, y: float) -> None:
+        self.x, self.y = x, y
+
+    def state(self, q: Sequence[float], q_t: Sequence[float], i: int) -> tuple[float, float, float, float, float]:
+        return self.x, self.y, 0.0, 0.0, 0.0
+
+    def add_load(self, out: list[float], i: int, fx: float, fy: float, m: float, q: Sequence[float]) -> None:
+        pass
+
+
+class _RigidBody2DSide:
+    """A point fixed on a body with a ``NodeRigidBody2D`` (coordinates x, y, phi)."""
+
+    n_coordinates = 3
+
+    def __init__(self, node: int, reference: Sequence[float], sx: float, sy: float) -> None:
+        self.node = node
+        self.x0, self.y0, self.phi0 = (float(v) for v in reference)
+        self.sx, self.sy = sx, sy
+
+    def _arm(self, phi: float) -> tuple[float, float]:
+        c, s = math.cos(phi), math.sin(phi)
+        return c * self.sx - s * self.sy, s * self.sx + c * self.sy
+
+    def state(self, q: Sequence[float], q_t: Sequence[float], i: int) -> tuple[float, float, float, float, float]:
+        rx, ry = self._arm(self.phi0 + q[i + 2])
+        w = q_t[i + 2]
+        return self.x0 + q[i] + rx, self.y0 + q[i + 1] + ry, q_t[i] - w * ry, q_t[i + 1] + w * rx, w
+
+    def add_load(self, out: list[float], i: int, fx: float, fy: float, m: float, q: Sequence[float]) -> None:
+        rx, ry = self._arm(self.phi0 + q[i + 2])
+        out[i] += fx
+        out[i + 1] += fy
+        out[i + 2] += m + rx * fy - ry * fx  # moment of the force about the node
+
+
+def _side(mbs: exu.MainSystem, body: Any, point: Sequence[float], role: str) -> _GroundSide | _RigidBody2DSide:
+    try:
+        sx, sy = (check_real(f"{role}_point", v) for v in point)
+    except (TypeError, ValueError):
+        raise ValueError(f"`{role}_point` must be two finite numbers (local x, y), got {point!r}") from None
+    try:
+        item = mbs.GetObject(body)
+    except Exception:  # Exudyn raises its own error types for a bad index
+        raise ValueError(f"`{role}_body` {body!r} is not an object of this MainSystem") from None
+    kind = item["objectType"]
+    if kind == "Ground":
+        x, y = item["referencePosition"][:2]
+        return _GroundSide(x + sx, y + sy)
+    if kind == "RigidBody2D":
+        node = int(item["nodeNumber"])
+        return _RigidBody2DSide(node, mbs.GetNode(node)["referenceCoordinates"], sx, sy)
+    raise ValueError(f"`{role}_body` must be an ObjectGround or ObjectRigidBody2D, got an object of type {kind!r}")
+
+
+# -- the element ---------------------------------------------------------------------------
+class ClearanceJointHandle:
+    """A clearance joint added to an Exudyn system; returned by :func:`add_clearance_joint`.
+
+    Attributes
+    ----------
+    joint : ClearanceJoint
+        The physics (geometry, contact law, friction law).
+    history : ContactHistory
+        The contact state of the last accepted step.
+    object_index : int
+        Index of the joint's ``ObjectGenericODE2`` in the system.
+    sensor_index : int or None
+        Index of the sensor that records :data:`OUTPUT_COLUMNS`, if recording.
+    """
+
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, journal: Any, bearing: Any, name: str) -> None:
+        self.mbs = mbs
+        self.joint = joint
+        self.name = name
+        self.history = ContactHistory()
+        self._journal, self._bearing = journal, bearing
+        self._i_bearing = journal.n_coordinates
+        self._n = journal.n_coordinates + bearing.n_coordinates
+        self.object_index: int = -1
+        self.sensor_index: int | None = None
+
+    # physics evaluated on the element's own coordinate slice
+    def kinematics(self, q: Sequence[float], q_t: Sequence[float]) -> ContactKinematics:
+        xj, yj, vxj, vyj, wi = self._journal.state(q, q_t, 0)
+        xb, yb, vxb, vyb, wj = self._bearing.state(q, q_t, self._i_bearing)
+        return contact_kinematics(self.joint.geometry, xj, yj, vxj, vyj, wi, xb, yb, vxb, vyb, wj)
+
+    def _generalized_forces(self, q: Sequence[float], loads: JointLoads) -> list[float]:
+        out = [0.0] * self._n
+        self._journal.add_load(out, 0, loads.fx, loads.fy, loads.m_i, q)
+        self._bearing.add_load(out, self._i_bearing, -loads.fx, -loads.fy, loads.m_j, q)
+        return out
+
+    def force_function(self, mbs: exu.MainSystem, t: float, item: int, q: np.ndarray, q_t: np.ndarray) -> list[float]:
+        """Exudyn ``forceUserFunction``: no side effects (called in Newton iterations)."""
+        kin = self.kinematics(q, q_t)
+        if kin.delta <= 0.0:
+            return [0.0] * self._n
+        return self._generalized_forces(q, self.joint.response(kin, self.history).loads)
+
+    def _current(self, configuration: Any = exu.ConfigurationType.Current) -> tuple[np.ndarray, np.ndarray]:
+        ltg = self.mbs.systemData.GetObjectLTGODE2(self.object_index)
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(configuration))[ltg]
+        q_t = np.asarray(self.mbs.systemData.GetODE2Coordinates_t(configuration))[ltg]
+        return q, q_t
+
+    def accept_current_state(self) -> None:
+        """Update the contact history from the system's current (accepted) state."""
+        kin = self.kinematics(*self._current())
+        self.history.accept(kin.delta, kin.delta_dot)
+
+    def _sensor_function(self, mbs: exu.MainSystem, t: float, sensors: Any, factors: Any, configuration: Any) -> list[float]:
+        kin = self.kinematics(*self._current(configuration))
+        r = self.joint.response(kin, self.history)
+        return [kin.delta, kin.delta_dot, kin.ex, kin.ey, r.f_n, r.f_t, kin.v_t, r.v0, float(kin.delta > 0.0)]
+
+    def outputs(self) -> dict[str, np.ndarray]:
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS` as arrays (SI units)."""
+        if self.sensor_index is None:
+            raise RuntimeError(f"joint {self.name!r} was added with record=False: nothing was recorded")
+        data = np.asarray(self.mbs.GetSensorStoredData(self.sensor_index))
+        return {"time": data[:, 0], **{c: data[:, k + 1] for k, c in enumerate(OUTPUT_COLUMNS)}}
+
+
+def _registry(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
+    return mbs.variables.setdefault(_REGISTRY_KEY, [])
+
+
+def _install_pre_step(mbs: exu.MainSystem) -> None:
+    """Install the one pre-step function that updates every joint's history."""
+    previous = mbs.GetPreStepUserFunction()
+    user_fn = previous["function"] if isinstance(previous, dict) else None
+    joints = _registry(mbs)
+
+    def pre_step(mbs_: exu.MainSystem, t: float) -> bool:
+        for handle in joints:
+            handle.accept_current_state()
+        return user_fn(mbs_, t) if user_fn is not None else True
+
+    mbs.SetPreStepUserFunction(pre_step)
+    mbs.variables[_REGISTRY_KEY + ".hook"] = pre_step
+
+
+def add_clearance_joint(
+    mbs: exu.MainSystem,
+    journal_body: Any,
+    bearing_body: Any,
+    *,
+    journal_point: Sequence[float] = (0.0, 0.0),
+    bearing_point: Sequence[float] = (0.0, 0.0),
+    joint: ClearanceJoint | None = None,
+    record: bool = True,
+    name: str = "",
+    **joint_parameters: Any,
+) -> ClearanceJointHandle:
+    """Add a planar revolute clearance joint between two bodies of an Exudyn system.
+
+    The journal (radius ``R_J``) is fixed on ``journal_body`` at ``journal_point``; the
+    bearing hole (radius ``R_B``) on ``bearing_body`` at ``bearing_point`` (local body
+    coordinates [m]).  Contact, friction and the loads on both bodies follow MODEL.md
+    sections 1-4.  Works in the XY plane.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system; call before ``mbs.Assemble()``.
+    journal_body, bearing_body : ObjectIndex
+        An ``ObjectRigidBody2D`` (with ``NodeRigidBody2D``) or an ``ObjectGround``; at
+        most one of them may be the ground.  Other body types raise ``ValueError``.
+    journal_point, bearing_point : (float, float)
+        Journal and bearing centres in the body frames [m].
+    joint : ClearanceJoint, optional
+        The joint physics, ready built.  If omitted, it is built by
+        :func:`exuclear.make_joint` from ``joint_parameters``: ``journal_radius``,
+        ``bearing_radius``, ``length``, ``law``, ``cr``, ``journal_material``,
+        ``bearing_material``, ``E_star``, ``friction``, ``v_min``.
+    record : bool
+        Record :data:`OUTPUT_COLUMNS` at ``SolverSettings.output_step`` intervals
+        (read them with :meth:`ClearanceJointHandle.outputs`).
+    name : str
+        Label for messages.
+
+    Returns
+    -------
+    ClearanceJointHandle
+    """
+    if joint is None:
+        joint = make_joint(**joint_parameters)
+    elif joint_parameters:
+        raise ValueError(f"give either `joint` or joint parameters, not both (got {sorted(joint_parameters)})")
+    elif not isinstance(joint, ClearanceJoint):
+        raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
+    journal = _side(mbs, journal_body, journal_point, "journal")
+    bearing = _side(mbs, bearing_body, bearing_point, "bearing")
+    nodes = [s.node for s in (journal, bearing) if isinstance(s, _RigidBody2DSide)]
+    if not nodes:
+        raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
+    if len(nodes) == 2 and nodes[0] == nodes[1]:
+        raise ValueError("`journal_body` and `bearing_body` are the same body")
+    registry = _registry(mbs)
+    handle = ClearanceJointHandle(mbs, joint, journal, bearing, name or f"clearance joint {len(registry)}")
+    handle.object_index = int(mbs.AddObject(ObjectGenericODE2(
+        nodeNumbers=nodes, forceUserFunction=handle.force_function, name=f"exuclear {handle.name}")))
+    if record:
+        handle.sensor_index = int(mbs.AddSensor(SensorUserFunction(
+            sensorNumbers=[], sensorUserFunction=handle._sensor_function, storeInternal=True, writeToFile=False)))
+    registry.append(handle)
+    if len(registry) == 1:
+        _install_pre_step(mbs)
+    return handle
+
+
+# -- solving ------------------------------------------------------------------------------
+def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
+    """Map :class:`SolverSettings` onto ``exu.SimulationSettings`` (the only place)."""
+    ss = exu.SimulationSettings()
+    ti = ss.timeIntegration
+    ti.endTime = settings.end_time
+    ti.numberOfSteps = max(1, math.ceil(settings.end_time / settings.step - 1e-9))
+    ti.verboseMode = settings.verbose
+    if settings.explicit:
+        ti.automaticStepSize = settings.adaptive
+        ti.relativeTolerance = settings.rtol
+        ti.absoluteTolerance = settings.atol
+        ti.minimumStepSize = settings.min_step
+    else:
+        ti.adaptiveStep = False  # fixed step: a rejected Newton step fails the run loudly
+        ti.generalizedAlpha.spectralRadius = settings.spectral_radius
+        ti.generalizedAlpha.computeInitialAccelerations = True
+    ss.solution.file.write = False  # results come from sensors kept in memory
+    ss.solution.sensors.writePeriod = settings.output_step
+    return ss
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Outcome of :func:`simulate`.
+
+    ``success`` is False when Exudyn stopped early; ``message`` then says why and what
+    to try.  ``wall_time`` is the solver call alone [s]; ``steps`` the number of
+    accepted time steps and ``rejected`` the rejected ones (adaptive methods).
+    """
+
+    success: bool
+    message: str
+    wall_time: float
+    steps: int
+    rejected: int
+
+
+def _constraint_objects(mbs: exu.MainSystem) -> list[str]:
+    found = []
+    for i in range(mbs.systemData.NumberOfObjects()):
+        if len(mbs.systemData.GetObjectLTGAE(i)) > 0:
+            found.append(f"{i} ({mbs.GetObject(i)['objectType']})")
+    return found
+
+
+def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
+    """Assemble if needed and integrate ``mbs`` with ``settings``.
+
+    Explicit methods are refused for systems with constraints (joints, coordinate
+    constraints): Exudyn's explicit solvers would silently ignore them.  Resets
+    every clearance joint's contact history, since the run starts from the
+    system's initial values.
+    """
+    if not isinstance(settings, SolverSettings):
+        raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
+    if not mbs.systemIsConsistent:
+        mbs.Assemble()
+    joints = _registry(mbs)
+    if joints:
+        installed = mbs.GetPreStepUserFunction()
+        if not isinstance(installed, dict) or installed.get("function") is not mbs.variables[_REGISTRY_KEY + ".hook"]:
+            raise RuntimeError(
+                "the pre-step user function that updates the clearance joints' contact history was replaced; "
+                "set your own pre-step function before adding clearance joints (exuclear then calls it)")
+    if settings.explicit:
+        constrained = _constraint_objects(mbs)
+        if constrained:
+            raise ValueError(
+                f"method {settings.method!r} is explicit and Exudyn's explicit solvers ignore constraints, but objects "
+                f"{', '.join(constrained)} are constraints; use 'generalized-alpha' or 'trapezoidal', "
+                "or a minimal-coordinate model")
+    for handle in joints:
+        handle.history.reset()
+    ss = simulation_settings(settings)
+    solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
+    start = time.perf_counter()
+    try:
+        ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
+        message = "" if ok else "Exudyn's solver reported failure"
+    except Exception as err:  # Exudyn raises its own error types on solver failure
+        ok, message = False, f"{type(err).__name__}: {err}"
+    wall = time.perf_counter() - start
+    it = mbs.sys["dynamicSolver"].it
+    t_reached = mbs.systemData.GetTime()
+    if not ok:
+        message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s; try a smaller `step`"
+                    f"{' or tolerances' if settings.adaptive else ''})")
+    return SimulationResult(ok, message, wall, int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps))

@@ -1,0 +1,152 @@
+"""Friction laws: the friction coefficient as a function of the tangential slip.
+
+A friction law returns ``mu(v_T)``, odd in ``v_T``; the joint then applies
+``F_T = mu(v_T) F_N`` against the slip (MODEL.md section 3, the paper's eqs. 10-11).
+Units: m/s for velocities.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ._checks import check_nonnegative, check_positive
+
+
+def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
+    """Cubic step ``S(x; x0, h0, x1, h1) = h0 + (h1 - h0) s^2 (3 - 2 s)`` (MODEL.md section 3).
+
+    ``s = clip((x - x0) / (x1 - x0), 0, 1)``; value and slope are continuous, with zero
+    slope at both ends.
+    """
+    s = (x - x0) / (x1 - x0)
+    if s <= 0.0:
+        return h0
+    if s >= 1.0:
+        return h1
+    return h0 + (h1 - h0) * s * s * (3.0 - 2.0 * s)
+
+
+class FrictionLaw:
+    """Base of the friction laws: ``coefficient(v_t) -> mu``."""
+
+    name: ClassVar[str] = ""
+    #: False where the law is identically zero, so the joint can skip friction work.
+    active: ClassVar[bool] = True
+
+    def coefficient(self, v_t: float) -> float:
+        raise NotImplementedError
+
+    __call__ = coefficient
+
+
+@dataclass(frozen=True)
+class NoFriction(FrictionLaw):
+    """Frictionless contact, ``mu = 0`` (the default for the journal-bearing check)."""
+
+    name: ClassVar[str] = "none"
+    active: ClassVar[bool] = False
+
+    def coefficient(self, v_t: float) -> float:
+        return 0.0
+
+
+@dataclass(frozen=True)
+class Coulomb(FrictionLaw):
+    """Coulomb friction with a constant ``mu``, smoothed over ``|v_T| < v_eps``.
+
+    ``mu(v_T) = S(v_T; -v_eps, -mu, v_eps, mu)``: the sign function replaced by the
+    cubic step of MODEL.md section 3 so that the force is continuous in ``v_T``.
+
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient, >= 0.
+    v_eps : float
+        Half-width of the smoothing band [m/s], > 0.  The default 1e-4 m/s is the
+        paper's stiction velocity ``v_s`` (Table 1).
+    """
+
+    mu: float
+    v_eps: float = 1e-4
+    name: ClassVar[str] = "coulomb"
+
+    def __post_init__(self) -> None:
+        check_nonnegative("mu", self.mu)
+        check_positive("v_eps", self.v_eps)
+
+    def coefficient(self, v_t: float) -> float:
+        return smooth_step(v_t, -self.v_eps, -self.mu, self.v_eps, self.mu)
+
+
+@dataclass(frozen=True)
+class ModifiedCoulomb(FrictionLaw):
+    """The paper's modified Coulomb law, eq. (11) (MODEL.md section 3).
+
+    - ``|v_T| >= v_d``: ``mu = mu_d sign(v_T)``
+    - ``v_s <= |v_T| < v_d``: ``mu = S(|v_T|; v_s, mu_s, v_d, mu_d) sign(v_T)``
+    - ``|v_T| < v_s``: ``mu = S(v_T; -v_s, -mu_s, v_s, mu_s)``
+
+    Parameters
+    ----------
+    mu_s, mu_d : float
+        Static and dynamic friction coefficients, >= 0.
+    v_s, v_d : float
+        Stiction and dynamic-transition velocities [m/s], ``0 < v_s < v_d``.
+    """
+
+    mu_s: float
+    mu_d: float
+    v_s: float
+    v_d: float
+    name: ClassVar[str] = "paper"
+
+    def __post_init__(self) -> None:
+        check_nonnegative("mu_s", self.mu_s)
+        check_nonnegative("mu_d", self.mu_d)
+        v_s = check_positive("v_s", self.v_s)
+        v_d = check_positive("v_d", self.v_d)
+        if v_s >= v_d:
+            raise ValueError(f"`v_s` must be smaller than `v_d`, got v_s = {v_s}, v_d = {v_d}")
+
+    @classmethod
+    def paper(cls) -> ModifiedCoulomb:
+        """The paper's Table 1: mu_s = 0.3, mu_d = 0.25, v_s = 0.1 mm/s, v_d = 10 mm/s."""
+        return cls(mu_s=0.3, mu_d=0.25, v_s=1e-4, v_d=1e-2)
+
+    def coefficient(self, v_t: float) -> float:
+        speed = abs(v_t)
+        if speed < self.v_s:
+            return smooth_step(v_t, -self.v_s, -self.mu_s, self.v_s, self.mu_s)
+        mu = self.mu_d if speed >= self.v_d else smooth_step(speed, self.v_s, self.mu_s, self.v_d, self.mu_d)
+        return math.copysign(mu, v_t)
+
+
+NO_FRICTION = NoFriction()
+
+#: Names understood by :func:`friction_law`.
+FRICTION_NAMES = ("none", "coulomb:MU", "paper")
+
+
+def friction_law(spec: str | FrictionLaw) -> FrictionLaw:
+    """Friction law from a command-line style name.
+
+    ``"none"``; ``"coulomb:MU"`` (smoothed Coulomb with constant ``MU``); ``"paper"``
+    (eq. 11 with the Table 1 values).  A :class:`FrictionLaw` is returned unchanged.
+    """
+    if isinstance(spec, FrictionLaw):
+        return spec
+    if spec == "none":
+        return NO_FRICTION
+    if spec == "paper":
+        return ModifiedCoulomb.paper()
+    if isinstance(spec, str) and spec.startswith("coulomb:"):
+        text = spec.split(":", 1)[1]
+        try:
+            mu = float(text)
+        except ValueError:
+            raise ValueError(f"`friction` coulomb:MU needs a number for MU, got {text!r}") from None
+        if not math.isfinite(mu):
+            raise ValueError(f"`friction` coulomb:MU needs a finite MU, got {text!r}")
+        return Coulomb(mu)
+    raise ValueError(f"unknown `friction` {spec!r}; known: {', '.join(FRICTION_NAMES)}")

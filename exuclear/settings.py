@@ -1,0 +1,83 @@
+"""Solver settings: one typed object, mapped onto Exudyn in exactly one place.
+
+The mapping lives in :func:`exuclear.exudyn_element.simulation_settings`; this module
+holds only the documented choices and their checks.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ._checks import check_choice, check_positive, check_real
+
+#: Method name -> (Exudyn DynamicSolverType name, explicit?, adaptive by default?).
+METHODS: dict[str, tuple[str, bool, bool]] = {
+    "dopri5": ("DOPRI5", True, True),
+    "ode23": ("ODE23", True, True),
+    "rk44": ("RK44", True, False),
+    "generalized-alpha": ("GeneralizedAlpha", False, False),
+    "trapezoidal": ("TrapezoidalIndex2", False, False),
+}
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Time integration settings.
+
+    Parameters
+    ----------
+    end_time : float
+        Simulated time [s], > 0.
+    method : str
+        One of :data:`METHODS`: ``"dopri5"`` (adaptive Dormand-Prince 5(4), explicit:
+        only for models without constraints), ``"ode23"``, ``"rk44"`` (fixed step),
+        ``"generalized-alpha"`` or ``"trapezoidal"`` (implicit, any model).
+    step : float
+        Fixed step for fixed-step methods; the largest step for adaptive ones [s].
+        Default 1e-5 s, the paper's maximum step.
+    rtol, atol : float
+        Relative and absolute error tolerances of adaptive explicit methods.  Default
+        rtol 1e-6 (the paper's tolerance) and atol 1e-9 m, i.e. 1e-5 of the paper's
+        0.1 mm clearance, so eccentricity errors stay well below the clearance.
+    min_step : float
+        Smallest step an adaptive method may take [s]; it fails below.
+    spectral_radius : float
+        Numerical damping of the generalized-alpha method at infinite frequency, in
+        [0, 1]; Exudyn's default 0.9.
+    output_step : float
+        Interval of recorded outputs [s]; default 1e-5 s.
+    verbose : int
+        Exudyn's verbose mode: 0 silent; 1 prints progress (time reached, time to go)
+        every few seconds of a long run.
+    """
+
+    end_time: float
+    method: str = "dopri5"
+    step: float = 1e-5
+    rtol: float = 1e-6
+    atol: float = 1e-9
+    min_step: float = 1e-12
+    spectral_radius: float = 0.9
+    output_step: float = 1e-5
+    verbose: int = 0
+
+    def __post_init__(self) -> None:
+        check_positive("end_time", self.end_time)
+        check_choice("method", self.method, METHODS)
+        check_positive("step", self.step)
+        check_positive("rtol", self.rtol)
+        check_positive("atol", self.atol)
+        check_positive("min_step", self.min_step)
+        rho = check_real("spectral_radius", self.spectral_radius)
+        if not 0.0 <= rho <= 1.0:
+            raise ValueError(f"`spectral_radius` must lie in [0, 1], got {rho}")
+        check_positive("output_step", self.output_step)
+        if self.step > self.end_time:
+            raise ValueError(f"`step` must not exceed `end_time`, got step = {self.step}, end_time = {self.end_time}")
+
+    @property
+    def explicit(self) -> bool:
+        return METHODS[self.method][1]
+
+    @property
+    def adaptive(self) -> bool:
+        return METHODS[self.method][2]

@@ -1,0 +1,209 @@
+"""Journal-bearing impact: the paper's example 1 (MODEL.md section 5.1), in Exudyn.
+
+::
+
+        bearing hole, radius R_B, fixed to the ground
+           .-------.
+          /  .---.  \\
+         |  ( J   )->|   journal, radius R_J, mass m, touching the wall at t = 0
+          \\  '---'  /    and moving along the normal into it at v_impact
+           '-------'
+
+One impact: the journal (an ``ObjectRigidBody2D``) starts at eccentricity ``e = c``
+(``delta = 0``) with velocity ``v_impact`` along ``n``; no gravity, no friction, no
+rotation.  The run ends once the journal has left the wall.
+
+Run ``python -m models.journal_bearing --help`` for the options.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from dataclasses import asdict, dataclass, replace
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+import exuclear
+from exuclear import SolverSettings
+
+#: Resolution of the impact: the largest step and the output interval [s].  A paper
+#: impact lasts about 40 us (MODEL.md section 6), so this samples it ~400 times.
+IMPACT_STEP = 1e-7
+#: The run stops this long after the start [s]: several impact durations.  The result
+#: reports an error if the journal has not left the wall by then.
+DEFAULT_END_TIME = 4e-4
+
+
+@dataclass(frozen=True)
+class JournalBearingParams:
+    """Parameters of the journal-bearing impact (SI units).
+
+    Use :meth:`paper` for the paper's values.
+    """
+
+    law: str
+    cr: float
+    journal_material: str
+    bearing_material: str
+    journal_radius: float
+    bearing_radius: float
+    length: float
+    mass: float
+    impact_velocity: float
+    v_min: float = exuclear.V_MIN_DEFAULT
+    end_time: float = DEFAULT_END_TIME
+
+    @classmethod
+    def paper(cls, **changes: object) -> JournalBearingParams:
+        """The paper's example 1: steel on steel, L = 15 mm, R_B = 10 mm, R_J = 9.9 mm,
+        m = 0.04 kg, 0.3 m/s, Wang-Liu law, cr = 0.9 (its bearing-length sweep)."""
+        base = cls(law="wang-liu", cr=0.9, journal_material="steel", bearing_material="steel",
+                   journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, mass=0.04,
+                   impact_velocity=0.3)
+        return replace(base, **changes)
+
+    def joint(self) -> exuclear.ClearanceJoint:
+        return exuclear.make_joint(
+            journal_radius=self.journal_radius, bearing_radius=self.bearing_radius, length=self.length,
+            law=self.law, cr=self.cr, journal_material=self.journal_material,
+            bearing_material=self.bearing_material, v_min=self.v_min)
+
+
+def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.ClearanceJointHandle, int]:
+    """Build the scene; returns the system, the joint handle and the journal's node."""
+    joint = params.joint()  # checks all physical parameters before anything is built
+    exuclear._checks.check_positive("mass", params.mass)
+    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
+    exuclear._checks.check_positive("end_time", params.end_time)
+    c = joint.geometry.clearance
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[c, 0.0, 0.0],
+                                       initialVelocities=[params.impact_velocity, 0.0, 0.0]))
+    # a solid cylinder; the inertia never matters here (no friction, no rotation)
+    journal = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=params.mass,
+                                              inertia=0.5 * params.mass * params.journal_radius**2))
+    handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing")
+    mbs.Assemble()
+    return mbs, handle, int(node)
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    """Summary of one impact (SI units); ``success`` False with ``message`` if it failed."""
+
+    law: str
+    cr: float
+    length: float
+    journal_material: str
+    bearing_material: str
+    impact_velocity: float
+    departure_velocity: float
+    max_force: float
+    max_penetration: float
+    contact_duration: float
+    newton_departure_velocity: float
+    effective_restitution: float
+    wall_time: float
+    success: bool
+    message: str
+
+
+def settings_for(params: JournalBearingParams) -> SolverSettings:
+    """DOPRI5 with steps no longer than :data:`IMPACT_STEP`; tolerances far below the
+    micrometre penetrations (atol 1e-13 m)."""
+    return SolverSettings(end_time=params.end_time, method="dopri5", step=IMPACT_STEP,
+                          rtol=1e-9, atol=1e-13, output_step=IMPACT_STEP / 10)
+
+
+def run(params: JournalBearingParams, settings: SolverSettings | None = None) -> tuple[ImpactResult, dict[str, np.ndarray]]:
+    """Simulate one impact; returns the summary and the joint's recorded outputs."""
+    mbs, handle, node = build(params)
+    settings = settings or settings_for(params)
+    sim = exuclear.simulate(mbs, settings)
+    out = handle.outputs()
+    v_end = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
+    departure = -float(v_end[0])  # free flight after the impact: velocity is constant
+    delta = out["penetration"]
+    left = np.flatnonzero((delta[:-1] > 0.0) & (delta[1:] <= 0.0))
+    success, message = sim.success, sim.message
+    if success and len(left) == 0:
+        success, message = False, f"the journal had not left the wall at t = {params.end_time} s; raise end_time"
+    duration = math.nan
+    if len(left):
+        k = left[0]  # interpolate the release instant between the two samples
+        t = out["time"]
+        duration = float(t[k] + (t[k + 1] - t[k]) * delta[k] / (delta[k] - delta[k + 1]))
+    result = ImpactResult(
+        law=params.law, cr=params.cr, length=params.length, journal_material=params.journal_material,
+        bearing_material=params.bearing_material, impact_velocity=params.impact_velocity,
+        departure_velocity=departure, max_force=float(out["normal_force"].max()),
+        max_penetration=float(delta.max()), contact_duration=duration,
+        newton_departure_velocity=params.cr * params.impact_velocity,
+        effective_restitution=departure / params.impact_velocity, wall_time=sim.wall_time,
+        success=success, message=message)
+    return result, out
+
+
+def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem: str = "journal_bearing") -> list[str]:
+    """Write the force-penetration and rate-penetration plots of the paper's Figs. 4-7."""
+    from exuclear.plotting import impact_curves
+
+    return impact_curves(results, directory, stem)
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = JournalBearingParams.paper()
+    ap = argparse.ArgumentParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
+    ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
+    ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
+    ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
+    ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {', '.join(exuclear.MATERIALS)} (default %(default)s)")
+    ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
+    ap.add_argument("--journal-radius", type=float, default=p.journal_radius, help="R_J [m] (default %(default)s)")
+    ap.add_argument("--bearing-radius", type=float, default=p.bearing_radius, help="R_B [m] (default %(default)s)")
+    ap.add_argument("--mass", type=float, default=p.mass, help="journal mass [kg] (default %(default)s)")
+    ap.add_argument("--velocity", type=float, default=p.impact_velocity, help="impact velocity [m/s] (default %(default)s)")
+    ap.add_argument("--v-min", type=float, default=p.v_min, help="floor of v0 in the damping term [m/s] (default %(default)s)")
+    ap.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
+    ap.add_argument("--plot", metavar="DIR", help="write force-penetration and rate-penetration plots to DIR")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        params = JournalBearingParams.paper(
+            law=args.law, cr=args.cr, length=args.length, journal_material=args.journal,
+            bearing_material=args.bearing, journal_radius=args.journal_radius,
+            bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min)
+        result, out = run(params)
+    except ValueError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps(asdict(result)))
+    else:
+        print(f"journal-bearing impact: {result.law}, cr = {result.cr}, L = {result.length * 1e3:g} mm, "
+              f"{result.journal_material} journal in {result.bearing_material} bearing")
+        print(f"  impact velocity     {result.impact_velocity:.4f} m/s")
+        print(f"  departure velocity  {result.departure_velocity:.4f} m/s  (Newton cr*v: {result.newton_departure_velocity:.4f})")
+        print(f"  max contact force   {result.max_force:.1f} N")
+        print(f"  max penetration     {result.max_penetration * 1e6:.4f} um")
+        print(f"  contact duration    {result.contact_duration * 1e6:.2f} us")
+        print(f"  wall time           {result.wall_time:.3f} s")
+    if args.plot:
+        for path in plot([(f"{result.law}, cr = {result.cr}", out)], args.plot):
+            print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
+    if not result.success:
+        print(f"error: {result.message}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
