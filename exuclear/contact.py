@@ -13,8 +13,10 @@ approach (compression), ``v0 > 0`` the approach speed at contact onset.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable, ClassVar
+from typing import ClassVar
 
 from ._checks import check_choice, check_open_closed, check_positive, check_real
 from .geometry import BearingGeometry
@@ -28,7 +30,7 @@ EXPONENT_METAL = 1.5
 
 
 @dataclass(frozen=True)
-class ContactLaw:
+class ContactLaw(ABC):
     """Base of the normal contact laws; see the module docstring.
 
     Parameters
@@ -63,9 +65,9 @@ class ContactLaw:
         object.__setattr__(self, "_k0", self._stiffness_constant())
 
     # -- the two pieces a law defines -------------------------------------------------
+    @abstractmethod
     def _stiffness_constant(self) -> float:
         """The delta-independent factor of ``K_eff`` (computed once)."""
-        raise NotImplementedError
 
     def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
         """``K_eff(delta)`` [N/m^n]; constant unless the law says otherwise.
@@ -76,9 +78,9 @@ class ContactLaw:
         return self._k0
 
     @property
+    @abstractmethod
     def damping_factor(self) -> float:
         """``D`` of the hysteresis term (dimensionless)."""
-        raise NotImplementedError
 
     # -- shared formula ---------------------------------------------------------------
     def elastic_force(self, delta: float) -> float:
@@ -106,7 +108,8 @@ class ContactLaw:
         f = self.stiffness(delta) * delta**self.exponent * (1.0 + self.damping_factor * delta_dot / v0_eff)
         return f if f > 0.0 else 0.0  # no adhesion (MODEL.md section 2)
 
-    __call__ = normal_force
+    def __call__(self, delta: float, delta_dot: float, v0: float) -> float:
+        return self.normal_force(delta, delta_dot, v0)
 
 
 def _conformal_hertz_constant(law: ContactLaw) -> float:

@@ -7,6 +7,7 @@ Units: m/s for velocities.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -27,17 +28,19 @@ def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
     return h0 + (h1 - h0) * s * s * (3.0 - 2.0 * s)
 
 
-class FrictionLaw:
+class FrictionLaw(ABC):
     """Base of the friction laws: ``coefficient(v_t) -> mu``."""
 
     name: ClassVar[str] = ""
     #: False where the law is identically zero, so the joint can skip friction work.
     active: ClassVar[bool] = True
 
+    @abstractmethod
     def coefficient(self, v_t: float) -> float:
-        raise NotImplementedError
+        """Friction coefficient ``mu`` for the tangential slip ``v_t`` [m/s]; odd in ``v_t``."""
 
-    __call__ = coefficient
+    def __call__(self, v_t: float) -> float:
+        return self.coefficient(v_t)
 
 
 @dataclass(frozen=True)
@@ -76,7 +79,8 @@ class Coulomb(FrictionLaw):
         check_positive("v_eps", self.v_eps)
 
     def coefficient(self, v_t: float) -> float:
-        return smooth_step(v_t, -self.v_eps, -self.mu, self.v_eps, self.mu)
+        # S(v; -a, -mu, a, mu) is odd in v; evaluating it at |v| keeps that exact in floats
+        return math.copysign(smooth_step(abs(v_t), -self.v_eps, -self.mu, self.v_eps, self.mu), v_t)
 
 
 @dataclass(frozen=True)
@@ -116,9 +120,12 @@ class ModifiedCoulomb(FrictionLaw):
 
     def coefficient(self, v_t: float) -> float:
         speed = abs(v_t)
-        if speed < self.v_s:
-            return smooth_step(v_t, -self.v_s, -self.mu_s, self.v_s, self.mu_s)
-        mu = self.mu_d if speed >= self.v_d else smooth_step(speed, self.v_s, self.mu_s, self.v_d, self.mu_d)
+        if speed < self.v_s:  # odd branch evaluated at |v| so that mu(-v) = -mu(v) exactly
+            mu = smooth_step(speed, -self.v_s, -self.mu_s, self.v_s, self.mu_s)
+        elif speed < self.v_d:
+            mu = smooth_step(speed, self.v_s, self.mu_s, self.v_d, self.mu_d)
+        else:
+            mu = self.mu_d
         return math.copysign(mu, v_t)
 
 

@@ -1,0 +1,197 @@
+"""The Exudyn element on general bodies, the solver guard, and bad input."""
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import exudyn as exu
+import numpy as np
+import pytest
+from exudyn.itemInterface import (
+    MarkerBodyRigid,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectJointRevolute2D,
+    ObjectRigidBody2D,
+)
+
+import exuclear
+
+R_J, R_B, L = 9.9e-3, 10e-3, 15e-3
+ARM_I, ARM_J = (0.05, 0.01), (-0.02, 0.03)  # journal and bearing centres in the body frames
+
+
+def _rotate(phi, p):
+    c, s = math.cos(phi), math.sin(phi)
+    return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]])
+
+
+def _two_body_system(friction="none", law="hertz", cr=None):
+    mbs = exu.SystemContainer().AddSystem()
+    bodies = []
+    for ref in ([0.0, 0.0, 0.3], [0.1, 0.0, -0.2]):
+        node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=ref))
+        bodies.append(mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3)))
+    handle = exuclear.add_clearance_joint(
+        mbs, bodies[0], bodies[1], journal_point=ARM_I, bearing_point=ARM_J, journal_radius=R_J,
+        bearing_radius=R_B, length=L, law=law, cr=cr, friction=friction, record=False)
+    mbs.Assemble()
+    return mbs, handle
+
+
+def _contact_state(delta, angle=0.8):
+    """Displacement coordinates q (6) putting P_J at |e| = c + delta along ``angle``."""
+    p_b = np.array([0.1, 0.0]) + _rotate(-0.2, ARM_J)
+    p_j = p_b + (R_B - R_J + delta) * np.array([math.cos(angle), math.sin(angle)])
+    node_i = p_j - _rotate(0.3, ARM_I)  # body i: reference at the origin
+    return np.array([node_i[0], node_i[1], 0.0, 0.0, 0.0, 0.0])
+
+
+def test_elastic_generalized_forces_are_the_potential_gradient():
+    # Hertz: V = K delta^2.5 / 2.5 with delta from the body poses computed here by hand;
+    # Q = -grad V checks arms, rotations and the node mapping of section 4.
+    # Central differences with h = 1e-9 have error ~ V''' h^2, far below 1e-6 relative.
+    mbs, handle = _two_body_system()
+    k = handle.joint.law.stiffness(0.0)
+    rot_i, rot_j = 0.01, -0.02  # small rotations on top of the reference angles
+
+    def potential(q):
+        p_j = q[:2] + _rotate(0.3 + q[2], ARM_I)
+        p_b = np.array([0.1, 0.0]) + q[3:5] + _rotate(-0.2 + q[5], ARM_J)
+        delta = np.linalg.norm(p_j - p_b) - (R_B - R_J)
+        return k * max(delta, 0.0) ** 2.5 / 2.5
+
+    p_b = np.array([0.1, 0.0]) + _rotate(-0.2 + rot_j, ARM_J)
+    p_j = p_b + (R_B - R_J + 2e-6) * np.array([math.cos(0.8), math.sin(0.8)])
+    q = np.concatenate([p_j - _rotate(0.3 + rot_i, ARM_I), [rot_i, 0.0, 0.0, rot_j]])
+    forces = np.array(handle.force_function(mbs, 0.0, handle.object_index, q, np.zeros(6)))
+    h = 1e-9
+    gradient = [(potential(q + h * e) - potential(q - h * e)) / (2 * h) for e in np.eye(6)]
+    assert np.abs(forces).max() > 1.0
+    np.testing.assert_allclose(forces, -np.array(gradient), rtol=1e-6, atol=1e-6 * np.abs(forces).max())
+
+
+def test_power_of_generalized_forces_equals_contact_dissipation():
+    # for any velocities, Q . q_t = -(F_N delta_dot + F_T v_T) (MODEL.md sections 1, 4):
+    # the friction moments on both bodies included
+    mbs, handle = _two_body_system(friction="coulomb:0.2", law="lankarani-nikravesh", cr=0.8)
+    q = _contact_state(3e-6)
+    handle.history.in_contact, handle.history.v0 = True, 1.0  # a contact that began at 1 m/s
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        q_t = rng.normal(size=6) * np.array([0.1, 0.1, 10, 0.1, 0.1, 10])
+        forces = np.array(handle.force_function(mbs, 0.0, handle.object_index, q, q_t))
+        kin = handle.kinematics(q, q_t)
+        resp = handle.joint.response(kin, handle.history)
+        assert resp.f_t != 0.0
+        assert forces @ q_t == pytest.approx(-(resp.f_n * kin.delta_dot + resp.f_t * kin.v_t), rel=1e-10)
+
+
+def test_explicit_solver_with_constraints_is_refused():
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
+    m0 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
+    m1 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))
+    mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[m0, m1]))
+    exuclear.add_clearance_joint(mbs, body, ground, journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9)
+    mbs.Assemble()
+    with pytest.raises(ValueError, match="explicit.*JointRevolute2D"):
+        exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, method="dopri5"))
+    assert exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha")).success
+
+
+def test_user_pre_step_function_is_kept_and_a_later_one_refused():
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
+    calls = []
+    mbs.SetPreStepUserFunction(lambda mbs_, t: calls.append(t) or True)
+    exuclear.add_clearance_joint(mbs, body, ground, journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9)
+    mbs.Assemble()
+    settings = exuclear.SolverSettings(end_time=1e-3, method="rk44", step=1e-4)
+    assert exuclear.simulate(mbs, settings).success
+    assert len(calls) == 10  # one per step of 1e-4 s
+    mbs.SetPreStepUserFunction(lambda mbs_, t: True)
+    with pytest.raises(RuntimeError, match="pre-step user function"):
+        exuclear.simulate(mbs, settings)
+
+
+GOOD = dict(journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9)
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(journal_radius=10e-3), "journal_radius` must be smaller"),
+    (dict(journal_radius=11e-3), "journal_radius` must be smaller"),
+    (dict(length=0.0), "`length` must be positive"),
+    (dict(length=float("nan")), "`length` must be finite"),
+    (dict(cr=0.0), r"`cr` must lie in \(0.0, 1.0\]"),
+    (dict(cr=1.2), r"`cr` must lie in \(0.0, 1.0\]"),
+    (dict(cr=float("nan")), "`cr` must be finite"),
+    (dict(cr=None), "`cr` .* is required"),
+    (dict(law="hertzian"), "unknown `law` 'hertzian'; known: flores, hertz"),
+    (dict(journal_material="brass"), "unknown `material` 'brass'; known: aluminium, copper"),
+    (dict(E_star=-1.0), "`E_star` must be positive"),
+    (dict(journal_material=exuclear.Material(2e11, 0.3)), None),
+    (dict(friction="coulomb:x"), "coulomb:MU needs a number"),
+    (dict(friction="viscous"), "unknown `friction`"),
+    (dict(v_min=0.0), "`v_min` must be positive"),
+])
+def test_bad_joint_parameters(change, message):
+    if message is None:
+        exuclear.make_joint(**{**GOOD, **change})
+        return
+    with pytest.raises(ValueError, match=message):
+        exuclear.make_joint(**{**GOOD, **change})
+
+
+@pytest.mark.parametrize("E, nu, message", [(0.0, 0.3, "`E` must be positive"), (2e11, 0.5, "`nu` must lie"),
+                                            (2e11, -1.0, "`nu` must lie"), (float("nan"), 0.3, "`E` must be finite")])
+def test_bad_material(E, nu, message):
+    with pytest.raises(ValueError, match=message):
+        exuclear.Material(E, nu)
+
+
+def test_clearance_must_be_positive():
+    with pytest.raises(ValueError, match="`clearance` must be positive, got -0.0001"):
+        exuclear.BearingGeometry.from_clearance(10e-3, -1e-4, 15e-3)
+
+
+def test_bad_bodies():
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    with pytest.raises(ValueError, match="both the ground"):
+        exuclear.add_clearance_joint(mbs, ground, ground, **GOOD)
+    with pytest.raises(ValueError, match="not an object"):
+        exuclear.add_clearance_joint(mbs, 99, ground, **GOOD)
+    with pytest.raises(ValueError, match="journal_point"):
+        exuclear.add_clearance_joint(mbs, ground, ground, journal_point=(0.0,), **GOOD)
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "models.journal_bearing", *args], capture_output=True, text=True)
+
+
+def test_cli_json():
+    import json
+
+    proc = _cli("--law", "wang-liu", "--cr", "0.9", "--length", "0.015", "--journal", "steel", "--bearing", "steel",
+                "--json")
+    assert proc.returncode == 0, proc.stderr
+    result = json.loads(proc.stdout)
+    assert {"departure_velocity", "max_force", "max_penetration", "contact_duration"} <= set(result)
+    assert result["departure_velocity"] == pytest.approx(0.269, rel=0.01)  # the paper, section 5.1
+
+
+@pytest.mark.parametrize("args, message", [(("--cr", "1.5"), "`cr` must lie"), (("--law", "foo"), "unknown `law`"),
+                                           (("--journal", "wood"), "unknown `material`"),
+                                           (("--length", "-1"), "`length` must be positive"),
+                                           (("--cr", "nan"), "`cr` must be finite")])
+def test_cli_bad_input_exits_2_without_traceback(args, message):
+    proc = _cli(*args)
+    assert proc.returncode == 2
+    assert message in proc.stderr
+    assert "Traceback" not in proc.stderr

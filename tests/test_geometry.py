@@ -1,0 +1,48 @@
+"""Contact kinematics, section-4 loads and the contact history (pure physics)."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from exuclear import ContactHistory, contact_kinematics, joint_loads
+
+
+def test_kinematics_of_a_journal_pressed_along_x(geometry):
+    kin = contact_kinematics(geometry, 1.2e-4, 0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    assert (kin.nx, kin.ny) == (1.0, 0.0)
+    assert kin.delta == pytest.approx(2e-5, rel=1e-9)
+    assert kin.delta_dot == 0.5
+    assert kin.v_t == 0.0
+
+
+def test_slip_of_a_spinning_journal(geometry):
+    # n = +x, t = (0, -1); a journal spinning with omega moves its contact point by
+    # omega x (R_J n) = (0, omega R_J), i.e. -omega R_J along t
+    kin = contact_kinematics(geometry, 1.0e-4, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    assert kin.v_t == pytest.approx(-2.0 * 9.9e-3)
+
+
+def test_power_of_the_loads_is_the_contact_dissipation(geometry):
+    # sum of F.v + M.omega over both bodies = -(F_N delta_dot + F_T v_T) for any state
+    state = (1.05e-4 * math.cos(0.7), 1.05e-4 * math.sin(0.7), 0.3, -0.2, 4.0, 0.0, 0.0, 0.05, 0.1, -3.0)
+    kin = contact_kinematics(geometry, *state)
+    f_n, f_t = 500.0, 40.0
+    loads = joint_loads(geometry, kin, f_n, f_t)
+    vxj, vyj, wi, vxb, vyb, wj = state[2], state[3], state[4], state[7], state[8], state[9]
+    power = loads.fx * (vxj - vxb) + loads.fy * (vyj - vyb) + loads.m_i * wi + loads.m_j * wj
+    assert power == pytest.approx(-(f_n * kin.delta_dot + f_t * kin.v_t), rel=1e-12)
+
+
+def test_history_onset_is_interpolated_to_zero_penetration():
+    # delta_dot linear in delta: from (-1e-6, 0.2) to (+1e-6, 0.4) the onset rate is 0.3
+    h = ContactHistory()
+    h.accept(-1e-6, 0.2)
+    assert h.onset_velocity(1e-6, 0.4) == pytest.approx(0.3)
+    h.accept(1e-6, 0.4)
+    h.accept(1e-6, 0.4)  # a repeated pre-step call (rejected step) changes nothing
+    assert h.in_contact and h.v0 == pytest.approx(0.3)
+    h.accept(2e-6, 0.1)
+    assert h.v0 == pytest.approx(0.3)  # kept for the whole contact
+    h.accept(-1e-7, -0.3)
+    assert not h.in_contact
