@@ -2,9 +2,13 @@
 from __future__ import annotations
 
 import os
+import textwrap
 from collections.abc import Sequence
 
 import numpy as np
+
+#: Titles longer than this many characters are wrapped so that they fit the figure.
+_TITLE_WIDTH = 55
 
 
 def _pyplot():
@@ -36,7 +40,7 @@ def impact_curves(results: Sequence[tuple[str, dict[str, np.ndarray]]], director
         ax.set_xlabel("penetration [µm]")
         ax.set_ylabel(ylabel)
         if title:
-            ax.set_title(title)
+            ax.set_title(textwrap.fill(title, _TITLE_WIDTH), fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()

@@ -1,0 +1,368 @@
+"""Journal-bearing impact: the paper's Figs. 4-7 and their tables.
+
+Source problem: example 1 of X. Wang, G. Liu, S. Ma, R. Tong, "Effects of restitution
+coefficient and material characteristics on dynamic response of planar multi-body
+systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-597,
+restated in ``shared/spec/MODEL.md`` section 5.1: a 0.04 kg journal starts touching a
+fixed bearing (R_B = 10 mm, R_J = 9.9 mm) and moves into it at 0.3 m/s.
+
+Every run goes through :func:`models.journal_bearing.run`; this script only chooses
+the cases, draws the curves and writes the tables:
+
+- Fig. 4: cr sweep, Wang-Liu law; Fig. 5: the same with Lankarani-Nikravesh;
+- Fig. 6: bearing length sweep at cr = 0.9 (Wang-Liu);
+- Fig. 7: steel-steel against a copper journal in a steel bearing (Wang-Liu, cr = 0.9);
+- the effective restitution (departure / impact speed) of every law in
+  :data:`exuclear.CONTACT_LAWS` for cr = 0.1, 0.2, ..., 1.0.
+
+Run from the repository root::
+
+    python -m validation.journal_bearing [--out DIR]
+
+Exit status 0 if every run succeeded, 1 otherwise (the failed runs are listed).
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import sys
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import exuclear
+from exuclear.plotting import impact_curves
+from models.journal_bearing import ImpactResult, JournalBearingParams, run
+
+DEFAULT_OUT = os.path.join("results", "journal_bearing")
+
+#: Restitution coefficients of the paper's Figs. 4 and 5.
+CR_SWEEP = (0.3, 0.5, 0.7, 0.9, 1.0)
+#: Bearing lengths of the paper's Fig. 6 [m].
+LENGTH_SWEEP = (10e-3, 15e-3, 30e-3, 40e-3)
+#: Restitution coefficient of the paper's Figs. 6 and 7.
+CR_FIGS_6_7 = 0.9
+#: Grid of the effective-restitution table: cr = 0.1, 0.2, ..., 1.0 (rounded so that
+#: the values equal the literals 0.3, 0.5, ... and the cached runs are shared).
+CR_GRID = tuple(round(0.1 * k, 1) for k in range(1, 11))
+
+#: Published departure velocities [m/s] of the Wang-Liu law, keyed by cr.
+#: Source: the paper, section 5.1 (restated in MODEL.md section 5.1).
+PAPER_WANG_LIU_DEPARTURE = {0.3: 0.098, 0.5: 0.145, 0.9: 0.269}
+
+M_TO_UM = 1e6  # penetrations are shown in micrometres, as in the paper's figures
+S_TO_US = 1e6  # contact durations in microseconds
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One run of a case: the shown parameter value, a legend label, the changes
+    to :meth:`JournalBearingParams.paper`."""
+
+    value: str
+    label: str
+    changes: dict[str, object] = field(hash=False)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One figure of the paper: runs that differ in one parameter.
+
+    Parameters
+    ----------
+    stem : str
+        File-name stem of the figures and the CSV table.
+    title : str
+        Figure and table title.
+    column : str
+        Header of the case-parameter column.
+    variants : tuple of Variant
+        The runs, in legend order.
+    """
+
+    stem: str
+    title: str
+    column: str
+    variants: tuple[Variant, ...]
+
+
+#: A finished case: each variant with its summary and the joint's recorded outputs.
+CaseRows = list[tuple[Variant, ImpactResult, dict[str, np.ndarray]]]
+
+
+def _cr_sweep(law: str) -> tuple[Variant, ...]:
+    return tuple(Variant(f"{cr:g}", f"cr = {cr:g}", {"law": law, "cr": cr}) for cr in CR_SWEEP)
+
+
+def _length_sweep() -> tuple[Variant, ...]:
+    return tuple(Variant(f"{L * 1e3:g}", f"L = {L * 1e3:g} mm", {"length": L, "cr": CR_FIGS_6_7})
+                 for L in LENGTH_SWEEP)
+
+
+def _material_pair() -> tuple[Variant, ...]:
+    # Fig. 7's "steel-copper": the journal is copper and the bearing steel, as in the
+    # paper's slider-crank material sweep (MODEL.md 5.2), where the bearing stays steel.
+    return tuple(Variant(f"{j} / {b}", f"{j} journal, {b} bearing",
+                         {"journal_material": j, "bearing_material": b, "cr": CR_FIGS_6_7})
+                 for j, b in (("steel", "steel"), ("copper", "steel")))
+
+
+def paper_cases() -> tuple[Case, ...]:
+    """The four cases of the paper's Figs. 4-7 (MODEL.md section 5.1)."""
+    return (
+        Case("fig4_wang_liu_cr", "Fig. 4: cr sweep, Wang-Liu law (L = 15 mm, steel-steel)", "cr",
+             _cr_sweep("wang-liu")),
+        Case("fig5_lankarani_nikravesh_cr", "Fig. 5: cr sweep, Lankarani-Nikravesh law (L = 15 mm, steel-steel)",
+             "cr", _cr_sweep("lankarani-nikravesh")),
+        Case("fig6_length", f"Fig. 6: bearing length, Wang-Liu law (cr = {CR_FIGS_6_7:g}, steel-steel)",
+             "L [mm]", _length_sweep()),
+        Case("fig7_material", f"Fig. 7: materials, Wang-Liu law (cr = {CR_FIGS_6_7:g}, L = 15 mm)",
+             "journal / bearing", _material_pair()),
+    )
+
+
+class ImpactRunner:
+    """Runs impacts through :func:`models.journal_bearing.run` and keeps every run.
+
+    The cases share runs (Wang-Liu at cr = 0.9, L = 15 mm, steel-steel appears in
+    Figs. 4, 6 and 7 and in the restitution table), so each parameter set runs once;
+    :meth:`failures` lists the runs that did not succeed.
+    """
+
+    def __init__(self) -> None:
+        self.runs: dict[JournalBearingParams, tuple[ImpactResult, dict[str, np.ndarray]]] = {}
+
+    def __call__(self, params: JournalBearingParams) -> tuple[ImpactResult, dict[str, np.ndarray]]:
+        if params not in self.runs:
+            self.runs[params] = run(params)
+        return self.runs[params]
+
+    def failures(self) -> list[tuple[str, ImpactResult]]:
+        """``(description, result)`` of every run with ``success`` False."""
+        return [(describe(params), result) for params, (result, _) in self.runs.items() if not result.success]
+
+
+def describe(params: JournalBearingParams) -> str:
+    """One-line description of a run's parameters."""
+    return (f"{params.law}, cr = {params.cr:g}, L = {params.length * 1e3:g} mm, "
+            f"{params.journal_material} journal / {params.bearing_material} bearing")
+
+
+def run_case(runner: ImpactRunner, case: Case, index: int, total: int) -> CaseRows:
+    """Run every variant of ``case``, printing one progress line per run."""
+    print(f"case {index}/{total}: {case.title}", flush=True)
+    rows = []
+    for variant in case.variants:
+        result, out = runner(JournalBearingParams.paper(**variant.changes))
+        status = "" if result.success else f"  FAILED: {result.message}"
+        print(f"  {variant.label}: departure {result.departure_velocity:.4f} m/s{status}", flush=True)
+        rows.append((variant, result, out))
+    return rows
+
+
+def _case_record(case: Case, variant: Variant, result: ImpactResult) -> dict[str, object]:
+    """One table row of a case, in the units of the paper's figures."""
+    return {
+        case.column: variant.value if result.success else f"{variant.value} (FAILED, see below)",
+        "departure velocity [m/s]": result.departure_velocity,
+        "peak force [N]": result.max_force,
+        "peak penetration [um]": result.max_penetration * M_TO_UM,
+        "contact duration [us]": result.contact_duration * S_TO_US,
+        "Newton cr*v0 [m/s]": result.newton_departure_velocity,
+    }
+
+
+#: Markdown number formats of the case-table columns (after the parameter column).
+_CASE_FORMATS = (".4f", ".1f", ".3f", ".2f", ".4f")
+
+
+def case_table_md(case: Case, rows: CaseRows) -> str:
+    """Markdown table of one case."""
+    records = [_case_record(case, v, r) for v, r, _ in rows]
+    header = list(records[0])
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for rec in records:
+        values = list(rec.values())
+        cells = [str(values[0])] + [format(x, f) for x, f in zip(values[1:], _CASE_FORMATS, strict=True)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def write_csv(path: str, records: list[dict[str, object]]) -> str:
+    """Write ``records`` (dicts with the same keys) as a CSV file; returns ``path``."""
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.DictWriter(f, fieldnames=list(records[0]))
+        writer.writeheader()
+        writer.writerows(records)
+    return path
+
+
+def write_case_files(case: Case, rows: CaseRows, directory: str) -> list[str]:
+    """The two figures and the CSV table of one case; returns the paths."""
+    curves = [(v.label, out) for v, _, out in rows]
+    paths = impact_curves(curves, directory, case.stem, title=case.title)
+    records = [_case_record(case, v, r) for v, r, _ in rows]
+    paths.append(write_csv(os.path.join(directory, f"{case.stem}.csv"), records))
+    return paths
+
+
+# -- effective restitution of every law ---------------------------------------------
+
+@dataclass(frozen=True)
+class RestitutionRow:
+    """Effective restitution of one law over :data:`CR_GRID`; ``None`` where the law
+    rejects that cr (``note`` says why)."""
+
+    law: str
+    values: tuple[float | None, ...]
+    note: str = ""
+
+
+def _rejection(params: JournalBearingParams) -> str:
+    """Why a law does not accept these parameters ('' if it does)."""
+    try:
+        params.joint()
+    except ValueError as err:
+        return str(err)
+    return ""
+
+
+def restitution_row(runner: ImpactRunner, law: str) -> RestitutionRow:
+    """Effective restitution of ``law`` on the paper's scene for every cr of the grid."""
+    values, rejected, reasons = [], [], []
+    for cr in CR_GRID:
+        params = JournalBearingParams.paper(law=law, cr=cr)
+        reason = _rejection(params)
+        if reason:
+            values.append(None)
+            rejected.append(f"{cr:g}")
+            reasons.append(reason)
+            continue
+        values.append(runner(params)[0].effective_restitution)
+    note = f"rejects cr = {', '.join(rejected)} (first message: {reasons[0]})" if rejected else ""
+    return RestitutionRow(law, tuple(values), note)
+
+
+def restitution_sweep(runner: ImpactRunner) -> list[RestitutionRow]:
+    """:func:`restitution_row` for every law of :data:`exuclear.CONTACT_LAWS`."""
+    rows = []
+    for k, law in enumerate(exuclear.CONTACT_LAWS, start=1):
+        print(f"restitution {k}/{len(exuclear.CONTACT_LAWS)}: {law}, cr = {CR_GRID[0]:g} ... {CR_GRID[-1]:g}",
+              flush=True)
+        rows.append(restitution_row(runner, law))
+    return rows
+
+
+def restitution_md(rows: list[RestitutionRow]) -> str:
+    """Markdown table of the effective restitution, with notes for rejected cr."""
+    header = ["law"] + [f"cr = {cr:g}" for cr in CR_GRID]
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    notes = []
+    for row in rows:
+        mark = f" [{len(notes) + 1}]" if row.note else ""
+        cells = [row.law + mark] + ["-" if e is None else f"{e:.4f}" for e in row.values]
+        lines.append("| " + " | ".join(cells) + " |")
+        if row.note:
+            notes.append(f"[{len(notes) + 1}] {row.law} {row.note}; only the cr it accepts is run.")
+    return "\n".join(lines + [""] + notes)
+
+
+def restitution_records(rows: list[RestitutionRow]) -> list[dict[str, object]]:
+    """CSV records of the effective restitution (empty cells where a law rejects cr)."""
+    records = []
+    for row in rows:
+        cells = {f"cr={cr:g}": ("" if e is None else e) for cr, e in zip(CR_GRID, row.values, strict=True)}
+        records.append({"law": row.law, **cells})
+    return records
+
+
+# -- report ---------------------------------------------------------------------------
+
+def paper_comparison_md(runner: ImpactRunner) -> str:
+    """Our Wang-Liu departure velocities beside the paper's published ones."""
+    lines = ["| cr | paper [m/s] | exuclear [m/s] | relative difference |", "|---|---|---|---|"]
+    for cr, published in PAPER_WANG_LIU_DEPARTURE.items():
+        ours = runner(JournalBearingParams.paper(law="wang-liu", cr=cr))[0].departure_velocity
+        lines.append(f"| {cr:g} | {published:.3f} | {ours:.4f} | {100.0 * (ours - published) / published:+.2f} % |")
+    return "\n".join(lines)
+
+
+def _intro_md(runner: ImpactRunner) -> str:
+    p = JournalBearingParams.paper()
+    return (
+        "# Journal-bearing impact: the paper's Figs. 4-7\n\n"
+        "Source problem: example 1 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) (2017) "
+        "587-597 (MODEL.md section 5.1). A journal of mass "
+        f"{p.mass:g} kg starts touching a fixed bearing (R_B = {p.bearing_radius * 1e3:g} mm, "
+        f"R_J = {p.journal_radius * 1e3:g} mm, c = {(p.bearing_radius - p.journal_radius) * 1e3:.1f} mm) "
+        f"and moves into it at v0 = {p.impact_velocity:g} m/s; no gravity, friction or rotation. "
+        "The paper publishes the departure velocities of its Wang-Liu law; ours, from the "
+        "same formulas, are beside them:\n\n" + paper_comparison_md(runner) + "\n\n"
+        "In Fig. 7, \"steel-copper\" is a copper journal in a steel bearing (the bearing stays "
+        "steel, as in the paper's slider-crank material sweep). Penetrations are in micrometres, "
+        "durations in microseconds; the contact duration runs from the onset to the instant the "
+        "penetration returns to zero.\n"
+    )
+
+
+def _case_section_md(case: Case, rows: CaseRows) -> str:
+    figures = "\n".join(f"![{case.title}: {kind}]({case.stem}_{kind}.png)" for kind in ("force", "rate"))
+    return f"## {case.title}\n\n{case_table_md(case, rows)}\n\n{figures}\n"
+
+
+def _failures_md(failures: list[tuple[str, ImpactResult]]) -> str:
+    if not failures:
+        return ""
+    return "## Failed runs\n\n" + "\n".join(f"- {name}: {r.message}" for name, r in failures) + "\n"
+
+
+def write_report(path: str, runner: ImpactRunner, cases: list[tuple[Case, CaseRows]],
+                 restitution: list[RestitutionRow]) -> str:
+    """Write the Markdown report; returns ``path``."""
+    parts = [_intro_md(runner)]
+    parts += [_case_section_md(case, rows) for case, rows in cases]
+    parts.append("## Effective restitution (departure speed / impact speed) of every law\n\n"
+                 "Scene of MODEL.md 5.1 (L = 15 mm, steel-steel, v0 = "
+                 f"{JournalBearingParams.paper().impact_velocity:g} m/s); CSV: `effective_restitution.csv`.\n\n"
+                 + restitution_md(restitution) + "\n")
+    parts.append(_failures_md(runner.failures()))
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(p for p in parts if p))
+    return path
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="python -m validation.journal_bearing", description=__doc__.split("\n")[0])
+    ap.add_argument("--out", metavar="DIR", default=DEFAULT_OUT,
+                    help="directory of the figures and tables (default %(default)s)")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run all cases, write figures, CSV tables and the report; 1 if any run failed."""
+    args = _parser().parse_args(argv)
+    start = time.perf_counter()
+    os.makedirs(args.out, exist_ok=True)
+    runner = ImpactRunner()
+    cases = paper_cases()
+    done, paths = [], []
+    for k, case in enumerate(cases, start=1):
+        rows = run_case(runner, case, k, len(cases))
+        paths += write_case_files(case, rows, args.out)
+        done.append((case, rows))
+    restitution = restitution_sweep(runner)
+    paths.append(write_csv(os.path.join(args.out, "effective_restitution.csv"), restitution_records(restitution)))
+    paths.append(write_report(os.path.join(args.out, "journal_bearing.md"), runner, done, restitution))
+    for path in paths:
+        print(f"wrote {path}")
+    print(f"{len(runner.runs)} runs, wall time {time.perf_counter() - start:.1f} s")
+    failures = runner.failures()
+    for name, result in failures:
+        print(f"error: run failed: {name}: {result.message}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
