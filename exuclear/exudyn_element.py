@@ -43,19 +43,25 @@ OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_f
                   "tangential_force", "slip_velocity", "v0", "in_contact")
 
 
-# -- the two sides of a joint ------------------------------------------------------------
+# -- the sides of a joint -----------------------------------------------------------------
+# A side turns the element's coordinates (q, q_t: the coordinates of its nodes, without
+# reference values) into the position, velocity and angular velocity of the journal or
+# bearing centre, and adds a force and moment at that centre to the generalized forces.
+# ``offset`` is where the side's node starts in the element's coordinate vector.
+
 class _GroundSide:
     """A point fixed in space (journal or bearing on the ground)."""
 
-    n_coordinates = 0
+    node = None
 
     def __init__(self, x: float, y: float) -> None:
         self.x, self.y = x, y
+        self.offset = 0
 
-    def state(self, q: Sequence[float], q_t: Sequence[float], i: int) -> tuple[float, float, float, float, float]:
+    def state(self, q: Sequence[float], q_t: Sequence[float]) -> tuple[float, float, float, float, float]:
         return self.x, self.y, 0.0, 0.0, 0.0
 
-    def add_load(self, out: list[float], i: int, fx: float, fy: float, m: float, q: Sequence[float]) -> None:
+    def add_load(self, out: list[float], fx: float, fy: float, m: float, q: Sequence[float]) -> None:
         pass
 
 
@@ -68,24 +74,117 @@ class _RigidBody2DSide:
         self.node = node
         self.x0, self.y0, self.phi0 = (float(v) for v in reference)
         self.sx, self.sy = sx, sy
+        self.offset = 0
 
     def _arm(self, phi: float) -> tuple[float, float]:
         c, s = math.cos(phi), math.sin(phi)
         return c * self.sx - s * self.sy, s * self.sx + c * self.sy
 
-    def state(self, q: Sequence[float], q_t: Sequence[float], i: int) -> tuple[float, float, float, float, float]:
+    def state(self, q: Sequence[float], q_t: Sequence[float]) -> tuple[float, float, float, float, float]:
+        i = self.offset
         rx, ry = self._arm(self.phi0 + q[i + 2])
         w = q_t[i + 2]
         return self.x0 + q[i] + rx, self.y0 + q[i + 1] + ry, q_t[i] - w * ry, q_t[i + 1] + w * rx, w
 
-    def add_load(self, out: list[float], i: int, fx: float, fy: float, m: float, q: Sequence[float]) -> None:
+    def add_load(self, out: list[float], fx: float, fy: float, m: float, q: Sequence[float]) -> None:
+        i = self.offset
         rx, ry = self._arm(self.phi0 + q[i + 2])
         out[i] += fx
         out[i + 1] += fy
         out[i + 2] += m + rx * fy - ry * fx  # moment of the force about the node
 
 
-def _side(mbs: exu.MainSystem, body: Any, point: Sequence[float], role: str) -> _GroundSide | _RigidBody2DSide:
+_REVOLUTE, _PRISMATIC_X, _PRISMATIC_Y = "RevoluteZ", "PrismaticX", "PrismaticY"
+
+
+class _KinematicTreeSide:
+    """A point fixed on a link of a planar ``ObjectKinematicTree`` (minimal coordinates).
+
+    Planar forward kinematics of the chain from the base to the link, in Exudyn's
+    convention: a joint frame sits at ``jointOffsets[j]`` and is turned by
+    ``jointTransformations[j]`` (a rotation about Z) in its parent link's frame; the
+    joint coordinate then turns it about Z (``RevoluteZ``) or shifts it along its X or Y
+    axis (``PrismaticX/Y``).  The point's Jacobian maps the force and moment onto the
+    joint coordinates (virtual work).
+    """
+
+    def __init__(self, node: int, reference: Sequence[float], tree: dict, link: int, sx: float, sy: float) -> None:
+        self.node = node
+        self.offset = 0
+        self.n_coordinates = len(reference)
+        self.q0 = [float(v) for v in reference]
+        self.sx, self.sy = sx, sy
+        parents = list(tree["linkParents"])
+        types = [t.name for t in tree["jointTypes"]]
+        # Exudyn's Vector3DList / Matrix3DList do not end iteration cleanly: index them
+        offsets = [np.asarray(tree["jointOffsets"][k], dtype=float) for k in range(len(parents))]
+        rotations = [np.asarray(tree["jointTransformations"][k], dtype=float) for k in range(len(parents))]
+        base = np.asarray(tree["baseOffset"], dtype=float)
+        chain = []
+        k = link
+        while k >= 0:
+            chain.append(k)
+            k = parents[k]
+        chain.reverse()
+        # per joint of the chain: (index, type, offset x, y in the parent frame, fixed angle)
+        self.chain = []
+        for j in chain:
+            if types[j] not in (_REVOLUTE, _PRISMATIC_X, _PRISMATIC_Y):
+                raise ValueError(f"kinematic-tree joint {j} is {types[j]}: only RevoluteZ, PrismaticX and "
+                                 "PrismaticY joints keep the tree planar")
+            rot = rotations[j]
+            if abs(rot[2, 2] - 1.0) > 1e-12 or abs(offsets[j][2]) > 0.0:
+                raise ValueError(f"kinematic-tree joint {j} leaves the XY plane: its transformation must be a "
+                                 "rotation about Z and its offset must have z = 0")
+            self.chain.append((j, types[j], offsets[j][0], offsets[j][1], math.atan2(rot[1, 0], rot[0, 0])))
+        self.base = (base[0], base[1])
+
+    def _kinematics(self, q: Sequence[float]) -> tuple[float, float, float, list]:
+        """Point position, link angle and, per chain joint, (index, type, frame x, y, angle)."""
+        x, y, angle = self.base[0], self.base[1], 0.0
+        frames = []
+        i = self.offset
+        for j, kind, ox, oy, fixed in self.chain:
+            c, s = math.cos(angle), math.sin(angle)
+            x, y, angle = x + c * ox - s * oy, y + s * ox + c * oy, angle + fixed
+            frames.append((j, kind, x, y, angle))
+            qj = self.q0[j] + q[i + j]
+            if kind == _REVOLUTE:
+                angle += qj
+            else:
+                c, s = math.cos(angle), math.sin(angle)
+                if kind == _PRISMATIC_X:
+                    x, y = x + c * qj, y + s * qj
+                else:
+                    x, y = x - s * qj, y + c * qj
+        c, s = math.cos(angle), math.sin(angle)
+        return x + c * self.sx - s * self.sy, y + s * self.sx + c * self.sy, angle, frames
+
+    @staticmethod
+    def _column(kind: str, px: float, py: float, fx: float, fy: float, angle: float) -> tuple[float, float, float]:
+        """d(point)/dq_j and d(angle)/dq_j for one joint with frame origin (fx, fy)."""
+        if kind == _REVOLUTE:
+            return -(py - fy), px - fx, 1.0
+        c, s = math.cos(angle), math.sin(angle)
+        return (c, s, 0.0) if kind == _PRISMATIC_X else (-s, c, 0.0)
+
+    def state(self, q: Sequence[float], q_t: Sequence[float]) -> tuple[float, float, float, float, float]:
+        px, py, _, frames = self._kinematics(q)
+        vx = vy = w = 0.0
+        for j, kind, fx, fy, angle in frames:
+            dx, dy, da = self._column(kind, px, py, fx, fy, angle)
+            qt = q_t[self.offset + j]
+            vx, vy, w = vx + dx * qt, vy + dy * qt, w + da * qt
+        return px, py, vx, vy, w
+
+    def add_load(self, out: list[float], fx_: float, fy_: float, m: float, q: Sequence[float]) -> None:
+        px, py, _, frames = self._kinematics(q)
+        for j, kind, fx, fy, angle in frames:
+            dx, dy, da = self._column(kind, px, py, fx, fy, angle)
+            out[self.offset + j] += dx * fx_ + dy * fy_ + da * m
+
+
+def _side(mbs: exu.MainSystem, body: Any, point: Sequence[float], link: int | None, role: str) -> Any:
     try:
         sx, sy = (check_real(f"{role}_point", v) for v in point)
     except (TypeError, ValueError):
@@ -95,13 +194,22 @@ def _side(mbs: exu.MainSystem, body: Any, point: Sequence[float], role: str) -> 
     except Exception:  # Exudyn raises its own error types for a bad index
         raise ValueError(f"`{role}_body` {body!r} is not an object of this MainSystem") from None
     kind = item["objectType"]
+    if kind == "KinematicTree":
+        n_links = len(item["linkParents"])
+        if isinstance(link, bool) or not isinstance(link, int) or not 0 <= link < n_links:
+            raise ValueError(f"`{role}_link` must be a link index 0..{n_links - 1} of the kinematic tree, got {link!r}")
+        node = int(item["nodeNumber"])
+        return _KinematicTreeSide(node, mbs.GetNode(node)["referenceCoordinates"], item, link, sx, sy)
+    if link is not None:
+        raise ValueError(f"`{role}_link` applies to an ObjectKinematicTree only, but `{role}_body` is a {kind}")
     if kind == "Ground":
         x, y = item["referencePosition"][:2]
         return _GroundSide(x + sx, y + sy)
     if kind == "RigidBody2D":
         node = int(item["nodeNumber"])
         return _RigidBody2DSide(node, mbs.GetNode(node)["referenceCoordinates"], sx, sy)
-    raise ValueError(f"`{role}_body` must be an ObjectGround or ObjectRigidBody2D, got an object of type {kind!r}")
+    raise ValueError(f"`{role}_body` must be an ObjectGround, ObjectRigidBody2D or ObjectKinematicTree, "
+                     f"got an object of type {kind!r}")
 
 
 # -- the element ---------------------------------------------------------------------------
@@ -126,21 +234,30 @@ class ClearanceJointHandle:
         self.name = name
         self.history = ContactHistory()
         self._journal, self._bearing = journal, bearing
-        self._i_bearing = journal.n_coordinates
-        self._n = journal.n_coordinates + bearing.n_coordinates
+        self.nodes: list[int] = []  # the element's nodes; a node shared by both sides appears once
+        self._n = 0
+        for side in (journal, bearing):
+            if side.node is None:
+                continue
+            if side.node in self.nodes:
+                side.offset = journal.offset  # only the journal can have claimed it
+                continue
+            side.offset = self._n
+            self.nodes.append(side.node)
+            self._n += side.n_coordinates
         self.object_index: int = -1
         self.sensor_index: int | None = None
 
     # physics evaluated on the element's own coordinate slice
     def kinematics(self, q: Sequence[float], q_t: Sequence[float]) -> ContactKinematics:
-        xj, yj, vxj, vyj, wi = self._journal.state(q, q_t, 0)
-        xb, yb, vxb, vyb, wj = self._bearing.state(q, q_t, self._i_bearing)
+        xj, yj, vxj, vyj, wi = self._journal.state(q, q_t)
+        xb, yb, vxb, vyb, wj = self._bearing.state(q, q_t)
         return contact_kinematics(self.joint.geometry, xj, yj, vxj, vyj, wi, xb, yb, vxb, vyb, wj)
 
     def _generalized_forces(self, q: Sequence[float], loads: JointLoads) -> list[float]:
         out = [0.0] * self._n
-        self._journal.add_load(out, 0, loads.fx, loads.fy, loads.m_i, q)
-        self._bearing.add_load(out, self._i_bearing, -loads.fx, -loads.fy, loads.m_j, q)
+        self._journal.add_load(out, loads.fx, loads.fy, loads.m_i, q)
+        self._bearing.add_load(out, -loads.fx, -loads.fy, loads.m_j, q)
         return out
 
     def force_function(self, mbs: exu.MainSystem, t: float, item: int, q: np.ndarray, q_t: np.ndarray) -> list[float]:
@@ -200,6 +317,8 @@ def add_clearance_joint(
     *,
     journal_point: Sequence[float] = (0.0, 0.0),
     bearing_point: Sequence[float] = (0.0, 0.0),
+    journal_link: int | None = None,
+    bearing_link: int | None = None,
     joint: ClearanceJoint | None = None,
     record: bool = True,
     name: str = "",
@@ -217,10 +336,14 @@ def add_clearance_joint(
     mbs : exudyn.MainSystem
         The system; call before ``mbs.Assemble()``.
     journal_body, bearing_body : ObjectIndex
-        An ``ObjectRigidBody2D`` (with ``NodeRigidBody2D``) or an ``ObjectGround``; at
-        most one of them may be the ground.  Other body types raise ``ValueError``.
+        An ``ObjectRigidBody2D`` (with ``NodeRigidBody2D``), an ``ObjectGround``, or a
+        planar ``ObjectKinematicTree`` (RevoluteZ/PrismaticX/PrismaticY joints, then
+        give the link); at most one of them may be the ground, and both may be links of
+        the same tree.  Other body types raise ``ValueError``.
     journal_point, bearing_point : (float, float)
-        Journal and bearing centres in the body frames [m].
+        Journal and bearing centres in the body (link) frames [m].
+    journal_link, bearing_link : int, optional
+        Link index when the body is an ``ObjectKinematicTree``.
     joint : ClearanceJoint, optional
         The joint physics, ready built.  If omitted, it is built by
         :func:`exuclear.make_joint` from ``joint_parameters``: ``journal_radius``,
@@ -242,17 +365,16 @@ def add_clearance_joint(
         raise ValueError(f"give either `joint` or joint parameters, not both (got {sorted(joint_parameters)})")
     elif not isinstance(joint, ClearanceJoint):
         raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
-    journal = _side(mbs, journal_body, journal_point, "journal")
-    bearing = _side(mbs, bearing_body, bearing_point, "bearing")
-    nodes = [s.node for s in (journal, bearing) if isinstance(s, _RigidBody2DSide)]
-    if not nodes:
+    journal = _side(mbs, journal_body, journal_point, journal_link, "journal")
+    bearing = _side(mbs, bearing_body, bearing_point, bearing_link, "bearing")
+    if journal.node is None and bearing.node is None:
         raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
-    if len(nodes) == 2 and nodes[0] == nodes[1]:
+    if journal_body == bearing_body and journal_link == bearing_link:
         raise ValueError("`journal_body` and `bearing_body` are the same body")
     registry = _registry(mbs)
     handle = ClearanceJointHandle(mbs, joint, journal, bearing, name or f"clearance joint {len(registry)}")
     handle.object_index = int(mbs.AddObject(ObjectGenericODE2(
-        nodeNumbers=nodes, forceUserFunction=handle.force_function, name=f"exuclear {handle.name}")))
+        nodeNumbers=handle.nodes, forceUserFunction=handle.force_function, name=f"exuclear {handle.name}")))
     if record:
         handle.sensor_index = int(mbs.AddSensor(SensorUserFunction(
             sensorNumbers=[], sensorUserFunction=handle._sensor_function, storeInternal=True, writeToFile=False)))

@@ -37,7 +37,7 @@ class ContactHistory:
     v0: float = 0.0
     delta: float = float("-inf")
     delta_dot: float = 0.0
-    started: bool = False
+    onsets: int = 0  # contacts begun since the last reset (impacts)
 
     def onset_velocity(self, delta: float, delta_dot: float) -> float:
         """``v0`` for a trial state (``delta > 0``) of the coming step; no side effects."""
@@ -54,13 +54,13 @@ class ContactHistory:
             if not self.in_contact:
                 self.v0 = self.onset_velocity(delta, delta_dot)
                 self.in_contact = True
+                self.onsets += 1
         else:
             self.in_contact = False
         self.delta, self.delta_dot = delta, delta_dot
-        self.started = True
 
     def reset(self) -> None:
-        self.in_contact, self.v0, self.delta, self.delta_dot, self.started = False, 0.0, float("-inf"), 0.0, False
+        self.in_contact, self.v0, self.delta, self.delta_dot, self.onsets = False, 0.0, float("-inf"), 0.0, 0
 
 
 class JointResponse(NamedTuple):

@@ -26,13 +26,45 @@ Run ``python -m models.slider_crank --help`` for the command line.
 """
 from __future__ import annotations
 
+import argparse
 import math
+import sys
+import time
 from dataclasses import dataclass, field, replace
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import (
+    LoadMassProportional,
+    MarkerBodyMass,
+    MarkerBodyRigid,
+    MarkerNodeCoordinate,
+    NodeGenericODE2,
+    NodePointGround,
+    NodeRigidBody2D,
+    ObjectConnectorCoordinate,
+    ObjectGround,
+    ObjectJointPrismatic2D,
+    ObjectJointRevolute2D,
+    ObjectKinematicTree,
+    ObjectRigidBody2D,
+    SensorNode,
+    SensorObject,
+)
 
 import exuclear
 from exuclear import SolverSettings
 
 FORMULATIONS = ("redundant", "minimal")
+
+#: Inertia added to the crank in the minimal formulation [kg m^2] to hold its speed
+#: (see :func:`build`): 2.5e10 times the paper crank's own inertia about O, so a 100 N m
+#: moment changes the 52 rad/s speed by less than 1e-4 rad/s^2 * 0.24 s = 2.4e-5 rad/s.
+FLYWHEEL_INERTIA = 1e6
+
+#: Output columns of a run (SI units, angles in degrees), in CSV order.
+COLUMNS = ("time", "crank_angle", "slider_x", "slider_v", "slider_a", "contact_force", "crank_moment",
+           "ecc_x", "ecc_y", "penetration", "in_contact")
 
 #: 500 rpm in rad/s (the paper's crank speed).
 PAPER_CRANK_SPEED = 500.0 * 2.0 * math.pi / 60.0
@@ -129,3 +161,280 @@ class SliderCrankParams:
     @property
     def end_time(self) -> float:
         return 2.0 * math.pi * self.revolutions / self.crank_speed
+
+
+@dataclass
+class SliderCrankModel:
+    """An assembled slider-crank: the system and what is needed to read its results."""
+
+    params: SliderCrankParams
+    mbs: exu.MainSystem
+    joint: exuclear.ClearanceJointHandle | None
+    sensors: dict[str, int]
+    build_time: float
+
+
+def _initial_velocities(p: SliderCrankParams) -> tuple[float, float]:
+    """Rod angular velocity and slider velocity of the ideal mechanism at crank angle 0."""
+    return -p.crank_speed * p.crank_length / p.rod_length, 0.0
+
+
+def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclear.ClearanceJointHandle | None, dict]:
+    r, l, w = p.crank_length, p.rod_length, p.crank_speed
+    rod_rate, _ = _initial_velocities(p)
+    g = [0.0, -p.gravity, 0.0]
+    ground = mbs.AddObject(ObjectGround())
+    # bodies: nodes at the centres of mass, all links along +X at t = 0
+    n_crank = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[r / 2, 0, 0], initialVelocities=[0, w * r / 2, w]))
+    n_rod = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[r + l / 2, 0, 0],
+                                        initialVelocities=[0, w * r + rod_rate * l / 2, rod_rate]))
+    n_slider = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[r + l, 0, 0]))
+    crank = mbs.AddObject(ObjectRigidBody2D(nodeNumber=n_crank, mass=p.crank_mass, inertia=p.crank_inertia))
+    rod = mbs.AddObject(ObjectRigidBody2D(nodeNumber=n_rod, mass=p.rod_mass, inertia=p.rod_inertia))
+    # the slider does not rotate (its guide holds it): its inertia never enters the motion
+    slider = mbs.AddObject(ObjectRigidBody2D(nodeNumber=n_slider, mass=p.slider_mass, inertia=p.slider_mass * 1e-4))
+    if p.gravity > 0.0:
+        for body in (crank, rod, slider):
+            mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=body)),
+                                             loadVector=g))
+
+    def rigid(body, x):
+        return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[x, 0, 0]))
+
+    mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(ground, 0.0), rigid(crank, -r / 2)]))   # O
+    mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(crank, r / 2), rigid(rod, -l / 2)]))     # A
+    mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
+                                         axisMarker0=[1, 0, 0], normalMarker1=[0, 1, 0], constrainRotation=True))
+    # drive: crank angle rate = omega, a velocity-level coordinate constraint to ground;
+    # its Lagrange multiplier is (minus) the driving moment
+    n_ground = mbs.AddNode(NodePointGround())
+    drive = mbs.AddObject(ObjectConnectorCoordinate(
+        markerNumbers=[mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n_ground, coordinate=0)),
+                       mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n_crank, coordinate=2))],
+        velocityLevel=True, offset=w))
+    handle = None
+    if p.ideal:
+        mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(rod, l / 2), rigid(slider, 0.0)]))  # B
+    else:
+        handle = exuclear.add_clearance_joint(mbs, rod, slider, journal_point=(l / 2, 0.0), bearing_point=(0.0, 0.0),
+                                              joint=p.joint, name="B (rod-slider)")
+    store = dict(storeInternal=True, writeToFile=False)
+    sensors = {
+        "crank": mbs.AddSensor(SensorNode(nodeNumber=n_crank, outputVariableType=exu.OutputVariableType.Coordinates,
+                                          **store)),
+        "slider_x": mbs.AddSensor(SensorNode(nodeNumber=n_slider, outputVariableType=exu.OutputVariableType.Position,
+                                             **store)),
+        "slider_v": mbs.AddSensor(SensorNode(nodeNumber=n_slider, outputVariableType=exu.OutputVariableType.Velocity,
+                                             **store)),
+        "slider_a": mbs.AddSensor(SensorNode(nodeNumber=n_slider,
+                                             outputVariableType=exu.OutputVariableType.Acceleration, **store)),
+        "moment": mbs.AddSensor(SensorObject(objectNumber=drive, outputVariableType=exu.OutputVariableType.Force,
+                                             **store)),
+    }
+    return handle, sensors
+
+
+def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclear.ClearanceJointHandle | None, dict]:
+    r, l, w = p.crank_length, p.rod_length, p.crank_speed
+    rod_rate, slider_rate = _initial_velocities(p)
+    # coordinates: crank angle, rod angle relative to the crank, slider x (reference r + l)
+    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0, 0.0, r + l], initialCoordinates=[0.0, 0.0, 0.0],
+                                       initialCoordinates_t=[w, rod_rate - w, slider_rate], numberOfODE2Coordinates=3))
+
+    def inertia(izz: float) -> np.ndarray:
+        return np.diag([0.0, 0.0, izz])
+
+    tree = mbs.AddObject(ObjectKinematicTree(
+        nodeNumber=node, linkParents=[-1, 0, -1],
+        jointTypes=[exu.JointType.RevoluteZ, exu.JointType.RevoluteZ, exu.JointType.PrismaticX],
+        jointTransformations=exu.Matrix3DList([np.eye(3)] * 3),
+        jointOffsets=exu.Vector3DList([[0.0, 0.0, 0.0], [r, 0.0, 0.0], [0.0, 0.0, 0.0]]),
+        linkInertiasCOM=exu.Matrix3DList([inertia(p.crank_inertia + FLYWHEEL_INERTIA), inertia(p.rod_inertia),
+                                          inertia(0.0)]),
+        linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
+        linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
+    handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
+                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B (rod-slider)")
+    store = dict(storeInternal=True, writeToFile=False)
+    sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
+               for key, kind in (("q", exu.OutputVariableType.Coordinates),
+                                 ("q_t", exu.OutputVariableType.Coordinates_t),
+                                 ("q_tt", exu.OutputVariableType.Coordinates_tt))}
+    return handle, sensors
+
+
+def build(params: SliderCrankParams) -> SliderCrankModel:
+    """Assemble the slider-crank in Exudyn.
+
+    Crank speed: in the redundant formulation a velocity-level coordinate constraint
+    holds it exactly and its multiplier is the driving moment.  Exudyn's explicit
+    solvers cannot hold a coordinate at a prescribed rate (they drop constraints, and
+    eliminate only fixed ones), so the minimal formulation gives the crank a flywheel
+    of :data:`FLYWHEEL_INERTIA`: its speed then changes by less than 1e-6 of 500 rpm
+    over the run, and the driving moment is the flywheel's reaction
+    ``-FLYWHEEL_INERTIA * crank_angle_tt``, which equals the moment an exact drive
+    would need up to that relative error.
+    """
+    if params.ideal and params.formulation == "minimal":
+        raise ValueError("the ideal mechanism is a closed loop, which a kinematic tree cannot hold: "
+                         "use formulation 'redundant' with `ideal`")
+    start = time.perf_counter()
+    mbs = exu.SystemContainer().AddSystem()
+    builder = _build_minimal if params.formulation == "minimal" else _build_redundant
+    handle, sensors = builder(params, mbs)
+    mbs.Assemble()
+    return SliderCrankModel(params, mbs, handle, sensors, time.perf_counter() - start)
+
+
+def default_settings(params: SliderCrankParams) -> SolverSettings:
+    """Solver settings of a formulation: DOPRI5 (adaptive, steps at most 1e-5 s, the
+    paper's maximum) for the minimal one, generalized-alpha with a fixed 1e-5 s step
+    for the redundant one; outputs every 1e-5 s."""
+    if params.formulation == "minimal":
+        return SolverSettings(end_time=params.end_time, method="dopri5", step=1e-5, rtol=1e-6, atol=1e-9)
+    return SolverSettings(end_time=params.end_time, method="generalized-alpha", step=1e-5)
+
+
+@dataclass
+class SliderCrankResult:
+    """Outputs of a run: :data:`COLUMNS` as arrays, and the run's summary."""
+
+    columns: dict[str, np.ndarray]
+    success: bool
+    message: str
+    wall_time: float
+    build_time: float
+    steps: int
+    rejected: int
+    impacts: int  # contact onsets at accepted steps (every impact, however short)
+
+    @property
+    def peak_force(self) -> float:
+        return float(self.columns["contact_force"].max())
+
+
+def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
+    p, mbs, s = model.params, model.mbs, model.sensors
+
+    def data(key: str) -> np.ndarray:
+        return np.asarray(mbs.GetSensorStoredData(s[key]))
+
+    if p.formulation == "minimal":
+        q, q_t, q_tt = data("q"), data("q_t"), data("q_tt")
+        t = q[:, 0]
+        cols = {"time": t, "crank_angle": np.degrees(q[:, 1]), "slider_x": q[:, 3] + p.crank_length + p.rod_length,
+                "slider_v": q_t[:, 3], "slider_a": q_tt[:, 3], "crank_moment": -FLYWHEEL_INERTIA * q_tt[:, 1]}
+    else:
+        crank = data("crank")
+        t = crank[:, 0]
+        cols = {"time": t, "crank_angle": np.degrees(crank[:, 3]), "slider_x": data("slider_x")[:, 1],
+                "slider_v": data("slider_v")[:, 1], "slider_a": data("slider_a")[:, 1],
+                # the multiplier is the constraint's reaction on the crank: the drive is its negative
+                "crank_moment": -data("moment")[:, 1]}
+    if model.joint is None:
+        zeros = np.zeros_like(t)
+        cols.update(contact_force=zeros, ecc_x=zeros, ecc_y=zeros, penetration=np.full_like(t, -p.clearance),
+                    in_contact=zeros)
+    else:
+        out = model.joint.outputs()
+        cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=out["ecc_x"],
+                    ecc_y=out["ecc_y"], penetration=out["penetration"], in_contact=out["in_contact"])
+    return {k: cols[k] for k in COLUMNS}
+
+
+def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> SliderCrankResult:
+    """Build and simulate; returns the recorded :data:`COLUMNS` and the run's summary."""
+    model = build(params)
+    sim = exuclear.simulate(model.mbs, settings or default_settings(params))
+    impacts = model.joint.history.onsets if model.joint is not None else 0
+    return SliderCrankResult(_columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
+                             sim.steps, sim.rejected, impacts)
+
+
+def write_csv(path: str, columns: dict[str, np.ndarray]) -> None:
+    """Write :data:`COLUMNS` with a header line (SI units, angles in degrees)."""
+    data = np.column_stack([columns[c] for c in COLUMNS])
+    np.savetxt(path, data, delimiter=",", header=",".join(COLUMNS), comments="", fmt="%.10g")
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = SliderCrankParams.paper()
+    ap = argparse.ArgumentParser(prog="python -m models.slider_crank", description=__doc__.split("\n")[0])
+    ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
+    ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
+    materials = ", ".join(exuclear.MATERIALS)
+    ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
+    ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
+    ap.add_argument("--friction", default=p.friction, help="none | coulomb:MU | paper (default %(default)s)")
+    ap.add_argument("--clearance", type=float, default=p.clearance, help="radial clearance [m] (default %(default)s)")
+    ap.add_argument("--length", type=float, default=p.bearing_length, help="bearing length [m] (default %(default)s)")
+    ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
+                    help="crank speed [rpm] (default %(default).0f)")
+    ap.add_argument("--revolutions", type=float, default=p.revolutions, help="crank revolutions (default %(default)s)")
+    ap.add_argument("--gravity", type=float, default=p.gravity, help="gravity along -Y [m/s^2] (default %(default)s)")
+    ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
+                    help="minimal (kinematic tree, DOPRI5; default) or redundant (joints, implicit solver; "
+                         "the only one for --ideal)")
+    ap.add_argument("--ideal", action="store_true", help="ideal revolute joint at B (the baseline)")
+    ap.add_argument("--method", choices=list(exuclear.METHODS), help="solver (default: per formulation)")
+    ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive methods [s]")
+    ap.add_argument("--rtol", type=float, help="relative tolerance of adaptive methods")
+    ap.add_argument("--atol", type=float, help="absolute tolerance of adaptive methods")
+    ap.add_argument("--dt-out", type=float, default=1e-5, help="output interval [s], at most 1e-5 (default %(default)s)")
+    ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
+    ap.add_argument("--plot", metavar="DIR", help="write the plots, with the ideal mechanism as baseline, to DIR")
+    ap.add_argument("--verbose", action="store_true", help="Exudyn's progress output during the run")
+    return ap
+
+
+def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSettings:
+    base = default_settings(params)
+    if args.dt_out > 1e-5:
+        raise ValueError(f"`--dt-out` must be at most 1e-5 s to show every impact, got {args.dt_out}")
+    changes = {k: v for k, v in (("method", args.method), ("step", args.step), ("rtol", args.rtol),
+                                 ("atol", args.atol)) if v is not None}
+    return replace(base, output_step=args.dt_out, verbose=int(args.verbose), **changes)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        formulation = args.formulation or ("redundant" if args.ideal else "minimal")
+        params = SliderCrankParams.paper(
+            law=args.law, cr=args.cr, journal_material=args.journal, bearing_material=args.bearing,
+            friction=args.friction, clearance=args.clearance, bearing_length=args.length,
+            crank_speed=exuclear._checks.check_positive("rpm", args.rpm) * math.pi / 30.0,
+            revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal)
+        settings = _settings(args, params)
+        result = run(params, settings)
+    except ValueError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    kind = "ideal joint at B" if params.ideal else (
+        f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
+        f"{params.bearing_material} bearing, friction {params.friction}")
+    print(f"slider-crank, {formulation} coordinates, {settings.method}: {kind}")
+    print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
+          f"({result.rejected} rejected)")
+    if not params.ideal:
+        print(f"  peak contact force {result.peak_force:.1f} N, impacts {result.impacts}")
+    print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
+    if args.csv:
+        write_csv(args.csv, result.columns)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from exuclear.plotting import slider_crank_figures
+
+        baseline = result if params.ideal else run(replace(params, ideal=True, formulation="redundant"))
+        cases = [] if params.ideal else [(f"cr = {params.cr}", result.columns)]
+        for path in slider_crank_figures(cases, baseline.columns, params.clearance, args.plot, "slider_crank",
+                                         title=f"slider-crank: {kind}"):
+            print(f"wrote {path}")
+    if not result.success:
+        print(f"error: {result.message}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
