@@ -380,7 +380,9 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive methods [s]")
     ap.add_argument("--rtol", type=float, help="relative tolerance of adaptive methods")
     ap.add_argument("--atol", type=float, help="absolute tolerance of adaptive methods")
-    ap.add_argument("--dt-out", type=float, default=1e-5, help="output interval [s], at most 1e-5 (default %(default)s)")
+    ap.add_argument("--dt-out", type=float, default=1e-5,
+                    help="output interval [s], at most 1e-5; outputs are taken at the first accepted step at or "
+                         "after each interval (default %(default)s)")
     ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
     ap.add_argument("--plot", metavar="DIR", help="write the plots, with the ideal mechanism as baseline, to DIR")
     ap.add_argument("--verbose", action="store_true", help="Exudyn's progress output during the run")
