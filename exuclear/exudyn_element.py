@@ -31,12 +31,18 @@ import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import ObjectGenericODE2, SensorUserFunction
 
-from ._checks import check_real
+from ._checks import check_positive, check_real
 from .geometry import ContactKinematics, JointLoads, contact_kinematics
 from .joint import ClearanceJoint, ContactHistory, make_joint
 from .settings import METHODS, SolverSettings
 
 _REGISTRY_KEY = "exuclear.joints"
+_FAILURE_KEY = "exuclear.failure"
+
+#: Default bound on the penetration, as a fraction of the radial clearance: beyond it a
+#: run is stopped as unphysical (the issue's "sane bound"; metallic contacts of the
+#: paper stay below 5 % of their 0.1 mm clearance).
+PENETRATION_LIMIT = 0.1
 
 #: Columns of a joint's recorded output (after ``time``), SI units.
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force",
@@ -228,10 +234,12 @@ class ClearanceJointHandle:
         Index of the sensor that records :data:`OUTPUT_COLUMNS`, if recording.
     """
 
-    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, journal: Any, bearing: Any, name: str) -> None:
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, journal: Any, bearing: Any, name: str,
+                 penetration_limit: float) -> None:
         self.mbs = mbs
         self.joint = joint
         self.name = name
+        self.max_penetration = penetration_limit * joint.geometry.clearance
         self.history = ContactHistory()
         self._journal, self._bearing = journal, bearing
         self.nodes: list[int] = []  # the element's nodes; a node shared by both sides appears once
@@ -273,10 +281,24 @@ class ClearanceJointHandle:
         q_t = np.asarray(self.mbs.systemData.GetODE2Coordinates_t(configuration))[ltg]
         return q, q_t
 
-    def accept_current_state(self) -> None:
-        """Update the contact history from the system's current (accepted) state."""
+    def accept_current_state(self) -> str:
+        """Update the contact history from the system's current (accepted) state.
+
+        Returns an empty string, or a message saying why the run cannot go on: a
+        non-finite state, or a penetration beyond ``max_penetration``.
+        """
         kin = self.kinematics(*self._current())
+        if not all(math.isfinite(v) for v in kin):
+            return (f"joint {self.name!r}: the state became non-finite (NaN or inf); the integration diverged. "
+                    "Try a smaller step or tighter tolerances")
+        if kin.delta > self.max_penetration:
+            c = self.joint.geometry.clearance
+            return (f"joint {self.name!r}: penetration {kin.delta:.3g} m exceeds the limit {self.max_penetration:.3g} m "
+                    f"({self.max_penetration / c:.0%} of the clearance). The contact is too soft for the load, the "
+                    "step too large, or a unit is off: check E (Pa) and lengths (m), try a smaller step, or raise "
+                    "`penetration_limit` if such penetrations are physical")
         self.history.accept(kin.delta, kin.delta_dot)
+        return ""
 
     def _sensor_function(self, mbs: exu.MainSystem, t: float, sensors: Any, factors: Any, configuration: Any) -> list[float]:
         kin = self.kinematics(*self._current(configuration))
@@ -303,7 +325,10 @@ def _install_pre_step(mbs: exu.MainSystem) -> None:
 
     def pre_step(mbs_: exu.MainSystem, t: float) -> bool:
         for handle in joints:
-            handle.accept_current_state()
+            problem = handle.accept_current_state()
+            if problem:  # stop the run (Exudyn ends it after the current step) and say why
+                mbs_.variables[_FAILURE_KEY] = f"at t = {mbs_.systemData.GetTime():.6g} s, {problem}"
+                return False
         return user_fn(mbs_, t) if user_fn is not None else True
 
     mbs.SetPreStepUserFunction(pre_step)
@@ -322,6 +347,7 @@ def add_clearance_joint(
     joint: ClearanceJoint | None = None,
     record: bool = True,
     name: str = "",
+    penetration_limit: float = PENETRATION_LIMIT,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Add a planar revolute clearance joint between two bodies of an Exudyn system.
@@ -354,6 +380,10 @@ def add_clearance_joint(
         (read them with :meth:`ClearanceJointHandle.outputs`).
     name : str
         Label for messages.
+    penetration_limit : float
+        Largest admissible penetration as a fraction of the radial clearance
+        (default :data:`PENETRATION_LIMIT`); :func:`simulate` stops a run beyond it,
+        or when the joint's state is not finite, and reports time, joint and reason.
 
     Returns
     -------
@@ -371,8 +401,10 @@ def add_clearance_joint(
         raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
     if journal_body == bearing_body and journal_link == bearing_link:
         raise ValueError("`journal_body` and `bearing_body` are the same body")
+    check_positive("penetration_limit", penetration_limit)
     registry = _registry(mbs)
-    handle = ClearanceJointHandle(mbs, joint, journal, bearing, name or f"clearance joint {len(registry)}")
+    handle = ClearanceJointHandle(mbs, joint, journal, bearing, name or f"clearance joint {len(registry)}",
+                                  penetration_limit)
     handle.object_index = int(mbs.AddObject(ObjectGenericODE2(
         nodeNumbers=handle.nodes, forceUserFunction=handle.force_function, name=f"exuclear {handle.name}")))
     if record:
@@ -410,9 +442,10 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
 class SimulationResult:
     """Outcome of :func:`simulate`.
 
-    ``success`` is False when Exudyn stopped early; ``message`` then says why and what
-    to try.  ``wall_time`` is the solver call alone [s]; ``steps`` the number of
-    accepted time steps and ``rejected`` the rejected ones (adaptive methods).
+    ``success`` is False when the run stopped early; ``message`` then says why and what
+    to try, and ``time_reached`` [s] how far it got.  ``wall_time`` is the solver call
+    alone [s]; ``steps`` the number of accepted time steps and ``rejected`` the
+    rejected ones (adaptive methods).
     """
 
     success: bool
@@ -420,6 +453,7 @@ class SimulationResult:
     wall_time: float
     steps: int
     rejected: int
+    time_reached: float
 
 
 def _constraint_objects(mbs: exu.MainSystem) -> list[str]:
@@ -437,6 +471,10 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     constraints): Exudyn's explicit solvers would silently ignore them.  Resets
     every clearance joint's contact history, since the run starts from the
     system's initial values.
+
+    A run that cannot go on (solver failure, a non-finite joint state, a penetration
+    beyond a joint's limit) returns ``success=False`` with a message naming the time,
+    the joint and what to try; what the sensors recorded up to then is kept.
     """
     if not isinstance(settings, SolverSettings):
         raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
@@ -458,6 +496,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
                 "or a minimal-coordinate model")
     for handle in joints:
         handle.history.reset()
+    mbs.variables[_FAILURE_KEY] = ""
     ss = simulation_settings(settings)
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     start = time.perf_counter()
@@ -469,7 +508,11 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     wall = time.perf_counter() - start
     it = mbs.sys["dynamicSolver"].it
     t_reached = mbs.systemData.GetTime()
+    if mbs.variables[_FAILURE_KEY]:
+        return SimulationResult(False, f"stopped {mbs.variables[_FAILURE_KEY]}; results up to then are kept", wall,
+                                int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps), t_reached)
     if not ok:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s; try a smaller `step`"
                     f"{' or tolerances' if settings.adaptive else ''})")
-    return SimulationResult(ok, message, wall, int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps))
+    return SimulationResult(ok, message, wall, int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps),
+                            t_reached)

@@ -433,7 +433,8 @@ def main(argv: list[str] | None = None) -> int:
                                          title=f"slider-crank: {kind}"):
             print(f"wrote {path}")
     if not result.success:
-        print(f"error: {result.message}", file=sys.stderr)
+        written = f"; the outputs up to then were written to {args.csv} and are INCOMPLETE" if args.csv else ""
+        print(f"error: {result.message}{written}", file=sys.stderr)
         return 1
     return 0
 
