@@ -39,10 +39,17 @@ from .settings import METHODS, SolverSettings
 _REGISTRY_KEY = "exuclear.joints"
 _FAILURE_KEY = "exuclear.failure"
 
-#: Default bound on the penetration, as a fraction of the radial clearance: beyond it a
-#: run is stopped as unphysical (the issue's "sane bound"; metallic contacts of the
-#: paper stay below 5 % of their 0.1 mm clearance).
-PENETRATION_LIMIT = 0.1
+#: Default bound on the penetration beyond which a run is stopped as unphysical: the
+#: larger of 10 % of the radial clearance (the paper's metallic contacts stay below
+#: 5 % of their 0.1 mm) and 0.1 % of the journal radius (contact theory assumes
+#: deformations far below the radius; a 1 um clearance legitimately sees 0.4 um).
+PENETRATION_LIMIT_CLEARANCE = 0.1
+PENETRATION_LIMIT_RADIUS = 1e-3
+
+
+def default_penetration_limit(geometry: Any) -> float:
+    """The default penetration bound [m] of a joint, see :data:`PENETRATION_LIMIT_CLEARANCE`."""
+    return max(PENETRATION_LIMIT_CLEARANCE * geometry.clearance, PENETRATION_LIMIT_RADIUS * geometry.journal_radius)
 
 #: Columns of a joint's recorded output (after ``time``), SI units.
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force",
@@ -235,11 +242,11 @@ class ClearanceJointHandle:
     """
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, journal: Any, bearing: Any, name: str,
-                 penetration_limit: float) -> None:
+                 max_penetration: float) -> None:
         self.mbs = mbs
         self.joint = joint
         self.name = name
-        self.max_penetration = penetration_limit * joint.geometry.clearance
+        self.max_penetration = max_penetration
         self.history = ContactHistory()
         self._journal, self._bearing = journal, bearing
         self.nodes: list[int] = []  # the element's nodes; a node shared by both sides appears once
@@ -296,7 +303,7 @@ class ClearanceJointHandle:
             return (f"joint {self.name!r}: penetration {kin.delta:.3g} m exceeds the limit {self.max_penetration:.3g} m "
                     f"({self.max_penetration / c:.0%} of the clearance). The contact is too soft for the load, the "
                     "step too large, or a unit is off: check E (Pa) and lengths (m), try a smaller step, or raise "
-                    "`penetration_limit` if such penetrations are physical")
+                    "`max_penetration` if such penetrations are physical")
         self.history.accept(kin.delta, kin.delta_dot)
         return ""
 
@@ -347,7 +354,7 @@ def add_clearance_joint(
     joint: ClearanceJoint | None = None,
     record: bool = True,
     name: str = "",
-    penetration_limit: float = PENETRATION_LIMIT,
+    max_penetration: float | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Add a planar revolute clearance joint between two bodies of an Exudyn system.
@@ -380,10 +387,10 @@ def add_clearance_joint(
         (read them with :meth:`ClearanceJointHandle.outputs`).
     name : str
         Label for messages.
-    penetration_limit : float
-        Largest admissible penetration as a fraction of the radial clearance
-        (default :data:`PENETRATION_LIMIT`); :func:`simulate` stops a run beyond it,
-        or when the joint's state is not finite, and reports time, joint and reason.
+    max_penetration : float, optional
+        Largest admissible penetration [m]; default :func:`default_penetration_limit`.
+        :func:`simulate` stops a run beyond it, or when the joint's state is not
+        finite, and reports time, joint and reason.
 
     Returns
     -------
@@ -401,10 +408,12 @@ def add_clearance_joint(
         raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
     if journal_body == bearing_body and journal_link == bearing_link:
         raise ValueError("`journal_body` and `bearing_body` are the same body")
-    check_positive("penetration_limit", penetration_limit)
+    if max_penetration is None:
+        max_penetration = default_penetration_limit(joint.geometry)
+    check_positive("max_penetration", max_penetration)
     registry = _registry(mbs)
     handle = ClearanceJointHandle(mbs, joint, journal, bearing, name or f"clearance joint {len(registry)}",
-                                  penetration_limit)
+                                  max_penetration)
     handle.object_index = int(mbs.AddObject(ObjectGenericODE2(
         nodeNumbers=handle.nodes, forceUserFunction=handle.force_function, name=f"exuclear {handle.name}")))
     if record:
