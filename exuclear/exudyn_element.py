@@ -304,7 +304,7 @@ class ClearanceJointHandle:
                     f"({self.max_penetration / c:.0%} of the clearance). The contact is too soft for the load, the "
                     "step too large, or a unit is off: check E (Pa) and lengths (m), try a smaller step, or raise "
                     "`max_penetration` if such penetrations are physical")
-        self.history.accept(kin.delta, kin.delta_dot)
+        self.history.accept(kin.delta, kin.delta_dot, self.mbs.systemData.GetTime())
         return ""
 
     def _sensor_function(self, mbs: exu.MainSystem, t: float, sensors: Any, factors: Any, configuration: Any) -> list[float]:

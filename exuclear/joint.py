@@ -5,7 +5,7 @@ calls :meth:`ClearanceJoint.loads` and maps the result onto generalized forces.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from ._checks import check_choice
@@ -37,7 +37,14 @@ class ContactHistory:
     v0: float = 0.0
     delta: float = float("-inf")
     delta_dot: float = 0.0
-    onsets: int = 0  # contacts begun since the last reset (impacts)
+    time: float = 0.0
+    #: Contact onset instants since the last reset [s], interpolated like ``v0``.
+    onset_times: list[float] = field(default_factory=list)
+
+    @property
+    def onsets(self) -> int:
+        """Contacts begun since the last reset (impacts)."""
+        return len(self.onset_times)
 
     def onset_velocity(self, delta: float, delta_dot: float) -> float:
         """``v0`` for a trial state (``delta > 0``) of the coming step; no side effects."""
@@ -48,19 +55,22 @@ class ContactHistory:
             return delta_dot
         return self.delta_dot + (delta_dot - self.delta_dot) * d0 / (d0 - delta)
 
-    def accept(self, delta: float, delta_dot: float) -> None:
-        """Record an accepted state; idempotent when called twice with the same state."""
+    def accept(self, delta: float, delta_dot: float, time: float = 0.0) -> None:
+        """Record an accepted state at ``time`` [s]; idempotent when repeated with the same state."""
         if delta > 0.0:
             if not self.in_contact:
                 self.v0 = self.onset_velocity(delta, delta_dot)
                 self.in_contact = True
-                self.onsets += 1
+                d0 = self.delta
+                share = d0 / (d0 - delta) if d0 != float("-inf") else 0.0
+                self.onset_times.append(self.time + share * (time - self.time))
         else:
             self.in_contact = False
-        self.delta, self.delta_dot = delta, delta_dot
+        self.delta, self.delta_dot, self.time = delta, delta_dot, time
 
     def reset(self) -> None:
-        self.in_contact, self.v0, self.delta, self.delta_dot, self.onsets = False, 0.0, float("-inf"), 0.0, 0
+        self.in_contact, self.v0, self.delta, self.delta_dot, self.time = False, 0.0, float("-inf"), 0.0, 0.0
+        self.onset_times = []
 
 
 class JointResponse(NamedTuple):

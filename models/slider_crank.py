@@ -306,7 +306,11 @@ class SliderCrankResult:
     build_time: float
     steps: int
     rejected: int
-    impacts: int  # contact onsets at accepted steps (every impact, however short)
+    onset_times: np.ndarray  # contact onsets [s], found at accepted steps (none is missed by output sampling)
+
+    @property
+    def impacts(self) -> int:
+        return len(self.onset_times)
 
     @property
     def peak_force(self) -> float:
@@ -346,9 +350,9 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
     """Build and simulate; returns the recorded :data:`COLUMNS` and the run's summary."""
     model = build(params)
     sim = exuclear.simulate(model.mbs, settings or default_settings(params))
-    impacts = model.joint.history.onsets if model.joint is not None else 0
+    onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])
     return SliderCrankResult(_columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
-                             sim.steps, sim.rejected, impacts)
+                             sim.steps, sim.rejected, onsets)
 
 
 def write_csv(path: str, columns: dict[str, np.ndarray]) -> None:

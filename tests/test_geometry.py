@@ -46,3 +46,14 @@ def test_history_onset_is_interpolated_to_zero_penetration():
     assert h.v0 == pytest.approx(0.3)  # kept for the whole contact
     h.accept(-1e-7, -0.3)
     assert not h.in_contact
+
+
+def test_history_onset_time_is_interpolated():
+    # delta from -1e-6 at t = 1.0 to +3e-6 at t = 1.4: zero crossing at t = 1.1
+    h = ContactHistory()
+    h.accept(-1e-6, 0.2, 1.0)
+    h.accept(3e-6, 0.4, 1.4)
+    h.accept(3e-6, 0.4, 1.4)  # repeated pre-step call: no second onset
+    assert h.onset_times == [pytest.approx(1.1)]
+    h.reset()
+    assert h.onsets == 0 and not h.in_contact
