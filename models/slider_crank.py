@@ -93,7 +93,11 @@ class SliderCrankParams:
     law, cr, journal_material, bearing_material, friction, v_min
         The clearance joint's physics, as in :func:`exuclear.make_joint`.
     ideal : bool
-        True: ideal revolute joint at B instead of the clearance joint (the baseline).
+        True: ideal revolute joints everywhere (the baseline).
+    clearance_joints : tuple of str
+        Which revolute joints have clearance: any of ``"O"`` (crank-ground), ``"A"``
+        (crank-rod), ``"B"`` (rod-slider, the paper's); all with the same geometry,
+        law and materials.  Only ``("B",)`` in the minimal formulation.
     formulation : str
         ``"redundant"`` or ``"minimal"``, see the module docstring.
     """
@@ -119,6 +123,7 @@ class SliderCrankParams:
     v_min: float = exuclear.V_MIN_DEFAULT
     ideal: bool = False
     formulation: str = "minimal"
+    clearance_joints: tuple[str, ...] = ("B",)
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -144,6 +149,8 @@ class SliderCrankParams:
         if self.rod_length <= self.crank_length:
             raise ValueError(f"`rod_length` must exceed `crank_length` for a full-turning crank, "
                              f"got l = {self.rod_length}, r = {self.crank_length}")
+        if not self.clearance_joints or not set(self.clearance_joints) <= {"O", "A", "B"}:
+            raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
         if self.formulation not in FORMULATIONS:
             raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
         geometry = exuclear.BearingGeometry.from_clearance(self.bearing_radius, self.clearance, self.bearing_length)
@@ -169,9 +176,14 @@ class SliderCrankModel:
 
     params: SliderCrankParams
     mbs: exu.MainSystem
-    joint: exuclear.ClearanceJointHandle | None
+    joints: dict[str, exuclear.ClearanceJointHandle]  # clearance joints by name ("O", "A", "B")
     sensors: dict[str, int]
     build_time: float
+
+    @property
+    def joint(self) -> exuclear.ClearanceJointHandle | None:
+        """The clearance joint at B (the paper's), or None."""
+        return self.joints.get("B")
 
 
 def _initial_velocities(p: SliderCrankParams) -> tuple[float, float]:
@@ -179,7 +191,7 @@ def _initial_velocities(p: SliderCrankParams) -> tuple[float, float]:
     return -p.crank_speed * p.crank_length / p.rod_length, 0.0
 
 
-def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclear.ClearanceJointHandle | None, dict]:
+def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dict]:
     r, l, w = p.crank_length, p.rod_length, p.crank_speed
     rod_rate, _ = _initial_velocities(p)
     g = [0.0, -p.gravity, 0.0]
@@ -201,8 +213,17 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclea
     def rigid(body, x):
         return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[x, 0, 0]))
 
-    mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(ground, 0.0), rigid(crank, -r / 2)]))   # O
-    mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(crank, r / 2), rigid(rod, -l / 2)]))     # A
+    # revolute joints: (name, journal body and point, bearing body and point); the pin
+    # (journal) sits on the crank at O and A and on the rod at B (the paper's choice)
+    revolutes = (("O", crank, -r / 2, ground, 0.0), ("A", crank, r / 2, rod, -l / 2), ("B", rod, l / 2, slider, 0.0))
+    joints = {}
+    for name, journal, x_journal, bearing, x_bearing in revolutes:
+        if name in p.clearance_joints and not p.ideal:
+            joints[name] = exuclear.add_clearance_joint(
+                mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
+                name=name)
+        else:
+            mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
                                          axisMarker0=[1, 0, 0], normalMarker1=[0, 1, 0], constrainRotation=True))
     # drive: crank angle rate = omega, a velocity-level coordinate constraint to ground;
@@ -212,12 +233,6 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclea
         markerNumbers=[mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n_ground, coordinate=0)),
                        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n_crank, coordinate=2))],
         velocityLevel=True, offset=w))
-    handle = None
-    if p.ideal:
-        mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(rod, l / 2), rigid(slider, 0.0)]))  # B
-    else:
-        handle = exuclear.add_clearance_joint(mbs, rod, slider, journal_point=(l / 2, 0.0), bearing_point=(0.0, 0.0),
-                                              joint=p.joint, name="B (rod-slider)")
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {
         "crank": mbs.AddSensor(SensorNode(nodeNumber=n_crank, outputVariableType=exu.OutputVariableType.Coordinates,
@@ -231,10 +246,10 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclea
         "moment": mbs.AddSensor(SensorObject(objectNumber=drive, outputVariableType=exu.OutputVariableType.Force,
                                              **store)),
     }
-    return handle, sensors
+    return joints, sensors
 
 
-def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclear.ClearanceJointHandle | None, dict]:
+def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dict]:
     r, l, w = p.crank_length, p.rod_length, p.crank_speed
     rod_rate, slider_rate = _initial_velocities(p)
     # coordinates: crank angle, rod angle relative to the crank, slider x (reference r + l)
@@ -254,13 +269,13 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[exuclear.
         linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
         linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
     handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
-                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B (rod-slider)")
+                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B")
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
                                  ("q_t", exu.OutputVariableType.Coordinates_t),
                                  ("q_tt", exu.OutputVariableType.Coordinates_tt))}
-    return handle, sensors
+    return {"B": handle}, sensors
 
 
 def build(params: SliderCrankParams) -> SliderCrankModel:
@@ -278,12 +293,15 @@ def build(params: SliderCrankParams) -> SliderCrankModel:
     if params.ideal and params.formulation == "minimal":
         raise ValueError("the ideal mechanism is a closed loop, which a kinematic tree cannot hold: "
                          "use formulation 'redundant' with `ideal`")
+    if params.formulation == "minimal" and tuple(params.clearance_joints) != ("B",):
+        raise ValueError("the minimal formulation has a clearance joint at B only (O and A are tree joints): "
+                         f"use formulation 'redundant' for clearance_joints {params.clearance_joints}")
     start = time.perf_counter()
     mbs = exu.SystemContainer().AddSystem()
     builder = _build_minimal if params.formulation == "minimal" else _build_redundant
-    handle, sensors = builder(params, mbs)
+    joints, sensors = builder(params, mbs)
     mbs.Assemble()
-    return SliderCrankModel(params, mbs, handle, sensors, time.perf_counter() - start)
+    return SliderCrankModel(params, mbs, joints, sensors, time.perf_counter() - start)
 
 
 def default_settings(params: SliderCrankParams) -> SolverSettings:
@@ -350,7 +368,7 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
     """Build and simulate; returns the recorded :data:`COLUMNS` and the run's summary."""
     model = build(params)
     sim = exuclear.simulate(model.mbs, settings or default_settings(params))
-    onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])
+    onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])  # joint B
     return SliderCrankResult(_columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
                              sim.steps, sim.rejected, onsets)
 
@@ -378,8 +396,11 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--gravity", type=float, default=p.gravity, help="gravity along -Y [m/s^2] (default %(default)s)")
     ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
                     help="minimal (kinematic tree, DOPRI5; default) or redundant (joints, implicit solver; "
-                         "the only one for --ideal)")
-    ap.add_argument("--ideal", action="store_true", help="ideal revolute joint at B (the baseline)")
+                         "the default and only one for --ideal and for clearance at O or A)")
+    ap.add_argument("--ideal", action="store_true", help="ideal revolute joints everywhere (the baseline)")
+    ap.add_argument("--clearance-joints", default="B",
+                    help="joints with clearance, letters of OAB (crank-ground, crank-rod, rod-slider); "
+                         "more than B needs --formulation redundant (default %(default)s)")
     ap.add_argument("--method", choices=list(exuclear.METHODS), help="solver (default: per formulation)")
     ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive methods [s]")
     ap.add_argument("--rtol", type=float, help="relative tolerance of adaptive methods")
@@ -405,12 +426,13 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     try:
-        formulation = args.formulation or ("redundant" if args.ideal else "minimal")
+        formulation = args.formulation or ("minimal" if args.clearance_joints == "B" and not args.ideal else "redundant")
         params = SliderCrankParams.paper(
             law=args.law, cr=args.cr, journal_material=args.journal, bearing_material=args.bearing,
             friction=args.friction, clearance=args.clearance, bearing_length=args.length,
             crank_speed=exuclear._checks.check_positive("rpm", args.rpm) * math.pi / 30.0,
-            revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal)
+            revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
+            clearance_joints=tuple(args.clearance_joints))
         settings = _settings(args, params)
         result = run(params, settings)
     except ValueError as err:

@@ -174,3 +174,16 @@ def test_cli_bad_options(args, message):
     assert proc.returncode == 2
     assert message in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_clearance_at_every_revolute_joint_is_built():
+    # O, A and B with clearance (redundant formulation): three elements; the crank pin
+    # at O starts centred with zero velocity (ideal velocities at crank angle 0)
+    p = SliderCrankParams.paper(formulation="redundant", clearance_joints=("O", "A", "B"), revolutions=0.002)
+    model = build(p)
+    assert sorted(model.joints) == ["A", "B", "O"]
+    for handle in model.joints.values():
+        kin = handle.kinematics(*handle._current())
+        assert kin.ecc == pytest.approx(0.0, abs=1e-15) and kin.delta_dot == pytest.approx(0.0, abs=1e-12)
+    with pytest.raises(ValueError, match="clearance joint at B only"):
+        build(replace(p, formulation="minimal"))
