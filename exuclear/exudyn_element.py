@@ -11,13 +11,16 @@ Exudyn symbolic one on the same object, and a minimal-coordinate body (a link of
 ``ObjectKinematicTree``) by another ``_Side`` class; the physics in
 :mod:`exuclear.joint` stays as it is.
 
-Contact history.  ``v0`` changes once per accepted step: a pre-step user function,
-called by Exudyn before every step with the state at the start of the step (the last
-accepted state), calls :meth:`ContactHistory.accept`.  That is idempotent, so the
-repeated pre-step calls after a rejected DOPRI5 step do no harm.  Exudyn has one
-pre-step function per system; exuclear installs one that serves all joints and
-then calls any function the user had installed before.  A function installed
-*after* the joints would replace it; :func:`simulate` detects that and refuses.
+Contact history.  ``v0`` changes once per accepted step: a post-step user function,
+which Exudyn calls once before the first step (initial state, t = 0) and then after
+every accepted step with that step's end state and time (never for rejected DOPRI5
+steps or Newton iterations), calls :meth:`ContactHistory.accept`.  (The pre-step
+function would not do: Exudyn calls it for every attempted step, with the system time
+already set to the end of the attempt while the state is still at its start.)
+Exudyn has one post-step function per system; exuclear installs one that serves all
+joints and then calls any function the user had installed before.  A function
+installed *after* the joints would replace it; :func:`simulate` detects that and
+refuses.
 """
 from __future__ import annotations
 
@@ -38,6 +41,12 @@ from .settings import METHODS, SolverSettings
 
 _REGISTRY_KEY = "exuclear.joints"
 _FAILURE_KEY = "exuclear.failure"
+_MIN_STEP_KEY = "exuclear.min_step"
+_HOOKS_KEY = "exuclear.hooks"
+
+#: Attempts at one step after which a run is ended: DOPRI5 rejects a step a few times
+#: at an impact, but at its minimum step Exudyn's DOPRI5 retries forever.
+MAX_STEP_ATTEMPTS = 200
 
 #: Default bound on the penetration beyond which a run is stopped as unphysical: the
 #: larger of half the radial clearance and 0.1 % of the journal radius.  It is meant to
@@ -290,8 +299,8 @@ class ClearanceJointHandle:
         q_t = np.asarray(self.mbs.systemData.GetODE2Coordinates_t(configuration))[ltg]
         return q, q_t
 
-    def accept_current_state(self) -> str:
-        """Update the contact history from the system's current (accepted) state.
+    def accept_current_state(self, time: float) -> str:
+        """Update the contact history from the system's current (accepted) state at ``time``.
 
         Returns an empty string, or a message saying why the run cannot go on: a
         non-finite state, or a penetration beyond ``max_penetration``.
@@ -306,7 +315,7 @@ class ClearanceJointHandle:
                     f"({self.max_penetration / c:.0%} of the clearance). The contact is too soft for the load, the "
                     "step too large, or a unit is off: check E (Pa) and lengths (m), try a smaller step, or raise "
                     "`max_penetration` if such penetrations are physical")
-        self.history.accept(kin.delta, kin.delta_dot, self.mbs.systemData.GetTime())
+        self.history.accept(kin.delta, kin.delta_dot, time)
         return ""
 
     def _sensor_function(self, mbs: exu.MainSystem, t: float, sensors: Any, factors: Any, configuration: Any) -> list[float]:
@@ -326,22 +335,46 @@ def _registry(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
     return mbs.variables.setdefault(_REGISTRY_KEY, [])
 
 
-def _install_pre_step(mbs: exu.MainSystem) -> None:
-    """Install the one pre-step function that updates every joint's history."""
-    previous = mbs.GetPreStepUserFunction()
-    user_fn = previous["function"] if isinstance(previous, dict) else None
+def _user_function(previous: Any) -> Any:
+    return previous["function"] if isinstance(previous, dict) else None
+
+
+def _install_hooks(mbs: exu.MainSystem) -> None:
+    """Install the post-step function that updates every joint's history, and a
+    pre-step watchdog that ends a step retried without end (see :data:`MAX_STEP_ATTEMPTS`)."""
+    user_post, user_pre = _user_function(mbs.GetPostStepUserFunction()), _user_function(mbs.GetPreStepUserFunction())
     joints = _registry(mbs)
+    last = [0.0]  # time of the previous accepted state
+    attempts = [0]  # attempts at the coming step
 
     def pre_step(mbs_: exu.MainSystem, t: float) -> bool:
-        for handle in joints:
-            problem = handle.accept_current_state()
-            if problem:  # stop the run (Exudyn ends it after the current step) and say why
-                mbs_.variables[_FAILURE_KEY] = f"at t = {mbs_.systemData.GetTime():.6g} s, {problem}"
-                return False
-        return user_fn(mbs_, t) if user_fn is not None else True
+        attempts[0] += 1
+        if attempts[0] > MAX_STEP_ATTEMPTS:
+            message = (f"at t = {last[0]:.6g} s, the solver retried one step {MAX_STEP_ATTEMPTS} times without "
+                       "accepting it (Exudyn's DOPRI5 does so when its minimum step cannot meet the tolerances); "
+                       "loosen the tolerances, lower `min_step`, or use an implicit method")
+            mbs_.variables[_FAILURE_KEY] = message
+            raise RuntimeError(message)  # returning False would not end Exudyn's retry loop
+        return user_pre(mbs_, t) if user_pre is not None else True
 
+    def post_step(mbs_: exu.MainSystem, t: float) -> bool:
+        attempts[0] = 0
+        step, last[0] = t - last[0], t
+        problem = ""
+        if 0.0 < step <= mbs_.variables.get(_MIN_STEP_KEY, 0.0):
+            problem = (f"the adaptive step collapsed to the minimum step ({step:.3g} s), where Exudyn would go on "
+                       "without error control; the problem is too stiff for this explicit method here: try an "
+                       "implicit method, looser tolerances, or a smaller `min_step`")
+        for handle in joints:
+            problem = problem or handle.accept_current_state(t)
+        if problem:  # stop the run and say why
+            mbs_.variables[_FAILURE_KEY] = f"at t = {t:.6g} s, {problem}"
+            return False
+        return user_post(mbs_, t) if user_post is not None else True
+
+    mbs.SetPostStepUserFunction(post_step)
     mbs.SetPreStepUserFunction(pre_step)
-    mbs.variables[_REGISTRY_KEY + ".hook"] = pre_step
+    mbs.variables[_HOOKS_KEY] = (pre_step, post_step)
 
 
 def add_clearance_joint(
@@ -423,7 +456,7 @@ def add_clearance_joint(
             sensorNumbers=[], sensorUserFunction=handle._sensor_function, storeInternal=True, writeToFile=False)))
     registry.append(handle)
     if len(registry) == 1:
-        _install_pre_step(mbs)
+        _install_hooks(mbs)
     return handle
 
 
@@ -493,11 +526,11 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         mbs.Assemble()
     joints = _registry(mbs)
     if joints:
-        installed = mbs.GetPreStepUserFunction()
-        if not isinstance(installed, dict) or installed.get("function") is not mbs.variables[_REGISTRY_KEY + ".hook"]:
+        installed = (_user_function(mbs.GetPreStepUserFunction()), _user_function(mbs.GetPostStepUserFunction()))
+        if any(a is not b for a, b in zip(installed, mbs.variables[_HOOKS_KEY], strict=True)):
             raise RuntimeError(
-                "the pre-step user function that updates the clearance joints' contact history was replaced; "
-                "set your own pre-step function before adding clearance joints (exuclear then calls it)")
+                "the pre- or post-step user function that exuclear installed (contact history, failure checks) "
+                "was replaced; set your own step functions before adding clearance joints (exuclear then calls them)")
     if settings.explicit:
         constrained = _constraint_objects(mbs)
         if constrained:
@@ -508,6 +541,8 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     for handle in joints:
         handle.history.reset()
     mbs.variables[_FAILURE_KEY] = ""
+    # with some slack, as Exudyn's controller may land a hair above its minimum
+    mbs.variables[_MIN_STEP_KEY] = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0
     ss = simulation_settings(settings)
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     start = time.perf_counter()

@@ -103,20 +103,22 @@ def test_explicit_solver_with_constraints_is_refused():
     assert exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha")).success
 
 
-def test_user_pre_step_function_is_kept_and_a_later_one_refused():
+def test_user_post_step_function_is_kept_and_a_later_one_refused():
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
-    calls = []
-    mbs.SetPreStepUserFunction(lambda mbs_, t: calls.append(t) or True)
+    calls, attempts = [], []
+    mbs.SetPostStepUserFunction(lambda mbs_, t: calls.append(t) or True)
+    mbs.SetPreStepUserFunction(lambda mbs_, t: attempts.append(t) or True)
     exuclear.add_clearance_joint(mbs, body, ground, journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9)
     mbs.Assemble()
     settings = exuclear.SolverSettings(end_time=1e-3, method="rk44", step=1e-4)
     assert exuclear.simulate(mbs, settings).success
-    assert len(calls) == 10  # one per step of 1e-4 s
-    mbs.SetPreStepUserFunction(lambda mbs_, t: True)
-    with pytest.raises(RuntimeError, match="pre-step user function"):
+    assert len(calls) == 11  # the initial state and one per step of 1e-4 s
+    assert len(attempts) == 10
+    mbs.SetPostStepUserFunction(lambda mbs_, t: True)
+    with pytest.raises(RuntimeError, match="pre- or post-step user function"):
         exuclear.simulate(mbs, settings)
 
 
@@ -211,3 +213,19 @@ def test_unphysical_penetration_stops_the_run_with_a_message():
     assert "at t = " in result.message
     assert len(out["time"]) > 10 and out["penetration"].max() > 5e-5
     assert out["time"][-1] < 1e-2  # stopped early
+
+
+@pytest.mark.parametrize("rtol, atol, min_step, message", [
+    # the impact needs steps below 5e-7 s at rtol 1e-8: Exudyn goes on at its minimum
+    (1e-8, 1e-14, 5e-7, "step collapsed to the minimum step"),
+    # at rtol 1e-12 and a 1e-7 s minimum Exudyn's DOPRI5 retries one step forever
+    (1e-12, 1e-18, 1e-7, "retried one step 200 times"),
+])
+def test_step_size_collapse_stops_the_run(rtol, atol, min_step, message):
+    from models.journal_bearing import JournalBearingParams, run
+
+    settings = exuclear.SolverSettings(end_time=1e-4, method="dopri5", step=1e-5, rtol=rtol, atol=atol,
+                                       min_step=min_step)
+    result, out = run(JournalBearingParams.paper(end_time=1e-4), settings)
+    assert not result.success
+    assert message in result.message

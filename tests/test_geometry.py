@@ -40,7 +40,7 @@ def test_history_onset_is_interpolated_to_zero_penetration():
     h.accept(-1e-6, 0.2)
     assert h.onset_velocity(1e-6, 0.4) == pytest.approx(0.3)
     h.accept(1e-6, 0.4)
-    h.accept(1e-6, 0.4)  # a repeated pre-step call (rejected step) changes nothing
+    h.accept(1e-6, 0.4)  # the same state accepted twice changes nothing
     assert h.in_contact and h.v0 == pytest.approx(0.3)
     h.accept(2e-6, 0.1)
     assert h.v0 == pytest.approx(0.3)  # kept for the whole contact
@@ -53,7 +53,7 @@ def test_history_onset_time_is_interpolated():
     h = ContactHistory()
     h.accept(-1e-6, 0.2, 1.0)
     h.accept(3e-6, 0.4, 1.4)
-    h.accept(3e-6, 0.4, 1.4)  # repeated pre-step call: no second onset
+    h.accept(3e-6, 0.4, 1.4)  # the same state again: no second onset
     assert h.onset_times == [pytest.approx(1.1)]
     h.reset()
     assert h.onsets == 0 and not h.in_contact
