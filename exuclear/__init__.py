@@ -5,6 +5,7 @@ Physics (pure Python, no exudyn): :mod:`~exuclear.contact`, :mod:`~exuclear.fric
 Engine glue: :mod:`~exuclear.exudyn_element`.  See ``shared/spec/MODEL.md`` for the
 equations.
 """
+from ._checks import UnitWarning
 from .contact import (
     CONTACT_LAWS,
     DEFAULT_LAW,
@@ -52,5 +53,5 @@ __all__ = [
     "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",
     "ClearanceJoint", "ContactHistory", "JointResponse", "make_joint",
     "MATERIALS", "Material", "composite_modulus", "material",
-    "METHODS", "SolverSettings",
+    "METHODS", "SolverSettings", "UnitWarning",
 ]

@@ -6,7 +6,17 @@ bad parameter fails before any simulation starts.  Nothing is clamped.
 from __future__ import annotations
 
 import math
+import warnings
 from numbers import Real
+
+
+class UnitWarning(UserWarning):
+    """A value that is valid but looks like a unit mistake (mm for m, GPa for Pa, ...)."""
+
+
+def warn_unit(message: str) -> None:
+    """Warn about a likely unit mistake, pointing at the caller of the public API."""
+    warnings.warn(message, UnitWarning, stacklevel=4)
 
 
 def check_real(name: str, value: object) -> float:

@@ -10,7 +10,11 @@ import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
-from ._checks import check_positive
+from ._checks import check_positive, warn_unit
+
+#: Clearances above this fraction of the journal radius are legal but unusual for a
+#: revolute joint (the paper's is 1 %): a warning asks whether a unit slipped.
+CLEARANCE_WARN_FRACTION = 0.1
 
 
 @dataclass(frozen=True)
@@ -40,6 +44,9 @@ class BearingGeometry:
                 f"`journal_radius` must be smaller than `bearing_radius` "
                 f"(radial clearance R_B - R_J > 0), got R_J = {r_j}, R_B = {r_b}"
             )
+        if r_b - r_j > CLEARANCE_WARN_FRACTION * r_j:
+            warn_unit(f"the radial clearance {r_b - r_j:.3g} m is more than {CLEARANCE_WARN_FRACTION:g} of the "
+                      f"journal radius {r_j:.3g} m; lengths are in metres: was a value given in mm?")
 
     @property
     def clearance(self) -> float:

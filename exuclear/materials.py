@@ -7,7 +7,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ._checks import check_choice, check_open, check_positive
+from ._checks import check_choice, check_open, check_positive, warn_unit
+
+#: Young's moduli below this are legal but softer than engineering polymers (~1e9 Pa):
+#: a warning asks whether the modulus was given in MPa or GPa instead of Pa.
+E_WARN_BELOW = 1e8
 
 
 @dataclass(frozen=True)
@@ -31,6 +35,9 @@ class Material:
     def __post_init__(self) -> None:
         object.__setattr__(self, "E", check_positive("E", self.E))
         object.__setattr__(self, "nu", check_open("nu", self.nu, -1.0, 0.5))
+        if self.E < E_WARN_BELOW:
+            warn_unit(f"Young's modulus E = {self.E:.3g} Pa of {self.name!r} is below {E_WARN_BELOW:.0e} Pa; "
+                      "moduli are in Pa: was it given in MPa or GPa?")
 
     @property
     def compliance(self) -> float:

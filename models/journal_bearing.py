@@ -29,6 +29,7 @@ from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2
 
 import exuclear
 from exuclear import SolverSettings
+from models._cli import bad_input, one_line_warnings
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (MODEL.md section 6), so this samples it ~400 times.
@@ -177,6 +178,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    one_line_warnings()
     try:
         params = JournalBearingParams.paper(
             law=args.law, cr=args.cr, length=args.length, journal_material=args.journal,
@@ -184,8 +186,7 @@ def main(argv: list[str] | None = None) -> int:
             bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min)
         result, out = run(params)
     except ValueError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+        return bad_input(err)
     if args.json:
         print(json.dumps(asdict(result)))
     else:

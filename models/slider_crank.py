@@ -54,6 +54,7 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
+from models._cli import bad_input, one_line_warnings
 
 FORMULATIONS = ("redundant", "minimal")
 
@@ -68,6 +69,10 @@ COLUMNS = ("time", "crank_angle", "slider_x", "slider_v", "slider_a", "contact_f
 
 #: 500 rpm in rad/s (the paper's crank speed).
 PAPER_CRANK_SPEED = 500.0 * 2.0 * math.pi / 60.0
+
+#: Crank speeds above this [rad/s] (1e5 rpm) are legal but far beyond any slider-crank:
+#: a warning asks whether rpm were given where rad/s are expected, or the like.
+CRANK_SPEED_WARN = 1e5 * 2.0 * math.pi / 60.0
 
 
 @dataclass(frozen=True)
@@ -146,6 +151,8 @@ class SliderCrankParams:
                      "rod_inertia", "crank_speed", "revolutions"):
             check.check_positive(name, getattr(self, name))
         check.check_nonnegative("gravity", self.gravity)
+        if self.crank_speed > CRANK_SPEED_WARN:
+            check.warn_unit(f"crank speed {self.crank_speed:.3g} rad/s is above 1e5 rpm; `crank_speed` is in rad/s")
         if self.rod_length <= self.crank_length:
             raise ValueError(f"`rod_length` must exceed `crank_length` for a full-turning crank, "
                              f"got l = {self.rod_length}, r = {self.crank_length}")
@@ -153,9 +160,10 @@ class SliderCrankParams:
             raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
         if self.formulation not in FORMULATIONS:
             raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
-        geometry = exuclear.BearingGeometry.from_clearance(self.bearing_radius, self.clearance, self.bearing_length)
+        check.check_positive("clearance", self.clearance)
         joint = exuclear.make_joint(
-            journal_radius=geometry.journal_radius, bearing_radius=geometry.bearing_radius, length=geometry.length,
+            journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
+            length=self.bearing_length,
             law=self.law, cr=self.cr, journal_material=self.journal_material, bearing_material=self.bearing_material,
             friction=self.friction, v_min=self.v_min)
         object.__setattr__(self, "_joint", joint)
@@ -425,6 +433,7 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    one_line_warnings()
     try:
         formulation = args.formulation or ("minimal" if args.clearance_joints == "B" and not args.ideal else "redundant")
         params = SliderCrankParams.paper(
@@ -436,8 +445,7 @@ def main(argv: list[str] | None = None) -> int:
         settings = _settings(args, params)
         result = run(params, settings)
     except ValueError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+        return bad_input(err)
     kind = "ideal joint at B" if params.ideal else (
         f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
         f"{params.bearing_material} bearing, friction {params.friction}")

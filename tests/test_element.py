@@ -204,7 +204,8 @@ def test_unphysical_penetration_stops_the_run_with_a_message():
     # 0.1 mm clearance: the run must stop there, say when and where, and keep the outputs
     from models.journal_bearing import JournalBearingParams, run
 
-    soft = exuclear.Material(1e6, 0.3, "soft")
+    with pytest.warns(exuclear.UnitWarning):  # deliberately soft
+        soft = exuclear.Material(1e6, 0.3, "soft")
     params = JournalBearingParams.paper(journal_material=soft, bearing_material=soft, end_time=1e-2)
     result, out = run(params)
     assert not result.success
@@ -229,3 +230,28 @@ def test_step_size_collapse_stops_the_run(rtol, atol, min_step, message):
     result, out = run(JournalBearingParams.paper(end_time=1e-4), settings)
     assert not result.success
     assert message in result.message
+
+
+@pytest.mark.parametrize("make, fragment", [
+    (lambda: exuclear.Material(3e6, 0.4), "was it given in MPa or GPa"),          # 3 GPa typed as MPa
+    (lambda: exuclear.BearingGeometry(9.9, 10.0, 15.0), None),                    # mm throughout: c/R_J = 1 %
+    (lambda: exuclear.BearingGeometry(5e-3, 10e-3, 15e-3), "was a value given in mm"),
+])
+def test_likely_unit_mistakes_warn(make, fragment):
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        make()
+    messages = [str(w.message) for w in caught if issubclass(w.category, exuclear.UnitWarning)]
+    if fragment is None:
+        assert messages == []
+    else:
+        assert len(messages) == 1 and fragment in messages[0]
+
+
+def test_cli_warning_is_one_line():
+    proc = _cli("--journal-radius", "0.005", "--json")
+    assert proc.returncode == 0
+    assert proc.stderr.strip().startswith("warning: the radial clearance")
+    assert "Traceback" not in proc.stderr and "UnitWarning" not in proc.stderr
