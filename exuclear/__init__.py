@@ -19,6 +19,7 @@ from .contact import (
     contact_law,
 )
 from .exudyn_element import (
+    BACKENDS,
     OUTPUT_COLUMNS,
     ClearanceJointHandle,
     SimulationResult,
@@ -46,7 +47,7 @@ __version__ = "0.1.0"
 __all__ = [
     "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
     "LankaraniNikravesh", "WangLiu", "contact_law",
-    "OUTPUT_COLUMNS", "ClearanceJointHandle", "SimulationResult", "add_clearance_joint", "simulate",
+    "BACKENDS", "OUTPUT_COLUMNS", "ClearanceJointHandle", "SimulationResult", "add_clearance_joint", "simulate",
     "simulation_settings",
     "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
     "friction_law", "smooth_step",

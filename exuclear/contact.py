@@ -108,6 +108,14 @@ class ContactLaw(ABC):
         f = self.stiffness(delta) * delta**self.exponent * (1.0 + self.damping_factor * delta_dot / v0_eff)
         return f if f > 0.0 else 0.0  # no adhesion (MODEL.md section 2)
 
+    def force_expression(self, delta, delta_dot, v0, ops):
+        """:meth:`normal_force` written against a math backend ``ops`` (:mod:`exuclear._ops`),
+        for the compiled element; the same formula, with branches as ``ops.where``."""
+        v0_eff = ops.max(v0, self.v_min)
+        depth = ops.max(delta, 0.0)  # keeps the untaken branch real where floats evaluate both
+        f = self.stiffness(depth, ops.sqrt) * depth**self.exponent * (1.0 + self.damping_factor * delta_dot / v0_eff)
+        return ops.where(delta > 0.0, ops.max(f, 0.0), 0.0)
+
     def __call__(self, delta: float, delta_dot: float, v0: float) -> float:
         return self.normal_force(delta, delta_dot, v0)
 

@@ -95,9 +95,17 @@ def contact_kinematics(
         nx, ny = ex / ecc, ey / ecc
     else:
         nx, ny = 1.0, 0.0
+    return kinematics_along(geometry, ex, ey, ecc, nx, ny, vxj - vxb, vyj - vyb, omega_i, omega_j)
+
+
+def kinematics_along(
+    geometry: BearingGeometry, ex: float, ey: float, ecc: float, nx: float, ny: float,
+    dvx: float, dvy: float, omega_i: float, omega_j: float,
+) -> ContactKinematics:
+    """The rest of :func:`contact_kinematics` once ``|e|`` and ``n`` are known; plain
+    arithmetic, so it also runs on symbolic numbers.  ``(dvx, dvy) = v(P_J) - v(P_B)``."""
     # omega x (R n) = R omega (-ny, nx) = -R omega t, so only the tangential component changes
     r_j, r_b = geometry.journal_radius, geometry.bearing_radius
-    dvx, dvy = vxj - vxb, vyj - vyb
     delta_dot = dvx * nx + dvy * ny
     v_t = dvx * ny - dvy * nx - omega_i * r_j + omega_j * r_b
     return ContactKinematics(ex, ey, ecc, nx, ny, ecc - (r_b - r_j), delta_dot, v_t)

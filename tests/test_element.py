@@ -27,7 +27,7 @@ def _rotate(phi, p):
     return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]])
 
 
-def _two_body_system(friction="none", law="hertz", cr=None):
+def _two_body_system(friction="none", law="hertz", cr=None, backend="python"):
     mbs = exu.SystemContainer().AddSystem()
     bodies = []
     for ref in ([0.0, 0.0, 0.3], [0.1, 0.0, -0.2]):
@@ -35,7 +35,7 @@ def _two_body_system(friction="none", law="hertz", cr=None):
         bodies.append(mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3)))
     handle = exuclear.add_clearance_joint(
         mbs, bodies[0], bodies[1], journal_point=ARM_I, bearing_point=ARM_J, journal_radius=R_J,
-        bearing_radius=R_B, length=L, law=law, cr=cr, friction=friction, record=False)
+        bearing_radius=R_B, length=L, law=law, cr=cr, friction=friction, record=False, backend=backend)
     mbs.Assemble()
     return mbs, handle
 
@@ -86,6 +86,33 @@ def test_power_of_generalized_forces_equals_contact_dissipation():
         resp = handle.joint.response(kin, handle.history)
         assert resp.f_t != 0.0
         assert forces @ q_t == pytest.approx(-(resp.f_n * kin.delta_dot + resp.f_t * kin.v_t), rel=1e-10)
+
+
+@pytest.mark.parametrize("friction", ["none", "paper"])
+def test_symbolic_backend_evaluates_the_python_formulas(friction):
+    # the compiled expression and the Python callback are the same formulas: on states in
+    # and out of contact, with each kind of contact history, they agree to round-off
+    mbs, handle = _two_body_system(friction=friction, law="wang-liu", cr=0.6, backend="symbolic")
+    assert handle.backend == "symbolic"
+    rng = np.random.default_rng(3)
+    histories = [(False, 0.0, float("-inf"), 0.0), (False, 0.0, -2e-6, 0.4), (True, 0.25, 1e-6, 0.1),
+                 (True, 1e-5, 1e-6, 0.0)]  # (in contact, v0, last delta, last delta_dot)
+    for in_contact, v0, delta0, rate0 in histories:
+        h = handle.history
+        h.in_contact, h.v0, h.delta, h.delta_dot = in_contact, v0, delta0, rate0
+        handle._compiled.push(h)
+        for delta in (-3e-6, 1e-7, 4e-6):
+            q = _contact_state(delta).tolist()
+            for _ in range(3):
+                q_t = (rng.normal(size=6) * np.array([0.1, 0.1, 3, 0.1, 0.1, 3])).tolist()
+                expected = np.array(handle.force_function(mbs, 0.0, handle.object_index, q, q_t))
+                got = np.array(handle._compiled.function.Evaluate(mbs, 0.0, handle.object_index, q, q_t))
+                np.testing.assert_allclose(got, expected, rtol=1e-9, atol=1e-9 * max(1.0, np.abs(expected).max()))
+
+
+def test_unknown_backend_is_refused():
+    with pytest.raises(ValueError, match="unknown `backend` 'cpp'; known: python, symbolic"):
+        _two_body_system(backend="cpp")
 
 
 def test_explicit_solver_with_constraints_is_refused():
