@@ -57,6 +57,7 @@ class JournalBearingParams:
     impact_velocity: float
     v_min: float = exuclear.V_MIN_DEFAULT
     end_time: float = DEFAULT_END_TIME
+    backend: str = "python"
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -88,7 +89,8 @@ def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.Cleara
     # a solid cylinder; the inertia never matters here (no friction, no rotation)
     journal = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=params.mass,
                                               inertia=0.5 * params.mass * params.journal_radius**2))
-    handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing")
+    handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing",
+                                          backend=params.backend)
     mbs.Assemble()
     return mbs, handle, int(node)
 
@@ -171,6 +173,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--mass", type=float, default=p.mass, help="journal mass [kg] (default %(default)s)")
     ap.add_argument("--velocity", type=float, default=p.impact_velocity, help="impact velocity [m/s] (default %(default)s)")
     ap.add_argument("--v-min", type=float, default=p.v_min, help="floor of v0 in the damping term [m/s] (default %(default)s)")
+    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
+                    help="force evaluation: python callback or compiled symbolic expression (default %(default)s)")
     ap.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     ap.add_argument("--plot", metavar="DIR", help="write force-penetration and rate-penetration plots to DIR")
     return ap
@@ -183,7 +187,8 @@ def main(argv: list[str] | None = None) -> int:
         params = JournalBearingParams.paper(
             law=args.law, cr=args.cr, length=args.length, journal_material=args.journal,
             bearing_material=args.bearing, journal_radius=args.journal_radius,
-            bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min)
+            bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min,
+            backend=args.backend)
         result, out = run(params)
     except ValueError as err:
         return bad_input(err)

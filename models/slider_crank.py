@@ -105,6 +105,9 @@ class SliderCrankParams:
         law and materials.  Only ``("B",)`` in the minimal formulation.
     formulation : str
         ``"redundant"`` or ``"minimal"``, see the module docstring.
+    backend : str
+        How the clearance joints' forces are evaluated, see
+        :func:`exuclear.add_clearance_joint`: ``"python"`` or ``"symbolic"``.
     """
 
     crank_length: float
@@ -129,6 +132,7 @@ class SliderCrankParams:
     ideal: bool = False
     formulation: str = "minimal"
     clearance_joints: tuple[str, ...] = ("B",)
+    backend: str = "python"
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -158,6 +162,7 @@ class SliderCrankParams:
                              f"got l = {self.rod_length}, r = {self.crank_length}")
         if not self.clearance_joints or not set(self.clearance_joints) <= {"O", "A", "B"}:
             raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
+        check.check_choice("backend", self.backend, exuclear.BACKENDS)
         if self.formulation not in FORMULATIONS:
             raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
         check.check_positive("clearance", self.clearance)
@@ -229,7 +234,7 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.add_clearance_joint(
                 mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
-                name=name)
+                name=name, backend=p.backend)
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
@@ -277,7 +282,7 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
         linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
         linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
     handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
-                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B")
+                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B", backend=p.backend)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
@@ -409,6 +414,9 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--clearance-joints", default="B",
                     help="joints with clearance, letters of OAB (crank-ground, crank-rod, rod-slider); "
                          "more than B needs --formulation redundant (default %(default)s)")
+    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
+                    help="force evaluation of the clearance joint: python callback or compiled symbolic expression "
+                         "(default %(default)s)")
     ap.add_argument("--method", choices=list(exuclear.METHODS), help="solver (default: per formulation)")
     ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive methods [s]")
     ap.add_argument("--rtol", type=float, help="relative tolerance of adaptive methods")
@@ -441,7 +449,7 @@ def main(argv: list[str] | None = None) -> int:
             friction=args.friction, clearance=args.clearance, bearing_length=args.length,
             crank_speed=exuclear._checks.check_positive("rpm", args.rpm) * math.pi / 30.0,
             revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
-            clearance_joints=tuple(args.clearance_joints))
+            clearance_joints=tuple(args.clearance_joints), backend=args.backend)
         settings = _settings(args, params)
         result = run(params, settings)
     except ValueError as err:
