@@ -65,6 +65,13 @@ def default_penetration_limit(geometry: Any) -> float:
     """The default penetration bound [m] of a joint, see :data:`PENETRATION_LIMIT_CLEARANCE`."""
     return max(PENETRATION_LIMIT_CLEARANCE * geometry.clearance, PENETRATION_LIMIT_RADIUS * geometry.journal_radius)
 
+#: With impact-aware steps, Exudyn's own step reduction (after a failed Newton
+#: iteration) may go this far below ``impact_step`` before the run fails.
+IMPACT_STEP_FLOOR = 0.5
+#: Error a post-Newton function returns to make Exudyn redo a step: anything above
+#: Exudyn's ``discontinuous.iterationTolerance`` (default 1).
+_REDO_STEP_ERROR = 1e3
+
 #: Force evaluation backends of the element, see :func:`add_clearance_joint`.
 BACKENDS = {"python": "Python callback", "symbolic": "Exudyn symbolic expression, compiled"}
 
@@ -608,8 +615,17 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.relativeTolerance = settings.rtol
         ti.absoluteTolerance = settings.atol
         ti.minimumStepSize = settings.min_step
-    else:
+    elif settings.impact_step is None:
         ti.adaptiveStep = False  # fixed step: a rejected Newton step fails the run loudly
+    else:
+        # impact-aware steps: the post-Newton function of simulate() asks for impact_step at
+        # a contact onset; Exudyn then doubles the step every recovery_steps steps
+        ti.adaptiveStep = True
+        ti.minimumStepSize = settings.impact_step * IMPACT_STEP_FLOOR
+        ti.adaptiveStepIncrease = 2.0
+        ti.adaptiveStepRecoverySteps = settings.recovery_steps
+        ti.discontinuous.useRecommendedStepSize = True
+    if not settings.explicit:
         ti.generalizedAlpha.spectralRadius = settings.spectral_radius
         ti.generalizedAlpha.computeInitialAccelerations = True
     ss.solution.file.write = False  # results come from sensors kept in memory
@@ -633,6 +649,21 @@ class SimulationResult:
     steps: int
     rejected: int
     time_reached: float
+
+
+def _impact_steps(joints: list[ClearanceJointHandle], impact_step: float) -> Any:
+    """Post-Newton function of impact-aware steps: redo a step longer than ``impact_step``
+    in which a joint that was free at the last accepted state has come into contact."""
+    longest = impact_step * (1.0 + 1e-9)  # Exudyn's step may carry round-off
+
+    def post_newton(mbs: exu.MainSystem, t: float) -> list[float]:
+        if mbs.sys["dynamicSolver"].it.currentStepSize > longest:
+            for handle in joints:
+                if not handle.history.in_contact and handle.kinematics(*handle._current()).delta > 0.0:
+                    return [_REDO_STEP_ERROR, impact_step]
+        return [0.0, -1.0]
+
+    return post_newton
 
 
 def _constraint_objects(mbs: exu.MainSystem) -> list[str]:
@@ -675,6 +706,11 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
                 "or a minimal-coordinate model")
     for handle in joints:
         handle.reset_history()
+    if settings.impact_step is not None:
+        if _user_function(mbs.GetPostNewtonUserFunction()) is not None:
+            raise ValueError("`impact_step` needs the system's post-Newton user function, but one is installed; "
+                             "remove it or use a fixed step")
+        mbs.SetPostNewtonUserFunction(_impact_steps(joints, settings.impact_step))
     mbs.variables[_FAILURE_KEY] = ""
     # with some slack, as Exudyn's controller may land a hair above its minimum
     mbs.variables[_MIN_STEP_KEY] = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0
@@ -687,6 +723,8 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     except Exception as err:  # Exudyn raises its own error types on solver failure
         ok, message = False, f"{type(err).__name__}: {err}"
     wall = time.perf_counter() - start
+    if settings.impact_step is not None:
+        mbs.SetPostNewtonUserFunction(0)  # a later run with fixed steps must not inherit it
     it = mbs.sys["dynamicSolver"].it
     t_reached = mbs.systemData.GetTime()
     if mbs.variables[_FAILURE_KEY]:

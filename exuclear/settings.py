@@ -45,6 +45,15 @@ class SolverSettings:
         [0, 1]; Exudyn's default 0.9.
     output_step : float
         Interval of recorded outputs [s]; default 1e-5 s.
+    impact_step : float, optional
+        Implicit methods only: impact-aware steps.  ``step`` is then the largest step;
+        whenever a clearance joint's contact begins within a step, the step is redone
+        with ``impact_step`` [s], and the step doubles again after every
+        ``recovery_steps`` accepted steps, up to ``step``.  Default None: fixed steps.
+    recovery_steps : int
+        Accepted steps between two doublings of the step after an impact (with
+        ``impact_step``); default 100, i.e. 100 us at 1e-6 s, longer than one impact of
+        the paper's scenes (~40 us, MODEL.md section 6).
     verbose : int
         Exudyn's verbose mode: 0 silent; 1 prints progress (time reached, time to go)
         every few seconds of a long run.
@@ -58,6 +67,8 @@ class SolverSettings:
     min_step: float = 1e-12
     spectral_radius: float = 0.9
     output_step: float = 1e-5
+    impact_step: float | None = None
+    recovery_steps: int = 100
     verbose: int = 0
 
     def __post_init__(self) -> None:
@@ -71,6 +82,15 @@ class SolverSettings:
         if not 0.0 <= rho <= 1.0:
             raise ValueError(f"`spectral_radius` must lie in [0, 1], got {rho}")
         check_positive("output_step", self.output_step)
+        if self.impact_step is not None:
+            if self.explicit:
+                raise ValueError(f"`impact_step` applies to the implicit methods; {self.method!r} controls its "
+                                 "step by its error estimate (use rtol, atol)")
+            if check_positive("impact_step", self.impact_step) > self.step:
+                raise ValueError(f"`impact_step` must not exceed `step`, got impact_step = {self.impact_step}, "
+                                 f"step = {self.step}")
+        if isinstance(self.recovery_steps, bool) or not isinstance(self.recovery_steps, int) or self.recovery_steps < 1:
+            raise ValueError(f"`recovery_steps` must be a positive integer, got {self.recovery_steps!r}")
         if self.step > self.end_time:
             raise ValueError(f"`step` must not exceed `end_time`, got step = {self.step}, end_time = {self.end_time}")
 
