@@ -121,7 +121,7 @@ VARIANTS = (
     Variant("minimal", "default", ()),
     Variant("minimal", "converged", (("rtol", 1e-9), ("atol", 1e-12))),
     Variant("redundant", "default", ()),
-    Variant("redundant", "converged", (("step", 1e-6),)),
+    Variant("redundant", "converged", (("step", 1e-6), ("impact_step", None))),
 )
 
 # -- pass/fail criteria -----------------------------------------------------------------
@@ -383,6 +383,8 @@ def describe_settings(s: exuclear.SolverSettings) -> str:
     """Short description of solver settings."""
     if s.adaptive:
         return f"{s.method} rtol {s.rtol:g}, atol {s.atol:g}, step <= {s.step:g} s"
+    if s.impact_step is not None:
+        return f"{s.method}, step {s.step:g} s, {s.impact_step:g} s from each contact onset"
     return f"{s.method}, fixed step {s.step:g} s"
 
 
@@ -629,7 +631,7 @@ def cross_check(quick: bool = False, progress: Progress = _print) -> CrossCheck:
 # =======================================================================================
 
 
-def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
+def markdown_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(r) + " |" for r in rows]
     return "\n".join(lines)
@@ -650,7 +652,7 @@ def criteria_md() -> str:
     rows.append(("reference", "sensitivity: max abs(delta e) / c after a 1e-9 m perturbation", f"{SENSITIVITY_LIMIT:g}",
                  "1/10 of the eccentricity bound: beyond it the reference itself is uncertain at the scale of the "
                  "bound, and point-by-point comparison stops there"))
-    return _table(("scene", "criterion", "bound", "reason"), rows) + "\n\n" + ACC_NOTE
+    return markdown_table(("scene", "criterion", "bound", "reason"), rows) + "\n\n" + ACC_NOTE
 
 
 def _status(passed: bool, failed: Sequence[str]) -> str:
@@ -664,7 +666,7 @@ def impacts_md(rows: Sequence[ImpactRow]) -> str:
              f"{r.wall_library:.2f}", f"{r.wall_reference:.3f}", _status(r.passed, r.failed)) for r in rows]
     header = ("law", "cr", "reference departure [m/s]", *(c.label for c in JB_CRITERIA), "wall library [s]",
               "wall reference [s]", "status")
-    return _table(header, body)
+    return markdown_table(header, body)
 
 
 def _fmt_shift(value: float) -> str:
@@ -682,7 +684,7 @@ def cranks_md(rows: Sequence[CrankRow]) -> str:
     header = ("case", "formulation", "settings", "max abs(de)/c", "peak force", "impacts lib / ref",
               "max onset shift [us]", "RMS(da)/RMS(a_ideal) (reported only)", "wall lib [s]", "wall ref [s]",
               "status")
-    return _table(header, body)
+    return markdown_table(header, body)
 
 
 def bookkeeping_md(rows: Sequence[CrankRow]) -> str:
@@ -692,7 +694,7 @@ def bookkeeping_md(rows: Sequence[CrankRow]) -> str:
              _status(r.bookkeeping.passed, [])) for r in rows]
     header = ("case", "settings", "max abs(onset_times - crossings) [us]", "max abs(onset_times - crossings) / step",
               "counts onset_times / crossings", "status")
-    return _table(header, body)
+    return markdown_table(header, body)
 
 
 def sensitivity_md(refs: Sequence[ReferenceCase]) -> str:
@@ -705,7 +707,7 @@ def sensitivity_md(refs: Sequence[ReferenceCase]) -> str:
         rows.append((s.case.label, f"{s.max_divergence:.2e}", f"{s.max_divergence * r.params.clearance / PERTURBATION:.2g}",
                      f"{s.impacts[0]} / {s.impacts[1]}",
                      f"{s.horizon:.4f}" + (" (sensitive)" if s.sensitive else " (whole run)")))
-    return _table(("case", "max abs(de)/c", "amplification (max abs(de) / perturbation)", "impacts base / perturbed",
+    return markdown_table(("case", "max abs(de)/c", "amplification (max abs(de) / perturbation)", "impacts base / perturbed",
                    "point-by-point horizon [s]"), rows)
 
 
@@ -734,7 +736,7 @@ def _sensitivity_sentence(refs: Sequence[ReferenceCase]) -> str:
 def _converged_step() -> str:
     """The changes of the redundant formulation's converged row, e.g. ``step 1e-06``."""
     rows = [v for v in VARIANTS if v.formulation == "redundant" and v.kind == "converged"]
-    return "; ".join(f"{name} {value:g}" for variant in rows for name, value in variant.changes)
+    return "; ".join(f"{name} {value:g}" for variant in rows for name, value in variant.changes if value is not None)
 
 
 def _default_explanations(rows: Sequence[CrankRow]) -> list[str]:
@@ -742,14 +744,12 @@ def _default_explanations(rows: Sequence[CrankRow]) -> list[str]:
     missed = {k for r in rows for k in r.failed}
     text = []
     if rows:
-        text.append("Rows at default settings use the paper's tolerances (DOPRI5 rtol 1e-6, steps up to 1e-5 s) or "
-                    "the redundant formulation's fixed 1e-5 s step: they are not converged, and their converged "
-                    "rows show where the differences go.")
+        text.append("Rows at default settings use the defaults of `models.slider_crank.default_settings`, chosen "
+                    "for an eccentricity error below 1 % of c at the least work (validation/work_precision.py): they "
+                    "are not converged, and their converged rows show where the differences go.")
     if "ecc" in missed:
-        text.append("Eccentricity: generalized-alpha at a fixed 1e-5 s step resolves an impact of ~40 us in about "
-                    "four steps (MODEL.md 6); its error shrinks as h^2 (converged row: "
-                    f"{_converged_step()} s). A known limitation of the default step; adaptive steps for the "
-                    "implicit solver are a later issue.")
+        text.append("Eccentricity: the error of the default settings exceeds 1 % of c here; generalized-alpha's "
+                    f"error shrinks as h^2 (converged row: {_converged_step()} s).")
     if "peak_force" in missed:
         text.append("Peak force: the library's peak is its largest value at its accepted steps; a sine-like pulse "
                     "of duration T sampled h off its top is low by (pi h / T)^2 / 2, i.e. 2 % for h = 2.5 us on "

@@ -61,6 +61,8 @@ FRICTIONS = ("none", "paper")
 #: the energy audit of tests/test_slider_crank.py by 4 %; rtol 1e-8 holds it to 0.1 %.
 #: atol 1e-12 m is 1e-8 of the clearance.
 RTOL, ATOL = 1e-8, 1e-12
+#: The paper's largest step [s] (MODEL.md 5.2), used for the figures that reproduce it.
+PAPER_MAX_STEP = 1e-5
 #: (rtol, atol) of the tolerance ladder.
 TOLERANCE_LADDER = ((1e-6, 1e-9), (RTOL, ATOL), (1e-10, 1e-14))
 #: Output step that records every accepted step (the solver's steps are >= 1e-12 s).
@@ -157,9 +159,9 @@ def paper_sweeps(revolutions: float) -> tuple[Sweep, ...]:
 
 def clearance_settings(params: SliderCrankParams, rtol: float = RTOL, atol: float = ATOL,
                        output_step: float | None = None) -> exuclear.SolverSettings:
-    """The model's default settings (DOPRI5, steps <= 1e-5 s) with the given tolerances."""
+    """The model's default DOPRI5 with the paper's largest step (1e-5 s) and the given tolerances."""
     base = default_settings(params)
-    return replace(base, rtol=rtol, atol=atol, output_step=output_step or base.output_step)
+    return replace(base, step=PAPER_MAX_STEP, rtol=rtol, atol=atol, output_step=output_step or base.output_step)
 
 
 def describe(params: SliderCrankParams) -> str:
