@@ -190,10 +190,10 @@ class _KinematicTreeSide:
 
     def state(self, q: Sequence[float], q_t: Sequence[float], ops: Any = FLOAT_OPS) -> _State:
         # forward kinematics: the frame of each chain joint, then the point.  Angles that are
-        # still the float 0 need no trigonometry (checked by type: a symbolic number that
-        # happens to be 0 while the expression is recorded is not a constant)
+        # still the float 0 need no trigonometry (see _cos_sin); this runs in every force
+        # evaluation, so each cos/sin is computed once and reused for the Jacobian
         x, y, angle = self.base[0], self.base[1], 0.0
-        frames = []
+        frames = []  # per chain joint: (coordinate index, revolute?, frame x, y, cos, sin of the axis)
         i = self.offset
         for j, kind, ox, oy, fixed in self.chain:
             if ox != 0.0 or oy != 0.0:
@@ -201,31 +201,31 @@ class _KinematicTreeSide:
                 x, y = x + c * ox - s * oy, y + s * ox + c * oy
             if fixed != 0.0:
                 angle = angle + fixed
-            frames.append((i + j, kind, x, y, angle))
             qj = self.q0[j] + q[i + j] if self.q0[j] != 0.0 else q[i + j]
             if kind == _REVOLUTE:
+                frames.append((i + j, True, x, y, 0.0, 0.0))
                 angle = angle + qj
-            else:
-                c, s = _cos_sin(angle, ops)
-                if kind == _PRISMATIC_X:
-                    x, y = x + c * qj, y + s * qj
-                else:
-                    x, y = x - s * qj, y + c * qj
+                continue
+            c, s = _cos_sin(angle, ops)
+            if kind == _PRISMATIC_Y:  # the axis is the frame's Y axis
+                c, s = -s, c
+            frames.append((i + j, False, x, y, c, s))
+            x, y = x + c * qj, y + s * qj
         if self.sx != 0.0 or self.sy != 0.0:
             c, s = _cos_sin(angle, ops)
             x, y = x + c * self.sx - s * self.sy, y + s * self.sx + c * self.sy
         # Jacobian columns d(point)/dq_k, d(angle)/dq_k, and the velocity from them
         columns = []
         vx = vy = w = 0.0
-        for k, kind, fx, fy, frame_angle in frames:
-            if kind == _REVOLUTE:
-                column = (k, fy - y, x - fx, 1.0)
-            else:
-                c, s = _cos_sin(frame_angle, ops)
-                column = (k, c, s, 0.0) if kind == _PRISMATIC_X else (k, -s, c, 0.0)
-            columns.append(column)
+        for k, revolute, fx, fy, c, s in frames:
             qt = q_t[k]
-            vx, vy, w = vx + column[1] * qt, vy + column[2] * qt, w + column[3] * qt
+            if revolute:
+                dx, dy = fy - y, x - fx
+                columns.append((k, dx, dy, 1.0))
+                vx, vy, w = vx + dx * qt, vy + dy * qt, w + qt
+            else:
+                columns.append((k, c, s, 0.0))
+                vx, vy = vx + c * qt, vy + s * qt
         return x, y, vx, vy, w, columns
 
 
