@@ -12,7 +12,7 @@ against a tightly converged reference (DOP853 at rtol 1e-10, the reference of
 :mod:`validation.cross_check`, whose own error is ~2e-6 c there):
 
 - slider-crank: max ``|e - e_ref| / c`` over the run, at the run's own output instants
-  (the reference's dense output on a 2e-6 s grid, interpolated linearly: < 1e-4 c), the
+  (the reference's dense output on a 2e-6 s grid, interpolated linearly: < 4e-5 c), the
   relative error of the peak contact force, and the impact count;
 - journal-bearing: the relative error of the departure velocity.
 
@@ -53,9 +53,6 @@ DEFAULT_OUT = os.path.join("results", "work_precision")
 
 #: The target of issue 5: eccentricity error at most 1 % of the clearance.
 ECC_TARGET = 0.01
-#: Grid of the converged reference [s]: linear interpolation between its points misses
-#: by at most (2e-6)^2 / 8 * 7e3 m/s^2 (a 2 kN impact on 0.3 kg) = 3.5e-9 m < 1e-4 c.
-REFERENCE_GRID = 2e-6
 #: Output interval of the library runs [s] (the paper's): outputs are part of the work.
 OUTPUT_STEP = 1e-5
 #: Absolute tolerance per unit of relative tolerance: positions are ~1e-4 m (c) to 0.35 m,
@@ -173,8 +170,7 @@ class CrankReference:
 
 
 def crank_reference(params: SliderCrankParams) -> CrankReference:
-    ref = sc_reference.simulate(params, method=cc.REF_METHOD, rtol=cc.REF_RTOL, atol=cc.REF_ATOL,
-                                output_step=REFERENCE_GRID)
+    ref = cc.reference_run(params)  # on cross_check's grid, fine enough to interpolate (cc.GRID_STEP)
     if not ref.success:
         raise RuntimeError(f"the reference failed: {ref.message}")
     return CrankReference(params, ref.columns, cc.reference_peak_force(params, ref), ref.n_impacts)
