@@ -297,6 +297,60 @@ def cheapest_within(points: Sequence[Point], scene: str, label: str, target: flo
 
 
 # =======================================================================================
+# where the time goes
+# =======================================================================================
+@dataclass
+class Profile:
+    """Split of one default run (Python backend) by cProfile: calls and inclusive time of
+    the element's force callback, the per-step hooks and the output sensor; the rest is
+    Exudyn's own solver (C++), obtained as the difference.  cProfile slows Python code,
+    so the shares are upper bounds for Python; the un-profiled wall time is beside them."""
+
+    scene: str
+    formulation: str
+    wall: float
+    profiled: float
+    steps: int
+    groups: dict[str, tuple[int, float]]   # name -> (calls, inclusive seconds)
+
+
+_PROFILE_GROUPS = {"force callback": ("force_function",), "per-step hooks": ("post_step", "pre_step", "post_newton"),
+                   "output sensor": ("_sensor_function",)}
+
+
+def profile_default(scene: str, cr: float, formulation: str) -> Profile:
+    import cProfile
+    import pstats
+
+    params = SliderCrankParams.paper(cr=cr, formulation=formulation)
+    settings = sc_model.default_settings(params)
+    wall = sc_model.run(params, settings).wall_time
+    model = sc_model.build(params)
+    profiler = cProfile.Profile()
+    profiler.enable()
+    sim = exuclear.simulate(model.mbs, settings)
+    profiler.disable()
+    stats = pstats.Stats(profiler).stats
+    groups = {}
+    for group, names in _PROFILE_GROUPS.items():
+        rows = [v for (_, _, name), v in stats.items() if name in names]
+        groups[group] = (sum(r[1] for r in rows), sum(r[3] for r in rows))
+    return Profile(scene, formulation, wall, sim.wall_time, sim.steps, groups)
+
+
+def profile_md(profiles: Sequence[Profile]) -> str:
+    rows = []
+    for p in profiles:
+        python = sum(t for _, t in p.groups.values())
+        cells = [f"{calls} / {t:.3f} s" for calls, t in p.groups.values()]
+        rows.append((p.scene, p.formulation, f"{p.wall:.3f}", str(p.steps), *cells,
+                     f"{max(p.profiled - python, 0.0):.3f}", f"{p.profiled:.3f}"))
+    header = ("scene", "default formulation", "wall [s] (not profiled)", "steps",
+              *(f"{g}: calls / time" for g in _PROFILE_GROUPS), "Exudyn solver and rest [s]", "profiled total [s]")
+    return cc.markdown_table(header, rows)
+
+
+# =======================================================================================
 # outputs
 # =======================================================================================
 def records(points: Sequence[Point]) -> list[dict[str, object]]:
@@ -335,7 +389,7 @@ def figure(points: Sequence[Point], path: str) -> str:
     return path
 
 
-def report_md(points: Sequence[Point], repeats: int, runtime: float) -> str:
+def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: Sequence[Profile] = ()) -> str:
     lines = ["# Work-precision study", "",
              "Source problems: MODEL.md 5.1 (journal-bearing impact, Wang-Liu cr 0.9) and 5.2 (slider-crank, steel, "
              "no friction, 2 crank revolutions). Command: `python -m validation.work_precision` "
@@ -366,7 +420,17 @@ def report_md(points: Sequence[Point], repeats: int, runtime: float) -> str:
                          ratio_text(points, best) if best and best.config.side == "exuclear" else ""))
     lines += [cc.markdown_table(("scene", "configuration", "cheapest setting", "wall [s]", "error",
                                  "vs fastest SciPy at that error"), rows), ""]
+    if profiles:
+        lines += ["## Where the time goes (default settings, Python backend)", "", _PROFILE_NOTE, "",
+                  profile_md(profiles), ""]
     return "\n".join(lines)
+
+
+_PROFILE_NOTE = ("cProfile of one run each: calls and inclusive time of the element's Python force callback (every "
+                 "Runge-Kutta stage, Newton iteration and Jacobian column calls it), of the per-step hooks (contact "
+                 "history, failure checks, impact-aware steps) and of the output sensor; the remainder is Exudyn's "
+                 "solver in C++ (time integration, the kinematic tree's or the constraints' equations) and the "
+                 "profiler's own overhead.")
 
 
 def headline(points: Sequence[Point]) -> list[str]:
@@ -399,18 +463,23 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     start = time.perf_counter()
     points = study(args.quick, args.repeats)
+    profiles = [profile_default(scene, cr, f) for scene, cr in CRANK_SCENES for f in sc_model.FORMULATIONS]
     runtime = time.perf_counter() - start
     os.makedirs(args.out, exist_ok=True)
     paths = [cc.write_csv(os.path.join(args.out, "work_precision.csv"), records(points)),
              figure(points, os.path.join(args.out, "work_precision.png"))]
     path = os.path.join(args.out, "work_precision.md")
     with open(path, "w", encoding="utf-8") as f:
-        f.write(report_md(points, args.repeats, runtime))
+        f.write(report_md(points, args.repeats, runtime, profiles))
     paths.append(path)
     for p in paths:
         print(f"wrote {p}")
     for line in headline(points):
         print(line)
+    for p in profiles:
+        calls, seconds = p.groups["force callback"]
+        print(f"{p.scene}, default {p.formulation}: {p.steps} steps, {calls} force callbacks taking {seconds:.3f} s "
+              f"of {p.profiled:.3f} s profiled ({p.wall:.3f} s not profiled)")
     print(f"total runtime {runtime:.0f} s")
     failed = [p for p in points if not p.success]
     return 1 if failed else 0
