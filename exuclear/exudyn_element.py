@@ -560,9 +560,11 @@ def add_clearance_joint(
         How the force is evaluated: ``"python"`` (a Python callback, the default) or
         ``"symbolic"`` (the same formulas recorded as an Exudyn symbolic expression and
         evaluated in compiled code).  The contact history is updated in Python once per
-        accepted step either way.  ``"symbolic"`` is about ten times faster on a body
-        against the ground, but slower on links of a kinematic tree, whose chains the
-        expression re-evaluates at every use (see ``validation/work_precision.py``).
+        accepted step either way, and that fixed cost per step is what remains: on a
+        body against the ground (the journal-bearing scene) ``"symbolic"`` saves about
+        a tenth of the run time; on the slider-crank it is 2 to 4 times slower, because
+        Exudyn's symbolic expressions share no subexpressions and re-evaluate the
+        joint's kinematics at every use (measured by ``validation/work_precision.py``).
 
     Returns
     -------
