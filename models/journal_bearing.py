@@ -13,6 +13,12 @@ One impact: the journal (an ``ObjectRigidBody2D``) starts at eccentricity ``e = 
 (``delta = 0``) with velocity ``v_impact`` along ``n``; no gravity, no friction, no
 rotation.  The run ends once the journal has left the wall.
 
+The same scene with gravity (``JournalBearingParams.gravity``, along +X: the bearing is
+drawn lying on its side, "down" points at the wall) and a gap at the start
+(``start_gap``) is a journal resting on its bearing (``start_gap = 0``,
+``v_impact = 0``) or dropped onto it from the centre (``start_gap = c``): build it with
+:func:`build` and integrate it with :func:`exuclear.simulate`.
+
 Run ``python -m models.journal_bearing --help`` for the options.
 """
 from __future__ import annotations
@@ -25,15 +31,19 @@ from dataclasses import asdict, dataclass, replace
 
 import exudyn as exu
 import numpy as np
-from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
 from exuclear import SolverSettings
-from models._cli import bad_input, one_line_warnings
+from models._cli import bad_input, check_output_dir, one_line_warnings
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (MODEL.md section 6), so this samples it ~400 times.
 IMPACT_STEP = 1e-7
+#: Relative slack on ``start_gap <= c``: R_B - R_J is not exact in floating point
+#: (10 mm - 9.9 mm = 0.1 mm - 3e-20 m), and a journal started 1e-20 m past the centre is
+#: still centred.
+GAP_ROUNDOFF = 1e-9
 #: The run stops this long after the start [s]: several impact durations.  The result
 #: reports an error if the journal has not left the wall by then.
 DEFAULT_END_TIME = 4e-4
@@ -43,7 +53,8 @@ DEFAULT_END_TIME = 4e-4
 class JournalBearingParams:
     """Parameters of the journal-bearing impact (SI units).
 
-    Use :meth:`paper` for the paper's values.
+    Use :meth:`paper` for the paper's values.  ``gravity`` and ``start_gap`` (both 0 in
+    the paper) turn the scene into a journal resting on, or dropped onto, its bearing.
     """
 
     law: str
@@ -57,6 +68,12 @@ class JournalBearingParams:
     impact_velocity: float
     v_min: float = exuclear.V_MIN_DEFAULT
     end_time: float = DEFAULT_END_TIME
+    #: Gravitational acceleration [m/s^2] along +X, towards the wall the journal starts
+    #: at; 0 in the paper's scene.
+    gravity: float = 0.0
+    #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
+    #: c centred.
+    start_gap: float = 0.0
     backend: str = "python"
 
     @classmethod
@@ -78,17 +95,28 @@ class JournalBearingParams:
 def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.ClearanceJointHandle, int]:
     """Build the scene; returns the system, the joint handle and the journal's node."""
     joint = params.joint()  # checks all physical parameters before anything is built
-    exuclear._checks.check_positive("mass", params.mass)
-    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
-    exuclear._checks.check_positive("end_time", params.end_time)
+    check = exuclear._checks
+    check.check_positive("mass", params.mass)
+    check.check_nonnegative("impact_velocity", params.impact_velocity)
+    check.check_positive("end_time", params.end_time)
+    check.check_nonnegative("gravity", params.gravity)
     c = joint.geometry.clearance
+    gap = check.check_nonnegative("start_gap", params.start_gap)
+    if gap > c * (1.0 + GAP_ROUNDOFF):
+        raise ValueError(f"`start_gap` must not exceed the clearance {c:g} m (the journal starts inside the "
+                         f"bearing), got {gap:g}")
+    if params.impact_velocity == 0.0 and params.gravity == 0.0:
+        raise ValueError("nothing moves: give a positive `impact_velocity` or `gravity`")
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[c, 0.0, 0.0],
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[c - gap, 0.0, 0.0],
                                        initialVelocities=[params.impact_velocity, 0.0, 0.0]))
     # a solid cylinder; the inertia never matters here (no friction, no rotation)
     journal = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=params.mass,
                                               inertia=0.5 * params.mass * params.journal_radius**2))
+    if params.gravity > 0.0:
+        mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=journal)),
+                                         loadVector=[params.gravity, 0.0, 0.0]))
     handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing",
                                           backend=params.backend)
     mbs.Assemble()
@@ -124,7 +152,15 @@ def settings_for(params: JournalBearingParams) -> SolverSettings:
 
 
 def run(params: JournalBearingParams, settings: SolverSettings | None = None) -> tuple[ImpactResult, dict[str, np.ndarray]]:
-    """Simulate one impact; returns the summary and the joint's recorded outputs."""
+    """Simulate one impact; returns the summary and the joint's recorded outputs.
+
+    The summary is that of the paper's scene: contact from t = 0 at ``impact_velocity``
+    (> 0), no gravity, no gap at the start.
+    """
+    if params.gravity != 0.0 or params.start_gap != 0.0:
+        raise ValueError("run() summarises one impact that starts at t = 0 without gravity; for a resting or "
+                         "dropped journal (`gravity`, `start_gap`) use build() and exuclear.simulate()")
+    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
     mbs, handle, node = build(params)
     settings = settings or settings_for(params)
     sim = exuclear.simulate(mbs, settings)
@@ -189,13 +225,16 @@ def main(argv: list[str] | None = None) -> int:
             bearing_material=args.bearing, journal_radius=args.journal_radius,
             bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min,
             backend=args.backend)
+        if args.plot:
+            check_output_dir("--plot", args.plot)
         result, out = run(params)
     except ValueError as err:
         return bad_input(err)
     if args.json:
         print(json.dumps(asdict(result)))
     else:
-        print(f"journal-bearing impact: {result.law}, cr = {result.cr}, L = {result.length * 1e3:g} mm, "
+        incomplete = "" if result.success else " (INCOMPLETE: see the error below; values up to the stop)"
+        print(f"journal-bearing impact{incomplete}: {result.law}, cr = {result.cr}, L = {result.length * 1e3:g} mm, "
               f"{result.journal_material} journal in {result.bearing_material} bearing")
         print(f"  impact velocity     {result.impact_velocity:.4f} m/s")
         print(f"  departure velocity  {result.departure_velocity:.4f} m/s  (Newton cr*v: {result.newton_departure_velocity:.4f})")
