@@ -1,0 +1,341 @@
+"""Bad input, everywhere: what the API and the command lines answer to it.
+
+Source: issue 6, part 3, and the input rules of ``shared/STYLE.md`` ("check inputs at
+the public boundary and fail loudly: ValueError naming the argument and the rule";
+command lines print one line ``error: ...`` and exit with status 2, no traceback; likely
+unit mistakes warn).  Every input of :data:`BAD_INPUTS` is tried here, on the API in
+this process and on the command lines through their ``main`` functions (as
+``python -m ...`` would run them, an uncaught exception being a traceback), and the
+replies are written as the table of ``docs/bad_input.md``::
+
+    python -m validation.bad_input [--write docs/bad_input.md]
+
+``tests/test_hard_cases.py`` tries every input again and checks that the table still
+says what the library answers, and that every reply is the one the rules ask for
+(rows marked as gaps are expected to fall short, strictly).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import io
+import math
+import os
+import shlex
+import sys
+import traceback
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import exudyn as exu
+from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+import exuclear
+from models.journal_bearing import JournalBearingParams
+from models.slider_crank import SliderCrankParams
+
+DOC = os.path.join("docs", "bad_input.md")
+
+#: The paper's journal and bearing (MODEL.md 5.1), as the API rows write them.
+PAPER = {"journal_radius": 9.9e-3, "bearing_radius": 10e-3, "length": 15e-3}
+#: A path whose parent is a regular file, so nothing can be written there on any machine.
+UNWRITABLE = os.path.join(os.path.abspath(__file__), "out")
+
+
+def system() -> tuple[exu.MainSystem, int, int]:
+    """A fresh system with a ground and one rigid body: ``(mbs, body, ground)``."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
+    return mbs, body, ground
+
+
+def build_journal(params: JournalBearingParams) -> object:
+    """:func:`models.journal_bearing.build`, imported late."""
+    from models.journal_bearing import build
+
+    return build(params)
+
+
+#: Names the API rows may use.
+NAMESPACE = {"exuclear": exuclear, "PAPER": PAPER, "SliderCrankParams": SliderCrankParams,
+             "JournalBearingParams": JournalBearingParams, "system": system, "build_journal": build_journal,
+             "nan": math.nan, "inf": math.inf}
+
+
+@dataclass(frozen=True)
+class BadInput:
+    """One input tried.
+
+    Attributes
+    ----------
+    surface : str
+        ``"API"`` (``code`` is a Python expression over :data:`NAMESPACE`) or ``"CLI"``
+        (``code`` is a command line ``python -m MODULE ARGS``).
+    mistake : str
+        The kind of mistake: wrong type, NaN or inf, missing value, unknown name,
+        inconsistent input, likely unit mistake, unwritable output.
+    code : str
+        The input, as shown in the table.
+    expect : str
+        The reply the rules ask for: ``ValueError``, ``TypeError`` (Python's own check
+        of a call's arguments), ``UnitWarning``, ``accepted`` (valid input), ``exit 2``,
+        ``exit 0 + warning`` or ``exit 2 + warning``.
+    says : str
+        Text the reply's message must contain (the name of the argument at fault), if any.
+    gap : str
+        Empty when the library answers as it should; else what it should do instead.
+    """
+
+    surface: str
+    mistake: str
+    code: str
+    expect: str
+    gap: str = ""
+    says: str = ""
+
+    def satisfied_by(self, reply: Reply) -> bool:
+        """Whether ``reply`` is the one the rules ask for."""
+        return reply.kind == self.expect and self.says in reply.message
+
+
+class Reply(NamedTuple):
+    """What an input got: its kind (as :attr:`BadInput.expect`) and the message text."""
+
+    kind: str
+    message: str
+
+
+_SC = "python -m models.slider_crank"
+_JB = "python -m models.journal_bearing"
+
+BAD_INPUTS: tuple[BadInput, ...] = (
+    # -- API: wrong types
+    BadInput("API", "wrong type", 'exuclear.make_joint(**PAPER, cr="0.9")', "ValueError"),
+    BadInput("API", "wrong type", "exuclear.make_joint(**PAPER, cr=[0.9])", "ValueError"),
+    BadInput("API", "wrong type", "exuclear.make_joint(**PAPER, cr=True)", "ValueError"),
+    BadInput("API", "wrong type", "exuclear.make_joint(**PAPER, cr=0.9, friction=0.1)", "ValueError"),
+    BadInput("API", "wrong type", 'exuclear.Material("207e9", 0.3)', "ValueError"),
+    BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time="0.1")', "ValueError"),
+    BadInput("API", "wrong type", "exuclear.SolverSettings(end_time=0.1, method=5)", "ValueError"),
+    BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time=0.1, verbose="yes")', "ValueError",
+             gap="accepted; simulate() then fails with Exudyn's own ExudynTypeError. `verbose` should be checked "
+                 "as an integer (settings.py)"),
+    BadInput("API", "wrong type", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, journal_point="ab")',
+             "ValueError"),
+    BadInput("API", "wrong type", "exuclear.add_clearance_joint(system()[0], 1.5, 0, **PAPER, cr=0.9)", "ValueError"),
+    BadInput("API", "wrong type", 'exuclear.add_clearance_joint("mbs", 1, 0, **PAPER, cr=0.9)', "ValueError",
+             gap="the message blames `journal_body`; it should say that `mbs` is not an exudyn MainSystem "
+                 "(exudyn_element.py)", says="`mbs`"),
+    BadInput("API", "wrong type", 'exuclear.simulate("mbs", exuclear.SolverSettings(end_time=0.1))', "ValueError",
+             gap="AttributeError from inside simulate(); it should check that `mbs` is an exudyn MainSystem "
+                 "(exudyn_element.py)"),
+    BadInput("API", "wrong type", 'exuclear.simulate(system()[0], {"end_time": 0.1})', "ValueError"),
+    BadInput("API", "wrong type", 'SliderCrankParams.paper(crank_speed="500")', "ValueError"),
+    BadInput("API", "wrong type", 'SliderCrankParams.paper(ideal="no")', "ValueError",
+             gap='accepted, and "no" is true: an ideal mechanism. `ideal` should be checked as a bool '
+                 "(models/slider_crank.py)"),
+    # -- API: NaN and inf
+    BadInput("API", "NaN or inf", "exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=nan, "
+                                  "cr=0.9)", "ValueError"),
+    BadInput("API", "NaN or inf", "exuclear.Material(nan, 0.3)", "ValueError"),
+    BadInput("API", "NaN or inf", "exuclear.SolverSettings(end_time=inf)", "ValueError"),
+    BadInput("API", "NaN or inf", "SliderCrankParams.paper(gravity=nan)", "ValueError"),
+    BadInput("API", "NaN or inf", "build_journal(JournalBearingParams.paper(mass=nan))", "ValueError"),
+    # -- API: missing values
+    BadInput("API", "missing value", "exuclear.make_joint(**PAPER)", "ValueError"),
+    BadInput("API", "missing value", "exuclear.make_joint(bearing_radius=10e-3, length=15e-3, cr=0.9)", "TypeError"),
+    BadInput("API", "missing value", "exuclear.SolverSettings()", "TypeError"),
+    BadInput("API", "unknown name", "exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, radius=1e-2)",
+             "TypeError"),
+    # -- API: unknown names
+    BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, law="hertzian", cr=0.9)', "ValueError"),
+    BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, cr=0.9, journal_material="brass")', "ValueError"),
+    BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, cr=0.9, friction="viscous")', "ValueError"),
+    BadInput("API", "unknown name", 'exuclear.SolverSettings(end_time=0.1, method="rk45")', "ValueError"),
+    BadInput("API", "unknown name", 'SliderCrankParams.paper(formulation="tree")', "ValueError"),
+    BadInput("API", "unknown name", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, backend="numba")',
+             "ValueError"),
+    # -- API: inconsistent input
+    BadInput("API", "inconsistent input", "exuclear.make_joint(journal_radius=10e-3, bearing_radius=10e-3, "
+                                          "length=15e-3, cr=0.9)", "ValueError"),
+    BadInput("API", "inconsistent input", 'exuclear.make_joint(**PAPER, law="hertz", cr=0.5)', "ValueError"),
+    BadInput("API", "inconsistent input", "exuclear.ModifiedCoulomb(mu_s=0.3, mu_d=0.25, v_s=1e-2, v_d=1e-4)",
+             "ValueError"),
+    BadInput("API", "inconsistent input", "exuclear.SolverSettings(end_time=0.1, step=1.0)", "ValueError"),
+    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',
+             "ValueError"),
+    BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(system()[0], 0, 0, **PAPER, cr=0.9)",
+             "ValueError"),
+    BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, "
+                                          "max_penetration=-1e-6)", "ValueError"),
+    BadInput("API", "inconsistent input", "SliderCrankParams.paper(rod_length=0.04)", "ValueError"),
+    BadInput("API", "inconsistent input", "SliderCrankParams.paper(clearance=0.02)", "ValueError",
+             gap="the message names `journal_radius` (R_B - c), which the caller never gave; it should say that "
+                 "`clearance` must be smaller than `bearing_radius` (models/slider_crank.py)", says="`clearance`"),
+    BadInput("API", "inconsistent input", 'SliderCrankParams.paper(clearance_joints=("O", "A", "B"))', "accepted"),
+    BadInput("API", "inconsistent input", "build_journal(JournalBearingParams.paper(start_gap=1e-3))", "ValueError"),
+    # -- API: likely unit mistakes
+    BadInput("API", "likely unit mistake", "exuclear.Material(3e6, 0.4)", "UnitWarning"),
+    BadInput("API", "likely unit mistake", "exuclear.BearingGeometry(5e-3, 10e-3, 15e-3)", "UnitWarning"),
+    BadInput("API", "likely unit mistake", "SliderCrankParams.paper(crank_speed=2e4)", "UnitWarning"),
+    BadInput("API", "likely unit mistake", "exuclear.BearingGeometry(9.9, 10.0, 15.0)", "accepted"),
+    # -- CLI: slider-crank
+    BadInput("CLI", "wrong type", f"{_SC} --cr abc", "exit 2"),
+    BadInput("CLI", "NaN or inf", f"{_SC} --cr nan", "exit 2"),
+    BadInput("CLI", "NaN or inf", f"{_SC} --rpm inf", "exit 2"),
+    BadInput("CLI", "missing value", f"{_SC} --cr", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_SC} --law foo", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_SC} --journal brass", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_SC} --friction viscous", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_SC} --method rk45", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_SC} --backend numba", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --clearance-joints XB", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --formulation minimal --clearance-joints OAB", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --ideal --formulation minimal", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --formulation redundant --method dopri5", "exit 2",
+             gap="the message is about `impact_step`, which the user never gave (the redundant default's); with it "
+                 "dropped for an explicit --method, simulate() would say that explicit methods ignore the "
+                 "constraints (models/slider_crank.py, _settings)", says="constraints"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --step 1", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --revolutions -1", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --gravity -9.81", "exit 2"),
+    BadInput("CLI", "likely unit mistake", f"{_SC} --rpm 2e5 --revolutions 0.001", "exit 2 + warning"),
+    BadInput("CLI", "unwritable output", f"{_SC} --revolutions 0.01 --csv {UNWRITABLE}.csv", "exit 2",
+             gap="a traceback (OSError) after the whole run; the path should be checked before the run "
+                 "(models/slider_crank.py, e.g. with models._cli.check_output_file)"),
+    BadInput("CLI", "unwritable output", f"{_SC} --revolutions 0.01 --plot {UNWRITABLE}", "exit 2",
+             gap="a traceback (OSError) after the whole run; should be checked before it (models/slider_crank.py, "
+                 "e.g. with models._cli.check_output_dir)"),
+    # -- CLI: journal-bearing
+    BadInput("CLI", "wrong type", f"{_JB} --mass 4e-2kg", "exit 2"),
+    BadInput("CLI", "NaN or inf", f"{_JB} --length nan", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_JB} --mass 0", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_JB} --velocity 0", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_JB} --v-min 0", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_JB} --journal-radius 0.011", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_JB} --law hertz --cr 0.5", "exit 2"),
+    BadInput("CLI", "unknown name", f"{_JB} --bearing gold", "exit 2"),
+    BadInput("CLI", "likely unit mistake", f"{_JB} --journal-radius 0.005", "exit 0 + warning"),
+    BadInput("CLI", "unwritable output", f"{_JB} --plot {UNWRITABLE}", "exit 2"),
+)
+
+
+def _api(code: str) -> Reply:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            eval(code, dict(NAMESPACE))  # the table's own expressions, written above
+        except (ValueError, TypeError) as err:
+            return Reply(type(err).__name__, str(err))
+        except Exception as err:  # anything else is a gap of the library, shown as such
+            return Reply(type(err).__name__, str(err))
+    units = [str(w.message) for w in caught if issubclass(w.category, exuclear.UnitWarning)]
+    return Reply("UnitWarning", units[0]) if units else Reply("accepted", "")
+
+
+def _cli_lines(stderr: str) -> list[str]:
+    """The lines a user reads: ``warning: ...``, ``error: ...`` and argparse's ``...: error: ...``."""
+    return [line for line in stderr.splitlines() if line.startswith(("warning:", "error:")) or ": error:" in line]
+
+
+def _cli(code: str) -> Reply:
+    words = shlex.split(code)
+    module = importlib.import_module(words[2])
+    err, out = io.StringIO(), io.StringIO()
+    with warnings.catch_warnings(), contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
+        warnings.simplefilter("always")
+        try:
+            status = module.main(words[3:])
+        except SystemExit as stop:  # argparse
+            status = stop.code
+        except Exception as crash:  # what `python -m` would print as a traceback
+            last = traceback.format_exception_only(type(crash), crash)[-1].strip()
+            return Reply("traceback", last)
+    lines = _cli_lines(err.getvalue())
+    warned = any(line.startswith("warning:") for line in lines)
+    return Reply(f"exit {status}" + (" + warning" if warned else ""), " / ".join(lines))
+
+
+def attempt(case: BadInput) -> Reply:
+    """Try one input; the reply it gets."""
+    return _api(case.code) if case.surface == "API" else _cli(case.code)
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _machine_free(text: str) -> str:
+    """``text`` with this file's path (where :data:`UNWRITABLE` points) written ``<file>``."""
+    return text.replace(os.path.dirname(UNWRITABLE), "<file>")
+
+
+def table_row(case: BadInput, reply: Reply) -> str:
+    """The Markdown line of one input."""
+    if case.gap:
+        status = f"**gap**: {case.gap}"
+    else:
+        status = "ok" if case.satisfied_by(reply) else f"**unexpected** (rule: {case.expect} {case.says})".strip()
+    message = f"{reply.kind}: {reply.message}" if reply.message else reply.kind
+    cells = (case.surface, case.mistake, f"`{_cell(_machine_free(case.code))}`", _cell(_machine_free(message)),
+             _cell(status))
+    return "| " + " | ".join(cells) + " |"
+
+
+def document(replies: Sequence[tuple[BadInput, Reply]]) -> str:
+    """The whole of ``docs/bad_input.md``."""
+    gaps = sum(1 for case, _ in replies if case.gap)
+    head = [
+        "# Bad input: what each gets",
+        "",
+        "Every row was tried by `python -m validation.bad_input --write docs/bad_input.md`, which wrote this file;",
+        "`tests/test_hard_cases.py` tries every row again and fails if a reply changes without this table.",
+        "The rules (issue 6, STYLE.md): the API raises `ValueError` naming the argument and the rule (Python's",
+        "own `TypeError` for a missing or unknown keyword); likely unit mistakes give an `exuclear.UnitWarning`;",
+        "the command lines print one line `error: ...` (argparse: `usage` and `...: error: ...`), exit with",
+        "status 2 and show no traceback; warnings are one line `warning: ...`.",
+        "",
+        f"`PAPER` is `{PAPER}` (the paper's journal and bearing); `system()` is a fresh system with a ground and",
+        "one rigid body, `(mbs, body, ground)`; `build_journal` is `models.journal_bearing.build`.",
+        "`<file>/out` is a path below a regular file (nothing can be written there). CLI replies list the",
+        "warning and error lines of stderr.",
+        "",
+        f"{len(replies)} inputs, {gaps} of them gaps (the reply falls short of the rule; the last column says what",
+        "should happen, and where). The gaps are in files this change did not touch.",
+        "",
+        "| where | mistake | input | reply | status |",
+        "|---|---|---|---|---|",
+    ]
+    return "\n".join(head + [table_row(c, r) for c, r in replies]) + "\n"
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="python -m validation.bad_input", description=__doc__.split("\n")[0])
+    ap.add_argument("--write", metavar="FILE", help=f"write the table to FILE (the repository's is {DOC})")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    replies = [(case, attempt(case)) for case in BAD_INPUTS]
+    text = document(replies)
+    if args.write:
+        with open(args.write, "w", encoding="utf-8") as f:
+            f.write(text)
+        print(f"wrote {args.write}")
+    else:
+        print(text)
+    unexpected = [c for c, r in replies if c.satisfied_by(r) == bool(c.gap)]
+    for case in unexpected:
+        why = "as the rule asks, but the row is marked a gap" if case.gap else "not the one the rule asks"
+        print(f"error: {case.code}: the reply is {why}", file=sys.stderr)
+    return 1 if unexpected else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
