@@ -106,7 +106,7 @@ class ContactLaw(ABC):
             return 0.0
         v0_eff = v0 if v0 > self.v_min else self.v_min
         f = self.stiffness(delta) * delta**self.exponent * (1.0 + self.damping_factor * delta_dot / v0_eff)
-        return f if f > 0.0 else 0.0  # no adhesion (MODEL.md section 2)
+        return 0.0 if f < 0.0 else f  # no adhesion (MODEL.md section 2); a NaN stays NaN, to be caught
 
     def force_expression(self, delta, delta_dot, v0, ops):
         """:meth:`normal_force` written against a math backend ``ops`` (:mod:`exuclear._ops`),

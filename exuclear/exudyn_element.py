@@ -570,6 +570,7 @@ def add_clearance_joint(
     -------
     ClearanceJointHandle
     """
+    _check_system(mbs)
     if joint is None:
         joint = make_joint(**joint_parameters)
     elif joint_parameters:
@@ -653,6 +654,18 @@ class SimulationResult:
     time_reached: float
 
 
+def _check_system(mbs: Any) -> None:
+    if not isinstance(mbs, exu.MainSystem):
+        raise ValueError(f"`mbs` must be an exudyn MainSystem (exudyn.SystemContainer().AddSystem()), "
+                         f"got {type(mbs).__name__}")
+
+
+def _joints_in_contact(joints: list[ClearanceJointHandle]) -> str:
+    """Which joints were in contact at the last accepted state, for failure messages."""
+    names = [f"{h.name!r} (penetration {h.history.delta:.3g} m)" for h in joints if h.history.in_contact]
+    return f"; in contact then: {', '.join(names)}" if names else "; no clearance joint was in contact then"
+
+
 def _impact_steps(joints: list[ClearanceJointHandle], impact_step: float) -> Any:
     """Post-Newton function of impact-aware steps: redo a step longer than ``impact_step``
     in which a joint that was free at the last accepted state has come into contact."""
@@ -688,6 +701,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     beyond a joint's limit) returns ``success=False`` with a message naming the time,
     the joint and what to try; what the sensors recorded up to then is kept.
     """
+    _check_system(mbs)
     if not isinstance(settings, SolverSettings):
         raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
     if not mbs.systemIsConsistent:
@@ -733,7 +747,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         return SimulationResult(False, f"stopped {mbs.variables[_FAILURE_KEY]}; results up to then are kept", wall,
                                 int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps), t_reached)
     if not ok:
-        message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s; try a smaller `step`"
-                    f"{' or tolerances' if settings.adaptive else ''})")
+        message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
+                    f"try a smaller `step`{' or tolerances' if settings.adaptive else ''})")
     return SimulationResult(ok, message, wall, int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps),
                             t_reached)

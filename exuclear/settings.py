@@ -82,6 +82,8 @@ class SolverSettings:
         if not 0.0 <= rho <= 1.0:
             raise ValueError(f"`spectral_radius` must lie in [0, 1], got {rho}")
         check_positive("output_step", self.output_step)
+        if isinstance(self.verbose, bool) or not isinstance(self.verbose, int) or self.verbose < 0:
+            raise ValueError(f"`verbose` must be a non-negative integer (Exudyn's verbose mode), got {self.verbose!r}")
         if self.impact_step is not None:
             if self.explicit:
                 raise ValueError(f"`impact_step` applies to the implicit methods; {self.method!r} controls its "

@@ -54,7 +54,7 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
-from models._cli import bad_input, one_line_warnings
+from models._cli import bad_input, check_output_dir, check_output_file, one_line_warnings
 
 FORMULATIONS = ("redundant", "minimal")
 
@@ -165,7 +165,12 @@ class SliderCrankParams:
         check.check_choice("backend", self.backend, exuclear.BACKENDS)
         if self.formulation not in FORMULATIONS:
             raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
-        check.check_positive("clearance", self.clearance)
+        if check.check_positive("clearance", self.clearance) >= check.check_positive("bearing_radius",
+                                                                                   self.bearing_radius):
+            raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
+                             f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
+        if not isinstance(self.ideal, bool):
+            raise ValueError(f"`ideal` must be True or False, got {self.ideal!r}")
         joint = exuclear.make_joint(
             journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
             length=self.bearing_length,
@@ -396,10 +401,17 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
                              sim.steps, sim.rejected, onsets)
 
 
-def write_csv(path: str, columns: dict[str, np.ndarray]) -> None:
-    """Write :data:`COLUMNS` with a header line (SI units, angles in degrees)."""
+def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "") -> None:
+    """Write :data:`COLUMNS` with a header line (SI units, angles in degrees).
+
+    ``incomplete``: why the run stopped early; it then goes first, as a comment line
+    ``# INCOMPLETE: ...`` before the header.
+    """
     data = np.column_stack([columns[c] for c in COLUMNS])
-    np.savetxt(path, data, delimiter=",", header=",".join(COLUMNS), comments="", fmt="%.10g")
+    header = ",".join(COLUMNS)
+    if incomplete:
+        header = f"# INCOMPLETE: {' '.join(incomplete.split())}\n{header}"
+    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -447,6 +459,8 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
         raise ValueError(f"`--dt-out` must be at most 1e-5 s to show every impact, got {args.dt_out}")
     changes = {k: v for k, v in (("method", args.method), ("step", args.step), ("rtol", args.rtol),
                                  ("atol", args.atol)) if v is not None}
+    if args.method is not None and exuclear.METHODS[args.method][1]:
+        changes["impact_step"] = None  # the implicit default's option; an explicit method has none
     return replace(base, output_step=args.dt_out, verbose=int(args.verbose), **changes)
 
 
@@ -462,6 +476,10 @@ def main(argv: list[str] | None = None) -> int:
             revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
             clearance_joints=tuple(args.clearance_joints), backend=args.backend)
         settings = _settings(args, params)
+        if args.csv:
+            check_output_file("--csv", args.csv)
+        if args.plot:
+            check_output_dir("--plot", args.plot)
         result = run(params, settings)
     except ValueError as err:
         return bad_input(err)
@@ -475,7 +493,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  peak contact force {result.peak_force:.1f} N, impacts {result.impacts}")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
     if args.csv:
-        write_csv(args.csv, result.columns)
+        write_csv(args.csv, result.columns, incomplete="" if result.success else result.message)
         print(f"wrote {args.csv}")
     if args.plot:
         from exuclear.plotting import slider_crank_figures

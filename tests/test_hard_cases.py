@@ -223,7 +223,9 @@ def test_cli_run_failure_writes_the_csv_and_says_incomplete(tmp_path):
         status = sc_model.main(["--method", "rk44", "--step", "1e-4", "--csv", str(path)])
     assert status == 1
     assert "error: stopped at t = " in err.getvalue() and "INCOMPLETE" in err.getvalue()
-    data = np.loadtxt(path, delimiter=",", skiprows=1)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    assert lines[0].startswith("# INCOMPLETE: stopped at t = ") and lines[1].startswith("time,")  # marked in the file too
+    data = np.loadtxt(path, delimiter=",", skiprows=2)
     assert 10 < len(data) and data[-1, 0] < sc_model.SliderCrankParams.paper().end_time
 
 

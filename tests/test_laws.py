@@ -163,3 +163,11 @@ def test_friction_expression_matches_the_branch_formula(law):
 
     for v in np.concatenate([np.linspace(-0.02, 0.02, 801), [0.0, 1e-4, -1e-4, 1e-2, -1e-2]]):
         assert law(v) == pytest.approx(by_branches(v), rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.parametrize("name", sorted(CONTACT_LAWS))
+def test_nan_rate_gives_nan_force_not_zero(name, geometry, e_star):
+    # the no-adhesion clamp must not turn a diverged state into a silent zero force:
+    # the NaN reaches the state, where the step hook stops the run and says so
+    law = contact_law(name, geometry, e_star, 1.0 if name == "hertz" else 0.5)
+    assert math.isnan(law.normal_force(1e-6, math.nan, 0.3))
