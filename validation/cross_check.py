@@ -36,7 +36,6 @@ onset bookkeeping passed, 1 otherwise; the rows at default settings are reported
 from __future__ import annotations
 
 import argparse
-import csv
 import itertools
 import math
 import os
@@ -53,6 +52,7 @@ from models import journal_bearing as jb_model
 from models import slider_crank as sc_model
 from models.journal_bearing import JournalBearingParams
 from models.slider_crank import SliderCrankParams
+from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
 from validation.reference import slider_crank as sc_reference
 
@@ -636,10 +636,6 @@ def cross_check(quick: bool = False, progress: Progress = _print) -> CrossCheck:
 # =======================================================================================
 
 
-def markdown_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(r) + " |" for r in rows]
-    return "\n".join(lines)
 
 
 def criteria_md() -> str:
@@ -883,13 +879,6 @@ def crank_records(rows: Sequence[CrankRow]) -> list[dict[str, object]]:
              "onset_bookkeeping_passed": r.bookkeeping.passed, "notes": "; ".join(r.notes)} for r in rows]
 
 
-def write_csv(path: str, records: Sequence[dict[str, object]]) -> str:
-    """Write ``records`` (dicts with the same keys) as CSV; returns ``path``."""
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(records[0]))
-        writer.writeheader()
-        writer.writerows(records)
-    return path
 
 
 def write_outputs(x: CrossCheck, directory: str) -> list[str]:

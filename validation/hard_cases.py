@@ -57,7 +57,6 @@ Run from the repository root::
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import os
 import sys
@@ -79,6 +78,7 @@ from models import slider_crank as sc_model
 from models.journal_bearing import JournalBearingParams
 from models.slider_crank import FLYWHEEL_INERTIA, SliderCrankParams
 from validation import cross_check as cc
+from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
 from validation.reference import slider_crank as sc_reference
 
@@ -952,17 +952,13 @@ def run_study(quick: bool = False, progress: Callable[[str], None] = _print,
 # =======================================================================================
 
 
-def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c).replace("|", "\\|") for c in r) + " |" for r in rows]
-    return "\n".join(lines)
 
 
 def cases_md(rows: Sequence[Row]) -> str:
     """The main table: case, criterion, measured value, pass/fail, wall time."""
     body = [(r.case.title, r.case.criterion, r.outcome.measured, "pass" if r.outcome.passed else "**FAILING**",
              f"{r.wall_time:.1f}") for r in rows]
-    return _table(("case", "criterion (fixed before the run)", "measured", "status", "wall [s]"), body)
+    return markdown_table(("case", "criterion (fixed before the run)", "measured", "status", "wall [s]"), body)
 
 
 def floor_md(rows: Sequence[FloorRow]) -> str:
@@ -978,7 +974,7 @@ def floor_md(rows: Sequence[FloorRow]) -> str:
                      f"{r.loaded_steps} / {_ms(r.loaded_settle)}",
                      f"{r.dropped_impacts} / {r.dropped_last * 1e3:.1f} / {r.dropped_error:+.1e}",
                      f"{r.crank_steps} / {r.crank_impacts} / {r.crank_peak:.0f}", f"{r.wall:.1f}"))
-    return _table(header, body)
+    return markdown_table(header, body)
 
 
 def floor_conclusion(rows: Sequence[FloorRow]) -> str:
@@ -1060,12 +1056,6 @@ def floor_records(rows: Sequence[FloorRow]) -> list[dict[str, object]]:
     return out
 
 
-def write_csv(path: str, records: Sequence[dict[str, object]]) -> str:
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(records[0]))
-        writer.writeheader()
-        writer.writerows(records)
-    return path
 
 
 def plot_resting(data: dict[str, object], directory: str) -> str:

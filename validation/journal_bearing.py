@@ -24,7 +24,6 @@ Exit status 0 if every run succeeded, 1 otherwise (the failed runs are listed).
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import sys
 import time
@@ -35,6 +34,7 @@ import numpy as np
 import exuclear
 from exuclear.plotting import impact_curves
 from models.journal_bearing import ImpactResult, JournalBearingParams, run
+from validation._tables import write_csv
 
 DEFAULT_OUT = os.path.join("results", "journal_bearing")
 
@@ -190,13 +190,6 @@ def case_table_md(case: Case, rows: CaseRows) -> str:
     return "\n".join(lines)
 
 
-def write_csv(path: str, records: list[dict[str, object]]) -> str:
-    """Write ``records`` (dicts with the same keys) as a CSV file; returns ``path``."""
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(records[0]))
-        writer.writeheader()
-        writer.writerows(records)
-    return path
 
 
 def write_case_files(case: Case, rows: CaseRows, directory: str) -> list[str]:

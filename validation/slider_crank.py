@@ -31,7 +31,6 @@ bad options.
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import os
 import sys
@@ -44,6 +43,7 @@ import numpy as np
 import exuclear
 from exuclear.plotting import crank_angle_panels, hann_spectrum, slider_crank_sweep_figures, uniform_spectrum
 from models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, run
+from validation._tables import markdown_table, write_csv
 
 DEFAULT_OUT = os.path.join("results", "slider_crank")
 
@@ -657,10 +657,6 @@ def run_diagnostics(runner: Runner, sweeps: Sequence[Sweep], ideal: dict[str, np
 
 # -- tables -------------------------------------------------------------------------
 
-def _md_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
-    return "\n".join(lines)
 
 
 def _fmt(x: float, spec: str) -> str:
@@ -717,18 +713,11 @@ def sweep_table_md(sweep: Sweep, rows: SweepRows) -> str:
         values = list(rec.values())
         cells.append([values[0]] + [_fmt(x, f) for x, f in zip(values[1:], _CASE_FORMATS, strict=True)])
     cut = _FIRST_TABLE + 1
-    first = _md_table(header[:cut], [row[:cut] for row in cells])
-    second = _md_table(header[:1] + header[cut:], [row[:1] + row[cut:] for row in cells])
+    first = markdown_table(header[:cut], [row[:cut] for row in cells])
+    second = markdown_table(header[:1] + header[cut:], [row[:1] + row[cut:] for row in cells])
     return f"{first}\n\nAfter the start-up ({STARTUP:g}°) and dead-point ratios:\n\n{second}"
 
 
-def write_csv(path: str, records: list[dict[str, object]]) -> str:
-    """Write ``records`` (dicts with the same keys) as a CSV file; returns ``path``."""
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(records[0]))
-        writer.writeheader()
-        writer.writerows(records)
-    return path
 
 
 def _history_record(stem: str, value: str, h: HistoryStats) -> dict[str, object]:
@@ -766,13 +755,13 @@ def _history_rows(diag: Diagnostics, sweeps: Sequence[Sweep]) -> list[tuple[str,
 def history_table_md(diag: Diagnostics, sweeps: Sequence[Sweep]) -> str:
     """Markdown tables of the contact histories: onset speed and damping, then forces."""
     rows = _history_rows(diag, sweeps)
-    damping = _md_table(
+    damping = markdown_table(
         ["case", "friction", "impacts", "v0 first [m/s]", "v0 last contact [m/s]", "last onset [deg]",
          "D/v0: last / first", "zeta of last contact", "normal vibration [Hz]"],
         [[name, fr, h.onsets, f"{h.v0_first:.4f}", f"{h.v0_last:.2e}", f"{h.last_onset:.1f}", f"{h.damping_gain:.0f}",
           f"{h.zeta[0]:.2f}-{h.zeta[1]:.2f}", f"{h.normal_frequency[0]:.0f}-{h.normal_frequency[1]:.0f}"]
          for name, fr, h in rows])
-    forces = _md_table(
+    forces = markdown_table(
         ["case", "friction", "true peak force [N] at [deg]", "first impact [us]", "shortest contact [us]",
          "min F_N after start-up [N] at [deg]", "min F_N near dead points [N]", "contact near dead points",
          "stick fraction", "F_N vs ideal abs(F), RMS rel.", "ecc vs ideal F direction, mean / max [deg]"],
@@ -1076,7 +1065,7 @@ def tolerance_md(diag: Diagnostics) -> str:
             f"{100 * abs(c.dead_ratio / b.dead_ratio - 1):.1f} %, the band by {100 * abs(c.band / b.band - 1):.1f} %, "
             f"the sampled peak force by {100 * abs(c.peak_force / b.peak_force - 1):.1f} % (the sampled peak depends on "
             "where the samples fall, see the contact history).")
-    return _md_table(header, rows) + "\n\n" + "\n".join(notes)
+    return markdown_table(header, rows) + "\n\n" + "\n".join(notes)
 
 
 def sampling_md(done: Sequence[tuple[Sweep, SweepRows]], diag: Diagnostics) -> str:
@@ -1133,7 +1122,7 @@ def frozen_md(diag: Diagnostics, done: Sequence[tuple[Sweep, SweepRows]]) -> str
         "Demonstrated without touching the model through the law's parameter `v_min`, raised from "
         f"{exuclear.V_MIN_DEFAULT:g} m/s to the first impact's onset speed {diag.frozen_v_min:.4f} m/s "
         "(v0_eff = max(v0, v_min)); restitution sweeps (cr = "
-        f"{', '.join(f'{cr:g}' for cr in CR_SWEEP)}):\n\n" + _md_table(_SHORT_HEADER, rows) + "\n\n"
+        f"{', '.join(f'{cr:g}' for cr in CR_SWEEP)}):\n\n" + markdown_table(_SHORT_HEADER, rows) + "\n\n"
         + "\n".join(summaries) + "\n\nThe paper does not say how it handles v0 in a long contact; MODEL.md fixes "
         "it (the onset rate of the current contact, floored at 1e-3 m/s) and the library keeps it.")
 
@@ -1167,7 +1156,7 @@ def _intro_md(revolutions: float) -> str:
 
 
 def _claims_summary_md(claims: Sequence[tuple[str, str, str]]) -> str:
-    return "## The paper's claims\n\n" + _md_table(["claim (MODEL.md 5.2)", "verdict"],
+    return "## The paper's claims\n\n" + markdown_table(["claim (MODEL.md 5.2)", "verdict"],
                                                     [[name, verdict] for name, verdict, _ in claims]) + "\n"
 
 

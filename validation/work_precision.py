@@ -46,6 +46,7 @@ from models import slider_crank as sc_model
 from models.journal_bearing import JournalBearingParams
 from models.slider_crank import SliderCrankParams
 from validation import cross_check as cc
+from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
 from validation.reference import slider_crank as sc_reference
 
@@ -352,7 +353,7 @@ def profile_md(profiles: Sequence[Profile]) -> str:
                      f"{max(p.profiled - python, 0.0):.3f}", f"{p.profiled:.3f}"))
     header = ("scene", "default formulation", "wall [s] (not profiled)", "steps",
               *(f"{g}: calls / time" for g in _PROFILE_GROUPS), "Exudyn solver and rest [s]", "profiled total [s]")
-    return cc.markdown_table(header, rows)
+    return markdown_table(header, rows)
 
 
 # =======================================================================================
@@ -412,7 +413,7 @@ def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: S
                          str(p.steps), str(p.impacts), f"{p.peak_force_error:+.2%}",
                          ratio_text(points, p) if p.config.side == "exuclear" else "",
                          "ok" if p.success else f"FAILED: {p.message}"))
-        lines += [cc.markdown_table(("configuration", "setting", "error", "wall [s]", "build [ms]",
+        lines += [markdown_table(("configuration", "setting", "error", "wall [s]", "build [ms]",
                                      "steps (SciPy: rhs calls)", "impacts", "peak force", "vs fastest SciPy",
                                      "status"), rows), ""]
     lines += ["## At the target: eccentricity error <= 1 % of c", ""]
@@ -423,7 +424,7 @@ def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: S
             rows.append((scene, label, best.setting if best else "none reaches it",
                          f"{best.wall:.3f}" if best else "", f"{best.error:.2e}" if best else "",
                          ratio_text(points, best) if best and best.config.side == "exuclear" else ""))
-    lines += [cc.markdown_table(("scene", "configuration", "cheapest setting", "wall [s]", "error",
+    lines += [markdown_table(("scene", "configuration", "cheapest setting", "wall [s]", "error",
                                  "vs fastest SciPy at that error"), rows), ""]
     if profiles:
         lines += ["## Where the time goes (default settings, Python backend)", "", _PROFILE_NOTE, "",
@@ -471,7 +472,7 @@ def main(argv: list[str] | None = None) -> int:
     profiles = [profile_default(scene, cr, f) for scene, cr in CRANK_SCENES for f in sc_model.FORMULATIONS]
     runtime = time.perf_counter() - start
     os.makedirs(args.out, exist_ok=True)
-    paths = [cc.write_csv(os.path.join(args.out, "work_precision.csv"), records(points)),
+    paths = [write_csv(os.path.join(args.out, "work_precision.csv"), records(points)),
              figure(points, os.path.join(args.out, "work_precision.png"))]
     path = os.path.join(args.out, "work_precision.md")
     with open(path, "w", encoding="utf-8") as f:
