@@ -308,10 +308,15 @@ class ClearanceJointHandle:
             self._compiled.push(self.history)
 
     # physics evaluated on the element's own coordinate slice
+    def _evaluate(self, q: Sequence[float], q_t: Sequence[float]) -> tuple[ContactKinematics, _State, _State]:
+        """Contact kinematics and both sides' states (with their Jacobian columns)."""
+        journal, bearing = self._journal.state(q, q_t), self._bearing.state(q, q_t)
+        xj, yj, vxj, vyj, wi, _ = journal
+        xb, yb, vxb, vyb, wj, _ = bearing
+        return contact_kinematics(self.joint.geometry, xj, yj, vxj, vyj, wi, xb, yb, vxb, vyb, wj), journal, bearing
+
     def kinematics(self, q: Sequence[float], q_t: Sequence[float]) -> ContactKinematics:
-        xj, yj, vxj, vyj, wi, _ = self._journal.state(q, q_t)
-        xb, yb, vxb, vyb, wj, _ = self._bearing.state(q, q_t)
-        return contact_kinematics(self.joint.geometry, xj, yj, vxj, vyj, wi, xb, yb, vxb, vyb, wj)
+        return self._evaluate(q, q_t)[0]
 
     def _generalized_forces(self, journal: _State, bearing: _State, loads: JointLoads) -> list:
         out = [0.0] * self._n
@@ -321,10 +326,7 @@ class ClearanceJointHandle:
 
     def force_function(self, mbs: exu.MainSystem, t: float, item: int, q: list[float], q_t: list[float]) -> list[float]:
         """Exudyn ``forceUserFunction`` (Exudyn passes lists): no side effects (called in Newton iterations)."""
-        journal, bearing = self._journal.state(q, q_t), self._bearing.state(q, q_t)
-        xj, yj, vxj, vyj, wi, _ = journal
-        xb, yb, vxb, vyb, wj, _ = bearing
-        kin = contact_kinematics(self.joint.geometry, xj, yj, vxj, vyj, wi, xb, yb, vxb, vyb, wj)
+        kin, journal, bearing = self._evaluate(q, q_t)
         if kin.delta <= 0.0:
             return [0.0] * self._n
         return self._generalized_forces(journal, bearing, self.joint.response(kin, self.history).loads)
