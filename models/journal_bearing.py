@@ -251,5 +251,71 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
+
+# =======================================================================================
+# the journal-bearing impact as a parameter study (exuclear.study)
+# =======================================================================================
+
+#: Parameters of :func:`study` and their defaults (:meth:`JournalBearingParams.paper`):
+#: :class:`JournalBearingParams` fields of the paper's scene (no gravity, no start gap).
+STUDY_PARAMETERS = {
+    "law": "wang-liu", "cr": 0.9, "length": 15e-3, "journal_material": "steel", "bearing_material": "steel",
+    "journal_radius": 9.9e-3, "bearing_radius": 10e-3, "mass": 0.04, "impact_velocity": 0.3,
+    "v_min": exuclear.V_MIN_DEFAULT, "backend": "python",
+}
+
+
+def study_params(values: dict) -> JournalBearingParams:
+    """The :class:`JournalBearingParams` of a study's parameter set (defaults
+    :data:`STUDY_PARAMETERS`); ``ValueError`` for a value the scene refuses."""
+    unknown = sorted(set(values) - set(STUDY_PARAMETERS))
+    if unknown:
+        raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
+    params = JournalBearingParams.paper(**{**STUDY_PARAMETERS, **values})
+    params.joint()  # checks the physical parameters
+    exuclear._checks.check_positive("mass", params.mass)
+    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
+    return params
+
+
+def check_study(values: dict) -> None:
+    """Raise ``ValueError`` for a study parameter set the scene refuses (before any run)."""
+    study_params(values)
+
+
+def study(values: dict) -> dict:
+    """One impact of a journal-bearing study (:mod:`exuclear.study`); parameters
+    :data:`STUDY_PARAMETERS`.
+
+    Returns
+    -------
+    dict
+        ``peak_force`` [N], ``max_penetration`` [m], ``max_ecc_over_c`` (``1 + max
+        penetration / c``), ``departure_velocity`` [m/s], ``effective_restitution``,
+        ``contact_duration`` [s], ``impacts`` (1 when the journal left the wall), the
+        energy audit: ``energy_lost`` [J] (kinetic energy before minus after),
+        ``contact_dissipated`` [J] (``int (F_N - F_el) delta' dt``, trapezoid rule over
+        the outputs) and ``energy_residual_rel`` (their difference over ``energy_lost``);
+        ``sim_wall_time`` [s]; ``success`` and ``message`` of the run.
+    """
+    params = study_params(values)
+    result, out = run(params)
+    law = params.joint().law
+    delta, rate = out["penetration"], out["penetration_rate"]
+    elastic = np.array([law.elastic_force(d) if d > 0.0 else 0.0 for d in delta])
+    dissipated = float(np.trapezoid((out["normal_force"] - elastic) * rate, out["time"]))
+    lost = 0.5 * params.mass * (params.impact_velocity**2 - result.departure_velocity**2)
+    clearance = params.bearing_radius - params.journal_radius
+    return {
+        "peak_force": result.max_force, "max_penetration": result.max_penetration,
+        "max_ecc_over_c": 1.0 + result.max_penetration / clearance,
+        "departure_velocity": result.departure_velocity, "effective_restitution": result.effective_restitution,
+        "contact_duration": result.contact_duration, "impacts": int(math.isfinite(result.contact_duration)),
+        "energy_lost": lost, "contact_dissipated": dissipated,
+        "energy_residual_rel": (lost - dissipated) / lost if lost > 0.0 else math.nan,
+        "sim_wall_time": result.wall_time, "success": result.success, "message": result.message,
+    }
+
+
 if __name__ == "__main__":
     sys.exit(main())
