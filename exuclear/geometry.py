@@ -15,6 +15,10 @@ from ._checks import check_positive, warn_unit
 #: Clearances above this fraction of the journal radius are legal but unusual for a
 #: revolute joint (the paper's is 1 %): a warning asks whether a unit slipped.
 CLEARANCE_WARN_FRACTION = 0.1
+#: Bearing radii or lengths above this [m] are legal but far beyond the pins of machines
+#: (the paper's are 10 and 15 mm): a warning asks whether millimetres were given, which
+#: the clearance check cannot see when every length is in mm (9.9, 10, 15).
+SIZE_WARN_ABOVE = 1.0
 
 
 @dataclass(frozen=True)
@@ -47,6 +51,9 @@ class BearingGeometry:
         if r_b - r_j > CLEARANCE_WARN_FRACTION * r_j:
             warn_unit(f"the radial clearance {r_b - r_j:.3g} m is more than {CLEARANCE_WARN_FRACTION:g} of the "
                       f"journal radius {r_j:.3g} m; lengths are in metres: was a value given in mm?")
+        elif max(r_b, self.length) > SIZE_WARN_ABOVE:
+            warn_unit(f"the bearing radius {r_b:.3g} m or length {self.length:.3g} m is above {SIZE_WARN_ABOVE:g} m; "
+                      "lengths are in metres: were they given in mm?")
 
     @property
     def clearance(self) -> float:
