@@ -73,6 +73,20 @@ def uniform_spectrum(t: np.ndarray, y: np.ndarray, dt: float) -> tuple[np.ndarra
     return np.fft.rfftfreq(len(samples), dt), amplitude
 
 
+def _log_frequency_axis(ax, spectra: Sequence[np.ndarray]) -> None:
+    """Frequency on a log axis, from half the lowest drawn (non-zero) frequency.
+
+    The slider-crank's spectrum spans the crank frequency (8.3 Hz at 500 rpm) and the
+    impact band near 150-350 Hz: a linear 0-1000 Hz axis squeezes the crank line
+    against its left edge.  ``spectra``: the frequency arrays drawn [Hz].
+    """
+    positive = [float(f[f > 0.0].min()) for f in spectra if np.any(f > 0.0)]
+    highest = [float(f.max()) for f in spectra if len(f)]
+    ax.set_xscale("log")
+    if positive and highest:
+        ax.set_xlim(0.5 * min(positive), max(highest))
+
+
 def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], baseline: dict[str, np.ndarray] | None,
                          clearance: float, directory: str, stem: str, title: str = "",
                          spectrum_step: float = 1e-5, max_frequency: float = 1000.0) -> list[str]:
@@ -80,8 +94,10 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
 
     Slider position, velocity, acceleration, contact force and crank moment against
     crank angle (degrees), the ideal mechanism ``baseline`` dashed on each; the journal
-    centre's orbit inside the clearance circle (micrometres); the amplitude spectrum of
-    the slider acceleration up to ``max_frequency``.  Returns the written paths.
+    centre's orbit inside the clearance circle (micrometres; not drawn without
+    ``cases``, as for the ideal mechanism alone); the amplitude spectrum of the slider
+    acceleration up to ``max_frequency`` on a log frequency axis.  Returns the written
+    paths.
     """
     plt = _pyplot()
     os.makedirs(directory, exist_ok=True)
@@ -108,26 +124,32 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
         ax.legend(fontsize=7, ncol=3)
         save(fig, key)
 
-    fig, ax = plt.subplots(figsize=(4.8, 4.8))
-    circle = np.linspace(0.0, 2.0 * np.pi, 361)
-    ax.plot(clearance * 1e6 * np.cos(circle), clearance * 1e6 * np.sin(circle), "k-", lw=1.0, label="clearance circle")
-    for name, cols in cases:
-        ax.plot(cols["ecc_x"] * 1e6, cols["ecc_y"] * 1e6, lw=0.6, label=name)
-    ax.set_aspect("equal")
-    ax.set_xlabel("journal centre x - bearing centre x [µm]")
-    ax.set_ylabel("y [µm]")
-    ax.legend(fontsize=7, loc="upper right")
-    save(fig, "orbit")
+    if cases:  # an ideal joint has no orbit: the figure would hold the circle alone
+        fig, ax = plt.subplots(figsize=(4.8, 4.8))
+        circle = np.linspace(0.0, 2.0 * np.pi, 361)
+        ax.plot(clearance * 1e6 * np.cos(circle), clearance * 1e6 * np.sin(circle), "k-", lw=1.0,
+                label="clearance circle")
+        for name, cols in cases:
+            ax.plot(cols["ecc_x"] * 1e6, cols["ecc_y"] * 1e6, lw=0.6, label=name)
+        ax.set_aspect("equal")
+        ax.set_xlabel("journal centre x - bearing centre x [µm]")
+        ax.set_ylabel("y [µm]")
+        ax.legend(fontsize=7, loc="upper right")
+        save(fig, "orbit")
 
     fig, ax = plt.subplots(figsize=(7.0, 3.6))
+    drawn = []
     for name, cols in cases:
         f, a = uniform_spectrum(cols["time"], cols["slider_a"], spectrum_step)
-        keep = f <= max_frequency
+        keep = (f > 0.0) & (f <= max_frequency)  # the mean (0 Hz) is removed
         ax.plot(f[keep], a[keep], lw=0.8, label=name)
+        drawn.append(f[keep])
     if baseline is not None:
         f, a = uniform_spectrum(baseline["time"], baseline["slider_a"], spectrum_step)
-        keep = f <= max_frequency
+        keep = (f > 0.0) & (f <= max_frequency)
         ax.plot(f[keep], a[keep], "k--", lw=1.0, label="ideal joint")
+        drawn.append(f[keep])
+    _log_frequency_axis(ax, drawn)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("slider acceleration amplitude [m/s²]")
     ax.grid(True, alpha=0.3)
@@ -267,6 +289,7 @@ def _spectrum_figure(plt, spectra, baseline_spectrum, band: tuple[float, float] 
     if log:
         axes[0, 0].set_yscale("log")
         axes[0, 0].set_ylim(top * _SPECTRUM_RANGE, top * 2.0)
+    _log_frequency_axis(axes[0, 0], [f for _, f, _ in spectra])  # shared by every panel
     axes[-1, 0].set_xlabel("frequency [Hz]")
     fig.supylabel(ylabel, fontsize=10)
     return fig

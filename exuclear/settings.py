@@ -9,6 +9,9 @@ from dataclasses import dataclass
 
 from ._checks import check_choice, check_positive, check_real
 
+#: Exudyn's default numerical damping of generalized-alpha at infinite frequency.
+SPECTRAL_RADIUS_DEFAULT = 0.9
+
 #: Method name -> (Exudyn DynamicSolverType name, explicit?, adaptive by default?).
 METHODS: dict[str, tuple[str, bool, bool]] = {
     "dopri5": ("DOPRI5", True, True),
@@ -39,10 +42,12 @@ class SolverSettings:
         rtol 1e-6 (the paper's tolerance) and atol 1e-9 m, i.e. 1e-5 of the paper's
         0.1 mm clearance, so eccentricity errors stay well below the clearance.
     min_step : float
-        Smallest step an adaptive method may take [s]; it fails below.
+        Smallest step an adaptive method may take [s]; it fails below.  Must not
+        exceed ``step``.
     spectral_radius : float
         Numerical damping of the generalized-alpha method at infinite frequency, in
-        [0, 1]; Exudyn's default 0.9.
+        [0, 1]; Exudyn's default 0.9.  Implicit methods only: another value with an
+        explicit method raises ``ValueError``.
     output_step : float
         Interval of recorded outputs [s]; default 1e-5 s.
     impact_step : float, optional
@@ -65,7 +70,7 @@ class SolverSettings:
     rtol: float = 1e-6
     atol: float = 1e-9
     min_step: float = 1e-12
-    spectral_radius: float = 0.9
+    spectral_radius: float = SPECTRAL_RADIUS_DEFAULT
     output_step: float = 1e-5
     impact_step: float | None = None
     recovery_steps: int = 100
@@ -77,10 +82,14 @@ class SolverSettings:
         check_positive("step", self.step)
         check_positive("rtol", self.rtol)
         check_positive("atol", self.atol)
-        check_positive("min_step", self.min_step)
+        if check_positive("min_step", self.min_step) > self.step:
+            raise ValueError(f"`min_step` must not exceed `step`, got min_step = {self.min_step}, step = {self.step}")
         rho = check_real("spectral_radius", self.spectral_radius)
         if not 0.0 <= rho <= 1.0:
             raise ValueError(f"`spectral_radius` must lie in [0, 1], got {rho}")
+        if rho != SPECTRAL_RADIUS_DEFAULT and METHODS[self.method][1]:
+            raise ValueError(f"`spectral_radius` applies to the implicit methods (generalized-alpha, trapezoidal); "
+                             f"{self.method!r} is explicit and has no numerical damping to set, got {rho}")
         check_positive("output_step", self.output_step)
         if isinstance(self.verbose, bool) or not isinstance(self.verbose, int) or self.verbose < 0:
             raise ValueError(f"`verbose` must be a non-negative integer (Exudyn's verbose mode), got {self.verbose!r}")

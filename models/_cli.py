@@ -1,9 +1,13 @@
 """What the command lines of models/ share: one-line warnings and errors, no tracebacks."""
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import warnings
+from collections.abc import Mapping, Sequence
+
+import numpy as np
 
 #: Exit status for bad input (as argparse uses for bad options).
 EXIT_BAD_INPUT = 2
@@ -18,6 +22,14 @@ def one_line_warnings() -> None:
     warnings.showwarning = show
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` whose errors are one line ``error: ...`` (no usage block),
+    with exit status :data:`EXIT_BAD_INPUT`, like every other bad input of the command lines."""
+
+    def error(self, message: str) -> None:  # noqa: D102 - argparse's hook
+        self.exit(EXIT_BAD_INPUT, f"error: {message} (see {self.prog} --help)\n")
+
+
 def bad_input(err: Exception) -> int:
     """Print ``error: ...`` for bad input and return the exit status."""
     print(f"error: {err}", file=sys.stderr)
@@ -26,7 +38,9 @@ def bad_input(err: Exception) -> int:
 
 def check_output_dir(option: str, path: str) -> str:
     """Fail before a run, not after it, when ``path`` cannot be (made into) a directory to
-    write to: ``ValueError`` naming the command-line ``option``.  Returns ``path``."""
+    write to, or is empty: ``ValueError`` naming the command-line ``option``.  Returns ``path``."""
+    if not path.strip():
+        raise ValueError(f"`{option}` must name a directory, got an empty name")
     full = os.path.abspath(path)
     existing = full
     while not os.path.exists(existing):  # the nearest part of the path that exists
@@ -39,7 +53,22 @@ def check_output_dir(option: str, path: str) -> str:
 
 def check_output_file(option: str, path: str) -> str:
     """As :func:`check_output_dir`, for a file to be written at ``path``."""
+    if not path.strip():
+        raise ValueError(f"`{option}` must name a file, got an empty name")
     if os.path.isdir(path):
         raise ValueError(f"`{option}` {path!r} is a directory, not a file name")
     check_output_dir(option, os.path.dirname(os.path.abspath(path)))
     return path
+
+
+def write_csv(path: str, columns: Mapping[str, np.ndarray], names: Sequence[str], incomplete: str = "") -> None:
+    """Write the arrays ``columns[name]`` for ``names`` as CSV with a header line.
+
+    ``incomplete``: why the run stopped early; it then goes first, as a comment line
+    ``# INCOMPLETE: ...`` before the header.
+    """
+    data = np.column_stack([columns[name] for name in names])
+    header = ",".join(names)
+    if incomplete:
+        header = f"# INCOMPLETE: {' '.join(incomplete.split())}\n{header}"
+    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")

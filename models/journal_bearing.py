@@ -35,7 +35,7 @@ from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigid
 
 import exuclear
 from exuclear import SolverSettings
-from models._cli import bad_input, check_output_dir, one_line_warnings
+from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (MODEL.md section 6), so this samples it ~400 times.
@@ -75,6 +75,9 @@ class JournalBearingParams:
     #: c centred.
     start_gap: float = 0.0
     backend: str = "python"
+    #: Penetration [m] beyond which a run stops; None: the library's default bound (see
+    #: :func:`exuclear.add_clearance_joint`).
+    max_penetration: float | None = None
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -118,7 +121,7 @@ def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.Cleara
         mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=journal)),
                                          loadVector=[params.gravity, 0.0, 0.0]))
     handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing",
-                                          backend=params.backend)
+                                          backend=params.backend, max_penetration=params.max_penetration)
     mbs.Assemble()
     return mbs, handle, int(node)
 
@@ -171,7 +174,7 @@ def run(params: JournalBearingParams, settings: SolverSettings | None = None) ->
     left = np.flatnonzero((delta[:-1] > 0.0) & (delta[1:] <= 0.0))
     success, message = sim.success, sim.message
     if success and len(left) == 0:
-        success, message = False, f"the journal had not left the wall at t = {params.end_time} s; raise end_time"
+        success, message = False, f"the journal had not left the wall at t = {params.end_time} s; raise `end_time` (--end-time)"
     duration = math.nan
     if len(left):
         k = left[0]  # interpolate the release instant between the two samples
@@ -197,7 +200,7 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 
 def _parser() -> argparse.ArgumentParser:
     p = JournalBearingParams.paper()
-    ap = argparse.ArgumentParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
     ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
     ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
     ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
@@ -211,6 +214,17 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--v-min", type=float, default=p.v_min, help="floor of v0 in the damping term [m/s] (default %(default)s)")
     ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
                     help="force evaluation: python callback or compiled symbolic expression (default %(default)s)")
+    ap.add_argument("--end-time", type=float, default=p.end_time,
+                    help="simulated time [s]; the journal must have left the wall by then (default %(default)s)")
+    ap.add_argument("--dt-out", type=float, default=IMPACT_STEP / 10,
+                    help="output interval [s]; the summary's peak force, peak penetration and contact duration "
+                         "come from these outputs, so a coarser interval samples the impact (~40 us) coarsely "
+                         "(default %(default)s)")
+    ap.add_argument("--max-penetration", type=float, metavar="M",
+                    help="penetration [m] beyond which the run stops (default: the larger of half the clearance "
+                         "and 0.1 %% of the journal radius)")
+    ap.add_argument("--csv", metavar="FILE",
+                    help="write the joint's time series (columns: time, " + ", ".join(exuclear.OUTPUT_COLUMNS) + ")")
     ap.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     ap.add_argument("--plot", metavar="DIR", help="write force-penetration and rate-penetration plots to DIR")
     return ap
@@ -224,10 +238,14 @@ def main(argv: list[str] | None = None) -> int:
             law=args.law, cr=args.cr, length=args.length, journal_material=args.journal,
             bearing_material=args.bearing, journal_radius=args.journal_radius,
             bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min,
-            backend=args.backend)
-        if args.plot:
+            backend=args.backend, end_time=args.end_time, max_penetration=args.max_penetration)
+        settings = replace(settings_for(params),
+                           output_step=exuclear._checks.check_positive("--dt-out", args.dt_out))
+        if args.csv is not None:
+            check_output_file("--csv", args.csv)
+        if args.plot is not None:
             check_output_dir("--plot", args.plot)
-        result, out = run(params)
+        result, out = run(params, settings)
     except ValueError as err:
         return bad_input(err)
     if args.json:
@@ -242,14 +260,16 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  max penetration     {result.max_penetration * 1e6:.4f} um")
         print(f"  contact duration    {result.contact_duration * 1e6:.2f} us")
         print(f"  wall time           {result.wall_time:.3f} s")
-    if args.plot:
+    if args.csv is not None:
+        write_csv(args.csv, out, ("time", *exuclear.OUTPUT_COLUMNS), incomplete="" if result.success else result.message)
+        print(f"wrote {args.csv}", file=sys.stderr if args.json else sys.stdout)
+    if args.plot is not None:
         for path in plot([(f"{result.law}, cr = {result.cr}", out)], args.plot):
             print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
     if not result.success:
         print(f"error: {result.message}", file=sys.stderr)
         return 1
     return 0
-
 
 
 # =======================================================================================

@@ -54,7 +54,8 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
-from models._cli import bad_input, check_output_dir, check_output_file, one_line_warnings
+from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings
+from models._cli import write_csv as _write_columns
 
 FORMULATIONS = ("redundant", "minimal")
 
@@ -88,9 +89,10 @@ class SliderCrankParams:
     crank_inertia, rod_inertia : float
         Inertias about the centres of mass [kg m^2].
     crank_speed : float
-        Constant crank angular speed [rad/s], counter-clockwise; crank angle 0 at t = 0.
+        Constant crank angular speed [rad/s], non-zero: positive counter-clockwise (the
+        paper's), negative clockwise; crank angle 0 at t = 0.
     revolutions : float
-        Simulated crank revolutions (end time ``2 pi revolutions / crank_speed``).
+        Simulated crank revolutions (end time ``2 pi revolutions / |crank_speed|``).
     gravity : float
         Gravitational acceleration along -Y [m/s^2].
     bearing_radius, clearance, bearing_length : float
@@ -108,6 +110,9 @@ class SliderCrankParams:
     backend : str
         How the clearance joints' forces are evaluated, see
         :func:`exuclear.add_clearance_joint`: ``"python"`` or ``"symbolic"``.
+    max_penetration : float, optional
+        Penetration [m] beyond which a run stops, see :func:`exuclear.add_clearance_joint`;
+        default None, the library's default bound.
     """
 
     crank_length: float
@@ -133,6 +138,7 @@ class SliderCrankParams:
     formulation: str = "minimal"
     clearance_joints: tuple[str, ...] = ("B",)
     backend: str = "python"
+    max_penetration: float | None = None
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -152,16 +158,22 @@ class SliderCrankParams:
     def __post_init__(self) -> None:
         check = exuclear._checks
         for name in ("crank_length", "rod_length", "crank_mass", "rod_mass", "slider_mass", "crank_inertia",
-                     "rod_inertia", "crank_speed", "revolutions"):
+                     "rod_inertia", "revolutions"):
             check.check_positive(name, getattr(self, name))
+        if check.check_real("crank_speed", self.crank_speed) == 0.0:
+            raise ValueError("`crank_speed` must be non-zero (positive counter-clockwise, negative clockwise), got 0")
         check.check_nonnegative("gravity", self.gravity)
-        if self.crank_speed > CRANK_SPEED_WARN:
+        if abs(self.crank_speed) > CRANK_SPEED_WARN:
             check.warn_unit(f"crank speed {self.crank_speed:.3g} rad/s is above 1e5 rpm; `crank_speed` is in rad/s")
         if self.rod_length <= self.crank_length:
             raise ValueError(f"`rod_length` must exceed `crank_length` for a full-turning crank, "
                              f"got l = {self.rod_length}, r = {self.crank_length}")
         if not self.clearance_joints or not set(self.clearance_joints) <= {"O", "A", "B"}:
             raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
+        if len(set(self.clearance_joints)) != len(self.clearance_joints):
+            raise ValueError(f"`clearance_joints` must name each joint once, got {self.clearance_joints!r}")
+        if self.max_penetration is not None:
+            check.check_positive("max_penetration", self.max_penetration)
         check.check_choice("backend", self.backend, exuclear.BACKENDS)
         if self.formulation not in FORMULATIONS:
             raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
@@ -185,7 +197,7 @@ class SliderCrankParams:
 
     @property
     def end_time(self) -> float:
-        return 2.0 * math.pi * self.revolutions / self.crank_speed
+        return 2.0 * math.pi * self.revolutions / abs(self.crank_speed)
 
 
 @dataclass
@@ -239,7 +251,7 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.add_clearance_joint(
                 mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
-                name=name, backend=p.backend)
+                name=name, backend=p.backend, max_penetration=p.max_penetration)
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
@@ -287,7 +299,8 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
         linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
         linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
     handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
-                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B", backend=p.backend)
+                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B", backend=p.backend,
+                                          max_penetration=p.max_penetration)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
@@ -363,6 +376,40 @@ class SliderCrankResult:
         return float(self.columns["contact_force"].max())
 
 
+def ideal_joint_force(params: SliderCrankParams, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Force of the rod on the slider at B in the ideal mechanism [N], as ``(fx, fy)``.
+
+    Closed form at constant crank speed ``w`` (signed: clockwise cranks too): rod angle ``phi`` from
+    ``r sin(theta) + l sin(phi) = 0``; the frictionless guide gives
+    ``fx = m_slider * a_slider``; ``fy`` follows from the rod's moment balance about A,
+    ``(B - A) x (-F) + (G - A) x m_rod g = I_G phi'' + (G - A) x m_rod a_G``.  This is
+    the direction ``n`` the journal is pressed towards (force on the bearing ``F_N n``).
+    Its magnitude is the ``contact_force`` column of an ideal run, the force the ideal
+    joint at B carries (``docs/physics.md`` eq. (28)).
+
+    Parameters
+    ----------
+    params : SliderCrankParams
+        Mechanism (the clearance fields are not used).
+    theta : ndarray, shape (n,)
+        Crank angles [rad].
+    """
+    r, l, w, g = params.crank_length, params.rod_length, params.crank_speed, params.gravity
+    m, inertia = params.rod_mass, params.rod_inertia
+    s, c = np.sin(theta), np.cos(theta)
+    phi = np.arcsin(-r * s / l)
+    sp, cp = np.sin(phi), np.cos(phi)
+    phi_t = -r * w * c / (l * cp)
+    phi_tt = (r * w**2 * s + l * sp * phi_t**2) / (l * cp)
+    a_slider = -r * w**2 * c - l * cp * phi_t**2 - l * sp * phi_tt
+    ag_x = -r * w**2 * c + 0.5 * l * (-sp * phi_tt - cp * phi_t**2)
+    ag_y = -r * w**2 * s + 0.5 * l * (cp * phi_tt - sp * phi_t**2)
+    fx = params.slider_mass * a_slider
+    rhs = inertia * phi_tt + 0.5 * l * m * (cp * ag_y - sp * ag_x)
+    fy = (l * sp * fx - 0.5 * l * cp * m * g - rhs) / (l * cp)
+    return fx, fy
+
+
 def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
     p, mbs, s = model.params, model.mbs, model.sensors
 
@@ -383,7 +430,10 @@ def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
                 "crank_moment": -data("moment")[:, 1]}
     if model.joint is None:
         zeros = np.zeros_like(t)
-        cols.update(contact_force=zeros, ecc_x=zeros, ecc_y=zeros, penetration=np.full_like(t, -p.clearance),
+        # the ideal joint at B carries the reaction force; in the ideal mechanism it has a
+        # closed form; with clearance at O or A only, B's force is not measured (NaN)
+        force = np.hypot(*ideal_joint_force(p, np.radians(cols["crank_angle"]))) if p.ideal else np.full_like(t, np.nan)
+        cols.update(contact_force=force, ecc_x=zeros, ecc_y=zeros, penetration=np.full_like(t, -p.clearance),
                     in_contact=zeros)
     else:
         out = model.joint.outputs()
@@ -407,16 +457,12 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "") -
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
     ``# INCOMPLETE: ...`` before the header.
     """
-    data = np.column_stack([columns[c] for c in COLUMNS])
-    header = ",".join(COLUMNS)
-    if incomplete:
-        header = f"# INCOMPLETE: {' '.join(incomplete.split())}\n{header}"
-    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
+    _write_columns(path, columns, COLUMNS, incomplete)
 
 
 def _parser() -> argparse.ArgumentParser:
     p = SliderCrankParams.paper()
-    ap = argparse.ArgumentParser(prog="python -m models.slider_crank", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m models.slider_crank", description=__doc__.split("\n")[0])
     ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
     ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
     materials = ", ".join(exuclear.MATERIALS)
@@ -426,12 +472,12 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--clearance", type=float, default=p.clearance, help="radial clearance [m] (default %(default)s)")
     ap.add_argument("--length", type=float, default=p.bearing_length, help="bearing length [m] (default %(default)s)")
     ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
-                    help="crank speed [rpm] (default %(default).0f)")
+                    help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
     ap.add_argument("--revolutions", type=float, default=p.revolutions, help="crank revolutions (default %(default)s)")
     ap.add_argument("--gravity", type=float, default=p.gravity, help="gravity along -Y [m/s^2] (default %(default)s)")
     ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
                     help="minimal (kinematic tree, DOPRI5; default) or redundant (joints, implicit solver; "
-                         "the default and only one for --ideal and for clearance at O or A)")
+                         "the default and only one for --ideal and for clearance at O or A, said so in the output)")
     ap.add_argument("--ideal", action="store_true", help="ideal revolute joints everywhere (the baseline)")
     ap.add_argument("--clearance-joints", default="B",
                     help="joints with clearance, letters of OAB (crank-ground, crank-rod, rod-slider); "
@@ -439,14 +485,22 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
                     help="force evaluation of the clearance joint: python callback or compiled symbolic expression "
                          "(default %(default)s)")
-    ap.add_argument("--method", choices=list(exuclear.METHODS), help="solver (default: per formulation)")
-    ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive methods [s]")
+    ap.add_argument("--method", choices=list(exuclear.METHODS),
+                    help="solver (default: per formulation); an implicit method gets the implicit default steps "
+                         f"({REDUNDANT_DEFAULTS['step']:g} s, {REDUNDANT_DEFAULTS['impact_step']:g} s from each "
+                         "contact onset) in either formulation unless --step is given")
+    ap.add_argument("--step", type=float, help="fixed step, or largest step of adaptive and impact-aware methods [s]")
     ap.add_argument("--rtol", type=float, help="relative tolerance of adaptive methods")
     ap.add_argument("--atol", type=float, help="absolute tolerance of adaptive methods")
     ap.add_argument("--dt-out", type=float, default=1e-5,
-                    help="output interval [s], at most 1e-5; outputs are taken at the first accepted step at or "
-                         "after each interval, so where the adaptive steps are longer (up to --step) every step is "
-                         "recorded (default %(default)s)")
+                    help="output interval [s]; outputs are taken at the first accepted step at or after each "
+                         "interval, so where the adaptive steps are longer (up to --step) every step is recorded. "
+                         "Impacts are counted at every accepted step whatever the interval, but the printed peak "
+                         "force, the CSV and the plots see only the outputs: above 1e-5 s an impact (~40 us) is "
+                         "sampled coarsely or missed (default %(default)s)")
+    ap.add_argument("--max-penetration", type=float, metavar="M",
+                    help="penetration [m] beyond which the run stops (default: the larger of half the clearance "
+                         "and 0.1 %% of the journal radius)")
     ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
     ap.add_argument("--plot", metavar="DIR", help="write the plots, with the ideal mechanism as baseline, to DIR")
     ap.add_argument("--verbose", action="store_true", help="Exudyn's progress output during the run")
@@ -454,31 +508,48 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSettings:
-    base = default_settings(params)
-    if args.dt_out > 1e-5:
-        raise ValueError(f"`--dt-out` must be at most 1e-5 s to show every impact, got {args.dt_out}")
-    changes = {k: v for k, v in (("method", args.method), ("step", args.step), ("rtol", args.rtol),
-                                 ("atol", args.atol)) if v is not None}
-    if args.method is not None and exuclear.METHODS[args.method][1]:
-        changes["impact_step"] = None  # the implicit default's option; an explicit method has none
-    return replace(base, output_step=args.dt_out, verbose=int(args.verbose), **changes)
+    method = args.method or default_settings(params).method
+    # the defaults of the method's family, whatever the formulation: an implicit method at
+    # the explicit default's 1e-4 s fixed step overshoots the impacts (peak force 2.4e7 N
+    # on the paper's case instead of 2.1e3 N)
+    family = MINIMAL_DEFAULTS if exuclear.METHODS[method][1] else REDUNDANT_DEFAULTS
+    base = SolverSettings(end_time=params.end_time, **{**family, "method": method})
+    changes = {k: v for k, v in (("step", args.step), ("rtol", args.rtol), ("atol", args.atol)) if v is not None}
+    if base.impact_step is not None and args.step is not None and args.step <= base.impact_step:
+        changes["impact_step"] = None  # a step at or below the impact step: plain fixed steps
+    return replace(base, output_step=exuclear._checks.check_positive("--dt-out", args.dt_out),
+                   verbose=int(args.verbose), **changes)
+
+
+def _formulation(args: argparse.Namespace) -> tuple[str, str]:
+    """The formulation asked for or implied by the options, and why, if it was implied."""
+    if args.formulation:
+        return args.formulation, ""
+    if args.ideal:
+        return "redundant", " (chosen for --ideal: a kinematic tree cannot close the loop)"
+    if set(args.clearance_joints) - {"B"}:
+        return "redundant", f" (chosen for --clearance-joints {args.clearance_joints}: the tree has O and A built in)"
+    return "minimal", ""
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
     try:
-        formulation = args.formulation or ("minimal" if args.clearance_joints == "B" and not args.ideal else "redundant")
+        formulation, chosen = _formulation(args)
+        if exuclear._checks.check_real("rpm", args.rpm) == 0.0:
+            raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
         params = SliderCrankParams.paper(
             law=args.law, cr=args.cr, journal_material=args.journal, bearing_material=args.bearing,
             friction=args.friction, clearance=args.clearance, bearing_length=args.length,
-            crank_speed=exuclear._checks.check_positive("rpm", args.rpm) * math.pi / 30.0,
+            crank_speed=args.rpm * math.pi / 30.0,
             revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
-            clearance_joints=tuple(args.clearance_joints), backend=args.backend)
+            clearance_joints=tuple(args.clearance_joints), backend=args.backend,
+            max_penetration=args.max_penetration)
         settings = _settings(args, params)
-        if args.csv:
+        if args.csv is not None:
             check_output_file("--csv", args.csv)
-        if args.plot:
+        if args.plot is not None:
             check_output_dir("--plot", args.plot)
         result = run(params, settings)
     except ValueError as err:
@@ -486,16 +557,26 @@ def main(argv: list[str] | None = None) -> int:
     kind = "ideal joint at B" if params.ideal else (
         f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
         f"{params.bearing_material} bearing, friction {params.friction}")
-    print(f"slider-crank, {formulation} coordinates, {settings.method}: {kind}")
-    print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
-          f"({result.rejected} rejected)")
-    if not params.ideal:
-        print(f"  peak contact force {result.peak_force:.1f} N, impacts {result.impacts}")
+    print(f"slider-crank, {formulation} coordinates{chosen}, {settings.method}: {kind}")
+    if result.success:
+        print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
+              f"({result.rejected} rejected)")
+    else:
+        reached = float(result.columns["time"][-1]) if len(result.columns["time"]) else 0.0
+        print(f"  STOPPED EARLY: last output at t = {reached:.4g} s of {params.end_time:.4g} s "
+              f"({reached / params.end_time * params.revolutions:.3g} of {params.revolutions:g} revolutions), "
+              f"{result.steps} steps ({result.rejected} rejected); see the error below")
+    sampled = f" (in the outputs every {settings.output_step:g} s)" if settings.output_step > 1e-5 else ""
+    if params.ideal:
+        print(f"  joint force at B {np.nanmin(result.columns['contact_force']):.1f} to "
+              f"{np.nanmax(result.columns['contact_force']):.1f} N (closed form of the ideal mechanism)")
+    else:
+        print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
-    if args.csv:
+    if args.csv is not None:
         write_csv(args.csv, result.columns, incomplete="" if result.success else result.message)
         print(f"wrote {args.csv}")
-    if args.plot:
+    if args.plot is not None:
         from exuclear.plotting import slider_crank_figures
 
         baseline = result if params.ideal else run(replace(params, ideal=True, formulation="redundant"))
@@ -508,7 +589,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {result.message}{written}", file=sys.stderr)
         return 1
     return 0
-
 
 
 # =======================================================================================

@@ -42,7 +42,7 @@ import numpy as np
 
 import exuclear
 from exuclear.plotting import crank_angle_panels, hann_spectrum, slider_crank_sweep_figures, uniform_spectrum
-from models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, run
+from models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, ideal_joint_force, run
 from validation._tables import markdown_table, write_csv
 
 DEFAULT_OUT = os.path.join("results", "slider_crank")
@@ -246,38 +246,6 @@ class Runner:
 
 
 # -- the ideal mechanism in closed form ----------------------------------------------
-
-def ideal_joint_force(params: SliderCrankParams, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Force of the rod on the slider at B in the ideal mechanism [N], as ``(fx, fy)``.
-
-    Closed form at constant crank speed ``w``: rod angle ``phi`` from
-    ``r sin(theta) + l sin(phi) = 0``; the frictionless guide gives
-    ``fx = m_slider * a_slider``; ``fy`` follows from the rod's moment balance about A,
-    ``(B - A) x (-F) + (G - A) x m_rod g = I_G phi'' + (G - A) x m_rod a_G``.  This is
-    the direction ``n`` the journal is pressed towards (force on the bearing ``F_N n``).
-
-    Parameters
-    ----------
-    params : SliderCrankParams
-        Mechanism (the clearance fields are not used).
-    theta : ndarray, shape (n,)
-        Crank angles [rad].
-    """
-    r, l, w, g = params.crank_length, params.rod_length, params.crank_speed, params.gravity
-    m, inertia = params.rod_mass, params.rod_inertia
-    s, c = np.sin(theta), np.cos(theta)
-    phi = np.arcsin(-r * s / l)
-    sp, cp = np.sin(phi), np.cos(phi)
-    phi_t = -r * w * c / (l * cp)
-    phi_tt = (r * w**2 * s + l * sp * phi_t**2) / (l * cp)
-    a_slider = -r * w**2 * c - l * cp * phi_t**2 - l * sp * phi_tt
-    ag_x = -r * w**2 * c + 0.5 * l * (-sp * phi_tt - cp * phi_t**2)
-    ag_y = -r * w**2 * s + 0.5 * l * (cp * phi_tt - sp * phi_t**2)
-    fx = params.slider_mass * a_slider
-    rhs = inertia * phi_tt + 0.5 * l * m * (cp * ag_y - sp * ag_x)
-    fy = (l * sp * fx - 0.5 * l * cp * m * g - rhs) / (l * cp)
-    return fx, fy
-
 
 @dataclass(frozen=True)
 class IdealForce:
@@ -1142,7 +1110,7 @@ def _intro_md(revolutions: float) -> str:
         f"rtol = {RTOL:g}, atol = {ATOL:g} m instead of the paper's rtol 1e-6 (the tolerance ladder below shows "
         "why); outputs every 1e-5 s. Baseline: the ideal mechanism (redundant formulation, generalized-alpha, "
         "step 1e-5 s), dashed in every figure; for the contact force it is the force the ideal joint transmits, "
-        "from the closed form `ideal_joint_force` (the ideal Exudyn joint reports none). Friction \"none\" or "
+        "from the closed form `ideal_joint_force` (the `contact_force` column of the ideal run). Friction \"none\" or "
         "\"paper\" (eq. 11, Table 1: μ_s = 0.3, μ_d = 0.25, v_s = 0.1 mm/s, v_d = 10 mm/s).\n\n"
         "Definitions: *deviation* = value minus the ideal mechanism's at the same instant; *start-up* = crank "
         f"angle below {STARTUP:g}° (the journal's first bounces); *dead-point windows* = ±{DEAD_WINDOW:g}° around "
@@ -1214,16 +1182,6 @@ def write_report(path: str, revolutions: float, done: Sequence[tuple[Sweep, Swee
 
 # -- files ----------------------------------------------------------------------------
 
-def plot_baseline(ideal: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The ideal mechanism's columns for the plots, with the joint force at B from :func:`ideal_joint_force`.
-
-    The ideal revolute joint of the Exudyn run reports no contact force (zeros); the
-    force it transmits is what the clearance joint's contact force should be compared with.
-    """
-    force = np.hypot(*ideal_joint_force(SliderCrankParams.paper(), np.radians(ideal["crank_angle"])))
-    return {**ideal, "contact_force": force}
-
-
 def write_sweep_files(sweep: Sweep, rows: SweepRows, ideal: dict[str, np.ndarray], directory: str,
                       revolutions: float) -> list[str]:
     """The figures and the CSV table of one sweep; returns the paths."""
@@ -1231,7 +1189,7 @@ def write_sweep_files(sweep: Sweep, rows: SweepRows, ideal: dict[str, np.ndarray
     paths = []
     if cases:
         paths += slider_crank_sweep_figures(
-            cases, plot_baseline(ideal), rows[0][1].clearance, directory, sweep.stem, title=sweep.title,
+            cases, ideal, rows[0][1].clearance, directory, sweep.stem, title=sweep.title,
             dead_points=dead_points(360.0 * revolutions), zoom_after=STARTUP, band=BAND, spectrum_step=SPECTRUM_STEP,
             deviation_after=STARTUP)
     paths.append(write_csv(os.path.join(directory, f"{sweep.stem}.csv"), _records(sweep, rows)))
@@ -1257,7 +1215,7 @@ def write_diagnostic_files(runner: Runner, done: Sequence[tuple[Sweep, SweepRows
         cases = [(f"{v.label}, v_min {diag.frozen_v_min:.3f} m/s", r.columns) for v, _, r, _ in rows if r.success]
         if cases:
             paths += slider_crank_sweep_figures(
-                cases, plot_baseline(ideal), rows[0][1].clearance, directory, f"diagnostic_frozen_v0_friction-{friction}",
+                cases, ideal, rows[0][1].clearance, directory, f"diagnostic_frozen_v0_friction-{friction}",
                 title=f"restitution sweep with v0 floored at the first impact's speed, friction {friction}",
                 dead_points=marks, zoom_after=STARTUP, band=BAND, spectrum_step=SPECTRUM_STEP, deviation_after=STARTUP,
                 quantities=FROZEN_FIGURES)
