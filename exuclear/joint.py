@@ -8,8 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
-from ._checks import check_choice
-from .contact import CONTACT_LAWS, V_MIN_DEFAULT, ContactLaw, Hertz, contact_law
+from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, is_elastic, pair_name, split_law_name
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .materials import Material, composite_modulus
@@ -125,13 +124,15 @@ def make_joint(
     journal_radius: float,
     bearing_radius: float,
     length: float,
-    law: str | ContactLaw = "wang-liu",
+    law: str | ContactLaw | None = None,
     cr: float | None = None,
     journal_material: str | Material = "steel",
     bearing_material: str | Material = "steel",
     E_star: float | None = None,
     friction: str | FrictionLaw = "none",
     v_min: float = V_MIN_DEFAULT,
+    stiffness: str | None = None,
+    damping: str | None = None,
 ) -> ClearanceJoint:
     """Build a :class:`ClearanceJoint` from dimensions, materials and law names.
 
@@ -139,12 +140,14 @@ def make_joint(
     ----------
     journal_radius, bearing_radius, length : float
         ``R_J < R_B`` and the bearing length ``L`` [m].
-    law : str or ContactLaw
-        A name of :data:`exuclear.CONTACT_LAWS` (default ``"wang-liu"``), or a ready
-        law (then ``cr``, materials, ``E_star`` and ``v_min`` must not be given and the
-        law's own geometry must match the radii and length).
+    law : str or ContactLaw, optional
+        A name of :data:`exuclear.CONTACT_LAWS` (default ``"wang-liu"``), a pair
+        ``"STIFFNESS+DAMPING"`` (:mod:`exuclear.contact`), or a ready law (then ``cr``,
+        materials, ``E_star`` and ``v_min`` must not be given and the law's own geometry
+        must match the radii and length).
     cr : float
-        Coefficient of restitution in (0, 1]; required for every law but ``"hertz"``.
+        Coefficient of restitution in (0, 1]; required for every law with damping, 1 (the
+        default there) for the elastic ones (``"hertz"``, damping ``"none"``).
     journal_material, bearing_material : str or Material
         Names of :data:`exuclear.MATERIALS` or :class:`Material` objects.
     E_star : float, optional
@@ -153,15 +156,28 @@ def make_joint(
         ``"none"``, ``"coulomb:MU"``, ``"paper"`` or a :class:`FrictionLaw`.
     v_min : float
         Floor of the onset velocity in the damping term [m/s].
+    stiffness, damping : str, optional
+        The law as a pair instead of ``law``: a name of
+        :data:`exuclear.contact.STIFFNESS_MODELS` and one of
+        :data:`exuclear.contact.DAMPING_MODELS`; a missing one is that of the default
+        law (``liu``, ``zhiying-qishao``).
     """
     geometry = BearingGeometry(journal_radius, bearing_radius, length)
     if isinstance(law, ContactLaw):
+        if stiffness is not None or damping is not None:
+            raise ValueError("give either `law` or `stiffness`/`damping`, not both")
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
         return ClearanceJoint(law, friction_law(friction))
-    check_choice("law", law, CONTACT_LAWS)
+    if stiffness is not None or damping is not None:
+        if law is not None:
+            raise ValueError("give either `law` or `stiffness`/`damping`, not both")
+        law = pair_name(stiffness, damping)
+    elif law is None:
+        law = DEFAULT_LAW
+    split_law_name(law)  # unknown names fail here, listing the known ones
     if cr is None:
-        if law != Hertz.name:
+        if not is_elastic(law):
             raise ValueError(f"`cr` (coefficient of restitution in (0, 1]) is required for the {law!r} law")
         cr = 1.0
     if E_star is None:
