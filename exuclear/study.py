@@ -433,8 +433,10 @@ class _Table:
         if not self.columns:
             return pd.DataFrame(columns=[*self.parameter_names, *STATUS_COLUMNS])
         with _StringRows([self.columns] + [[self.rows[k].get(c, "") for c in self.columns] for k in keys]) as f:
-            return _decode(pd.read_csv(f, float_precision="round_trip", keep_default_na=False,
-                                       na_values=["", "nan", "NaN"], dtype={"run_id": str, "message": str}))
+            # floats must read back exactly: pandas 3 does by default, pandas 2 when asked
+            exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
+            return _decode(pd.read_csv(f, keep_default_na=False, na_values=["", "nan", "NaN"],
+                                       dtype={"run_id": str, "message": str}, **exact))
 
 
 class _StringRows:
@@ -691,7 +693,7 @@ def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int 
     suspects: deque = deque()
     alone: set[cf.Future] = set()
     timing = [0.0, 0]  # wall time and number of finished runs, for the batch size
-    window = pool.workers * IN_FLIGHT_PER_WORKER
+    window = 1 if isinstance(pool.executor, _SerialExecutor) else pool.workers * IN_FLIGHT_PER_WORKER
     interrupted = False
     try:
         while todo or suspects or in_flight:
@@ -708,7 +710,7 @@ def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int 
                 batch = [todo.popleft() for _ in range(min(size, len(todo)))]
                 in_flight[pool.executor.submit(_run_batch, function, batch)] = batch
             finished, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
-            for future in finished:
+            for future in [f for f in in_flight if f in finished]:  # in the order of submission
                 batch = in_flight.pop(future, None)
                 if batch is None:
                     continue  # lost with its broken pool (below) and queued again
@@ -734,6 +736,11 @@ def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int 
                 bar.update(rows)
     except KeyboardInterrupt:
         interrupted = True
+        for future, batch in list(in_flight.items()):  # tasks finished meanwhile are kept too
+            if future.done() and not future.cancelled() and future.exception() is None:
+                for row in future.result():
+                    table.add(row)
+                del in_flight[future]
     finally:
         bar.close()
         for future in in_flight:

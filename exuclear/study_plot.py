@@ -1,0 +1,116 @@
+"""Plots of study tables (opt-in: imports matplotlib; the library itself never does).
+
+:func:`plot_metric` draws a metric of a :func:`exuclear.study.run_study` table over one
+parameter (lines, or points for a bifurcation-style diagram; one set per value of
+``by``) or over two (a heat map).  Failed runs are left out and counted in the title.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+
+def _select(table, metric: str, names: list[str], where: Mapping[str, Any]):
+    """The successful rows matching ``where``; ``ValueError`` for unknown columns or
+    parameters that vary but are neither plotted nor fixed."""
+    for name in [metric, *names, *where]:
+        if name not in table.columns:
+            raise ValueError(f"the table has no column {name!r}; columns: {', '.join(map(str, table.columns))}")
+    rows = table
+    for name, value in where.items():
+        rows = rows[rows[name] == value]
+        if rows.empty:
+            raise ValueError(f"no row has {name} = {value!r}")
+    failed = int((~rows["success"].astype(bool)).sum())
+    rows = rows[rows["success"].astype(bool)]
+    return rows, failed
+
+
+def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | None = None,
+                where: Mapping[str, Any] | None = None, points: bool = False, logx: bool = False,
+                logy: bool = False, ax: Any = None, path: str | os.PathLike | None = None, title: str | None = None):
+    """Plot ``metric`` over parameter ``x``.
+
+    Parameters
+    ----------
+    table : DataFrame
+        A study table (:func:`exuclear.study.run_study`, :func:`exuclear.study.load_table`).
+    metric, x : str
+        Column names.
+    y : str, optional
+        Second parameter: a heat map of ``metric`` over ``(x, y)`` (mean where several
+        rows share a cell).
+    by : str, optional
+        One line (or point set) per value of this parameter.
+    where : mapping, optional
+        Keep only the rows with these parameter values.
+    points : bool
+        Markers only, no lines (bifurcation-style: several values of the metric at one x).
+    ax : matplotlib Axes, optional
+        Draw into it; otherwise a new figure.
+    path : path, optional
+        Save the figure there and close it; returns the path.  Without it, returns the Axes.
+    """
+    import matplotlib
+
+    if path is not None and ax is None:
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    if y is not None and by is not None:
+        raise ValueError("give `y` (a heat map) or `by` (one line per value), not both")
+    names = [n for n in (x, y, by) if n is not None]
+    rows, failed = _select(table, metric, names, where or {})
+    if rows.empty:
+        raise ValueError(f"no successful run to plot ({failed} failed)")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 4.5))
+    if y is not None:
+        cells = rows.pivot_table(index=y, columns=x, values=metric, aggfunc="mean")
+        xs, ys = cells.columns.to_numpy(float), cells.index.to_numpy(float)
+        mesh = ax.pcolormesh(_edges(xs, logx), _edges(ys, logy), cells.to_numpy(float), shading="flat")
+        ax.figure.colorbar(mesh, ax=ax, label=metric)
+        ax.set_ylabel(y)
+    else:
+        groups = [(None, rows)] if by is None else list(rows.groupby(by, sort=True))
+        for value, group in groups:
+            group = group.sort_values(x)
+            label = None if by is None else f"{by} = {value}"
+            style = dict(linestyle="none", marker=".", markersize=4) if points else dict(marker="o", markersize=3)
+            ax.plot(group[x].to_numpy(float), group[metric].to_numpy(float), label=label, **style)
+        if by is not None:
+            ax.legend()
+        ax.set_ylabel(metric)
+        if logy:
+            ax.set_yscale("log")
+    if logx:
+        ax.set_xscale("log")
+    ax.set_xlabel(x)
+    fixed = ", ".join(f"{k} = {v}" for k, v in (where or {}).items())
+    note = f"{failed} failed run(s) left out" if failed else ""
+    ax.set_title(title or "; ".join(s for s in (f"{metric} over {x}" + (f" and {y}" if y else ""), fixed, note) if s))
+    ax.grid(True, alpha=0.3)
+    if path is None:
+        return ax
+    ax.figure.tight_layout()
+    ax.figure.savefig(path, dpi=150)
+    plt.close(ax.figure)
+    return path
+
+
+def _edges(centres: np.ndarray, log: bool) -> np.ndarray:
+    """Cell edges around sorted cell centres (midpoints; in log space for a log axis)."""
+    c = np.log(centres) if log else centres
+    if len(c) == 1:
+        half = 0.5 * (abs(c[0]) if c[0] != 0.0 else 1.0)
+        e = np.array([c[0] - half, c[0] + half])
+    else:
+        mid = 0.5 * (c[1:] + c[:-1])
+        e = np.concatenate([[2 * c[0] - mid[0]], mid, [2 * c[-1] - mid[-1]]])
+    return np.exp(e) if log else e
+
+
+__all__ = ["plot_metric"]
