@@ -1011,3 +1011,25 @@ def contact_law(
         return compose_law(*split_law_name(name), geometry, E_star, cr, v_min, exponent)
     cls = CONTACT_LAWS[check_choice("law", name, CONTACT_LAWS)]
     return cls(geometry, check_real("E_star", E_star), cr, v_min, EXPONENT_METAL if exponent is None else exponent)
+
+
+def law_and_restitution(law: str | None = None, stiffness: str | None = None, damping: str | None = None,
+                        cr: float | None = None, default_law: str = DEFAULT_LAW,
+                        default_cr: float = 0.9) -> tuple[str, float]:
+    """The law name and ``cr`` a command line's options ask for.
+
+    ``law`` or the pair ``stiffness``/``damping`` (not both; a missing member of the pair
+    is that of the default law); ``cr`` defaults to ``default_cr`` for a law with damping
+    and to 1 for an elastic one, so that ``--law hertz`` alone is accepted.  Unknown names
+    raise ``ValueError`` listing the known ones.
+    """
+    if stiffness is not None or damping is not None:
+        if law is not None:
+            raise ValueError("give either `law` or `stiffness`/`damping`, not both")
+        law = pair_name(stiffness, damping)
+    elif law is None:
+        law = default_law
+    split_law_name(law)
+    if cr is None:
+        cr = 1.0 if is_elastic(law) else default_cr
+    return law, cr

@@ -35,6 +35,7 @@ from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigid
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_restitution
 from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
@@ -201,8 +202,15 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 def _parser() -> argparse.ArgumentParser:
     p = JournalBearingParams.paper()
     ap = OneLineParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
-    ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
-    ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
+    ap.add_argument("--law", help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)}, or STIFFNESS+DAMPING "
+                                  f"(default {p.law})")
+    ap.add_argument("--stiffness", help=f"stiffness model, instead of --law: {', '.join(STIFFNESS_MODELS)} "
+                                        f"(default with --damping: {ALIASES[p.law][0]})")
+    ap.add_argument("--damping", help=f"damping model, instead of --law: {', '.join(DAMPING_MODELS)} "
+                                      f"(default with --stiffness: {ALIASES[p.law][1]})")
+    ap.add_argument("--cr", type=float,
+                    help=f"coefficient of restitution in (0, 1] (default {p.cr}; 1 for the elastic laws)")
+    ap.set_defaults(paper_law=p.law, paper_cr=p.cr)  # what --law and --cr fall back to
     ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
@@ -234,8 +242,10 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
     try:
+        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
+                                       args.paper_cr)
         params = JournalBearingParams.paper(
-            law=args.law, cr=args.cr, length=args.length, journal_material=args.journal,
+            law=law, cr=cr, length=args.length, journal_material=args.journal,
             bearing_material=args.bearing, journal_radius=args.journal_radius,
             bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min,
             backend=args.backend, end_time=args.end_time, max_penetration=args.max_penetration)

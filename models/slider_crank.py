@@ -54,6 +54,7 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_restitution
 from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings
 from models._cli import write_csv as _write_columns
 
@@ -463,8 +464,15 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "") -
 def _parser() -> argparse.ArgumentParser:
     p = SliderCrankParams.paper()
     ap = OneLineParser(prog="python -m models.slider_crank", description=__doc__.split("\n")[0])
-    ap.add_argument("--law", default=p.law, help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)} (default %(default)s)")
-    ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution in (0, 1] (default %(default)s)")
+    ap.add_argument("--law", help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)}, or STIFFNESS+DAMPING "
+                                  f"(default {p.law})")
+    ap.add_argument("--stiffness", help=f"stiffness model, instead of --law: {', '.join(STIFFNESS_MODELS)} "
+                                        f"(default with --damping: {ALIASES[p.law][0]})")
+    ap.add_argument("--damping", help=f"damping model, instead of --law: {', '.join(DAMPING_MODELS)} "
+                                      f"(default with --stiffness: {ALIASES[p.law][1]})")
+    ap.add_argument("--cr", type=float,
+                    help=f"coefficient of restitution in (0, 1] (default {p.cr}; 1 for the elastic laws)")
+    ap.set_defaults(paper_law=p.law, paper_cr=p.cr)  # what --law and --cr fall back to
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
     ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
@@ -536,11 +544,13 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
     try:
+        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
+                                       args.paper_cr)
         formulation, chosen = _formulation(args)
         if exuclear._checks.check_real("rpm", args.rpm) == 0.0:
             raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
         params = SliderCrankParams.paper(
-            law=args.law, cr=args.cr, journal_material=args.journal, bearing_material=args.bearing,
+            law=law, cr=cr, journal_material=args.journal, bearing_material=args.bearing,
             friction=args.friction, clearance=args.clearance, bearing_length=args.length,
             crank_speed=args.rpm * math.pi / 30.0,
             revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
