@@ -2,7 +2,7 @@
 
 Physics (pure Python, no exudyn): :mod:`~exuclear.contact`, :mod:`~exuclear.friction`,
 :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`, :mod:`~exuclear.joint`.
-Engine glue: :mod:`~exuclear.exudyn_element`.  See ``shared/spec/MODEL.md`` for the
+Engine glue: :mod:`~exuclear.engine`.  See ``shared/spec/MODEL.md`` for the
 equations.
 """
 from ._checks import UnitWarning
@@ -18,10 +18,15 @@ from .contact import (
     WangLiu,
     contact_law,
 )
-from .exudyn_element import (
+from .engine import (
     BACKENDS,
+    DATA_COLUMNS,
+    DEFAULT_BACKEND,
     OUTPUT_COLUMNS,
+    AddClearanceJoint,
     ClearanceJointHandle,
+    CreateClearanceJoint,
+    KernelWarning,
     SimulationResult,
     add_clearance_joint,
     simulate,
@@ -37,6 +42,7 @@ from .friction import (
     friction_law,
     smooth_step,
 )
+from .history import ContactState, ImpactRecord
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, contact_kinematics, joint_loads
 from .joint import ClearanceJoint, ContactHistory, JointResponse, make_joint
 from .materials import MATERIALS, Material, composite_modulus, material
@@ -47,8 +53,9 @@ __version__ = "0.1.0"
 __all__ = [
     "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
     "LankaraniNikravesh", "WangLiu", "contact_law",
-    "BACKENDS", "OUTPUT_COLUMNS", "ClearanceJointHandle", "SimulationResult", "add_clearance_joint", "simulate",
-    "simulation_settings",
+    "BACKENDS", "DATA_COLUMNS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
+    "KernelWarning", "SimulationResult", "add_clearance_joint", "simulate", "simulation_settings",
+    "ContactState", "ImpactRecord",
     "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
     "friction_law", "smooth_step",
     "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",

@@ -97,7 +97,7 @@ def contact_kinematics(
     (``delta = -c``) and ``n = (1, 0)`` is used so the returned values stay finite.
     """
     ex, ey = xj - xb, yj - yb
-    ecc = math.hypot(ex, ey)
+    ecc = math.sqrt(ex * ex + ey * ey)  # not hypot: the compiled kernel computes exactly this
     if ecc > 0.0:
         nx, ny = ex / ecc, ey / ecc
     else:

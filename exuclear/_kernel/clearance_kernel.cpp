@@ -1,0 +1,457 @@
+// Compiled kernel of the exuclear clearance joint.
+//
+// The same formulas as the Python statement of the physics, in the same order and with
+// the same names, so that the two can be read side by side and agree to round-off:
+//   contact kinematics  exuclear/geometry.py   (docs/physics.md eqs. 1-6)
+//   normal force        exuclear/contact.py    (eqs. 7-9)
+//   friction            exuclear/friction.py   (eqs. 10-11)
+//   loads               exuclear/geometry.py   (eq. 12)
+//   contact history     exuclear/history.py    (onset velocity, records)
+//   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
+//
+// Exudyn calls these functions through raw function pointers, without Python, when they
+// are bound by pybind11, capture nothing and have exactly Exudyn's signature
+// (../shared/research/compiled-exudyn.md); exuclear/engine/kernel.py checks that at import.
+// Parameters reach the functions through the connector's `stiffness` matrix (layout in
+// exuclear/engine/layout.py); the per-joint dynamic state lives in a table indexed by the
+// joint id stored there.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+class MainSystem;  // Exudyn's; only its name enters the signatures, it is never dereferenced
+
+namespace pybind11 {
+namespace detail {
+// Lets pybind11 bind functions that take Exudyn's MainSystem, which this module does not
+// know.  A call from Python (the self-test's fallback check) passes any object; the
+// functions never touch it.
+template <> class type_caster<MainSystem> {
+public:
+    bool load(handle src, bool) {
+        ptr_ = reinterpret_cast<MainSystem*>(src.ptr());
+        return true;
+    }
+    static constexpr auto name = const_name("exudyn.MainSystem");
+    template <typename T> using cast_op_type = MainSystem&;
+    operator MainSystem&() { return *ptr_; }
+    static handle cast(const MainSystem&, return_value_policy, handle) { return none().release(); }
+
+private:
+    MainSystem* ptr_ = nullptr;
+};
+}  // namespace detail
+}  // namespace pybind11
+
+namespace py = pybind11;
+
+using V3 = std::array<double, 3>;
+using V6 = std::array<double, 6>;
+using M3 = std::array<V3, 3>;
+using M6 = std::array<V6, 6>;
+using StdVector = std::vector<double>;
+
+namespace {
+
+const double INF = std::numeric_limits<double>::infinity();
+
+// ---- parameters (layout: exuclear/engine/layout.py) -------------------------------------
+enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
+enum StiffnessCode { STIFFNESS_CONSTANT = 0, STIFFNESS_LIU = 1 };
+enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
+
+struct Params {
+    long id;
+    int role;
+    double r_j, r_b, max_penetration, impact_step;
+    int stiffness_code;
+    double k0, exponent, damping_factor, v_min, clearance;
+    double kp[6];
+    int friction_code;
+    double fp[4];
+};
+
+Params decode(const M6& p) {
+    Params a;
+    a.id = static_cast<long>(p[0][0]);
+    a.role = static_cast<int>(p[0][1]);
+    a.r_j = p[0][2];
+    a.r_b = p[0][3];
+    a.max_penetration = p[0][4];
+    a.impact_step = p[0][5];
+    a.stiffness_code = static_cast<int>(p[1][0]);
+    a.k0 = p[1][1];
+    a.exponent = p[1][2];
+    a.damping_factor = p[1][3];
+    a.v_min = p[1][4];
+    a.clearance = p[1][5];
+    for (int i = 0; i < 6; ++i) a.kp[i] = p[2][i];
+    a.friction_code = static_cast<int>(p[3][0]);
+    for (int i = 0; i < 4; ++i) a.fp[i] = p[3][i + 1];
+    return a;
+}
+
+// ---- physics: geometry.py ------------------------------------------------------------------
+struct Kinematics {
+    double ex, ey, ecc, nx, ny, delta, delta_dot, v_t;
+};
+
+// contact_kinematics + kinematics_along (eqs. 1-6), in the joint frame J0 of the bearing
+Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx, double dvy, double omega_i,
+                              double omega_j) {
+    Kinematics k;
+    k.ex = ex;
+    k.ey = ey;
+    k.ecc = std::sqrt(ex * ex + ey * ey);
+    if (k.ecc > 0.0) {
+        k.nx = ex / k.ecc;
+        k.ny = ey / k.ecc;
+    } else {  // centred journal: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. 5
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * a.r_j + omega_j * a.r_b;               // eq. 6
+    k.delta = k.ecc - (a.r_b - a.r_j);                                                 // eq. 3
+    return k;
+}
+
+// ---- physics: contact.py -------------------------------------------------------------------
+double stiffness(const Params& a, double delta) {  // K_eff(delta)
+    switch (a.stiffness_code) {
+        case STIFFNESS_LIU:  // Liu's elastic foundation, eq. 7: (pi E* L / 2) sqrt(1 / (2 (c + delta)))
+            return a.k0 * std::sqrt(1.0 / (2.0 * (a.clearance + delta)));
+        default:  // delta-independent (Hertz point contact and the laws built on it)
+            return a.k0;
+    }
+}
+
+double normal_force(const Params& a, double delta, double delta_dot, double v0) {  // eq. 8
+    if (delta <= 0.0) return 0.0;
+    double v0_eff = v0 > a.v_min ? v0 : a.v_min;
+    double f = stiffness(a, delta) * std::pow(delta, a.exponent) * (1.0 + a.damping_factor * delta_dot / v0_eff);
+    return f < 0.0 ? 0.0 : f;  // no adhesion; a NaN stays NaN, to be caught
+}
+
+// ---- physics: friction.py ------------------------------------------------------------------
+double smooth_step(double x, double x0, double h0, double x1, double h1) {  // S(x; x0, h0, x1, h1)
+    double s = (x - x0) / (x1 - x0);
+    s = s < 0.0 ? 0.0 : s;  // max(s, 0), as Python's max returns the first of equals
+    s = 1.0 < s ? 1.0 : s;  // min(s, 1)
+    return h0 + (h1 - h0) * s * s * (3.0 - 2.0 * s);
+}
+
+double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+double friction_coefficient(const Params& a, double v_t) {  // mu(v_T), eqs. 10-11
+    switch (a.friction_code) {
+        case FRICTION_COULOMB: {  // fp = (mu, v_eps)
+            double mu = a.fp[0], v_eps = a.fp[1];
+            return sign(v_t) * smooth_step(std::fabs(v_t), -v_eps, -mu, v_eps, mu);
+        }
+        case FRICTION_MODIFIED_COULOMB: {  // fp = (mu_s, mu_d, v_s, v_d)
+            double mu_s = a.fp[0], mu_d = a.fp[1], v_s = a.fp[2], v_d = a.fp[3];
+            double speed = std::fabs(v_t);
+            double mu = speed < v_s   ? smooth_step(speed, -v_s, -mu_s, v_s, mu_s)
+                        : speed < v_d ? smooth_step(speed, v_s, mu_s, v_d, mu_d)
+                                      : mu_d;
+            return sign(v_t) * mu;
+        }
+        default:
+            return 0.0;
+    }
+}
+
+// ---- physics: history.py -------------------------------------------------------------------
+struct History {
+    double time = 0.0;
+    double delta = -INF;  // -inf: no accepted state yet
+    double delta_dot = 0.0;
+    bool in_contact = false;
+    double v0 = 0.0;
+    long onsets = 0;
+    long closed = 0;
+    double onset_time = 0.0, peak_force = 0.0, max_penetration = 0.0;
+    // outputs at this accepted state
+    double f_n = 0.0, f_t = 0.0, v_t = 0.0, ex = 0.0, ey = 0.0;
+};
+
+struct Record {
+    double onset_time, onset_velocity, peak_force, duration, max_penetration;
+};
+
+double onset_velocity(const History& h, double delta, double delta_dot) {
+    if (h.in_contact) return h.v0;
+    double d0 = h.delta;
+    if (d0 == -INF) return delta_dot;  // no accepted state yet: the joint starts in contact
+    return h.delta_dot + (delta_dot - h.delta_dot) * d0 / (d0 - delta);
+}
+
+// ContactHistory.accept: the history after an accepted state (kinematics k, time t);
+// a contact that ends appends its record.
+History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records) {
+    History n = h;
+    double delta = k.delta, delta_dot = k.delta_dot;
+    if (delta > 0.0) {
+        if (!h.in_contact) {
+            n.v0 = onset_velocity(h, delta, delta_dot);
+            n.in_contact = true;
+            double d0 = h.delta;
+            double share = d0 != -INF ? d0 / (d0 - delta) : 0.0;
+            n.onset_time = h.time + share * (time - h.time);
+            n.onsets = h.onsets + 1;
+            n.peak_force = 0.0;
+            n.max_penetration = 0.0;
+        }
+    } else {
+        n.in_contact = false;
+        if (h.in_contact) {  // the contact ended within this step: close its record
+            double share = h.delta / (h.delta - delta);
+            double end = h.time + share * (time - h.time);
+            records.push_back({h.onset_time, h.v0, h.peak_force, end - h.onset_time, h.max_penetration});
+            n.closed = h.closed + 1;
+        }
+    }
+    n.delta = delta;
+    n.delta_dot = delta_dot;
+    n.time = time;
+    n.ex = k.ex;
+    n.ey = k.ey;
+    n.v_t = k.v_t;
+    n.f_n = n.in_contact ? normal_force(a, delta, delta_dot, n.v0) : 0.0;
+    n.f_t = n.in_contact && a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * n.f_n : 0.0;
+    if (n.in_contact) {
+        n.peak_force = n.f_n > n.peak_force ? n.f_n : n.peak_force;
+        n.max_penetration = delta > n.max_penetration ? delta : n.max_penetration;
+    }
+    return n;
+}
+
+// ---- the per-joint table -------------------------------------------------------------------
+struct JointState {
+    bool started = false;  // an accepted (initial) state exists in this run
+    History prev, cur;     // history at the start and at the end of the last post-processed step
+    History initial;       // the run's initial accepted state
+    std::vector<Record> records;
+    double omega_bearing = 0.0;    // bearing's angular velocity about the axis, from the probe
+    double torque_correction = 0.0;  // m_i + m_j, for the torque connector
+    long force_calls = 0, post_newton_calls = 0, dispatch_calls = 0;
+    std::string failure;
+    double failure_time = 0.0;
+};
+
+std::vector<JointState> g_joints;
+
+JointState& state(long id) {
+    if (id < 0 || id >= static_cast<long>(g_joints.size())) {
+        throw std::runtime_error("exuclear kernel: unknown joint id " + std::to_string(id));
+    }
+    return g_joints[static_cast<size_t>(id)];
+}
+
+// Which history an evaluation at time t uses (mirrors _python_kernel.JointTable.history_for).
+// A time before the last step's start means a new run: forget everything and take this
+// evaluation's state as the run's initial accepted state.
+const History& history_for(JointState& s, const Params& a, const Kinematics& k, double t) {
+    if (!s.started || t < s.prev.time) {
+        s.records.clear();
+        s.failure.clear();
+        History fresh;
+        fresh.time = t;
+        s.cur = accept(fresh, a, k, t, s.records);
+        s.prev = s.cur;
+        s.initial = s.cur;
+        s.started = true;
+    }
+    return t <= s.cur.time ? s.prev : s.cur;
+}
+
+V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
+
+// ---- the connector's force (eq. 12) ---------------------------------------------------------
+// Returns [F; T] in J0 coordinates: the bearing (marker 0) receives +F, +T, the journal
+// (marker 1) -F, -T.  F = -F_i and T = -M_i; the bearing's own moment M_j differs from
+// -M_i by (R_J - R_B) F_T, which the torque connector adds.
+V6 main_force(const Params& a, double t, const V3& displacement, const V3& velocity, const V3& angularVelocity) {
+    JointState& s = state(a.id);
+    s.force_calls++;
+    double omega_j = s.omega_bearing;
+    double omega_i = angularVelocity[2] + omega_j;
+    Kinematics k = contact_kinematics(a, displacement[0], displacement[1], velocity[0], velocity[1], omega_i, omega_j);
+    const History& h = history_for(s, a, k, t);
+    if (k.delta <= 0.0) {
+        s.torque_correction = 0.0;
+        return zeros6();
+    }
+    double v0 = onset_velocity(h, k.delta, k.delta_dot);
+    double f_n = normal_force(a, k.delta, k.delta_dot, v0);
+    double f_t = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * f_n : 0.0;
+    // joint_loads
+    double fx = -f_n * k.nx - f_t * k.ny;
+    double fy = -f_n * k.ny + f_t * k.nx;
+    double m_i = a.r_j * f_t;
+    double m_j = -a.r_b * f_t;
+    s.torque_correction = m_j + m_i;
+    return V6{-fx, -fy, 0.0, 0.0, 0.0, -m_i};
+}
+
+V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3, V3 velocity, V3 angularVelocity, M6 parameters,
+                M6, M3, M3, V6) {
+    Params a = decode(parameters);
+    switch (a.role) {
+        case PROBE:  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
+            state(a.id).omega_bearing = -angularVelocity[2];
+            return zeros6();
+        case TORQUE:
+            return V6{0.0, 0.0, 0.0, 0.0, 0.0, state(a.id).torque_correction};
+        default:
+            return main_force(a, t, displacement, velocity, angularVelocity);
+    }
+}
+
+// Error a post-Newton function returns to make Exudyn redo a step (above its
+// discontinuous.iterationTolerance, default 1).
+const double REDO_STEP_ERROR = 1e3;
+// Relative slack on a step length compared with impact_step (Exudyn's steps carry round-off).
+const double STEP_SLACK = 1e-9;
+// Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS).
+const int N_DATA = 14;
+
+void write_data(const History& h, StdVector& out) {
+    double values[N_DATA] = {h.time, h.delta == -INF ? 0.0 : h.delta, h.delta_dot, h.ex, h.ey, h.f_n, h.f_t, h.v_t,
+                             h.v0, h.in_contact ? 1.0 : 0.0, static_cast<double>(h.onsets), h.onset_time,
+                             h.peak_force, h.max_penetration};
+    for (int i = 0; i < N_DATA; ++i) out.push_back(values[i]);
+}
+
+std::string fmt(double x) {
+    std::ostringstream o;
+    o.precision(4);
+    o << x;
+    return o.str();
+}
+
+// Post-Newton function: once per accepted step, the history update (mirrors
+// _python_kernel.JointTable.post_newton).  Returns [error, recommended step, data...].
+StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3, V3 velocity,
+                      V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
+    Params a = decode(parameters);
+    StdVector out{0.0, -1.0};
+    if (a.role == PROBE) {
+        state(a.id).omega_bearing = -angularVelocity[2];
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
+    }
+    JointState& s = state(a.id);
+    s.post_newton_calls++;
+    double omega_j = s.omega_bearing;
+    double omega_i = angularVelocity[2] + omega_j;
+    Kinematics k = contact_kinematics(a, displacement[0], displacement[1], velocity[0], velocity[1], omega_i, omega_j);
+    history_for(s, a, k, t);  // starts a run if needed
+    bool advance = t > s.cur.time;
+    const History base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
+    if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
+        s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+        s.failure_time = t;
+        throw std::runtime_error("exuclear: " + s.failure);
+    }
+    if (k.delta > a.max_penetration) {
+        s.failure = "penetration " + fmt(k.delta) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
+        s.failure_time = t;
+        throw std::runtime_error("exuclear: " + s.failure);
+    }
+    if (a.impact_step > 0.0 && !base.in_contact && k.delta > 0.0 &&
+        t - base.time > a.impact_step * (1.0 + STEP_SLACK)) {
+        out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
+        out[1] = a.impact_step;
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
+    }
+    s.records.resize(static_cast<size_t>(base.closed));
+    History next = accept(base, a, k, t, s.records);
+    if (!std::isfinite(next.f_n)) {
+        s.failure = "the contact force became non-finite (NaN or inf)";
+        s.failure_time = t;
+        throw std::runtime_error("exuclear: " + s.failure);
+    }
+    if (advance) s.prev = s.cur;
+    s.cur = next;
+    write_data(next, out);
+    return out;
+}
+
+// ---- dispatch counter for the self-test -----------------------------------------------------
+long g_dispatch_calls = 0;
+struct DispatchCounter {  // constructed only when a call comes through pybind11's Python dispatcher
+    DispatchCounter() { ++g_dispatch_calls; }
+};
+
+py::dict history_dict(const History& h) {
+    py::dict d;
+    d["time"] = h.time;
+    d["delta"] = h.delta;
+    d["delta_dot"] = h.delta_dot;
+    d["in_contact"] = h.in_contact;
+    d["v0"] = h.v0;
+    d["onsets"] = h.onsets;
+    d["closed"] = h.closed;
+    d["onset_time"] = h.onset_time;
+    d["peak_force"] = h.peak_force;
+    d["max_penetration"] = h.max_penetration;
+    d["normal_force"] = h.f_n;
+    d["tangential_force"] = h.f_t;
+    d["slip_velocity"] = h.v_t;
+    d["ecc_x"] = h.ex;
+    d["ecc_y"] = h.ey;
+    return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_ckernel, m) {
+    m.doc() = "Compiled kernel of the exuclear clearance joint (see exuclear/engine/kernel.py)";
+    m.def("force_torque", &force_torque, py::call_guard<DispatchCounter>(),
+          "springForceTorqueUserFunction of the clearance-joint connectors");
+    m.def("post_newton", &post_newton, py::call_guard<DispatchCounter>(),
+          "postNewtonStepUserFunction of the clearance-joint connectors");
+    m.def("new_joint", []() {
+        g_joints.emplace_back();
+        return static_cast<long>(g_joints.size() - 1);
+    });
+    m.def("reset", [](long id) { state(id) = JointState(); });
+    m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("calls", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(s.force_calls, s.post_newton_calls);
+    });
+    m.def("history", [](long id) {
+        JointState& s = state(id);
+        py::dict d;
+        d["started"] = s.started;
+        d["current"] = history_dict(s.cur);
+        d["previous"] = history_dict(s.prev);
+        d["initial"] = history_dict(s.initial);
+        return d;
+    });
+    m.def("records", [](long id) {
+        JointState& s = state(id);
+        py::list out;
+        for (const Record& r : s.records) {
+            out.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
+        }
+        return out;
+    });
+    m.def("failure", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(s.failure, s.failure_time);
+    });
+    m.attr("N_DATA") = N_DATA;
+}

@@ -1,0 +1,26 @@
+"""The Exudyn adapter: the only package of exuclear that imports exudyn or reads engine state.
+
+- :mod:`~exuclear.engine.connector`: the clearance joint as Exudyn items
+  (``CreateClearanceJoint``, ``AddClearanceJoint``) and its handle;
+- :mod:`~exuclear.engine.kernel`: the compiled kernel and its import self-test;
+- :mod:`~exuclear.engine._python_kernel`: the same user functions in Python;
+- :mod:`~exuclear.engine.layout`: where parameters and outputs sit in the items;
+- :mod:`~exuclear.engine.solver`: ``simulate``, a convenience around ``SolveDynamic``.
+"""
+from .connector import (
+    BACKENDS,
+    DEFAULT_BACKEND,
+    OUTPUT_COLUMNS,
+    AddClearanceJoint,
+    ClearanceJointHandle,
+    CreateClearanceJoint,
+    add_clearance_joint,
+    default_penetration_limit,
+)
+from .kernel import KernelWarning
+from .layout import DATA_COLUMNS
+from .solver import SimulationResult, simulate, simulation_settings
+
+__all__ = ["BACKENDS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "DATA_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle",
+           "CreateClearanceJoint", "add_clearance_joint", "default_penetration_limit", "KernelWarning",
+           "SimulationResult", "simulate", "simulation_settings"]

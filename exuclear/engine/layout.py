@@ -1,0 +1,85 @@
+"""Where a clearance joint's parameters and outputs sit in its Exudyn items.
+
+Parameters.  Exudyn hands a connector's ``stiffness`` matrix (6 x 6) to its user
+functions on every call, so the joint's physics lives there, readable by the compiled
+and the Python kernel alike (``mbs.GetObject(joint.objectNumber)["stiffness"]``):
+
+====  ==========================================================================
+row   entries
+====  ==========================================================================
+0     joint id (kernel table), role (0 joint, 1 bearing-spin probe, 2 bearing
+      torque), R_J, R_B [m], penetration limit [m], impact step [s] (0: off)
+1     stiffness code, K constant, exponent n, damping factor D, v_min [m/s], c [m]
+2     further stiffness constants (up to 6)
+3     friction code, then up to 4 friction constants
+====  ==========================================================================
+
+The codes are those of ``exuclear/_kernel/clearance_kernel.cpp``.
+
+Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
+quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
+``OutputVariableType.Coordinates`` records them.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..contact import ContactLaw, WangLiu
+from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
+from ..joint import ClearanceJoint
+
+MAIN, PROBE, TORQUE = 0, 1, 2
+
+#: The data node's entries, in order (the compiled kernel's ``write_data``).
+DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
+                "slip_velocity", "v0", "in_contact", "onsets", "onset_time", "peak_force", "max_penetration")
+
+FRICTION_CODES = {NoFriction: 0, Coulomb: 1, ModifiedCoulomb: 2}
+
+
+def law_code(law: ContactLaw) -> tuple[int, tuple[float, ...]]:
+    """The kernel's stiffness code and extra constants of a contact law."""
+    code = getattr(law, "kernel_code", None)
+    if code is not None:
+        return int(code), tuple(float(v) for v in law.kernel_parameters())
+    return (1 if isinstance(law, WangLiu) else 0), ()
+
+
+def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
+    """The kernel's friction code and constants; ``ValueError`` for a law it does not know."""
+    kind = type(friction)
+    if kind is NoFriction:
+        return 0, ()
+    if kind is Coulomb:
+        return 1, (friction.mu, friction.v_eps)
+    if kind is ModifiedCoulomb:
+        return 2, (friction.mu_s, friction.mu_d, friction.v_s, friction.v_d)
+    raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
+
+
+def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
+               impact_step: float = 0.0) -> list[list[float]]:
+    """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring)."""
+    law, g = joint.law, joint.geometry
+    code, extra = law_code(law)
+    f_code, f_params = friction_code(joint.friction)
+    if len(extra) > 6 or len(f_params) > 4:
+        raise ValueError("a law has more constants than the kernel's parameter layout holds")
+    p = np.zeros((6, 6))
+    p[0, :] = [joint_id, role, g.journal_radius, g.bearing_radius, max_penetration, impact_step]
+    p[1, :] = [code, law._k0, law.exponent, law.damping_factor, law.v_min, g.clearance]
+    p[2, :len(extra)] = extra
+    p[3, 0] = f_code
+    p[3, 1:1 + len(f_params)] = f_params
+    return p.tolist()
+
+
+class Params:
+    """The decoded ``stiffness`` matrix, for the Python kernel (the compiled ``decode``)."""
+
+    __slots__ = ("id", "role", "r_j", "r_b", "max_penetration", "impact_step")
+
+    def __init__(self, p: list) -> None:
+        row = p[0]
+        self.id, self.role = int(row[0]), int(row[1])
+        self.r_j, self.r_b, self.max_penetration, self.impact_step = row[2], row[3], row[4], row[5]

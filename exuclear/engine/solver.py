@@ -1,0 +1,210 @@
+"""The solver driver: :func:`simulate`, a convenience around ``exudyn.SolveDynamic``.
+
+A clearance joint needs none of this: ``mbs.SolveDynamic`` runs it as any Exudyn item
+(its history starts again at each run's initial time).  :func:`simulate` adds what a
+study wants: one typed settings object (:class:`exuclear.SolverSettings`), the refusal of
+explicit methods for constrained models (Exudyn's explicit solvers would silently drop
+the constraints), impact-aware steps, watchdogs for an adaptive step that collapses or
+is retried without end, and a result that says why a run stopped.  The watchdogs are
+pre- and post-step functions installed for the run only; the user's own step functions
+are called from them and restored afterwards.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import exudyn as exu
+
+from ..settings import METHODS, SolverSettings
+from .connector import ClearanceJointHandle, _check_system, joints_of
+
+#: Attempts at one step after which a run is ended: DOPRI5 rejects a step a few times at
+#: an impact, but at its minimum step Exudyn's DOPRI5 retries forever.
+MAX_STEP_ATTEMPTS = 200
+
+#: With impact-aware steps, Exudyn's own step reduction (after a failed Newton iteration)
+#: may go this far below ``impact_step`` before the run fails.
+IMPACT_STEP_FLOOR = 0.5
+
+
+def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
+    """Map :class:`SolverSettings` onto ``exu.SimulationSettings`` (the only place)."""
+    ss = exu.SimulationSettings()
+    ti = ss.timeIntegration
+    ti.endTime = settings.end_time
+    ti.numberOfSteps = max(1, math.ceil(settings.end_time / settings.step - 1e-9))
+    ti.verboseMode = settings.verbose
+    if settings.explicit:
+        ti.automaticStepSize = settings.adaptive
+        ti.relativeTolerance = settings.rtol
+        ti.absoluteTolerance = settings.atol
+        ti.minimumStepSize = settings.min_step
+    elif settings.impact_step is None:
+        ti.adaptiveStep = False  # fixed step: a rejected Newton step fails the run loudly
+    else:
+        # impact-aware steps: a joint's post-Newton function asks for impact_step at a contact
+        # onset; Exudyn then doubles the step every recovery_steps steps
+        ti.adaptiveStep = True
+        ti.minimumStepSize = settings.impact_step * IMPACT_STEP_FLOOR
+        ti.adaptiveStepIncrease = 2.0
+        ti.adaptiveStepRecoverySteps = settings.recovery_steps
+        ti.discontinuous.useRecommendedStepSize = True
+    if not settings.explicit:
+        ti.generalizedAlpha.spectralRadius = settings.spectral_radius
+        ti.generalizedAlpha.computeInitialAccelerations = True
+    ss.solution.file.write = False  # results come from sensors kept in memory
+    ss.solution.sensors.writePeriod = settings.output_step
+    return ss
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Outcome of :func:`simulate`.
+
+    ``success`` is False when the run stopped early; ``message`` then says why and what
+    to try, and ``time_reached`` [s] how far it got.  ``wall_time`` is the solver call
+    alone [s]; ``steps`` the number of accepted time steps and ``rejected`` the
+    rejected ones (adaptive methods).
+    """
+
+    success: bool
+    message: str
+    wall_time: float
+    steps: int
+    rejected: int
+    time_reached: float
+
+
+def _user_function(installed: Any) -> Any:
+    return installed["function"] if isinstance(installed, dict) else None
+
+
+class _Watchdog:
+    """Pre- and post-step functions for one run: end a step retried without end and an
+    adaptive step that collapsed to its minimum; the user's functions are called from them."""
+
+    def __init__(self, mbs: exu.MainSystem, min_step: float) -> None:
+        self.mbs = mbs
+        self.user_pre = _user_function(mbs.GetPreStepUserFunction())
+        self.user_post = _user_function(mbs.GetPostStepUserFunction())
+        self.min_step = min_step
+        self.last, self.attempts, self.problem = 0.0, 0, ""
+
+    def pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
+        self.attempts += 1
+        if self.attempts > MAX_STEP_ATTEMPTS:
+            self.problem = (f"at t = {self.last:.6g} s, the solver retried one step {MAX_STEP_ATTEMPTS} times without "
+                            "accepting it (Exudyn's DOPRI5 does so when its minimum step cannot meet the tolerances); "
+                            "loosen the tolerances, lower `min_step`, or use an implicit method")
+            raise RuntimeError(self.problem)  # returning False would not end Exudyn's retry loop
+        return self.user_pre(mbs, t) if self.user_pre is not None else True
+
+    def post_step(self, mbs: exu.MainSystem, t: float) -> bool:
+        self.attempts = 0
+        step, self.last = t - self.last, t
+        if 0.0 < step <= self.min_step:
+            self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), where "
+                            "Exudyn would go on without error control; the problem is too stiff for this explicit method "
+                            "here: try an implicit method, looser tolerances, or a smaller `min_step`")
+            return False
+        return self.user_post(mbs, t) if self.user_post is not None else True
+
+    def __enter__(self) -> _Watchdog:
+        self.mbs.SetPreStepUserFunction(self.pre_step)
+        self.mbs.SetPostStepUserFunction(self.post_step)
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.mbs.SetPreStepUserFunction(self.user_pre if self.user_pre is not None else 0)
+        self.mbs.SetPostStepUserFunction(self.user_post if self.user_post is not None else 0)
+
+
+def _constraint_objects(mbs: exu.MainSystem) -> list[str]:
+    found = []
+    for i in range(mbs.systemData.NumberOfObjects()):
+        if len(mbs.systemData.GetObjectLTGAE(i)) > 0:
+            found.append(f"{i} ({mbs.GetObject(i)['objectType']})")
+    return found
+
+
+def _joints_in_contact(joints: list[ClearanceJointHandle]) -> str:
+    """Which joints were in contact at the last accepted state, for failure messages."""
+    names = []
+    for h in joints:
+        state = h.state()
+        if state.in_contact:
+            names.append(f"{h.name or h.objectNumber!r} (penetration {state.delta:.3g} m)")
+    return f"; in contact then: {', '.join(names)}" if names else "; no clearance joint was in contact then"
+
+
+def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
+    """Assemble if needed and integrate ``mbs`` with ``settings``.
+
+    Explicit methods are refused for systems with constraints (joints, coordinate
+    constraints): Exudyn's explicit solvers would silently ignore them.  Every clearance
+    joint starts from the initial state (its history is reset).
+
+    A run that cannot go on (solver failure, a non-finite joint state, a penetration
+    beyond a joint's limit, a collapsed or endlessly retried step) returns
+    ``success=False`` with a message naming the time, the joint and what to try; what the
+    sensors recorded up to then is kept.  Ctrl-C raises ``KeyboardInterrupt``.
+    """
+    _check_system(mbs)
+    if not isinstance(settings, SolverSettings):
+        raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
+    if not mbs.systemIsConsistent:
+        mbs.Assemble()
+    joints = joints_of(mbs)
+    if settings.explicit:
+        constrained = _constraint_objects(mbs)
+        if constrained:
+            raise ValueError(
+                f"method {settings.method!r} is explicit and Exudyn's explicit solvers ignore constraints, but objects "
+                f"{', '.join(constrained)} are constraints; use 'generalized-alpha' or 'trapezoidal', "
+                "or a minimal-coordinate model")
+    for handle in joints:
+        handle.reset()
+        handle.set_impact_step(settings.impact_step or 0.0)
+    ss = simulation_settings(settings)
+    solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
+    min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
+    start = time.perf_counter()
+    with _Watchdog(mbs, min_step) as watchdog:
+        try:
+            ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
+            message = "" if ok else "Exudyn's solver reported failure"
+        except KeyboardInterrupt:
+            raise
+        except Exception as err:  # Exudyn raises its own error types on solver failure
+            ok, message = False, f"{type(err).__name__}: {err}"
+    wall = time.perf_counter() - start
+    for handle in joints:
+        handle.set_impact_step(0.0)  # a later mbs.SolveDynamic must not inherit it
+    it = mbs.sys["dynamicSolver"].it
+    steps, rejected = int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps)
+    t_reached = mbs.systemData.GetTime()
+    for handle in joints:
+        reason, when = handle.failure()
+        if reason:
+            return SimulationResult(False, f"stopped at t = {when:.6g} s, joint {handle.name or handle.objectNumber!r}: "
+                                    f"{reason}. {_advice(reason, handle)}; results up to then are kept",
+                                    wall, steps, rejected, t_reached)
+    if watchdog.problem:
+        return SimulationResult(False, f"stopped {watchdog.problem}; results up to then are kept", wall, steps,
+                                rejected, t_reached)
+    if not ok:
+        message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
+                    f"try a smaller `step`{' or tolerances' if settings.adaptive else ''})")
+    return SimulationResult(ok, message, wall, steps, rejected, t_reached)
+
+
+def _advice(reason: str, handle: ClearanceJointHandle) -> str:
+    if reason.startswith("penetration"):
+        c = handle.joint.geometry.clearance
+        return (f"The limit is {handle.max_penetration / c:.0%} of the clearance. The contact is too soft for the load, "
+                "the step too large, or a unit is off: check E (Pa) and lengths (m), try a smaller step, or raise "
+                "`max_penetration` if such penetrations are physical")
+    return "Try a smaller step or tighter tolerances"

@@ -1,0 +1,109 @@
+"""Contact history of a clearance joint: the state after each accepted time step.
+
+Pure Python (no exudyn).  A :class:`ContactState` is immutable: :meth:`ContactState.accept`
+returns the state after the next accepted step, and the record of a contact that ended
+in it.  The engine keeps two of them per joint (at the start and at the end of the last
+step) so that a step that is computed again starts from the right history; the compiled
+kernel (``exuclear/_kernel/clearance_kernel.cpp``, ``History`` and ``accept``) does the
+same, line by line.
+
+Onset velocity (docs/physics.md, section 2): ``v0`` is the penetration rate at the
+instant ``delta`` crossed zero.  In the step where contact begins, ``delta`` goes from
+``d0 <= 0`` (last accepted state) to ``d1 > 0`` (this state), and ``delta_dot`` is
+interpolated linearly in ``delta`` to ``delta = 0``:
+``v0 = dd0 + (dd1 - dd0) d0 / (d0 - d1)``.  This is exact when the contact starts at an
+accepted state (``d0 = 0``, the journal-bearing scene), with an error of order
+step^2 * acceleration otherwise.  The onset and end times are interpolated the same way.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, NamedTuple
+
+NO_STATE = float("-inf")  # ``delta`` before the first accepted state
+
+
+class ImpactRecord(NamedTuple):
+    """One contact, from onset to separation (SI units).
+
+    ``onset_time`` and the end (``onset_time + duration``) are interpolated between the
+    accepted steps around them; ``peak_force`` and ``max_penetration`` are the largest
+    values at accepted steps.
+    """
+
+    onset_time: float
+    onset_velocity: float
+    peak_force: float
+    duration: float
+    max_penetration: float
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """The contact history after an accepted state, and the joint's outputs there.
+
+    ``time`` [s] of the state; ``delta``, ``delta_dot`` its penetration and rate
+    (``delta = -inf``: no accepted state yet); ``in_contact`` and ``v0`` the current
+    contact's onset velocity; ``onsets`` the contacts begun and ``closed`` those ended
+    since the run began; ``onset_time``, ``peak_force`` and ``max_penetration`` describe
+    the current (or last) contact; ``normal_force``, ``tangential_force``,
+    ``slip_velocity``, ``ecc_x``, ``ecc_y`` are the outputs at this state.
+    """
+
+    time: float = 0.0
+    delta: float = NO_STATE
+    delta_dot: float = 0.0
+    in_contact: bool = False
+    v0: float = 0.0
+    onsets: int = 0
+    closed: int = 0
+    onset_time: float = 0.0
+    peak_force: float = 0.0
+    max_penetration: float = 0.0
+    normal_force: float = 0.0
+    tangential_force: float = 0.0
+    slip_velocity: float = 0.0
+    ecc_x: float = 0.0
+    ecc_y: float = 0.0
+
+    def onset_velocity(self, delta: float, delta_dot: float) -> float:
+        """``v0`` for a state (``delta > 0``) of the coming step; no side effects."""
+        if self.in_contact:
+            return self.v0
+        d0 = self.delta
+        if d0 == NO_STATE:  # no accepted state yet: the joint starts in contact
+            return delta_dot
+        return self.delta_dot + (delta_dot - self.delta_dot) * d0 / (d0 - delta)
+
+    def accept(self, kin: Any, joint: Any, time: float) -> tuple[ContactState, ImpactRecord | None]:
+        """The state after accepting the contact kinematics ``kin`` at ``time``.
+
+        ``joint`` (a :class:`exuclear.ClearanceJoint`) gives the forces recorded as
+        outputs.  Returns the new state and, when a contact ended in this step, its record.
+        """
+        delta, delta_dot = kin.delta, kin.delta_dot
+        new = {}
+        record = None
+        if delta > 0.0:
+            if not self.in_contact:
+                d0 = self.delta
+                share = d0 / (d0 - delta) if d0 != NO_STATE else 0.0
+                new.update(v0=self.onset_velocity(delta, delta_dot), in_contact=True, onsets=self.onsets + 1,
+                           onset_time=self.time + share * (time - self.time), peak_force=0.0, max_penetration=0.0)
+        else:
+            new["in_contact"] = False
+            if self.in_contact:  # the contact ended within this step
+                share = self.delta / (self.delta - delta)
+                end = self.time + share * (time - self.time)
+                record = ImpactRecord(self.onset_time, self.v0, self.peak_force, end - self.onset_time,
+                                      self.max_penetration)
+                new["closed"] = self.closed + 1
+        state = replace(self, delta=delta, delta_dot=delta_dot, time=time, ecc_x=kin.ex, ecc_y=kin.ey,
+                        slip_velocity=kin.v_t, **new)
+        if not state.in_contact:
+            return replace(state, normal_force=0.0, tangential_force=0.0), record
+        f_n = joint.law.normal_force(delta, delta_dot, state.v0)
+        f_t = joint.friction.coefficient(kin.v_t) * f_n if joint.friction.active else 0.0
+        return replace(state, normal_force=f_n, tangential_force=f_t,
+                       peak_force=f_n if f_n > state.peak_force else state.peak_force,
+                       max_penetration=delta if delta > state.max_penetration else state.max_penetration), record
