@@ -2,7 +2,7 @@
 
 Physics (pure Python, no exudyn): :mod:`~exuclear.contact`, :mod:`~exuclear.friction`,
 :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`, :mod:`~exuclear.joint`.
-Engine glue: :mod:`~exuclear.engine`.  See ``shared/spec/MODEL.md`` for the
+Engine glue: :mod:`~exuclear.engine`.  See ``docs/physics.md`` for the
 equations.
 """
 from ._checks import UnitWarning

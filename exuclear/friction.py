@@ -1,7 +1,7 @@
 """Friction laws: the friction coefficient as a function of the tangential slip.
 
 A friction law returns ``mu(v_T)``, odd in ``v_T``; the joint then applies
-``F_T = mu(v_T) F_N`` against the slip (MODEL.md section 3, the paper's eqs. 10-11).
+``F_T = mu(v_T) F_N`` against the slip (docs/physics.md section 3, eqs. (20)-(23); the paper's eqs. 10-11).
 Units: m/s for velocities.
 """
 from __future__ import annotations
@@ -16,7 +16,7 @@ from ._ops import FLOAT_OPS
 
 
 def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float, ops=FLOAT_OPS) -> float:
-    """Cubic step ``S(x; x0, h0, x1, h1) = h0 + (h1 - h0) s^2 (3 - 2 s)`` (MODEL.md section 3).
+    """Cubic step ``S(x; x0, h0, x1, h1) = h0 + (h1 - h0) s^2 (3 - 2 s)`` (docs/physics.md eq. (21)).
 
     ``s = clip((x - x0) / (x1 - x0), 0, 1)``; value and slope are continuous, with zero
     slope at both ends.  ``ops``: the math backend (:mod:`exuclear._ops`).
@@ -66,8 +66,8 @@ class NoFriction(FrictionLaw):
 class Coulomb(FrictionLaw):
     """Coulomb friction with a constant ``mu``, smoothed over ``|v_T| < v_eps``.
 
-    ``mu(v_T) = S(v_T; -v_eps, -mu, v_eps, mu)``: the sign function replaced by the
-    cubic step of MODEL.md section 3 so that the force is continuous in ``v_T``.
+    ``mu(v_T) = S(v_T; -v_eps, -mu, v_eps, mu)`` (docs/physics.md eq. (23)): the sign
+    function replaced by the cubic step of eq. (21) so that the force is continuous in ``v_T``.
 
     Parameters
     ----------
@@ -93,7 +93,7 @@ class Coulomb(FrictionLaw):
 
 @dataclass(frozen=True)
 class ModifiedCoulomb(FrictionLaw):
-    """The paper's modified Coulomb law, eq. (11) (MODEL.md section 3).
+    """The paper's modified Coulomb law, eq. (11) (docs/physics.md eq. (22)).
 
     - ``|v_T| >= v_d``: ``mu = mu_d sign(v_T)``
     - ``v_s <= |v_T| < v_d``: ``mu = S(|v_T|; v_s, mu_s, v_d, mu_d) sign(v_T)``

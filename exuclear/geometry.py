@@ -1,6 +1,7 @@
 """Geometry and kinematics of a planar revolute clearance joint.
 
-Notation and equations: MODEL.md section 1 (the paper's eqs. 1-6) and section 4.
+Notation and equations: docs/physics.md section 1, eqs. (1)-(8) (the paper's eqs. 1-6), and section 4,
+eqs. (24)-(26).
 Everything here is plain float arithmetic on scalars: it runs inside the per-step
 force callback, where NumPy's per-call overhead on 2-vectors would dominate.
 """
@@ -68,7 +69,7 @@ class BearingGeometry:
 
 
 class ContactKinematics(NamedTuple):
-    """Contact quantities of MODEL.md section 1 at one instant (all SI).
+    """Contact quantities of docs/physics.md section 1, eqs. (1)-(8), at one instant (all SI).
 
     ``ecc`` is ``|e|``; ``(nx, ny)`` the unit normal from bearing centre to journal
     centre; the tangent is ``t = (ny, -nx)``; ``delta = |e| - c`` (> 0: contact);
@@ -119,7 +120,7 @@ def kinematics_along(
 
 
 class JointLoads(NamedTuple):
-    """Forces and moments of MODEL.md section 4.
+    """Forces and moments of docs/physics.md section 4, eqs. (24)-(26).
 
     ``(fx, fy)`` acts on the journal body i at ``P_J`` with moment ``m_i``; the
     bearing body j gets ``(-fx, -fy)`` at ``P_B`` and moment ``m_j``.

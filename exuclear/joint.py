@@ -18,7 +18,7 @@ from .materials import Material, composite_modulus
 class ContactHistory:
     """Per-joint history: whether the last accepted state was in contact, and ``v0``.
 
-    ``v0`` (MODEL.md section 2) is the penetration rate at the instant ``delta``
+    ``v0`` (docs/physics.md section 2.3) is the penetration rate at the instant ``delta``
     crossed zero.  It is updated only by :meth:`accept`, once per accepted time step;
     force evaluations (Newton iterations, Jacobian perturbations, Runge-Kutta stages)
     call the side-effect-free :meth:`onset_velocity`.
@@ -26,7 +26,7 @@ class ContactHistory:
     Onset interpolation: in the step where contact begins, ``delta`` goes from
     ``d0 <= 0`` (last accepted state) to ``d1 > 0`` (trial state).  ``delta_dot`` is
     interpolated linearly in ``delta`` to ``delta = 0``:
-    ``v0 = dd0 + (dd1 - dd0) * d0 / (d0 - d1)``.  This is exact when the contact
+    ``v0 = dd0 + (dd1 - dd0) * d0 / (d0 - d1)`` (docs/physics.md eqs. (18)-(19)).  This is exact when the contact
     starts at an accepted state (``d0 = 0``, the journal-bearing scene) and has an
     error of order (step)^2 * acceleration otherwise, instead of order
     step * acceleration for taking ``dd1`` of the first penetrated state.

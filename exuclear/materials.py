@@ -1,7 +1,7 @@
 """Elastic materials of journal and bearing, and the composite modulus.
 
 Source: the paper (Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) 2017), Table 3
-for the moduli and eq. (9) for the composite modulus; see ``shared/spec/MODEL.md``.
+for the moduli and eq. (9) for the composite modulus; ``docs/physics.md`` eq. (10) and section 6.2.
 """
 from __future__ import annotations
 
@@ -45,7 +45,7 @@ class Material:
         return (1.0 - self.nu**2) / self.E
 
 
-#: The materials of the paper (its Table 3, restated in MODEL.md section 5.2).
+#: The materials of the paper (its Table 3, restated in docs/physics.md section 6.2).
 MATERIALS: dict[str, Material] = {
     "steel": Material(207e9, 0.30, "steel"),
     "ductile-iron": Material(173e9, 0.30, "ductile-iron"),

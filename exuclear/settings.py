@@ -58,7 +58,7 @@ class SolverSettings:
     recovery_steps : int
         Accepted steps between two doublings of the step after an impact (with
         ``impact_step``); default 100, i.e. 100 us at 1e-6 s, longer than one impact of
-        the paper's scenes (~40 us, MODEL.md section 6).
+        the paper's scenes (~40 us, docs/physics.md section 8).
     verbose : int
         Exudyn's verbose mode: 0 silent; 1 prints progress (time reached, time to go)
         every few seconds of a long run.

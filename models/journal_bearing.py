@@ -1,4 +1,4 @@
-"""Journal-bearing impact: the paper's example 1 (MODEL.md section 5.1), in Exudyn.
+"""Journal-bearing impact: the paper's example 1 (docs/physics.md section 6.1), in Exudyn.
 
 ::
 
@@ -39,7 +39,7 @@ from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_
 from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
-#: impact lasts about 40 us (MODEL.md section 6), so this samples it ~400 times.
+#: impact lasts about 40 us (docs/physics.md section 8), so this samples it ~400 times.
 IMPACT_STEP = 1e-7
 #: Relative slack on ``start_gap <= c``: R_B - R_J is not exact in floating point
 #: (10 mm - 9.9 mm = 0.1 mm - 3e-20 m), and a journal started 1e-20 m past the centre is

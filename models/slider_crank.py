@@ -1,4 +1,4 @@
-"""Slider-crank with a revolute clearance joint: the paper's example 2 (MODEL.md 5.2).
+"""Slider-crank with a revolute clearance joint: the paper's example 2 (docs/physics.md section 6.2).
 
 ::
 
@@ -386,7 +386,7 @@ def ideal_joint_force(params: SliderCrankParams, theta: np.ndarray) -> tuple[np.
     ``(B - A) x (-F) + (G - A) x m_rod g = I_G phi'' + (G - A) x m_rod a_G``.  This is
     the direction ``n`` the journal is pressed towards (force on the bearing ``F_N n``).
     Its magnitude is the ``contact_force`` column of an ideal run, the force the ideal
-    joint at B carries (``docs/physics.md`` eq. (28)).
+    joint at B carries (``docs/physics.md`` eqs. (30)-(32)).
 
     Parameters
     ----------

@@ -5,7 +5,7 @@ import pytest
 
 import exuclear
 
-#: The paper's example 1 (MODEL.md 5.1): R_J = 9.9 mm, R_B = 10 mm, L = 15 mm.
+#: The paper's example 1 (docs/physics.md section 6.1): R_J = 9.9 mm, R_B = 10 mm, L = 15 mm.
 PAPER_GEOMETRY = exuclear.BearingGeometry(9.9e-3, 10e-3, 15e-3)
 
 

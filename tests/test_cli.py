@@ -215,14 +215,15 @@ def test_max_penetration_option(tmp_path):
 
 
 def test_an_early_stop_prints_what_was_reached():
-    # a fixed RK44 step of 1e-4 s overshoots an impact past the penetration limit (test_hard_cases)
-    status, out, err = cli(sc, "--method", "rk44", "--step", "1e-4")
+    # the first impact (within 0.03 s, README) passes a 1 um penetration limit
+    status, out, err = cli(sc, "--max-penetration", "1e-6")
     assert status == 1
     assert "simulated 0.24 s (2 revolutions)" not in out
     line = next(x for x in out.splitlines() if "STOPPED EARLY" in x)
     reached = float(line.split("t = ")[1].split(" s")[0])
     stopped = float(err.split("stopped at t = ")[1].split(" s")[0])
-    assert 0.0 < reached <= stopped < 0.24 and stopped - reached <= 1e-4  # the last output, one step at most
+    # the last output lies at most one output interval (1e-5 s) or one step (<= 1e-4 s) before the stop
+    assert 0.0 < reached <= stopped < 0.03 and stopped - reached <= 1e-4
 
 
 # -- option combinations ---------------------------------------------------------------

@@ -1,7 +1,7 @@
 """The library (Exudyn element) against the independent SciPy reference.
 
 Source problems: examples 1 and 2 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2)
-(2017) 587-597, restated in MODEL.md 5.1 (journal-bearing impact) and 5.2 (slider-crank).
+(2017) 587-597, restated in docs/physics.md sections 6.1 (journal-bearing impact) and 6.2 (slider-crank).
 The comparisons and their tolerances are those of :mod:`validation.cross_check`; each
 tolerance carries its reason there (``JB_CRITERIA``, ``SC_CRITERIA``).
 
@@ -26,7 +26,7 @@ def _silent(line: str) -> None:
 
 
 # --------------------------------------------------------------------------------------
-# journal-bearing impact, MODEL.md 5.1
+# journal-bearing impact, docs/physics.md section 6.1
 # --------------------------------------------------------------------------------------
 def test_every_law_is_run_over_the_sweep():
     # the sweep of the paper's Figs. 4-5; only the elastic Hertz law rejects cr < 1
@@ -44,7 +44,7 @@ def test_journal_bearing_agrees_with_reference(law, cr):
 
 
 # --------------------------------------------------------------------------------------
-# slider-crank first impacts, MODEL.md 5.2: t <= 0.03 s holds every impact of the paper
+# slider-crank first impacts, docs/physics.md section 6.2: t <= 0.03 s holds every impact of the paper
 # case (cr 0.9, steel, no friction: 22 onsets, the last at 0.023 s)
 # --------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")

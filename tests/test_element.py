@@ -73,7 +73,7 @@ def test_elastic_generalized_forces_are_the_potential_gradient():
 
 
 def test_power_of_generalized_forces_equals_contact_dissipation():
-    # for any velocities, Q . q_t = -(F_N delta_dot + F_T v_T) (MODEL.md sections 1, 4):
+    # for any velocities, Q . q_t = -(F_N delta_dot + F_T v_T) (docs/physics.md eq. (27)):
     # the friction moments on both bodies included
     mbs, handle = _two_body_system(friction="coulomb:0.2", law="lankarani-nikravesh", cr=0.8)
     q = _contact_state(3e-6)

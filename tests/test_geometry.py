@@ -57,3 +57,20 @@ def test_history_onset_time_is_interpolated():
     assert h.onset_times == [pytest.approx(1.1)]
     h.reset()
     assert h.onsets == 0 and not h.in_contact
+
+
+def test_loads_conserve_momentum_and_turn_by_the_friction_couple(geometry):
+    # docs/physics.md eqs. (28)-(29): the forces on the two bodies cancel; their moments
+    # about any fixed point add up to delta F_T (the friction forces act at Q_J and Q_B,
+    # delta apart along n), here with both centres away from the origin
+    xb, yb = 0.31, -0.02
+    angle, ecc = 2.3, 1.07e-4  # delta = 7e-6 m
+    xj, yj = xb + ecc * math.cos(angle), yb + ecc * math.sin(angle)
+    kin = contact_kinematics(geometry, xj, yj, 0.4, 0.1, 3.0, xb, yb, -0.2, 0.05, -1.0)
+    f_n, f_t = 800.0, -60.0
+    loads = joint_loads(geometry, kin, f_n, f_t)
+    fx_j, fy_j = -loads.fx, -loads.fy  # the bearing's force, eq. (26)
+    torque = (xj * loads.fy - yj * loads.fx + loads.m_i) + (xb * fy_j - yb * fx_j + loads.m_j)
+    # round-off: lever arms of 0.3 m times forces of 800 N, relative 1e-16, against 4e-4 N m
+    assert torque == pytest.approx(kin.delta * f_t, rel=1e-9, abs=1e-12)
+    assert kin.delta == pytest.approx(7e-6, rel=1e-9)

@@ -1,6 +1,6 @@
 """Hard cases (issue 6): stability at the edges, failure handling, bad input.
 
-Source problem: MODEL.md (the paper's journal-bearing scene 5.1 and slider-crank 5.2)
+Source problem: docs/physics.md (the paper's journal-bearing scene, section 6.1, and slider-crank, 6.2)
 and the study :mod:`validation.hard_cases`, whose helpers these tests use; the bad
 inputs and their documented replies are those of :mod:`validation.bad_input` and
 ``docs/bad_input.md``.  The full study is marked slow.
@@ -33,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # --------------------------------------------------------------------------------------
 def test_static_penetration_solves_the_law():
     # K_eff(delta) delta^1.5 = m g for Wang-Liu (delta-dependent K_eff), and the closed form
-    # (m g / K)^(2/3) for the constant-stiffness Hertz law (MODEL.md 2); Brent's method
+    # (m g / K)^(2/3) for the constant-stiffness Hertz law (docs/physics.md eqs. (9), (13)); Brent's method
     # converges to ~1e-14 relative, so 1e-12 only allows for round-off
     law = JournalBearingParams.paper().joint().law
     load = 0.04 * 9.81
@@ -77,7 +77,7 @@ def test_resting_journal_energy_audit(resting):
 
 
 def test_grazing_impact_agrees_with_reference():
-    # v0 = 1e-6 m/s (MODEL.md 6: the floor's regime); the reference integrates the same law
+    # v0 = 1e-6 m/s (docs/physics.md section 8: the floor's regime); the reference integrates the same law
     # with DOP853 at rtol 1e-11, so the departure velocities agree to its tolerance
     params = JournalBearingParams.paper(impact_velocity=hc.SLOW_IMPACT_SPEED, end_time=hc.SLOW_IMPACT_TIME)
     settings = exuclear.SolverSettings(end_time=params.end_time, method="dopri5", step=hc.SLOW_STEP,
@@ -97,7 +97,7 @@ LOW_CR_LAWS, _ = hc.low_restitution_laws()
 
 
 def test_every_law_but_the_elastic_one_takes_low_restitution():
-    # Hertz is elastic (cr = 1 only, MODEL.md 2); every other law must accept cr = 0.05
+    # Hertz is elastic (cr = 1 only, docs/physics.md section 7); every other law must accept cr = 0.05
     assert sorted(LOW_CR_LAWS) == sorted(set(exuclear.CONTACT_LAWS) - {"hertz"})
 
 

@@ -1,4 +1,4 @@
-"""The clearance-joint element in Exudyn on the paper's journal-bearing impact (MODEL.md 5.1)."""
+"""The clearance-joint element in Exudyn on the paper's journal-bearing impact (docs/physics.md section 6.1)."""
 from __future__ import annotations
 
 import math

@@ -58,7 +58,7 @@ def test_elastic_part_increases_with_penetration(name, geometry, e_star):
 
 
 def test_wang_liu_formula_by_hand(geometry, e_star):
-    # paper eqs. (7)-(8), MODEL.md section 2, evaluated independently
+    # paper eqs. (7)-(8), docs/physics.md eqs. (9)-(12), evaluated independently
     law = contact_law("wang-liu", geometry, e_star, 0.5)
     delta, rate, v0 = 2e-6, 0.1, 0.3
     k = math.pi * e_star * 0.015 / 2 * math.sqrt(1 / (2 * (1e-4 + delta)))
@@ -111,7 +111,7 @@ def test_paper_friction_values_and_oddness():
 def test_paper_friction_value_and_slope_continuous_at_transitions(v):
     mu, h = ModifiedCoulomb.paper(), 1e-12
     assert mu(v - h) == pytest.approx(mu(v + h), abs=1e-9)
-    # zero slope on both sides of every transition of the cubic step (MODEL.md section 3).
+    # zero slope on both sides of every transition of the cubic step (docs/physics.md eq. (21)).
     # Tolerance: |mu''| <= 6 * 0.3 / (2e-4)^2 = 4.5e7 near v_s, so the one-sided difference
     # quotient is off by up to mu'' h / 2 = 2.3e-5, plus rounding 1e-16 / h = 1e-4.
     assert (mu(v + h) - mu(v)) / h == pytest.approx(0.0, abs=1e-3)
@@ -149,7 +149,7 @@ def test_force_expression_is_normal_force_on_floats(name, geometry, e_star):
 
 @pytest.mark.parametrize("law", [ModifiedCoulomb.paper(), exuclear.Coulomb(0.1, v_eps=2e-4)], ids=["paper", "coulomb"])
 def test_friction_expression_matches_the_branch_formula(law):
-    # eq. (11) of the paper written with branches, as MODEL.md section 3 states it; the
+    # eq. (11) of the paper written with branches, as docs/physics.md eq. (22) states it; the
     # laws evaluate one branch-free expression (shared with the compiled element)
     def by_branches(v):
         if isinstance(law, exuclear.Coulomb):

@@ -25,12 +25,12 @@ SHORT_HORIZON = 0.02
 
 
 # --------------------------------------------------------------------------------------
-# (a) journal-bearing impact, MODEL.md 5.1
+# (a) journal-bearing impact, docs/physics.md section 6.1
 # --------------------------------------------------------------------------------------
 @pytest.mark.parametrize("cr, published", [(0.3, 0.098), (0.5, 0.145), (0.9, 0.269)])
 def test_journal_bearing_paper_departure_velocities(cr, published):
     # source: the paper, section 5.1 (Wang-Liu law, steel-steel, L = 15 mm, impact at
-    # 0.3 m/s), restated in MODEL.md 5.1; the published values have 3 digits, so 1 %
+    # 0.3 m/s), restated in docs/physics.md section 6.1; the published values have 3 digits, so 1 %
     out = journal_bearing.simulate(JournalBearingParams.paper(cr=cr))
     assert out["success"], out["message"]
     assert out["departure_velocity"] == pytest.approx(published, rel=0.01)

@@ -1,4 +1,4 @@
-"""Slider-crank (MODEL.md 5.2): ideal mechanism, formulations, clearance limit, energy audit."""
+"""Slider-crank (docs/physics.md section 6.2): ideal mechanism, formulations, clearance limit, energy audit."""
 from __future__ import annotations
 
 from dataclasses import replace

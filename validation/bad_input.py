@@ -39,7 +39,7 @@ from models.slider_crank import SliderCrankParams
 
 DOC = os.path.join("docs", "bad_input.md")
 
-#: The paper's journal and bearing (MODEL.md 5.1), as the API rows write them.
+#: The paper's journal and bearing (docs/physics.md section 6.1), as the API rows write them.
 PAPER = {"journal_radius": 9.9e-3, "bearing_radius": 10e-3, "length": 15e-3}
 #: A path whose parent is a regular file, so nothing can be written there on any machine.
 UNWRITABLE = os.path.join(os.path.abspath(__file__), "out")

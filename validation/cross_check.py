@@ -3,7 +3,7 @@
 Source problems: examples 1 and 2 of X. Wang, G. Liu, S. Ma, R. Tong, "Effects of
 restitution coefficient and material characteristics on dynamic response of planar
 multi-body systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017)
-587-597, restated in ``shared/spec/MODEL.md`` sections 5.1 (journal-bearing impact) and
+587-597, restated in ``docs/physics.md`` sections 6.1 (journal-bearing impact) and
 5.2 (slider-crank with a clearance joint between rod and slider).
 
 The library (:mod:`models.journal_bearing`, :mod:`models.slider_crank`, through the
@@ -69,7 +69,7 @@ SC_CRS = (0.3, 0.9)
 SC_JOURNALS = ("steel", "aluminium")
 SC_FRICTIONS = ("none", "paper")
 SC_BEARING = "steel"
-#: Crank revolutions of the full slider-crank runs (MODEL.md 5.2: at least two).
+#: Crank revolutions of the full slider-crank runs (docs/physics.md section 6.2: at least two).
 REVOLUTIONS = 2.0
 #: Horizon of the quick slider-crank runs [s]: the paper case's impacts all begin before
 #: 0.024 s (measured by the reference); after that the journal stays in contact.
@@ -94,7 +94,7 @@ CONVERGENCE_CASE = (0.9, "steel", "none")
 #: 0.3 kg) = 3.5e-9 m = 3.5e-5 c.
 GRID_STEP = 2e-6
 #: Output interval on which the reference's peak force is read [s]: 1/400 of a ~40 us
-#: impact (MODEL.md 6), so sampling lowers a sine-like peak by < (pi / 400)^2 / 2 = 3e-5.
+#: impact (docs/physics.md section 8), so sampling lowers a sine-like peak by < (pi / 400)^2 / 2 = 3e-5.
 PEAK_STEP = 1e-7
 #: Perturbation of the sensitivity check [m]: the clearance is enlarged by this (the
 #: journal radius shrinks by it), which shifts the journal's free path to every wall by
@@ -803,7 +803,7 @@ def write_report(path: str, x: CrossCheck) -> str:
     parts = [
         "# Cross-check: exuclear (Exudyn) against the independent SciPy reference\n",
         "Source problems: examples 1 and 2 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) (2017) 587-597 "
-        "(MODEL.md 5.1 and 5.2). The reference (`validation/reference`) shares only the contact and friction laws "
+        "(docs/physics.md sections 6.1 and 6.2). The reference (`validation/reference`) shares only the contact and friction laws "
         "with the library; kinematics, equations of motion and integration are its own. Command: "
         f"`python -m validation.cross_check{' --quick' if x.quick else ''}` ({'quick run: ' if x.quick else ''}"
         f"slider-crank over {horizon}; total runtime {x.runtime:.0f} s).\n",
@@ -827,14 +827,14 @@ def write_report(path: str, x: CrossCheck) -> str:
         "journal's distance to every wall at the start). Point-by-point comparison ends where the two references "
         f"part by more than {SENSITIVITY_LIMIT:g} c.\n",
         sensitivity_md(x.references) + "\n", _sensitivity_sentence(x.references) + "\n",
-        "## Journal-bearing impact (MODEL.md 5.1)\n",
+        "## Journal-bearing impact (docs/physics.md section 6.1)\n",
         "Relative differences (library - reference) / reference.\n",
         impacts_md(x.impacts) + "\n",
     ]
     if x.skipped:
         parts.append("Not run (the law rejects the cr):\n\n" + "\n".join(f"- {s}" for s in x.skipped) + "\n")
     parts += [
-        "## Slider-crank (MODEL.md 5.2)\n",
+        "## Slider-crank (docs/physics.md section 6.2)\n",
         "Wang-Liu law, steel bearing. Per row: max abs(de)/c, the largest distance between the library's and the "
         "reference's journal-centre paths relative to c; peak force, (library - reference) / reference; impact "
         "counts over the run (library: its `onset_times`; reference: its events); the largest shift of an onset, "

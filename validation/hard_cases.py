@@ -1,9 +1,9 @@
 """Hard cases: numerical stability of the clearance joint at the edges of its use.
 
-Source problem: the revolute clearance joint of ``shared/spec/MODEL.md`` (X. Wang, G. Liu,
+Source problem: the revolute clearance joint of ``docs/physics.md`` (X. Wang, G. Liu,
 S. Ma, R. Tong, J. Mech. Sci. Technol. 31(2) (2017) 587-597): its journal-bearing scene
-(MODEL.md 5.1) and its slider-crank (MODEL.md 5.2), pushed to where integrators and
-contact laws get into trouble (MODEL.md 6).  Every case states its pass criterion
+(docs/physics.md section 6.1) and its slider-crank (docs/physics.md section 6.2), pushed to where integrators and
+contact laws get into trouble (docs/physics.md section 8).  Every case states its pass criterion
 before it runs (:data:`CASES`); the report is a table of case, criterion, measured
 value, pass/fail and wall time, written to ``results/hard_cases/hard_cases.md`` with a
 CSV copy and figures.
@@ -24,7 +24,7 @@ settles where the elastic part of the law carries it (``delta_dot = 0``):
 
     K_eff(delta_s) * delta_s^1.5 = m g,   K_eff(delta) = (pi E* L / 2) sqrt(1 / (2 (c + delta)))
 
-for the Wang-Liu law (MODEL.md 2).  ``K_eff`` depends on ``delta``, so ``delta_s`` is
+for the Wang-Liu law (docs/physics.md eqs. (9), (11)).  ``K_eff`` depends on ``delta``, so ``delta_s`` is
 the root of ``F_el(delta) - m g`` on ``(0, c]`` (:func:`static_penetration`, Brent's
 method; ``F_el`` rises monotonically there).  For the paper's journal (0.04 kg, steel,
 L = 15 mm, c = 0.1 mm) it is 16.25 nm.  The largest penetration after the journal is set
@@ -44,7 +44,7 @@ multiplier), where the contact work is summed as generalized-alpha's own energy 
 does (:func:`_contact_energy`).  The residual is judged against the gross work of the
 contact forces (:data:`AUDIT_LIMIT`).
 
-The floor ``v_min`` of the onset velocity (MODEL.md 2) is compared at 1e-4, 1e-3 (the
+The floor ``v_min`` of the onset velocity (docs/physics.md eq. (17)) is compared at 1e-4, 1e-3 (the
 default) and 1e-2 m/s on the low-speed cases (:func:`floor_study`).
 
 Run from the repository root::
@@ -120,12 +120,12 @@ LOW_CRS = (0.05, 0.1)
 LOW_CR_STEP = 2e-8
 #: Polymer journal of the soft-material case (the issue): E = 3 GPa, nu = 0.4.
 POLYMER = exuclear.Material(3e9, 0.4, "polymer")
-#: Slider-crank cases run at the material sweep's restitution (MODEL.md 5.2: cr = 0.3).
+#: Slider-crank cases run at the material sweep's restitution (docs/physics.md section 6.2: cr = 0.3).
 MATERIAL_CR = 0.3
 #: High crank speed [rpm] and the long run [revolutions] (the issue).
 HIGH_RPM = 5000.0
 LONG_REVOLUTIONS = 20.0
-#: Revolutions of the slider-crank audit runs: MODEL.md 5.2 asks for at least two.
+#: Revolutions of the slider-crank audit runs: docs/physics.md section 6.2 asks for at least two.
 REVOLUTIONS = 2.0
 #: Revolutions in the quick run.
 QUICK_REVOLUTIONS = 0.5
@@ -446,7 +446,7 @@ class JournalRun(NamedTuple):
 
 def resting_params(start_gap: float = 0.0, v_min: float = exuclear.V_MIN_DEFAULT, gravity: float = GRAVITY,
                    end_time: float = RESTING_TIME) -> JournalBearingParams:
-    """The paper's journal (MODEL.md 5.1) at rest under gravity, ``start_gap`` from the wall."""
+    """The paper's journal (docs/physics.md section 6.1) at rest under gravity, ``start_gap`` from the wall."""
     return JournalBearingParams.paper(cr=RESTING_CR, impact_velocity=0.0, gravity=gravity, start_gap=start_gap,
                                       v_min=v_min, end_time=end_time)
 
@@ -808,7 +808,7 @@ def case_three_joints(quick: bool) -> Outcome:
 # the floor v_min
 # =======================================================================================
 
-#: Floors compared [m/s]; 1e-3 is the default (MODEL.md 2).
+#: Floors compared [m/s]; 1e-3 is the default (docs/physics.md eq. (17)).
 FLOORS = (1e-4, 1e-3, 1e-2)
 #: Impact speeds of the effective-restitution comparison [m/s] (Wang-Liu, cr = 0.5: a
 #: damped law, where the floor shows).
@@ -1152,7 +1152,7 @@ def write_report(path: str, study: Study, figures: Sequence[str]) -> str:
     failing = study.failures()
     parts = [
         "# Hard cases: numerical stability of the clearance joint\n",
-        "Source problem: the clearance joint of `shared/spec/MODEL.md` (Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. "
+        "Source problem: the clearance joint of `docs/physics.md` (Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. "
         "31(2) (2017) 587-597): the journal-bearing scene (5.1) and the slider-crank (5.2), at the edges of their "
         f"use. Command: `python -m validation.hard_cases{' --quick' if study.quick else ''}`"
         f"{' (quick run: shorter runs)' if study.quick else ''}; total runtime {study.runtime:.0f} s. Wall times are "
@@ -1178,7 +1178,7 @@ def write_report(path: str, study: Study, figures: Sequence[str]) -> str:
         parts += [
             "## The floor v_min of the onset velocity\n",
             "Grazing and permanent contact make the onset velocity v0 tiny; the damping term D delta_dot / v0 is "
-            f"then evaluated with max(v0, v_min) (MODEL.md 2). Floors compared: {', '.join(f'{v:g}' for v in FLOORS)} m/s. "
+            f"then evaluated with max(v0, v_min) (docs/physics.md eq. (17)). Floors compared: {', '.join(f'{v:g}' for v in FLOORS)} m/s. "
             f"Effective restitution: Wang-Liu law, cr = {FLOOR_CR:g}, the paper's journal-bearing scene at the impact "
             "speeds shown. Resting: the journal set down at rest under gravity (as in the case above); loaded "
             f"resting: the same under {LOADED_GRAVITY:g} m/s^2 (100 N); dropped: released at the centre; slider-crank: "

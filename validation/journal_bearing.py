@@ -3,7 +3,7 @@
 Source problem: example 1 of X. Wang, G. Liu, S. Ma, R. Tong, "Effects of restitution
 coefficient and material characteristics on dynamic response of planar multi-body
 systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-597,
-restated in ``shared/spec/MODEL.md`` section 5.1: a 0.04 kg journal starts touching a
+restated in ``docs/physics.md`` section 6.1: a 0.04 kg journal starts touching a
 fixed bearing (R_B = 10 mm, R_J = 9.9 mm) and moves into it at 0.3 m/s.
 
 Every run goes through :func:`models.journal_bearing.run`; this script only chooses
@@ -49,7 +49,7 @@ CR_FIGS_6_7 = 0.9
 CR_GRID = tuple(round(0.1 * k, 1) for k in range(1, 11))
 
 #: Published departure velocities [m/s] of the Wang-Liu law, keyed by cr.
-#: Source: the paper, section 5.1 (restated in MODEL.md section 5.1).
+#: Source: the paper, section 5.1 (restated in docs/physics.md section 6.1).
 PAPER_WANG_LIU_DEPARTURE = {0.3: 0.098, 0.5: 0.145, 0.9: 0.269}
 
 M_TO_UM = 1e6  # penetrations are shown in micrometres, as in the paper's figures
@@ -103,14 +103,14 @@ def _length_sweep() -> tuple[Variant, ...]:
 
 def _material_pair() -> tuple[Variant, ...]:
     # Fig. 7's "steel-copper": the journal is copper and the bearing steel, as in the
-    # paper's slider-crank material sweep (MODEL.md 5.2), where the bearing stays steel.
+    # paper's slider-crank material sweep (docs/physics.md section 6.2), where the bearing stays steel.
     return tuple(Variant(f"{j} / {b}", f"{j} journal, {b} bearing",
                          {"journal_material": j, "bearing_material": b, "cr": CR_FIGS_6_7})
                  for j, b in (("steel", "steel"), ("copper", "steel")))
 
 
 def paper_cases() -> tuple[Case, ...]:
-    """The four cases of the paper's Figs. 4-7 (MODEL.md section 5.1)."""
+    """The four cases of the paper's Figs. 4-7 (docs/physics.md section 6.1)."""
     return (
         Case("fig4_wang_liu_cr", "Fig. 4: cr sweep, Wang-Liu law (L = 15 mm, steel-steel)", "cr",
              _cr_sweep("wang-liu")),
@@ -287,7 +287,7 @@ def _intro_md(runner: ImpactRunner) -> str:
     return (
         "# Journal-bearing impact: the paper's Figs. 4-7\n\n"
         "Source problem: example 1 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) (2017) "
-        "587-597 (MODEL.md section 5.1). A journal of mass "
+        "587-597 (docs/physics.md section 6.1). A journal of mass "
         f"{p.mass:g} kg starts touching a fixed bearing (R_B = {p.bearing_radius * 1e3:g} mm, "
         f"R_J = {p.journal_radius * 1e3:g} mm, c = {(p.bearing_radius - p.journal_radius) * 1e3:.1f} mm) "
         f"and moves into it at v0 = {p.impact_velocity:g} m/s; no gravity, friction or rotation. "
@@ -317,7 +317,7 @@ def write_report(path: str, runner: ImpactRunner, cases: list[tuple[Case, CaseRo
     parts = [_intro_md(runner)]
     parts += [_case_section_md(case, rows) for case, rows in cases]
     parts.append("## Effective restitution (departure speed / impact speed) of every law\n\n"
-                 "Scene of MODEL.md 5.1 (L = 15 mm, steel-steel, v0 = "
+                 "Scene of docs/physics.md section 6.1 (L = 15 mm, steel-steel, v0 = "
                  f"{JournalBearingParams.paper().impact_velocity:g} m/s); CSV: `effective_restitution.csv`.\n\n"
                  + restitution_md(restitution) + "\n")
     parts.append(_failures_md(runner.failures()))

@@ -3,7 +3,7 @@
 Source problem: example 2 of X. Wang, G. Liu, S. Ma, R. Tong, "Effects of restitution
 coefficient and material characteristics on dynamic response of planar multi-body
 systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-597,
-restated in ``shared/spec/MODEL.md`` section 5.2: a crank turning at 500 rpm drives a
+restated in ``docs/physics.md`` section 6.2: a crank turning at 500 rpm drives a
 slider through a connecting rod; the rod-slider joint has a radial clearance of 0.1 mm.
 
 Every run goes through :mod:`models.slider_crank`; this script chooses the cases,
@@ -53,7 +53,7 @@ CR_SWEEP = (0.3, 0.5, 0.7, 0.9)
 JOURNAL_MATERIALS = ("steel", "ductile-iron", "copper", "aluminium")
 #: Restitution coefficient of the material sweep.
 MATERIAL_CR = 0.3
-#: Friction laws every sweep runs with (MODEL.md section 3: the paper leaves it open).
+#: Friction laws every sweep runs with (docs/physics.md section 3: the paper leaves it open).
 FRICTIONS = ("none", "paper")
 
 #: DOPRI5 tolerances of the clearance runs.  The paper's rtol 1e-6 changes the number
@@ -61,7 +61,7 @@ FRICTIONS = ("none", "paper")
 #: the energy audit of tests/test_slider_crank.py by 4 %; rtol 1e-8 holds it to 0.1 %.
 #: atol 1e-12 m is 1e-8 of the clearance.
 RTOL, ATOL = 1e-8, 1e-12
-#: The paper's largest step [s] (MODEL.md 5.2), used for the figures that reproduce it.
+#: The paper's largest step [s] (docs/physics.md section 6.2), used for the figures that reproduce it.
 PAPER_MAX_STEP = 1e-5
 #: (rtol, atol) of the tolerance ladder.
 TOLERANCE_LADDER = ((1e-6, 1e-9), (RTOL, ATOL), (1e-10, 1e-14))
@@ -141,7 +141,7 @@ class Sweep:
 
 
 def paper_sweeps(revolutions: float) -> tuple[Sweep, ...]:
-    """The restitution and material sweeps of MODEL.md 5.2, each with both friction laws."""
+    """The restitution and material sweeps of docs/physics.md section 6.2, each with both friction laws."""
     sweeps = []
     for friction in FRICTIONS:
         base = {"friction": friction, "revolutions": revolutions}
@@ -878,8 +878,8 @@ def claim_dead_points_md(done: Sequence[tuple[Sweep, SweepRows]], diag: Diagnost
         f"{_span([h.late_min_force for h in hist], '.1f')} N, comes at θ ≈ "
         f"{_span([h.late_min_angle % 360.0 for h in hist], '.0f')}° mod 360, next to the sign change of the "
         f"horizontal force); contact fraction within the windows {_span([h.dead_contact for h in hist], '.3f')}.",
-        "- *cr hardly matters once the contact is permanent, because v0 is frozen at a tiny value.* MODEL.md "
-        "section 2 keeps v0, the penetration rate at the onset of the current contact, until the contact ends. "
+        "- *cr hardly matters once the contact is permanent, because v0 is frozen at a tiny value.* docs/physics.md "
+        "section 2.3 keeps v0, the penetration rate at the onset of the current contact, until the contact ends. "
         "The start-up bounces lose speed one after another; the first impact has v0 = "
         f"{_span([h.v0_first for h in hist], '.4f')} m/s, the last (permanent) contact "
         f"{_span([h.v0_last for h in hist], '.2e')} m/s. The hysteresis term D·δ̇/v0 of the permanent contact is "
@@ -1091,8 +1091,8 @@ def frozen_md(diag: Diagnostics, done: Sequence[tuple[Sweep, SweepRows]]) -> str
         f"{exuclear.V_MIN_DEFAULT:g} m/s to the first impact's onset speed {diag.frozen_v_min:.4f} m/s "
         "(v0_eff = max(v0, v_min)); restitution sweeps (cr = "
         f"{', '.join(f'{cr:g}' for cr in CR_SWEEP)}):\n\n" + markdown_table(_SHORT_HEADER, rows) + "\n\n"
-        + "\n".join(summaries) + "\n\nThe paper does not say how it handles v0 in a long contact; MODEL.md fixes "
-        "it (the onset rate of the current contact, floored at 1e-3 m/s) and the library keeps it.")
+        + "\n".join(summaries) + "\n\nThe paper does not say how it handles v0 in a long contact; docs/physics.md fixes "
+        "it (section 2.3: the onset rate of the current contact, floored at 1e-3 m/s) and the library keeps it.")
 
 
 # -- report ----------------------------------------------------------------------------
@@ -1102,7 +1102,7 @@ def _intro_md(revolutions: float) -> str:
     return (
         "# Slider-crank with a revolute clearance joint: the paper's Figs. 10-20\n\n"
         "Source problem: example 2 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) (2017) 587-597 "
-        f"(MODEL.md section 5.2). Crank {p.crank_length:g} m at {p.crank_speed * 30 / math.pi:.0f} rpm, rod "
+        f"(docs/physics.md section 6.2). Crank {p.crank_length:g} m at {p.crank_speed * 30 / math.pi:.0f} rpm, rod "
         f"{p.rod_length:g} m, slider {p.slider_mass:g} kg; clearance joint between rod and slider, R_B = "
         f"{p.bearing_radius * 1e3:g} mm, c = {p.clearance * 1e3:g} mm, L = {p.bearing_length * 1e3:g} mm, Wang-Liu "
         f"law; the journal starts centred. {revolutions:g} revolutions.\n\n"
@@ -1124,7 +1124,7 @@ def _intro_md(revolutions: float) -> str:
 
 
 def _claims_summary_md(claims: Sequence[tuple[str, str, str]]) -> str:
-    return "## The paper's claims\n\n" + markdown_table(["claim (MODEL.md 5.2)", "verdict"],
+    return "## The paper's claims\n\n" + markdown_table(["claim (docs/physics.md section 6.2)", "verdict"],
                                                     [[name, verdict] for name, verdict, _ in claims]) + "\n"
 
 
@@ -1168,7 +1168,7 @@ def write_report(path: str, revolutions: float, done: Sequence[tuple[Sweep, Swee
     parts.append("## Diagnostics\n\n### Solver tolerance\n\nThe two extreme cases at three DOPRI5 tolerances "
                  "(outputs every 1e-5 s). CSV: `diagnostics_tolerance.csv`.\n\n" + tolerance_md(diag) + "\n")
     parts.append("### Contact history at every accepted step\n\nThe same runs recording every accepted step "
-                 "(`v0` is the joint's onset speed, see MODEL.md section 2). CSV: `diagnostics_history.csv`. "
+                 "(`v0` is the joint's onset speed, see docs/physics.md section 2.3). CSV: `diagnostics_history.csv`. "
                  "![contact history](diagnostic_contact_history.png)\n\n" + history_table_md(diag, [s for s, _ in done])
                  + "\n\n" + sampling_md(done, diag) + "\n")
     parts.append("### v0 floored at the first impact's speed\n\nCSV: `diagnostics_frozen_v0.csv`. "

@@ -1,7 +1,7 @@
 """Work-precision study: simulation wall time against error, for every configuration.
 
 Source problems: examples 1 and 2 of X. Wang, G. Liu, S. Ma, R. Tong, J. Mech. Sci.
-Technol. 31(2) (2017) 587-597 (MODEL.md 5.1 and 5.2): the slider-crank with its
+Technol. 31(2) (2017) 587-597 (docs/physics.md sections 6.1 and 6.2): the slider-crank with its
 clearance joint (cr 0.9 and 0.3, steel, no friction, two crank revolutions) and the
 journal-bearing impact (Wang-Liu, cr 0.9).
 
@@ -397,7 +397,7 @@ def figure(points: Sequence[Point], path: str) -> str:
 
 def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: Sequence[Profile] = ()) -> str:
     lines = ["# Work-precision study", "",
-             "Source problems: MODEL.md 5.1 (journal-bearing impact, Wang-Liu cr 0.9) and 5.2 (slider-crank, steel, "
+             "Source problems: docs/physics.md sections 6.1 (journal-bearing impact, Wang-Liu cr 0.9) and 6.2 (slider-crank, steel, "
              "no friction, 2 crank revolutions). Command: `python -m validation.work_precision` "
              f"(median of {repeats} runs per point; total runtime {runtime:.0f} s).", "",
              "Error: slider-crank, max |e - e_ref| / c over the run at the run's output instants, against DOP853 at "

@@ -1,8 +1,8 @@
-"""Independent SciPy reference solver for the clearance-joint scenes of MODEL.md section 5.
+"""Independent SciPy reference solver for the clearance-joint scenes of docs/physics.md section 6.
 
 What it shares with exuclear is the physics of the laws only: :func:`exuclear.make_joint`
 builds the normal and friction laws and the reference calls ``ContactLaw.normal_force``
-and ``FrictionLaw.coefficient``.  The contact geometry (MODEL.md section 1), the loads
+and ``FrictionLaw.coefficient``.  The contact geometry (docs/physics.md section 1), the loads
 (section 4), the kinematics, the equations of motion (Lagrange, minimal coordinates) and
 the integration (:func:`scipy.integrate.solve_ivp` with event-located contact phases) are
 written here again, so that a disagreement with the Exudyn path points at assembly or
@@ -11,9 +11,9 @@ integration, not at the laws.
 Modules
 -------
 journal_bearing
-    The one-body impact of MODEL.md 5.1.
+    The one-body impact of docs/physics.md section 6.1.
 slider_crank
-    The slider-crank of MODEL.md 5.2 (clearance joint at the rod-slider joint) and its
+    The slider-crank of docs/physics.md section 6.2 (clearance joint at the rod-slider joint) and its
     ideal closed form.
 """
 from . import journal_bearing, slider_crank

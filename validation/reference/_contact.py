@@ -1,6 +1,6 @@
 """Clearance-joint geometry and loads of the reference solver, written independently.
 
-MODEL.md sections 1 and 4 again, in the reference's own words.  From exuclear only the
+docs/physics.md sections 1 and 4 again, in the reference's own words.  From exuclear only the
 laws are taken: :func:`exuclear.make_joint` builds them, and the reference calls
 :meth:`ContactLaw.normal_force` and :meth:`FrictionLaw.coefficient`, nothing else.
 
@@ -26,9 +26,9 @@ class Laws(NamedTuple):
     Attributes
     ----------
     normal_force : callable
-        ``F_N(delta, delta_dot, v0) -> float`` [N], MODEL.md section 2.
+        ``F_N(delta, delta_dot, v0) -> float`` [N], docs/physics.md section 2.
     friction_coefficient : callable
-        ``mu(v_T) -> float``, odd in ``v_T``, MODEL.md section 3.
+        ``mu(v_T) -> float``, odd in ``v_T``, docs/physics.md section 3.
     frictional : bool
         False when ``mu`` is identically zero (the friction work is then skipped).
     """
@@ -51,7 +51,7 @@ def build_laws(*, journal_radius: float, bearing_radius: float, length: float, l
 def gap(ex: float, ey: float, vex: float, vey: float, clearance: float) -> tuple[float, float]:
     """Penetration and its rate from the eccentricity and its time derivative.
 
-    ``delta = |e| - c`` and ``delta_dot = d|e|/dt = (e . e_dot) / |e|`` (MODEL.md 1).  At
+    ``delta = |e| - c`` and ``delta_dot = d|e|/dt = (e . e_dot) / |e|`` (docs/physics.md section 1).  At
     ``|e| = 0`` the one-sided derivative ``|e_dot|`` is returned (only the centred
     initial state of the slider-crank lands there, far from any contact).
 
@@ -69,7 +69,7 @@ def gap(ex: float, ey: float, vex: float, vey: float, clearance: float) -> tuple
 def contact_kinematics(ex: float, ey: float, vex: float, vey: float, omega_i: float, omega_j: float,
                        journal_radius: float, bearing_radius: float,
                        clearance: float) -> tuple[float, float, float, float, float]:
-    """Contact quantities of MODEL.md section 1 for ``|e| > 0``.
+    """Contact quantities of docs/physics.md section 1 for ``|e| > 0``.
 
     Parameters
     ----------
@@ -99,7 +99,7 @@ def contact_kinematics(ex: float, ey: float, vex: float, vey: float, omega_i: fl
 
 def journal_loads(nx: float, ny: float, f_n: float, f_t: float, journal_radius: float,
                   bearing_radius: float) -> tuple[float, float, float, float]:
-    """Loads of MODEL.md section 4 from the force magnitudes.
+    """Loads of docs/physics.md section 4 from the force magnitudes.
 
     ``F_i = -F_N n - F_T t`` on the journal at ``P_J``; ``M_i = (R_J n) x (-F_T t)``;
     ``F_j = -F_i`` on the bearing at ``P_B``; ``M_j = (R_B n) x (F_T t)``.  With

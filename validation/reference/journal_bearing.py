@@ -1,4 +1,4 @@
-"""SciPy reference for the journal-bearing impact (MODEL.md section 5.1, the paper's example 1).
+"""SciPy reference for the journal-bearing impact (docs/physics.md section 6.1, the paper's example 1).
 
 ::
 

@@ -1,4 +1,4 @@
-"""SciPy reference for the slider-crank with a clearance joint (MODEL.md 5.2, the paper's example 2).
+"""SciPy reference for the slider-crank with a clearance joint (docs/physics.md section 6.2, the paper's example 2).
 
 ::
 
@@ -27,7 +27,7 @@ inertia about O ``J_O = I_c + m_c r^2 / 4``, the rod centre of mass
 
 ``m_s x_tt = Q_x``.
 
-Contact (MODEL.md 1-4, :mod:`validation.reference._contact`): eccentricity
+Contact (docs/physics.md sections 1-4, :mod:`validation.reference._contact`): eccentricity
 ``e = B_J - (x, 0)``, journal body the rod (angular velocity ``phi_t``), bearing body
 the slider (no rotation).  The force ``F_i`` on the journal and the moment ``M_i`` on the
 rod give, by virtual work with ``dB_J/dphi = l (-sin phi, cos phi)`` and
@@ -580,7 +580,7 @@ def simulate(params: SliderCrankParams, t_end: float | None = None, method: str 
 def _parser() -> argparse.ArgumentParser:
     p = SliderCrankParams.paper()
     ap = argparse.ArgumentParser(prog="python -m validation.reference.slider_crank",
-                                 description="SciPy reference run of the paper's slider-crank (MODEL.md 5.2).")
+                                 description="SciPy reference run of the paper's slider-crank (docs/physics.md section 6.2).")
     ap.add_argument("--law", default=p.law, help="contact law (default %(default)s)")
     ap.add_argument("--cr", type=float, default=p.cr, help="coefficient of restitution (default %(default)s)")
     ap.add_argument("--friction", default=p.friction, help="none, coulomb:MU or paper (default %(default)s)")
