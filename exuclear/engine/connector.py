@@ -405,7 +405,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                                                     numberOfDataCoordinates=len(DATA_COLUMNS)))
     handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,
-        rotationMarker0=rotation0, rotationMarker1=rotation1,
+        rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
         springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
         visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
     if handle.probeNumber is not None:

@@ -1,0 +1,147 @@
+"""The clearance joint as an Exudyn connector: backends, balance laws, body types, Exudyn habits.
+
+References: momentum balance of docs/physics.md section 4 (sum of forces zero; moment of
+the pair ``delta F_T``); the Python kernel (the readable statement) for the compiled
+one; the paper's departure velocity (0.269 m/s at cr 0.9, docs/physics.md section 5.1).
+"""
+from __future__ import annotations
+
+import math
+
+import exudyn as exu
+import numpy as np
+import pytest
+from exudyn.itemInterface import (
+    MarkerBodyRigid,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectRigidBody2D,
+    SensorObject,
+)
+
+import exuclear
+from exuclear.engine import kernel
+
+R_B, R_J, L = 10e-3, 9.9e-3, 15e-3
+C = R_B - R_J
+COMPILED = pytest.mark.skipif(kernel.STATUS != kernel.STATUS_DIRECT, reason=f"compiled kernel: {kernel.STATUS}")
+LAWS = [("wang-liu", 0.6), ("lankarani-nikravesh", 0.6), ("hunt-crossley", 0.6), ("flores", 0.6), ("hertz", None)]
+FRICTIONS = ["none", "coulomb:0.2", "paper"]
+
+
+def _two_free_bodies(backend, law="wang-liu", cr=0.6, friction="paper", spin=(30.0, -50.0), offset=0.3 * C):
+    """A bearing (a free 2D body) and a journal, both spinning, the journal pressed
+    ``offset`` into the bearing wall along (cos 30deg, sin 30deg) and moving into it."""
+    mbs = exu.SystemContainer().AddSystem()
+    n = np.array([math.cos(math.pi / 6), math.sin(math.pi / 6)])
+    pj = (C + offset) * n
+    nb = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialVelocities=[0.1, -0.05, spin[0]]))
+    nj = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[pj[0], pj[1], 0.2],
+                                     initialVelocities=[0.3 * n[0], 0.3 * n[1], spin[1]]))
+    bearing = mbs.AddObject(ObjectRigidBody2D(nodeNumber=nb, mass=0.3, inertia=4e-5))
+    journal = mbs.AddObject(ObjectRigidBody2D(nodeNumber=nj, mass=0.04, inertia=2e-6))
+    mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=bearing, localPosition=[0, 0, 0]))
+    mj = mbs.AddMarker(MarkerBodyRigid(bodyNumber=journal, localPosition=[0, 0, 0]))
+    handle = exuclear.AddClearanceJoint(mbs, [mb, mj], journal_radius=R_J, bearing_radius=R_B, length=L, law=law,
+                                        cr=cr, friction=friction, backend=backend)
+    mbs.Assemble()
+    return mbs, handle, (nb, nj), (0.3, 0.04), (4e-5, 2e-6)
+
+
+def _rhs(mbs):
+    """The system's generalized forces at the initial state (Exudyn's own evaluation)."""
+    solver = exu.MainSolverExplicit()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.timeIntegration.solverType = exu.DynamicSolverType.DOPRI5
+    solver.InitializeSolver(mbs, ss)
+    solver.ComputeODE2RHS(mbs)
+    return np.asarray(solver.GetSystemResidual())
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
+def test_forces_balance_and_the_pair_has_the_moment_delta_ft(backend):
+    # docs/physics.md section 4: F_i + F_j = 0 exactly; the moment of all loads about the
+    # origin is delta F_T (the friction forces act at Q_J and Q_B, delta apart)
+    mbs, handle, (nb, nj), _, _ = _two_free_bodies(backend)
+    f = _rhs(mbs)
+    fb, fj = f[0:3], f[3:6]
+    scale = np.abs(f).max()
+    assert scale > 1.0  # in contact: a real load
+    assert abs(fb[0] + fj[0]) <= 1e-14 * scale and abs(fb[1] + fj[1]) <= 1e-14 * scale
+    state = handle.history.state  # the initial state, accepted by the first evaluation
+    assert state.in_contact and state.tangential_force != 0.0
+    pb = np.array(mbs.GetNodeOutput(nb, exu.OutputVariableType.Position))
+    pj = np.array(mbs.GetNodeOutput(nj, exu.OutputVariableType.Position))
+    moment = (pb[0] * fb[1] - pb[1] * fb[0] + fb[2]) + (pj[0] * fj[1] - pj[1] * fj[0] + fj[2])
+    # round-off of moments of size R_B * F (1e-2 m * scale)
+    assert moment == pytest.approx(state.delta * state.tangential_force, abs=1e-13 * R_B * scale)
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
+def test_linear_momentum_is_conserved_through_an_impact(backend):
+    mbs, handle, (nb, nj), masses, _ = _two_free_bodies(backend, offset=-0.2 * C)
+    v = [np.array(mbs.GetNodeOutput(n, exu.OutputVariableType.Velocity)) for n in (nb, nj)]
+    p0 = masses[0] * v[0] + masses[1] * v[1]
+    result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=2e-4, method="dopri5", step=1e-6, rtol=1e-8,
+                                                            atol=1e-12))
+    assert result.success, result.message
+    assert handle.history.onsets >= 1 and handle.impacts()  # an impact happened and ended
+    v = [np.array(mbs.GetNodeOutput(n, exu.OutputVariableType.Velocity)) for n in (nb, nj)]
+    p1 = masses[0] * v[0] + masses[1] * v[1]
+    impulse = handle.impacts()[0].peak_force * 1e-5  # the scale of the exchanged momentum
+    assert np.abs(p1 - p0).max() <= 1e-12 * impulse
+
+
+@COMPILED
+@pytest.mark.parametrize("law,cr", LAWS)
+@pytest.mark.parametrize("friction", FRICTIONS)
+def test_compiled_kernel_equals_python_kernel(law, cr, friction):
+    # the Python kernel is the statement; the compiled one must reproduce it to round-off
+    runs = {}
+    for backend in ("python", "compiled"):
+        mbs, handle, nodes, _, _ = _two_free_bodies(backend, law=law, cr=cr, friction=friction, offset=-0.1 * C)
+        result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=3e-4, method="dopri5", step=1e-6, rtol=1e-8,
+                                                                atol=1e-12, output_step=1e-6))
+        assert result.success, result.message
+        runs[backend] = (handle.outputs(), handle.impacts(), result.steps)
+    (out_p, imp_p, steps_p), (out_c, imp_c, steps_c) = runs["python"], runs["compiled"]
+    assert steps_p == steps_c
+    assert len(imp_p) == len(imp_c) >= 1
+    for key in ("normal_force", "tangential_force", "penetration", "ecc_x", "slip_velocity", "v0"):
+        scale = max(np.abs(out_p[key]).max(), 1e-30)
+        assert np.abs(out_p[key] - out_c[key]).max() <= 1e-10 * scale, key  # round-off, amplified by integration
+    for a, b in zip(imp_p, imp_c):
+        assert np.allclose(a, b, rtol=1e-10, atol=0.0)
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
+def test_paper_departure_velocity_with_a_direct_solve_dynamic(backend):
+    # docs/physics.md section 5.1: cr 0.9 gives 0.269 m/s (the paper); a plain
+    # mbs.SolveDynamic, twice: the second run must start from a fresh history
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    # centred in the reference configuration, touching the wall at the start (initial displacement c)
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[C, 0, 0],
+                                       initialVelocities=[0.3, 0, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], axis=[0, 0, 1],
+                                          journal_radius=R_J, bearing_radius=R_B, length=L, law="wang-liu", cr=0.9,
+                                          backend=backend)
+    force_sensor = mbs.AddSensor(SensorObject(objectNumber=joint.objectNumber, storeInternal=True, writeToFile=False,
+                                              outputVariableType=exu.OutputVariableType.ForceLocal))
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = 2e-4
+    ss.timeIntegration.numberOfSteps = 200
+    ss.solution.file.write = False
+    ss.solution.sensors.writePeriod = 1e-6
+    records = []
+    for _ in range(2):
+        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.DOPRI5)
+        v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]
+        assert v == pytest.approx(-0.269, abs=0.0005)  # the paper's 0.269 m/s to its 3 digits
+        records.append(joint.impacts())
+    assert records[0] == records[1] and len(records[0]) == 1  # one impact each run, identical
+    force = np.asarray(mbs.GetSensorStoredData(force_sensor))
+    assert force[:, 1].max() == pytest.approx(records[1][0].peak_force, rel=0.02)  # the sensor sees the impact
