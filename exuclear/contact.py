@@ -741,7 +741,9 @@ def restitution_of_damping(D: float) -> float:
 
     Exact for a free mass and any elastic force ``F_e``: the root ``0 < e <= 1`` of
     ``D (1 + e) = ln(1 + D) - ln(1 - D e)`` (see :class:`CarvalhoMartinsDamping`), found by
-    bisection to round-off.  ``D = 0`` gives 1.
+    bisection to round-off.  ``D = 0`` gives 1.  The relation's slope in ``e`` is about
+    ``-D^2``, so for small ``D`` the root carries an absolute error of about
+    ``2e-16 / D`` (2e-14 at ``D = 0.01``, i.e. cr = 0.99).
     """
     D = check_real("D", D)
     if D < 0.0:
