@@ -228,7 +228,7 @@ def test_restitution_does_not_depend_on_the_stiffness(stiffness, geometry, e_sta
 
 @pytest.mark.parametrize("cr, departure", [(0.3, 0.098), (0.5, 0.145), (0.9, 0.269)])
 def test_paper_departure_velocities_of_the_wang_liu_law(cr, departure, geometry, e_star):
-    # the paper's section 5.1 (MODEL.md 5.1), published to three decimals: +-0.0005 m/s
+    # the paper's section 5.1 (docs/physics.md section 6.1), published to three decimals: +-0.0005 m/s
     impact = one_dof_impact(_law("wang-liu", geometry, e_star, cr))
     assert impact.restitution * 0.3 == pytest.approx(departure, abs=5e-4)
 
@@ -317,7 +317,7 @@ def test_implicit_models_have_no_symbolic_form(geometry, e_star):
 @pytest.mark.parametrize("stiffness", sorted(C.STIFFNESS_MODELS))
 @pytest.mark.parametrize("damping", DISSIPATIVE)
 def test_every_pair_keeps_the_law_properties(stiffness, damping, geometry, e_star):
-    # MODEL.md 2 for every pairing: no force without penetration, never negative (no adhesion),
+    # docs/physics.md eq. (9) for every pairing: no force without penetration, never negative (no adhesion),
     # v0 below v_min acts as v_min, and a NaN rate is not turned into a silent zero
     law = _reference_law(damping, 0.4, geometry, e_star, stiffness)
     rng = np.random.default_rng(7)

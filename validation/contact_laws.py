@@ -1,7 +1,7 @@
 """The contact-law library (issue 13): every stiffness model, every damping model.
 
 Source problem: example 1 of X. Wang, G. Liu, S. Ma, R. Tong, J. Mech. Sci. Technol.
-31(2) (2017) 587-597 (MODEL.md section 5.1): a 0.04 kg steel journal starts touching a
+31(2) (2017) 587-597 (docs/physics.md section 6.1): a 0.04 kg steel journal starts touching a
 fixed steel bearing (R_B = 10 mm, R_J = 9.9 mm, L = 15 mm) and moves into it at
 0.3 m/s.  Outputs, in ``results/contact_laws/``:
 
@@ -52,7 +52,7 @@ from validation._tables import markdown_table, write_csv
 
 DEFAULT_OUT = os.path.join("results", "contact_laws")
 
-#: The paper's scene (MODEL.md 5.1).
+#: The paper's scene (docs/physics.md section 6.1).
 GEOMETRY = exuclear.BearingGeometry(9.9e-3, 10e-3, 15e-3)
 E_STAR = exuclear.composite_modulus("steel", "steel")
 MASS = 0.04  # kg
@@ -96,7 +96,7 @@ def one_dof_impact(law: ContactLaw, mass: float = MASS, v_impact: float = V_IMPA
     """Integrate ``m x'' = -F_N(x, x', v_impact)`` from ``x = 0``, ``x' = v_impact`` to ``x = 0``.
 
     ``x`` is the penetration, ``x'`` its rate (approach positive); ``v0`` is the impact
-    speed for the whole contact (MODEL.md 2).  ``dense`` > 0 samples the curves at that
+    speed for the whole contact (docs/physics.md section 2.3, eq. (17)).  ``dense`` > 0 samples the curves at that
     many instants; else only the accepted steps are returned.
     """
     def rhs(_t, y):
