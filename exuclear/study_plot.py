@@ -48,7 +48,8 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     where : mapping, optional
         Keep only the rows with these parameter values.
     points : bool
-        Markers only, no lines (bifurcation-style: several values of the metric at one x).
+        Markers only, no lines (bifurcation-style: several values of the metric at one x,
+        as from a metric that is an array per run).
     ax : matplotlib Axes, optional
         Draw into it; otherwise a new figure.
     path : path, optional
@@ -64,6 +65,8 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
         raise ValueError("give `y` (a heat map) or `by` (one line per value), not both")
     names = [n for n in (x, y, by) if n is not None]
     rows, failed = _select(table, metric, names, where or {})
+    if len(rows) and isinstance(rows[metric].iloc[0], list):  # an array per run: one point per element
+        rows = rows.explode(metric).astype({metric: float})
     if rows.empty:
         raise ValueError(f"no successful run to plot ({failed} failed)")
     if ax is None:
@@ -91,7 +94,7 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     ax.set_xlabel(x)
     fixed = ", ".join(f"{k} = {v}" for k, v in (where or {}).items())
     note = f"{failed} failed run(s) left out" if failed else ""
-    ax.set_title(title or "; ".join(s for s in (f"{metric} over {x}" + (f" and {y}" if y else ""), fixed, note) if s))
+    ax.set_title(title if title is not None else "; ".join(s for s in (f"{metric} over {x}" + (f" and {y}" if y else ""), fixed, note) if s))
     ax.grid(True, alpha=0.3)
     if path is None:
         return ax

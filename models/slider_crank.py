@@ -749,5 +749,163 @@ def study(values: dict) -> dict:
     }
 
 
+
+# =======================================================================================
+# the slider-crank as a parameter study (exuclear.study)
+# =======================================================================================
+
+#: Parameters of :func:`study` and their defaults: the paper's case (:meth:`SliderCrankParams.paper`)
+#: with the crank speed in rpm, ``startup`` revolutions left out of the steady metrics and
+#: ``revolutions`` measured after them.  Every name but ``rpm`` and ``startup`` is a
+#: :class:`SliderCrankParams` field.
+STUDY_PARAMETERS = {
+    "cr": 0.9, "clearance": 1e-4, "rpm": 500.0, "startup": 1.0, "revolutions": 2.0, "law": "wang-liu",
+    "journal_material": "steel", "bearing_material": "steel", "friction": "none", "bearing_length": 15e-3,
+    "gravity": 9.81, "v_min": exuclear.V_MIN_DEFAULT, "formulation": "minimal", "backend": exuclear.DEFAULT_BACKEND,
+}
+
+#: Output interval of a study run [s]: below any step, so that every accepted step is
+#: recorded and the energy audit's trapezoid rule and the peak force see each impact.
+STUDY_EVERY_STEP = 1e-12
+
+
+def study_params(values: dict) -> SliderCrankParams:
+    """The :class:`SliderCrankParams` of a study's parameter set (defaults
+    :data:`STUDY_PARAMETERS`); ``ValueError`` for a value the model refuses."""
+    v = {**STUDY_PARAMETERS, **values}
+    unknown = sorted(set(v) - set(STUDY_PARAMETERS))
+    if unknown:
+        raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
+    check = exuclear._checks
+    if check.check_real("rpm", v["rpm"]) == 0.0:
+        raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
+    check.check_nonnegative("startup", v["startup"])
+    check.check_positive("revolutions", v["revolutions"])
+    fields = {k: v[k] for k in STUDY_PARAMETERS if k not in ("rpm", "startup", "revolutions")}
+    return SliderCrankParams.paper(**fields, crank_speed=v["rpm"] * math.pi / 30.0,
+                                   revolutions=v["startup"] + v["revolutions"])
+
+
+def check_study(values: dict) -> None:
+    """Raise ``ValueError`` for a study parameter set the model refuses (before any run)."""
+    study_params(values)
+
+
+def ideal_slider_acceleration(theta: np.ndarray, omega: float, r: float, l: float) -> np.ndarray:
+    """Slider acceleration of the ideal mechanism at constant crank speed [m/s^2].
+
+    ``x = r cos(theta) + D``, ``D = sqrt(l^2 - r^2 sin^2 theta)``, differentiated twice
+    at ``theta' = omega``::
+
+        x'' = -r w^2 cos(theta) - r^2 w^2 [cos(2 theta) / D + r^2 sin^2 cos^2 / D^3]
+    """
+    s, c = np.sin(theta), np.cos(theta)
+    d = np.sqrt(l**2 - (r * s) ** 2)
+    return -r * omega**2 * c - r**2 * omega**2 * ((c**2 - s**2) / d + r**2 * s**2 * c**2 / d**3)
+
+
+def _elastic_energy(law: exuclear.ContactLaw, delta: float) -> float:
+    """``int_0^delta F_el`` [J], the energy a contact stores at penetration ``delta``."""
+    from scipy.integrate import quad
+
+    return 0.0 if delta <= 0.0 else quad(law.elastic_force, 0.0, delta, epsabs=0.0, epsrel=1e-12)[0]
+
+
+def _energy_audit(model: SliderCrankModel) -> dict[str, float]:
+    """Energy balance of a minimal-formulation run with outputs at every step [J].
+
+    Drive work (what the flywheel gave up, ``-J_fly (w_end^2 - w_0^2) / 2``) = change of
+    the links' kinetic and potential energy + energy the contact absorbed (elastic energy
+    stored at the end, plus ``int (F_N - F_el) delta' + F_T v_T dt`` dissipated, trapezoid
+    rule) + residual.  ``energy_residual_rel`` is the residual over the gross contact
+    work ``int |F_N delta' + F_T v_T| dt``; it includes the round-off of the flywheel's
+    energy (``validation/hard_cases.py`` bounds it).
+    """
+    p, mbs = model.params, model.mbs
+    r, l = p.crank_length, p.rod_length
+    q = np.asarray(mbs.GetSensorStoredData(model.sensors["q"]))
+    q_t = np.asarray(mbs.GetSensorStoredData(model.sensors["q_t"]))
+    th, thd = q[:, 1], q_t[:, 1]
+    phi, phid, xd = th + q[:, 2], thd + q_t[:, 2], q_t[:, 3]
+    gx = -r * np.sin(th) * thd - l / 2 * np.sin(phi) * phid
+    gy = r * np.cos(th) * thd + l / 2 * np.cos(phi) * phid
+    kinetic = (0.5 * (p.crank_inertia + p.crank_mass * r**2 / 4) * thd**2 + 0.5 * p.rod_mass * (gx**2 + gy**2)
+               + 0.5 * p.rod_inertia * phid**2 + 0.5 * p.slider_mass * xd**2)
+    potential = p.gravity * (p.crank_mass * r / 2 * np.sin(th) + p.rod_mass * (r * np.sin(th) + l / 2 * np.sin(phi)))
+    change = float((kinetic + potential)[-1] - (kinetic + potential)[0])
+    work = float(-0.5 * FLYWHEEL_INERTIA * (thd[-1] - thd[0]) * (thd[-1] + thd[0]))
+    out, law = model.joint.outputs(), model.joint.joint.law
+    t, delta, f_n, rate = out["time"], out["penetration"], out["normal_force"], out["penetration_rate"]
+    friction = out["tangential_force"] * out["slip_velocity"]
+    elastic = np.array([law.elastic_force(d) if d > 0.0 else 0.0 for d in delta])
+    stored = _elastic_energy(law, float(delta[-1])) - _elastic_energy(law, float(delta[0]))
+    dissipated = float(np.trapezoid((f_n - elastic) * rate + friction, t))
+    gross = float(np.trapezoid(np.abs(f_n * rate + friction), t))
+    residual = work - change - stored - dissipated
+    return {"drive_work": work, "contact_dissipated": dissipated, "energy_residual": residual,
+            "energy_residual_rel": residual / gross if gross > 0.0 else math.nan}
+
+
+def study(values: dict) -> dict:
+    """One run of a slider-crank study (:mod:`exuclear.study`); parameters
+    :data:`STUDY_PARAMETERS`.  The run covers ``startup + revolutions`` crank
+    revolutions; "steady" metrics use the last ``revolutions`` only.
+
+    Returns
+    -------
+    dict
+        ``peak_force`` [N] (contact force, whole run), ``peak_force_steady`` [N],
+        ``impacts`` (contact onsets, whole run), ``impacts_per_rev`` (onsets after the
+        start-up per revolution), ``max_ecc_over_c`` (largest ``|e| / c`` after the
+        start-up), ``slider_acc_rms_dev`` [m/s^2] and ``slider_acc_rms_dev_rel`` (RMS
+        over the steady revolutions of the slider acceleration minus the ideal
+        mechanism's, :func:`ideal_slider_acceleration`; and over the ideal RMS), the
+        energy audit (minimal formulation; NaN in the redundant one): ``drive_work``,
+        ``contact_dissipated``, ``energy_residual`` [J], ``energy_residual_rel``; the
+        solver's ``steps`` and ``sim_wall_time`` [s]; ``success`` and ``message`` of the run.
+    """
+    p = study_params(values)
+    model = build(p)
+    settings = replace(default_settings(p), output_step=STUDY_EVERY_STEP)
+    sim = exuclear.simulate(model.mbs, settings)
+    cols = _columns(model)
+    t = cols["time"]
+    startup = float({**STUDY_PARAMETERS, **values}["startup"])
+    t_start = 2.0 * math.pi * startup / abs(p.crank_speed)
+    steady = t >= t_start
+    onsets = np.asarray(model.joint.history.onset_times)
+    ecc = np.hypot(cols["ecc_x"], cols["ecc_y"]) / p.clearance
+    ideal = ideal_slider_acceleration(np.radians(cols["crank_angle"]), p.crank_speed, p.crank_length, p.rod_length)
+
+    def rms(x: np.ndarray) -> float:
+        ts = t[steady]
+        return math.sqrt(float(np.trapezoid(x[steady] ** 2, ts)) / (ts[-1] - ts[0])) if steady.sum() > 1 else math.nan
+
+    dev = rms(cols["slider_a"] - ideal)
+    audit = (_energy_audit(model) if p.formulation == "minimal" else
+             dict.fromkeys(("drive_work", "contact_dissipated", "energy_residual", "energy_residual_rel"), math.nan))
+    steady_force = cols["contact_force"][steady]
+    # each steady revolution on its own (the last one may be partial): the points of a
+    # bifurcation diagram
+    period = 2.0 * math.pi / abs(p.crank_speed)
+    revolution = np.floor((t - t_start) / period * (1.0 + 1e-12)).astype(int)
+    count = math.ceil(p.revolutions - startup - 1e-9)
+    by_rev = [cols["contact_force"][revolution == k] for k in range(count)]
+    return {
+        "peak_force": float(cols["contact_force"].max()),
+        "peak_force_steady": float(steady_force.max()) if steady_force.size else math.nan,
+        "peak_force_by_rev": [float(f.max()) if f.size else math.nan for f in by_rev],
+        "impacts": len(onsets),
+        "impacts_per_rev": float(np.sum(onsets >= t_start)) / (p.revolutions - startup),
+        "impacts_by_rev": np.bincount(np.floor((onsets[onsets >= t_start] - t_start) / period).astype(int),
+                                      minlength=count)[:count].tolist(),
+        "max_ecc_over_c": float(ecc[steady].max()) if steady.any() else math.nan,
+        "slider_acc_rms_dev": dev, "slider_acc_rms_dev_rel": dev / rms(ideal),
+        **audit,
+        "steps": sim.steps, "sim_wall_time": sim.wall_time,
+        "success": sim.success, "message": sim.message,
+    }
+
+
 if __name__ == "__main__":
     sys.exit(main())
