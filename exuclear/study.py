@@ -42,6 +42,7 @@ import concurrent.futures as cf
 import csv
 import hashlib
 import importlib
+import io
 import itertools
 import json
 import math
@@ -357,9 +358,9 @@ def _encode(value: Any) -> str:
 
 
 class _Table:
-    """The study's CSV: rows appended (and flushed) one by one; when a row brings a new
-    column, the file is rewritten with the wider header (to a temporary file, then
-    renamed, so that a crash never leaves half a table)."""
+    """The study's CSV: rows appended one by one; when a row brings a new column or
+    replaces a row, the file is rewritten (to a temporary file, then renamed, so that a
+    crash never leaves half a table)."""
 
     def __init__(self, path: Path | None, parameter_names: Sequence[str]) -> None:
         self.path = path
@@ -389,7 +390,7 @@ class _Table:
             text = f.read()
         if not text.endswith("\n"):
             text = text[: text.rfind("\n") + 1]  # a row cut short by a crash: dropped, its run is redone
-        reader = csv.reader(text.splitlines())
+        reader = csv.reader(io.StringIO(text, newline=""))  # a quoted message may hold line breaks
         self.columns = next(reader, [])
         for fields in reader:
             if len(fields) == len(self.columns):
@@ -410,13 +411,14 @@ class _Table:
     def add(self, row: Mapping[str, Any]) -> None:
         text = {k: _encode(v) for k, v in row.items()}
         new = [k for k in row if k not in self.columns]
+        replaces = text["run_id"] in self.rows  # a failed run done again (retry_failed)
         self.rows[text["run_id"]] = text
-        if new:
-            if not self.columns:
-                params = [k for k in row if k in self.parameter_names or k not in STATUS_COLUMNS]
-                metrics = [k for k in params if k not in self.parameter_names]
+        if replaces and not new:
+            self._rewrite()
+        elif new:
+            if not self.columns:  # parameters, metrics, status
+                metrics = [k for k in row if k not in self.parameter_names and k not in STATUS_COLUMNS]
                 self.columns = [k for k in self.parameter_names if k in row] + metrics + list(STATUS_COLUMNS)
-                self.columns += [k for k in row if k not in self.columns]
             else:  # new metrics go before the status columns
                 status = [c for c in self.columns if c in STATUS_COLUMNS]
                 self.columns = [c for c in self.columns if c not in STATUS_COLUMNS] + new + status
@@ -432,29 +434,15 @@ class _Table:
         keys = list(self.rows) if order is None else [k for k in order if k in self.rows]
         if not self.columns:
             return pd.DataFrame(columns=[*self.parameter_names, *STATUS_COLUMNS])
-        with _StringRows([self.columns] + [[self.rows[k].get(c, "") for c in self.columns] for k in keys]) as f:
-            # floats must read back exactly: pandas 3 does by default, pandas 2 when asked
-            exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
-            return _decode(pd.read_csv(f, keep_default_na=False, na_values=["", "nan", "NaN"],
-                                       dtype={"run_id": str, "message": str}, **exact))
-
-
-class _StringRows:
-    """Rows as an in-memory CSV file, so that the returned table and the table read back
-    from disk are parsed by the same code (and are equal value by value)."""
-
-    def __init__(self, rows: list[list[str]]) -> None:
-        import io
-
-        self.buffer = io.StringIO()
-        csv.writer(self.buffer).writerows(rows)
-        self.buffer.seek(0)
-
-    def __enter__(self):
-        return self.buffer
-
-    def __exit__(self, *exc: object) -> None:
-        self.buffer.close()
+        # the rows go through CSV text even in memory, so that the returned table and the
+        # table read back from disk are parsed by the same code and equal value by value
+        buffer = io.StringIO(newline="")
+        csv.writer(buffer).writerows([self.columns] + [[self.rows[k].get(c, "") for c in self.columns] for k in keys])
+        buffer.seek(0)
+        # floats must read back exactly: pandas 3 does by default, pandas 2 when asked
+        exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
+        return _decode(pd.read_csv(buffer, keep_default_na=False, na_values=["", "nan", "NaN"],
+                                   dtype={"run_id": str, "message": str}, **exact))
 
 
 def _decode(df):

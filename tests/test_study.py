@@ -35,6 +35,12 @@ def interrupted_at_5(p: dict) -> dict:
     return {"y": 2.0 * p["x"]}
 
 
+def reports_failure(p: dict) -> dict:
+    """Finishes every run; x = 1 fails its own criterion, with a message of two lines."""
+    CALLS.append(p["x"])
+    return {"y": float(p["x"]), "success": p["x"] != 1, "message": 'stopped early,\n"see" below' if p["x"] == 1 else ""}
+
+
 def crashes_at_2(p: dict) -> dict:
     """Kills its worker process at x = 2 (as a segfault in compiled code would)."""
     if p["x"] == 2:
@@ -103,6 +109,20 @@ def test_failed_run_is_a_row_and_table_reads_back(tmp_path: Path):
     assert good["pair"].iloc[3] == [1.0, 2.0]  # arrays come back as lists
     back = st.load_table(out).set_index("run_id").loc[df["run_id"]].reset_index()[df.columns]
     pd.testing.assert_frame_equal(back, df, check_exact=True)
+
+
+def test_own_failure_status_resume_and_retry(tmp_path: Path):
+    out = tmp_path / "t.csv"
+    CALLS.clear()
+    df = st.run_study(reports_failure, st.grid(x=range(3)), out, workers=1, progress=False)
+    assert df["success"].tolist() == [True, False, True]
+    assert df["message"][1] == 'stopped early,\n"see" below'  # quoted in the CSV, read back whole
+    CALLS.clear()
+    again = st.run_study(reports_failure, st.grid(x=range(3)), out, workers=1, progress=False)
+    assert CALLS == []  # all done: nothing runs again
+    pd.testing.assert_frame_equal(again, df, check_exact=True)
+    st.run_study(reports_failure, st.grid(x=range(3)), out, workers=1, progress=False, retry_failed=True)
+    assert CALLS == [1] and len(pd.read_csv(out)) == 3  # only the failed run is redone, and replaces its row
 
 
 def test_bad_input_before_any_run(tmp_path: Path):
@@ -250,6 +270,11 @@ def test_command_line(tmp_path: Path, capsys):
     assert st.main(["journal-bearing", "--cr", "0.5,2", "--workers", "1", "--out", str(tmp_path / "x.csv")]) == 2
     assert "cr" in capsys.readouterr().err and not (tmp_path / "x.csv").exists()
     assert st.main(["no-such-scene", "--out", str(out)]) == 2
+    sampled = tmp_path / "sampled.csv"
+    assert st.main(["journal-bearing", "--cr", "0.3:0.9", "--length", "0.02", "--sample", "3", "--seed", "1",
+                    "--workers", "1", "--no-progress", "--out", str(sampled)]) == 0
+    table = st.load_table(sampled)
+    assert len(table) == 3 and table["cr"].between(0.3, 0.9).all() and (table["length"] == 0.02).all()
     pytest.importorskip("matplotlib")
     fig = tmp_path / "fig.png"
     assert st.main(["plot", str(out), "--metric", "peak_force", "--x", "cr", "--out", str(fig)]) == 0
