@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import concurrent.futures as cf
+import contextlib
 import csv
 import hashlib
 import importlib
@@ -329,6 +330,41 @@ def _ignore_sigint() -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+class _CtrlC:
+    """Ctrl-C during a study run in this process (``workers=1``).
+
+    A ``KeyboardInterrupt`` raised inside a solver's Python callback would come back from
+    Exudyn as a failed run, and the study would carry on.  So the first Ctrl-C only sets
+    :attr:`pressed`: the current run finishes, its row is kept, and the runner then
+    stops.  A second Ctrl-C raises at once (a row that then comes back failed is not
+    recorded).  Installed only in the main thread, over Python's default handler.
+    """
+
+    def __init__(self) -> None:
+        self.pressed = 0
+        self.previous: Any = None
+
+    def _handle(self, signum: int, frame: Any) -> None:  # noqa: ARG002 - signal handler signature
+        self.pressed += 1
+        if self.pressed > 1:
+            raise KeyboardInterrupt
+
+    def __enter__(self) -> _CtrlC:
+        import signal
+        import threading
+
+        if threading.current_thread() is threading.main_thread() and \
+                signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            self.previous = signal.signal(signal.SIGINT, self._handle)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.previous is not None:
+            import signal
+
+            signal.signal(signal.SIGINT, self.previous)
 
 
 class _SerialExecutor(cf.Executor):
@@ -673,55 +709,16 @@ class _Progress:
 def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int | None, scheduler: str | None,
              executor: cf.Executor | None, batch_size: int | None, show: bool) -> None:
     pool = _pool(workers, scheduler, executor)
-    function = study.function if isinstance(pool.executor, _SerialExecutor) else _shippable(study.function)
+    serial = isinstance(pool.executor, _SerialExecutor)
+    function = study.function if serial else _shippable(study.function)
     bar = _Progress(total, total - len(todo), study.name, show)
     in_flight: dict[cf.Future, list] = {}
-    # runs of a task that died as a whole (its worker crashed or was lost): each is rerun
-    # alone, so that a second death names the run that causes it
-    suspects: deque = deque()
-    alone: set[cf.Future] = set()
-    timing = [0.0, 0]  # wall time and number of finished runs, for the batch size
-    window = 1 if isinstance(pool.executor, _SerialExecutor) else pool.workers * IN_FLIGHT_PER_WORKER
+    window = 1 if serial else pool.workers * IN_FLIGHT_PER_WORKER
+    ctrl_c = _CtrlC() if serial else contextlib.nullcontext(None)
     interrupted = False
     try:
-        while todo or suspects or in_flight:
-            while (todo or suspects) and len(in_flight) < window:
-                if suspects:
-                    if in_flight:
-                        break  # a suspect waits until it can run alone
-                    batch = [suspects.popleft()]
-                    future = pool.executor.submit(_run_batch, function, batch)
-                    in_flight[future] = batch
-                    alone.add(future)
-                    break
-                size = batch_size or _batch_size(timing, len(todo), pool.workers)
-                batch = [todo.popleft() for _ in range(min(size, len(todo)))]
-                in_flight[pool.executor.submit(_run_batch, function, batch)] = batch
-            finished, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
-            for future in [f for f in in_flight if f in finished]:  # in the order of submission
-                batch = in_flight.pop(future, None)
-                if batch is None:
-                    continue  # lost with its broken pool (below) and queued again
-                try:
-                    rows = future.result()
-                except (KeyboardInterrupt, cf.CancelledError):
-                    raise KeyboardInterrupt from None
-                except Exception as err:  # the task died as a whole: worker killed or lost, unpicklable result
-                    rows = [_crashed_row(batch[0], err)] if future in alone else []
-                    if not rows:
-                        suspects.extend(batch)
-                    if isinstance(err, BrokenProcessPool) and pool.restart is not None:
-                        for other in list(in_flight):  # a broken pool loses every task in it
-                            suspects.extend(in_flight.pop(other))
-                        alone.clear()
-                        pool.executor.shutdown(wait=True, cancel_futures=True)
-                        pool.executor = pool.restart()
-                alone.discard(future)
-                for row in rows:
-                    table.add(row)
-                    timing[0] += row["wall_time"] if math.isfinite(row["wall_time"]) else 0.0
-                    timing[1] += 1
-                bar.update(rows)
+        with ctrl_c as pressed:
+            _loop(pool, function, todo, table, bar, batch_size, window, in_flight, pressed)
     except KeyboardInterrupt:
         interrupted = True
         for future, batch in list(in_flight.items()):  # tasks finished meanwhile are kept too
@@ -737,6 +734,58 @@ def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int 
     if interrupted:
         where = f"; {len(table.rows)} rows kept in {table.path}, run again to resume" if table.path else ""
         raise KeyboardInterrupt(f"study interrupted{where}")
+
+
+def _loop(pool: _Pool, function: Any, todo: deque, table: _Table, bar: _Progress, batch_size: int | None,
+          window: int, in_flight: dict, ctrl_c: _CtrlC | None) -> None:
+    """Submit batches, keep ``window`` tasks in flight, record the rows as tasks finish."""
+    # runs of a task that died as a whole (its worker crashed or was lost): each is rerun
+    # alone, so that a second death names the run that causes it
+    suspects: deque = deque()
+    alone: set[cf.Future] = set()
+    timing = [0.0, 0]  # wall time and number of finished runs, for the batch size
+    while todo or suspects or in_flight:
+        while (todo or suspects) and len(in_flight) < window:
+            if suspects:
+                if in_flight:
+                    break  # a suspect waits until it can run alone
+                batch = [suspects.popleft()]
+                future = pool.executor.submit(_run_batch, function, batch)
+                in_flight[future] = batch
+                alone.add(future)
+                break
+            size = batch_size or _batch_size(timing, len(todo), pool.workers)
+            batch = [todo.popleft() for _ in range(min(size, len(todo)))]
+            in_flight[pool.executor.submit(_run_batch, function, batch)] = batch
+        finished, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
+        for future in [f for f in in_flight if f in finished]:  # in the order of submission
+            batch = in_flight.pop(future, None)
+            if batch is None:
+                continue  # lost with its broken pool (below) and queued again
+            try:
+                rows = future.result()
+            except (KeyboardInterrupt, cf.CancelledError):
+                raise KeyboardInterrupt from None
+            except Exception as err:  # the task died as a whole: worker killed or lost, unpicklable result
+                rows = [_crashed_row(batch[0], err)] if future in alone else []
+                if not rows:
+                    suspects.extend(batch)
+                if isinstance(err, BrokenProcessPool) and pool.restart is not None:
+                    for other in list(in_flight):  # a broken pool loses every task in it
+                        suspects.extend(in_flight.pop(other))
+                    alone.clear()
+                    pool.executor.shutdown(wait=True, cancel_futures=True)
+                    pool.executor = pool.restart()
+            alone.discard(future)
+            if ctrl_c is not None and ctrl_c.pressed > 1:
+                rows = [row for row in rows if row["success"]]  # a failure may be the second Ctrl-C
+            for row in rows:
+                table.add(row)
+                timing[0] += row["wall_time"] if math.isfinite(row["wall_time"]) else 0.0
+                timing[1] += 1
+            bar.update(rows)
+        if ctrl_c is not None and ctrl_c.pressed:
+            raise KeyboardInterrupt
 
 
 def _crashed_row(item: tuple[str, Params], err: BaseException) -> dict[str, Any]:

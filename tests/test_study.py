@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +34,14 @@ def interrupted_at_5(p: dict) -> dict:
     if p["x"] == 5 and os.path.exists(p["stop"]):
         raise KeyboardInterrupt
     return {"y": 2.0 * p["x"]}
+
+
+def sigint_at_2(p: dict) -> dict:
+    """Sends this process a SIGINT (a Ctrl-C) during the run at x = 2, while ``p["stop"]`` exists."""
+    CALLS.append(p["x"])
+    if p["x"] == 2 and os.path.exists(p["stop"]):
+        os.kill(os.getpid(), signal.SIGINT)
+    return {"y": 3.0 * p["x"]}
 
 
 def reports_failure(p: dict) -> dict:
@@ -175,6 +184,23 @@ def test_interrupt_then_resume_loses_and_repeats_nothing(tmp_path: Path, workers
     assert len(on_disk) == 10 and on_disk["run_id"].is_unique  # nothing lost, nothing twice
     if workers == 1:
         assert sorted(CALLS) == sorted(set(range(10)) - set(kept["x"]))  # only the missing runs ran
+
+
+def test_ctrl_c_in_serial_study_finishes_the_run_and_stops(tmp_path: Path):
+    """A Ctrl-C inside a run (where a solver callback would swallow KeyboardInterrupt)
+    lets that run finish and be recorded, then stops the study."""
+    stop = tmp_path / "stop"
+    stop.touch()
+    out = tmp_path / "t.csv"
+    runs = st.grid(x=range(6), stop=[str(stop)])
+    CALLS.clear()
+    with pytest.raises(KeyboardInterrupt):
+        st.run_study(sigint_at_2, runs, out, workers=1, progress=False)
+    assert CALLS == [0, 1, 2] and pd.read_csv(out)["x"].tolist() == [0, 1, 2]
+    stop.unlink()
+    CALLS.clear()
+    df = st.run_study(sigint_at_2, runs, out, workers=1, progress=False)
+    assert CALLS == [3, 4, 5] and df["y"].tolist() == [0.0, 3.0, 6.0, 9.0, 12.0, 15.0]
 
 
 def test_crashed_worker_is_a_row(tmp_path: Path):
