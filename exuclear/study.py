@@ -56,7 +56,7 @@ from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from numbers import Integral, Real
+from numbers import Integral
 from pathlib import Path
 from typing import Any
 
@@ -721,7 +721,7 @@ def _execute(study: Study, todo: deque, table: _Table, total: int, workers: int 
             _loop(pool, function, todo, table, bar, batch_size, window, in_flight, pressed)
     except KeyboardInterrupt:
         interrupted = True
-        for future, batch in list(in_flight.items()):  # tasks finished meanwhile are kept too
+        for future in list(in_flight):  # tasks finished meanwhile are kept too
             if future.done() and not future.cancelled() and future.exception() is None:
                 for row in future.result():
                     table.add(row)

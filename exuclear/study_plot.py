@@ -94,7 +94,8 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     ax.set_xlabel(x)
     fixed = ", ".join(f"{k} = {v}" for k, v in (where or {}).items())
     note = f"{failed} failed run(s) left out" if failed else ""
-    ax.set_title(title if title is not None else "; ".join(s for s in (f"{metric} over {x}" + (f" and {y}" if y else ""), fixed, note) if s))
+    what = f"{metric} over {x}" + (f" and {y}" if y else "")
+    ax.set_title(title if title is not None else "; ".join(s for s in (what, fixed, note) if s))
     ax.grid(True, alpha=0.3)
     if path is None:
         return ax
