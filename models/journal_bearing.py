@@ -75,7 +75,7 @@ class JournalBearingParams:
     #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
     #: c centred.
     start_gap: float = 0.0
-    backend: str = "python"
+    backend: str = exuclear.DEFAULT_BACKEND
     #: Penetration [m] beyond which a run stops; None: the library's default bound (see
     #: :func:`exuclear.add_clearance_joint`).
     max_penetration: float | None = None
@@ -291,7 +291,7 @@ def main(argv: list[str] | None = None) -> int:
 STUDY_PARAMETERS = {
     "law": "wang-liu", "cr": 0.9, "length": 15e-3, "journal_material": "steel", "bearing_material": "steel",
     "journal_radius": 9.9e-3, "bearing_radius": 10e-3, "mass": 0.04, "impact_velocity": 0.3,
-    "v_min": exuclear.V_MIN_DEFAULT, "backend": "python",
+    "v_min": exuclear.V_MIN_DEFAULT, "backend": exuclear.DEFAULT_BACKEND,
 }
 
 

@@ -110,7 +110,7 @@ class SliderCrankParams:
         ``"redundant"`` or ``"minimal"``, see the module docstring.
     backend : str
         How the clearance joints' forces are evaluated, see
-        :func:`exuclear.add_clearance_joint`: ``"python"`` or ``"symbolic"``.
+        :func:`exuclear.CreateClearanceJoint`: ``"compiled"`` (default where built) or ``"python"``.
     max_penetration : float, optional
         Penetration [m] beyond which a run stops, see :func:`exuclear.add_clearance_joint`;
         default None, the library's default bound.
@@ -138,7 +138,7 @@ class SliderCrankParams:
     ideal: bool = False
     formulation: str = "minimal"
     clearance_joints: tuple[str, ...] = ("B",)
-    backend: str = "python"
+    backend: str = exuclear.DEFAULT_BACKEND
     max_penetration: float | None = None
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 

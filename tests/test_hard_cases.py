@@ -184,7 +184,8 @@ def test_too_soft_material_stops_with_time_joint_advice_and_kept_results():
     assert "results up to then are kept" in message
     t_stop = float(message.split("t = ")[1].split(" s")[0])
     times = result.columns["time"]
-    assert len(times) > 10 and times[-1] == pytest.approx(t_stop, abs=1e-5) and times[-1] < params.end_time
+    # outputs end at the last accepted step before the one that crossed the bound (default steps <= 1e-4 s)
+    assert len(times) > 10 and times[-1] < t_stop <= times[-1] + 1e-4 and times[-1] < params.end_time
     assert np.all(np.isfinite(result.columns["contact_force"]))
 
 
@@ -213,14 +214,14 @@ def test_non_finite_state_stops_with_joint_and_time():
 
 
 def test_cli_run_failure_writes_the_csv_and_says_incomplete(tmp_path):
-    # a fixed RK44 step of 1e-4 s overshoots the first impact past the penetration bound
+    # a 1 um penetration bound stops the run in the first impact (its peak is ~5 um)
     path = tmp_path / "out.csv"
     import contextlib
     import io
 
     err = io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
-        status = sc_model.main(["--method", "rk44", "--step", "1e-4", "--csv", str(path)])
+        status = sc_model.main(["--max-penetration", "1e-6", "--csv", str(path)])
     assert status == 1
     assert "error: stopped at t = " in err.getvalue() and "INCOMPLETE" in err.getvalue()
     lines = path.read_text(encoding="utf-8").splitlines()

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -103,11 +104,12 @@ def test_small_clearance_approaches_the_ideal_mechanism():
     assert deviations[0] > 5 * deviations[1] > 25 * deviations[2]
 
 
-def _energy_terms(params: SliderCrankParams, settings: exuclear.SolverSettings) -> tuple[float, float, float]:
-    """Drive work, change of T + V, and energy absorbed by the contact, by the trapezoid
-    rule over every accepted step.  T and V are written here from the tree coordinates."""
+def _energy_terms(params: SliderCrankParams, settings: exuclear.SolverSettings) -> tuple[float, float, float, int]:
+    """Drive work, change of T + V, energy absorbed by the contact (by the trapezoid rule
+    over every accepted step), and the number of steps.  T and V are written here from the tree coordinates."""
     model = build(params)
-    assert exuclear.simulate(model.mbs, settings).success
+    result = exuclear.simulate(model.mbs, settings)
+    assert result.success
     q = np.asarray(model.mbs.GetSensorStoredData(model.sensors["q"]))
     q_t = np.asarray(model.mbs.GetSensorStoredData(model.sensors["q_t"]))
     cols, out = _columns(model), model.joint.outputs()
@@ -122,7 +124,7 @@ def _energy_terms(params: SliderCrankParams, settings: exuclear.SolverSettings) 
     work = np.trapezoid(cols["crank_moment"] * thd, t)
     absorbed = np.trapezoid(out["normal_force"] * out["penetration_rate"]
                             + out["tangential_force"] * out["slip_velocity"], t)
-    return work, kinetic[-1] + potential[-1] - kinetic[0] - potential[0], absorbed
+    return work, kinetic[-1] + potential[-1] - kinetic[0] - potential[0], absorbed, result.steps
 
 
 @pytest.mark.parametrize("friction", ["none", "paper"])
@@ -131,12 +133,17 @@ def test_energy_audit_over_two_revolutions(friction):
     # absorbed (F_N delta_dot + F_T v_T, dissipated or still stored elastically).
     # Tolerance: 1 % of the absorbed energy; measured 0.4 % (none) and 0.08 % (paper)
     # at rtol 1e-8.  (At the default rtol 1e-6 the friction case misses by 4 %.)
+    # Plus the flywheel's round-off (validation.hard_cases.flywheel_roundoff, ~1.2e-4 J over
+    # these steps): the drive work is -J_fly theta_tt with J_fly = 1e6 kg m^2, whose energy
+    # cannot be resolved better; the bound without it was met or missed by chance.
+    from validation.hard_cases import flywheel_roundoff
+
     params = SliderCrankParams.paper(friction=friction)
     # steps of at most 1e-5 s: the trapezoid rule over the recorded steps is part of the audit
     settings = replace(default_settings(params), step=1e-5, rtol=1e-8, atol=1e-12, output_step=1e-12)  # every step
-    work, change, absorbed = _energy_terms(params, settings)
+    work, change, absorbed, steps = _energy_terms(params, settings)
     assert absorbed > 0.0
-    assert abs(work - change - absorbed) < 0.01 * absorbed
+    assert abs(work - change - absorbed) < 0.01 * absorbed + flywheel_roundoff(params.crank_speed, steps)
 
 
 def test_csv_columns(tmp_path):
@@ -189,9 +196,11 @@ def test_clearance_at_every_revolute_joint_is_built():
     p = SliderCrankParams.paper(formulation="redundant", clearance_joints=("O", "A", "B"), revolutions=0.002)
     model = build(p)
     assert sorted(model.joints) == ["A", "B", "O"]
-    for handle in model.joints.values():
-        kin = handle.kinematics(*handle._current())
-        assert kin.ecc == pytest.approx(0.0, abs=1e-15) and kin.delta_dot == pytest.approx(0.0, abs=1e-12)
+    local = exu.OutputVariableType.DisplacementLocal
+    for handle in model.joints.values():  # the connectors' own outputs at the initial state
+        ecc = np.asarray(model.mbs.GetObjectOutput(handle.objectNumber, local))
+        rate = np.asarray(model.mbs.GetObjectOutput(handle.objectNumber, exu.OutputVariableType.VelocityLocal))
+        assert np.abs(ecc).max() == pytest.approx(0.0, abs=1e-15) and np.abs(rate[:2]).max() == pytest.approx(0.0, abs=1e-12)
     with pytest.raises(ValueError, match="clearance joint at B only"):
         build(replace(p, formulation="minimal"))
 

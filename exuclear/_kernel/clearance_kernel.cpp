@@ -65,7 +65,6 @@ const double INF = std::numeric_limits<double>::infinity();
 
 // ---- parameters (layout: exuclear/engine/layout.py) -------------------------------------
 enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
-enum StiffnessCode { STIFFNESS_CONSTANT = 0, STIFFNESS_LIU = 1 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
 
 struct Params {
@@ -73,7 +72,7 @@ struct Params {
     int role;
     double r_j, r_b, max_penetration, impact_step;
     int stiffness_code;
-    double k0, exponent, damping_factor, v_min, clearance;
+    double exponent, damping_factor, v_min, clearance;
     double kp[6];
     int friction_code;
     double fp[4];
@@ -88,7 +87,6 @@ Params decode(const M6& p) {
     a.max_penetration = p[0][4];
     a.impact_step = p[0][5];
     a.stiffness_code = static_cast<int>(p[1][0]);
-    a.k0 = p[1][1];
     a.exponent = p[1][2];
     a.damping_factor = p[1][3];
     a.v_min = p[1][4];
@@ -125,19 +123,50 @@ Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx,
 }
 
 // ---- physics: contact.py -------------------------------------------------------------------
-double stiffness(const Params& a, double delta) {  // K_eff(delta)
+// Stiffness models by kernel_code; kp are their kernel_parameters() (exuclear/contact.py).
+const int STIFFNESS_CODES = 7;
+
+// _LogLineContact._solve: s with s (ln(C/s) + beta) = delta, safeguarded Newton in (0, s_peak)
+double log_line_solve(double delta, double c, double beta, double rtol, int max_iter) {
+    double hi = c * std::exp(beta - 1.0);
+    if (delta >= hi) return std::numeric_limits<double>::quiet_NaN();  // beyond the model's largest penetration
+    double lo = 0.0;
+    double s = delta / (std::log(c / delta) + beta);
+    if (!(lo < s && s < hi)) s = 0.5 * hi;
+    for (int i = 0; i < max_iter; ++i) {
+        double log_term = std::log(c / s) + beta;
+        double r = s * log_term - delta;
+        if (r > 0.0) hi = s; else lo = s;
+        double s_new = s - r / (log_term - 1.0);
+        if (!(lo < s_new && s_new < hi)) s_new = 0.5 * (lo + hi);
+        if (std::fabs(s_new - s) <= rtol * s_new) return s_new;
+        s = s_new;
+    }
+    return s;
+}
+
+double elastic_force(const Params& a, double delta) {  // F_e(delta) for delta > 0
+    const double* kp = a.kp;
     switch (a.stiffness_code) {
-        case STIFFNESS_LIU:  // Liu's elastic foundation, eq. 7: (pi E* L / 2) sqrt(1 / (2 (c + delta)))
-            return a.k0 * std::sqrt(1.0 / (2.0 * (a.clearance + delta)));
-        default:  // delta-independent (Hertz point contact and the laws built on it)
-            return a.k0;
+        case 0:  // hertz point contact: K delta^n
+        case 6:  // pereira: K delta^n
+            return kp[0] * std::pow(delta, kp[1]);
+        case 1:  // liu, eq. 7: (pi E* L / 2) sqrt(1 / (2 (c + delta))) delta^n
+            return kp[0] * std::sqrt(1.0 / (2.0 * (kp[1] + delta))) * std::pow(delta, kp[2]);
+        case 2:  // johnson, radzimovsky, esdu-78035, dubowsky-freudenstein: implicit line contact
+        case 3:
+        case 4:
+        case 5:
+            return kp[0] * log_line_solve(delta, kp[1], kp[2], kp[3], static_cast<int>(kp[4]));
+        default:
+            throw std::runtime_error("exuclear kernel: unknown stiffness code " + std::to_string(a.stiffness_code));
     }
 }
 
 double normal_force(const Params& a, double delta, double delta_dot, double v0) {  // eq. 8
     if (delta <= 0.0) return 0.0;
     double v0_eff = v0 > a.v_min ? v0 : a.v_min;
-    double f = stiffness(a, delta) * std::pow(delta, a.exponent) * (1.0 + a.damping_factor * delta_dot / v0_eff);
+    double f = elastic_force(a, delta) * (1.0 + a.damping_factor * delta_dot / v0_eff);
     return f < 0.0 ? 0.0 : f;  // no adhesion; a NaN stays NaN, to be caught
 }
 
@@ -270,6 +299,11 @@ const History& history_for(JointState& s, const Params& a, const Kinematics& k, 
         s.prev = s.cur;
         s.initial = s.cur;
         s.started = true;
+        if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
+            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+            s.failure_time = t;
+            throw std::runtime_error("exuclear: " + s.failure);
+        }
     }
     return t <= s.cur.time ? s.prev : s.cur;
 }
@@ -454,4 +488,5 @@ PYBIND11_MODULE(_ckernel, m) {
         return py::make_tuple(s.failure, s.failure_time);
     });
     m.attr("N_DATA") = N_DATA;
+    m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
 }

@@ -20,6 +20,7 @@ start (``previous``) and at the end (``current``) of the last step it post-proce
 """
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ..geometry import ContactKinematics, contact_kinematics, joint_loads
@@ -67,6 +68,8 @@ class PythonJointKernel:
             self.current, _ = ContactState(time=t).accept(kin, self.joint, t)
             self.previous = self.initial = self.current
             self.started = True
+            if not _finite(kin):
+                self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
         return self.previous if t <= self.current.time else self.current
 
     # -- Exudyn user functions ---------------------------------------------------------
@@ -112,7 +115,7 @@ class PythonJointKernel:
         self.history_for(kin, t)
         advance = t > self.current.time
         base = self.current if advance else self.previous  # a repeated step starts again from its start
-        if not all(v == v and abs(v) != float("inf") for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t)):
+        if not _finite(kin):
             self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
         if kin.delta > max_penetration:
             self._fail(f"penetration {kin.delta:.4g} m exceeds the limit {max_penetration:.4g} m", t)
@@ -133,6 +136,10 @@ class PythonJointKernel:
     def _fail(self, message: str, t: float) -> None:
         self.failure, self.failure_time = message, t
         raise KernelFailure(f"exuclear: {message}")
+
+
+def _finite(kin: ContactKinematics) -> bool:
+    return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))
 
 
 def data_values(s: ContactState) -> list[float]:

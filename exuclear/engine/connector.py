@@ -199,7 +199,8 @@ class ClearanceJointHandle:
     def _write_parameters(self) -> None:
         for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
-                p = parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step)
+                p = parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
+                               compiled=self.python_kernel is None)
                 p[4][0] = float(self.token)
                 self.mbs.SetObjectParameter(number, "stiffness", p)
 
@@ -239,6 +240,18 @@ class ClearanceJointHandle:
         return [ImpactRecord(*r) for r in kernel.COMPILED.records(self.joint_id)]
 
     @property
+    def nodes(self) -> list[int]:
+        """The nodes of the bearing's and the journal's bodies (where a body has one node)."""
+        found = []
+        for marker in self.markerNumbers:
+            m = self.mbs.GetMarker(marker)
+            body = m.get("bodyNumber", m.get("objectNumber"))
+            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else None
+            if node is not None and int(node) >= 0:
+                found.append(int(node))
+        return found
+
+    @property
     def history(self) -> JointHistory:
         """The contact history of the last run: the state after the last accepted step, the
         records of the ended contacts, and every onset time."""
@@ -253,7 +266,7 @@ class ClearanceJointHandle:
         return tuple(kernel.COMPILED.failure(self.joint_id))
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS` (plus ``onsets``), SI units.
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
 
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
@@ -271,7 +284,7 @@ class ClearanceJointHandle:
             data = data.copy()
             data[0, 1:] = data_values(initial)
         column = {c: data[:, k + 1] for k, c in enumerate(DATA_COLUMNS)}
-        return {"time": data[:, 0], **{c: column[c] for c in (*OUTPUT_COLUMNS, "onsets")}}
+        return {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
 
 
 @dataclass(frozen=True)
@@ -381,6 +394,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         maxPenetration = default_penetration_limit(joint.geometry)
     check_positive("maxPenetration", maxPenetration)
 
+    parameters(joint, 0, MAIN, maxPenetration, compiled=backend == "compiled")  # refuses what the kernel cannot do
     m_bearing, m_journal = markerNumbers
     _, a_bearing = _marker_pose(mbs, m_bearing)
     _, a_journal = _marker_pose(mbs, m_journal)
@@ -550,6 +564,8 @@ def add_clearance_joint(
     the rigid markers and calls :func:`AddClearanceJoint`.
     """
     _check_system(mbs)
+    if max_penetration is not None:
+        check_positive("max_penetration", max_penetration)
     markers = [_point_marker(mbs, bearing_body, bearing_point, bearing_link, "bearing"),
                _point_marker(mbs, journal_body, journal_point, journal_link, "journal")]
     if _object_type(mbs, journal_body, "journal") == "Ground" and _object_type(mbs, bearing_body, "bearing") == "Ground":

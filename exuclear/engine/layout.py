@@ -9,9 +9,11 @@ row   entries
 ====  ==========================================================================
 0     joint id (kernel table), role (0 joint, 1 bearing-spin probe, 2 bearing
       torque), R_J, R_B [m], penetration limit [m], impact step [s] (0: off)
-1     stiffness code, K constant, exponent n, damping factor D, v_min [m/s], c [m]
-2     further stiffness constants (up to 6)
+1     stiffness code (``StiffnessModel.kernel_code``), 0, exponent n, damping factor D,
+      v_min [m/s], c [m]
+2     the stiffness model's constants (``kernel_parameters()``, up to 6)
 3     friction code, then up to 4 friction constants
+4     the handle's token (which handle owns the connector)
 ====  ==========================================================================
 
 The codes are those of ``exuclear/_kernel/clearance_kernel.cpp``.
@@ -24,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..contact import ContactLaw, WangLiu
+from ..contact import ContactLaw
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
 
@@ -37,12 +39,17 @@ DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "no
 FRICTION_CODES = {NoFriction: 0, Coulomb: 1, ModifiedCoulomb: 2}
 
 
+#: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
+KERNEL_STIFFNESS_CODES = frozenset(range(7))
+
+
 def law_code(law: ContactLaw) -> tuple[int, tuple[float, ...]]:
-    """The kernel's stiffness code and extra constants of a contact law."""
-    code = getattr(law, "kernel_code", None)
-    if code is not None:
-        return int(code), tuple(float(v) for v in law.kernel_parameters())
-    return (1 if isinstance(law, WangLiu) else 0), ()
+    """The kernel's stiffness code and constants of a contact law; ``ValueError`` for a
+    stiffness model the compiled kernel does not know (a law written in Python)."""
+    code = int(getattr(law, "kernel_code", -1))
+    if code not in KERNEL_STIFFNESS_CODES:
+        raise ValueError(f"the stiffness model of law {law.name!r} has no compiled form; use backend='python'")
+    return code, tuple(float(v) for v in law.kernel_parameters())
 
 
 def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
@@ -58,16 +65,17 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
-               impact_step: float = 0.0) -> list[list[float]]:
-    """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring)."""
+               impact_step: float = 0.0, compiled: bool = True) -> list[list[float]]:
+    """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring);
+    ``compiled=False`` (the Python kernel) accepts laws without a compiled form."""
     law, g = joint.law, joint.geometry
-    code, extra = law_code(law)
-    f_code, f_params = friction_code(joint.friction)
+    code, extra = law_code(law) if compiled else (-1, ())
+    f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
     if len(extra) > 6 or len(f_params) > 4:
         raise ValueError("a law has more constants than the kernel's parameter layout holds")
     p = np.zeros((6, 6))
     p[0, :] = [joint_id, role, g.journal_radius, g.bearing_radius, max_penetration, impact_step]
-    p[1, :] = [code, law._k0, law.exponent, law.damping_factor, law.v_min, g.clearance]
+    p[1, :] = [code, 0.0, law.exponent, law.damping_factor, law.v_min, g.clearance]
     p[2, :len(extra)] = extra
     p[3, 0] = f_code
     p[3, 1:1 + len(f_params)] = f_params
