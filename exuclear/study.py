@@ -208,13 +208,14 @@ def sample(bounds: Mapping[str, tuple[float, float]], n: int, *, seed: int, meth
 def parse_values(text: str) -> list[Any]:
     """Values of a command-line option: ``"0.3:0.9:0.2"`` (start:stop:step, stop included
     when it lies on the grid), ``"5e-5,1e-4,2e-4"`` (a list), or one value.  Numbers
-    become int or float, anything else stays a string (``"steel,aluminium"``)."""
+    become int or float, anything else stays a string (``"steel,aluminium"``,
+    ``"none,coulomb:0.1"``)."""
     text = text.strip()
     if not text:
         raise ValueError("empty value")
-    if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3 or not _is_number_list(parts):
+    parts = text.split(":")
+    if len(parts) > 1 and _is_number_list(parts):  # numbers only: a range ("coulomb:0.1" is a value)
+        if len(parts) != 3:
             raise ValueError(f"a range is start:stop:step (three numbers), got {text!r}")
         start, stop, step = (float(v) for v in parts)
         if not step > 0.0 or not math.isfinite(step):
@@ -744,19 +745,37 @@ def _loop(pool: _Pool, function: Any, todo: deque, table: _Table, bar: _Progress
     suspects: deque = deque()
     alone: set[cf.Future] = set()
     timing = [0.0, 0]  # wall time and number of finished runs, for the batch size
+
+    def restart() -> None:
+        """A broken local pool loses every task in it: they become suspects."""
+        for other in list(in_flight):
+            suspects.extend(in_flight.pop(other))
+        alone.clear()
+        pool.executor.shutdown(wait=True, cancel_futures=True)
+        pool.executor = pool.restart()
+
+    def submit(batch: list) -> cf.Future:
+        try:
+            future = pool.executor.submit(_run_batch, function, batch)
+        except BrokenProcessPool:  # a worker died before its task came back: noticed here first
+            if pool.restart is None:
+                raise
+            restart()
+            future = pool.executor.submit(_run_batch, function, batch)
+        in_flight[future] = batch
+        return future
+
     while todo or suspects or in_flight:
         while (todo or suspects) and len(in_flight) < window:
             if suspects:
                 if in_flight:
                     break  # a suspect waits until it can run alone
-                batch = [suspects.popleft()]
-                future = pool.executor.submit(_run_batch, function, batch)
-                in_flight[future] = batch
-                alone.add(future)
+                future = submit([suspects.popleft()])
+                if len(in_flight) == 1:
+                    alone.add(future)
                 break
             size = batch_size or _batch_size(timing, len(todo), pool.workers)
-            batch = [todo.popleft() for _ in range(min(size, len(todo)))]
-            in_flight[pool.executor.submit(_run_batch, function, batch)] = batch
+            submit([todo.popleft() for _ in range(min(size, len(todo)))])
         finished, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
         for future in [f for f in in_flight if f in finished]:  # in the order of submission
             batch = in_flight.pop(future, None)
@@ -771,11 +790,7 @@ def _loop(pool: _Pool, function: Any, todo: deque, table: _Table, bar: _Progress
                 if not rows:
                     suspects.extend(batch)
                 if isinstance(err, BrokenProcessPool) and pool.restart is not None:
-                    for other in list(in_flight):  # a broken pool loses every task in it
-                        suspects.extend(in_flight.pop(other))
-                    alone.clear()
-                    pool.executor.shutdown(wait=True, cancel_futures=True)
-                    pool.executor = pool.restart()
+                    restart()
             alone.discard(future)
             if ctrl_c is not None and ctrl_c.pressed > 1:
                 rows = [row for row in rows if row["success"]]  # a failure may be the second Ctrl-C

@@ -70,8 +70,9 @@ def test_parse_values():
     assert st.parse_values("200:5000:50") == list(range(200, 5001, 50))  # integers stay integers: 97 speeds
     assert st.parse_values("5e-5,1e-4,2e-4") == [5e-5, 1e-4, 2e-4]
     assert st.parse_values("steel,aluminium") == ["steel", "aluminium"]
+    assert st.parse_values("none,coulomb:0.1") == ["none", "coulomb:0.1"]  # not numbers: not a range
     assert st.parse_values("0.25") == [0.25]
-    for bad in ("1:0:0.1", "0:1:0", "0:1", "a:b:c", "1,,2", ""):
+    for bad in ("1:0:0.1", "0:1:0", "0:1", "0:1:2:3", "1,,2", ""):
         with pytest.raises(ValueError):
             st.parse_values(bad)
 
