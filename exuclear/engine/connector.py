@@ -158,6 +158,8 @@ class ClearanceJointHandle:
     probeNumber, torqueNumber : the bearing-spin probe and torque connectors (None where
         the bearing is the ground).
     constraintNumber : the ``ObjectJointGeneric`` of ``constrainAxial=True``, else None.
+    drawingNumber : the ground object whose graphics function draws journal and bearing
+        (``show=True``), else None.
     """
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, backend: str,
@@ -173,6 +175,8 @@ class ClearanceJointHandle:
         self.probeNumber: Any = None
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
+        self.drawingNumber: Any = None
+        self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
 
@@ -404,6 +408,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration))
     handle.markerNumbers = [m_bearing, m_journal]
+    handle._axis_local = axis_local / np.linalg.norm(axis_local)
     fns = _user_functions(handle)
     hidden = VObjectConnectorRigidBodySpringDamper(show=False)
     if not _orientation_is_fixed(mbs, m_bearing):
@@ -431,6 +436,9 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
             name=f"{name}:axial" if name else "", markerNumbers=[m_bearing, m_journal],
             constrainedAxes=[0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
             visualization={"show": False}))
+    if show:  # journal and bearing drawn by a graphics function, which only a renderer calls
+        handle.drawingNumber = mbs.AddObject(ObjectGround(visualization=VObjectGround(
+            show=True, graphicsDataUserFunction=drawing_function(handle))))
     handle._write_parameters()
     mbs.variables.setdefault(REGISTRY_KEY, []).append(handle)
     if record:
@@ -438,6 +446,38 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                                                        writeToFile=False,
                                                        outputVariableType=exu.OutputVariableType.Coordinates))
     return handle
+
+
+#: Colours of the drawing (RGBA).
+JOURNAL_COLOR, BEARING_COLOR = [0.3, 0.3, 0.8, 1.0], [0.7, 0.7, 0.7, 1.0]
+#: Outer radius of the drawn bearing ring, relative to the bearing radius.
+BEARING_RING = 1.4
+
+
+def drawing_function(handle: ClearanceJointHandle,
+                     configuration: Any = exu.ConfigurationType.Visualization) -> Any:
+    """Graphics function of the joint: the journal as a cylinder of radius R_J and the bearing
+    as a ring from R_B, both of the bearing length, along the bearing axis, at the markers'
+    current poses.  Exudyn calls it only to render."""
+    geometry = handle.joint.geometry
+
+    def draw(mbs: exu.MainSystem, item: int) -> list:
+        m_bearing, m_journal = handle.markerNumbers
+        rot = np.asarray(mbs.GetMarkerOutput(m_bearing, exu.OutputVariableType.RotationMatrix,
+                                             configuration=configuration)).reshape(3, 3)
+        axis = rot @ handle._axis_local
+        shift = 0.5 * geometry.length * axis
+        out = []
+        for marker, radius, inner, color in ((m_journal, geometry.journal_radius, None, JOURNAL_COLOR),
+                                             (m_bearing, BEARING_RING * geometry.bearing_radius,
+                                              geometry.bearing_radius, BEARING_COLOR)):
+            centre = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position,
+                                                    configuration=configuration))
+            out.append(exu.graphics.Cylinder(pAxis=(centre - shift).tolist(), vAxis=(2.0 * shift).tolist(),
+                                             radius=radius, radiusInner=inner, color=color))
+        return out
+
+    return draw
 
 
 def _user_functions(handle: ClearanceJointHandle) -> dict[str, Any]:

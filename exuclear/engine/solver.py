@@ -92,8 +92,26 @@ class _Watchdog:
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
         self.last, self.attempts, self.problem = 0.0, 0, ""
+        self.interrupted = False
 
+    # Ctrl-C raises KeyboardInterrupt in the next Python code that runs, which during a solve
+    # is one of these functions; Exudyn turns any exception there into its own error, so the
+    # interrupt is noted here and raised again once the solver has returned.
     def pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
+        try:
+            return self._pre_step(mbs, t)
+        except KeyboardInterrupt:
+            self.interrupted = True
+            raise
+
+    def post_step(self, mbs: exu.MainSystem, t: float) -> bool:
+        try:
+            return self._post_step(mbs, t)
+        except KeyboardInterrupt:
+            self.interrupted = True
+            raise
+
+    def _pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
         self.attempts += 1
         if self.attempts > MAX_STEP_ATTEMPTS:
             self.problem = (f"at t = {self.last:.6g} s, the solver retried one step {MAX_STEP_ATTEMPTS} times without "
@@ -102,7 +120,7 @@ class _Watchdog:
             raise RuntimeError(self.problem)  # returning False would not end Exudyn's retry loop
         return self.user_pre(mbs, t) if self.user_pre is not None else True
 
-    def post_step(self, mbs: exu.MainSystem, t: float) -> bool:
+    def _post_step(self, mbs: exu.MainSystem, t: float) -> bool:
         self.attempts = 0
         step, self.last = t - self.last, t
         if 0.0 < step <= self.min_step:
@@ -183,6 +201,8 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     wall = time.perf_counter() - start
     for handle in joints:
         handle.set_impact_step(0.0)  # a later mbs.SolveDynamic must not inherit it
+    if watchdog.interrupted:
+        raise KeyboardInterrupt(f"simulation interrupted at t = {mbs.systemData.GetTime():.6g} s")
     it = mbs.sys["dynamicSolver"].it
     steps, rejected = int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps)
     t_reached = mbs.systemData.GetTime()
