@@ -1,6 +1,6 @@
 """Normal contact force laws for a journal in a bearing: a stiffness model and a damping model.
 
-Every law here has the form of MODEL.md section 2,
+Every law here has the form of docs/physics.md eq. (9),
 
     F_N = F_e(delta) * (1 + D * delta_dot / v0_eff),   F_N >= 0,
 
@@ -43,11 +43,11 @@ from typing import ClassVar
 from ._checks import check_choice, check_open_closed, check_positive, check_real
 from .geometry import BearingGeometry
 
-#: Default floor of the onset velocity in the damping term [m/s] (MODEL.md section 2):
+#: Default floor of the onset velocity in the damping term [m/s] (docs/physics.md eq. (17)):
 #: grazing contact has v0 -> 0 and D * delta_dot / v0 would blow up.
 V_MIN_DEFAULT = 1e-3
 
-#: Hertzian exponent for metallic contact (MODEL.md section 2).
+#: Hertzian exponent for metallic contact (docs/physics.md section 2.1).
 EXPONENT_METAL = 1.5
 
 #: Relative step below which the Newton iteration of the implicit line-contact models
@@ -123,10 +123,6 @@ class StiffnessModel(ABC):
     def kernel_parameters(self) -> tuple[float, ...]:
         """The constants the compiled kernel needs for this :attr:`kernel_code` (at most 6)."""
 
-    def elastic_expression(self, depth, ops):
-        """``F_e`` on a math backend ``ops`` (:mod:`exuclear._ops`), ``depth >= 0``."""
-        raise ValueError(f"the {self.name!r} stiffness model is solved iteratively and has no symbolic form; "
-                         "use backend='python'")
 
 
 @dataclass(frozen=True)
@@ -152,8 +148,6 @@ class _PowerLaw(StiffnessModel):
             return 0.0
         return self.stiffness(delta) * delta**self._n
 
-    def elastic_expression(self, depth, ops):
-        return self.stiffness(depth, ops.sqrt) * depth**self._n
 
     def kernel_parameters(self) -> tuple[float, ...]:
         return (self._K, self._n)
@@ -167,7 +161,7 @@ class PointContact(_PowerLaw):
     ``n = 1.5``: the Hertz law of two spheres of radii ``R_J`` and ``-R_B``.  For cylinders
     it is an approximation (their contact is a line, not a point), stiffer than the line
     contact models at large penetration and softer at small; kept because it is the
-    classical choice (MODEL.md section 2; H. M. Lankarani, P. E. Nikravesh, J. Mech. Des.
+    classical choice (docs/physics.md eq. (13); H. M. Lankarani, P. E. Nikravesh, J. Mech. Des.
     112 (1990) 369-376, eq. 4 with the radii of the joint).  No range of validity beyond
     ``delta << c``.  ``exponent`` may be changed (other materials).
 
@@ -228,8 +222,6 @@ class Liu(StiffnessModel):
             return 0.0
         return self.stiffness(delta) * delta**self.exponent_
 
-    def elastic_expression(self, depth, ops):
-        return self.stiffness(depth, ops.sqrt) * depth**self.exponent_
 
     def kernel_parameters(self) -> tuple[float, ...]:
         return (self._K0, self._c, self.exponent_)
@@ -682,7 +674,7 @@ class ZhiyingQishaoDamping(DampingModel):
     Source: Q. Zhiying, L. Qishao, "Analysis of impact process based on restitution
     coefficient", J. Dyn. Control 4 (2006) 294-298, as used by X. Wang, G. Liu, S. Ma,
     R. Tong, J. Mech. Sci. Technol. 31(2) (2017) 587-597, eq. (8).  Wang et al. claim it
-    for cr >= 0.3 (MODEL.md section 6); warns below.
+    for cr >= 0.3 (docs/physics.md section 8); warns below.
     """
 
     name: ClassVar[str] = "zhiying-qishao"
@@ -871,16 +863,8 @@ class ContactLaw:
             return 0.0
         v0_eff = v0 if v0 > self.v_min else self.v_min
         f = self.stiffness_model.elastic_force(delta) * (1.0 + self._D * delta_dot / v0_eff)
-        return 0.0 if f < 0.0 else f  # no adhesion (MODEL.md section 2); a NaN stays NaN, to be caught
+        return 0.0 if f < 0.0 else f  # no adhesion (docs/physics.md eq. (9)); a NaN stays NaN, to be caught
 
-    def force_expression(self, delta, delta_dot, v0, ops):
-        """:meth:`normal_force` written against a math backend ``ops`` (:mod:`exuclear._ops`),
-        for the symbolic element; the same formula, with branches as ``ops.where``.
-        ``ValueError`` for the implicit stiffness models, which have no symbolic form."""
-        v0_eff = ops.max(v0, self.v_min)
-        depth = ops.max(delta, 0.0)  # keeps the untaken branch real where floats evaluate both
-        f = self.stiffness_model.elastic_expression(depth, ops) * (1.0 + self._D * delta_dot / v0_eff)
-        return ops.where(delta > 0.0, ops.max(f, 0.0), 0.0)
 
     def __call__(self, delta: float, delta_dot: float, v0: float) -> float:
         return self.normal_force(delta, delta_dot, v0)
@@ -912,7 +896,7 @@ class _NamedLaw(ContactLaw):
 class WangLiu(_NamedLaw):
     """Wang-Liu law, the paper's eqs. (7)-(8); the default of exuclear: :class:`Liu`
     stiffness and :class:`ZhiyingQishaoDamping`.  Source: X. Wang, G. Liu, S. Ma, R. Tong,
-    J. Mech. Sci. Technol. 31(2) (2017) 587-597; MODEL.md section 2."""
+    J. Mech. Sci. Technol. 31(2) (2017) 587-597; docs/physics.md eqs. (11)-(12)."""
 
     name: ClassVar[str] = "wang-liu"
     _stiffness: ClassVar[type[StiffnessModel]] = Liu
@@ -921,7 +905,7 @@ class WangLiu(_NamedLaw):
 
 class LankaraniNikravesh(_NamedLaw):
     """Lankarani-Nikravesh law: :class:`PointContact` stiffness and
-    :class:`LankaraniNikraveshDamping`; MODEL.md section 2."""
+    :class:`LankaraniNikraveshDamping`; docs/physics.md eqs. (13)-(14)."""
 
     name: ClassVar[str] = "lankarani-nikravesh"
     _damping: ClassVar[type[DampingModel]] = LankaraniNikraveshDamping

@@ -12,24 +12,29 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ._checks import check_nonnegative, check_positive
-from ._ops import FLOAT_OPS
 
 
-def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float, ops=FLOAT_OPS) -> float:
+def _sign(x: float) -> float:
+    """-1, 0 or 1."""
+    return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
+
+
+def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
     """Cubic step ``S(x; x0, h0, x1, h1) = h0 + (h1 - h0) s^2 (3 - 2 s)`` (docs/physics.md eq. (21)).
 
     ``s = clip((x - x0) / (x1 - x0), 0, 1)``; value and slope are continuous, with zero
-    slope at both ends.  ``ops``: the math backend (:mod:`exuclear._ops`).
+    slope at both ends.
     """
-    s = ops.min(ops.max((x - x0) / (x1 - x0), 0.0), 1.0)
+    s = min(max((x - x0) / (x1 - x0), 0.0), 1.0)
     return h0 + (h1 - h0) * s * s * (3.0 - 2.0 * s)
 
 
 class FrictionLaw(ABC):
     """Base of the friction laws: ``coefficient(v_t) -> mu``.
 
-    A law writes its formula once, in :meth:`expression`, against a math backend
-    (floats here, Exudyn symbolic numbers in the compiled element).
+    The compiled kernel (``exuclear/_kernel/clearance_kernel.cpp``,
+    ``friction_coefficient``) writes the same formulas in the same order; a law it does
+    not know runs with the Python kernel only.
     """
 
     name: ClassVar[str] = ""
@@ -37,12 +42,8 @@ class FrictionLaw(ABC):
     active: ClassVar[bool] = True
 
     @abstractmethod
-    def expression(self, v_t, ops):
-        """``mu(v_t)`` in the math backend ``ops`` (see :mod:`exuclear._ops`)."""
-
     def coefficient(self, v_t: float) -> float:
         """Friction coefficient ``mu`` for the tangential slip ``v_t`` [m/s]; odd in ``v_t``."""
-        return self.expression(v_t, FLOAT_OPS)
 
     def __call__(self, v_t: float) -> float:
         return self.coefficient(v_t)
@@ -54,9 +55,6 @@ class NoFriction(FrictionLaw):
 
     name: ClassVar[str] = "none"
     active: ClassVar[bool] = False
-
-    def expression(self, v_t, ops):
-        return 0.0
 
     def coefficient(self, v_t: float) -> float:
         return 0.0
@@ -86,9 +84,9 @@ class Coulomb(FrictionLaw):
         check_nonnegative("mu", self.mu)
         check_positive("v_eps", self.v_eps)
 
-    def expression(self, v_t, ops):
+    def coefficient(self, v_t: float) -> float:
         # S(v; -a, -mu, a, mu) is odd in v; evaluating it at |v| keeps that exact in floats
-        return ops.sign(v_t) * smooth_step(ops.abs(v_t), -self.v_eps, -self.mu, self.v_eps, self.mu, ops)
+        return _sign(v_t) * smooth_step(abs(v_t), -self.v_eps, -self.mu, self.v_eps, self.mu)
 
 
 @dataclass(frozen=True)
@@ -126,13 +124,16 @@ class ModifiedCoulomb(FrictionLaw):
         """The paper's Table 1: mu_s = 0.3, mu_d = 0.25, v_s = 0.1 mm/s, v_d = 10 mm/s."""
         return cls(mu_s=0.3, mu_d=0.25, v_s=1e-4, v_d=1e-2)
 
-    def expression(self, v_t, ops):
-        speed = ops.abs(v_t)
+    def coefficient(self, v_t: float) -> float:
+        speed = abs(v_t)
         # each branch is evaluated at |v| and signed afterwards, so that mu(-v) = -mu(v) exactly
-        mu = ops.where(speed < self.v_s, smooth_step(speed, -self.v_s, -self.mu_s, self.v_s, self.mu_s, ops),
-                       ops.where(speed < self.v_d, smooth_step(speed, self.v_s, self.mu_s, self.v_d, self.mu_d, ops),
-                                 self.mu_d))
-        return ops.sign(v_t) * mu
+        if speed < self.v_s:
+            mu = smooth_step(speed, -self.v_s, -self.mu_s, self.v_s, self.mu_s)
+        elif speed < self.v_d:
+            mu = smooth_step(speed, self.v_s, self.mu_s, self.v_d, self.mu_d)
+        else:
+            mu = self.mu_d
+        return _sign(v_t) * mu
 
 
 NO_FRICTION = NoFriction()

@@ -304,16 +304,6 @@ def test_command_line_options_resolve_law_and_cr():
         C.law_and_restitution("foo")
 
 
-def test_implicit_models_have_no_symbolic_form(geometry, e_star):
-    from exuclear._ops import FLOAT_OPS
-
-    law = C.contact_law("johnson+flores", geometry, e_star, 0.5)
-    with pytest.raises(ValueError, match="no symbolic form; use backend='python'"):
-        law.force_expression(1e-6, 0.1, 0.3, FLOAT_OPS)
-    pereira = C.contact_law("pereira+flores", geometry, e_star, 0.5)
-    assert pereira.force_expression(1e-6, 0.1, 0.3, FLOAT_OPS) == pytest.approx(pereira(1e-6, 0.1, 0.3), rel=1e-15)
-
-
 @pytest.mark.parametrize("stiffness", sorted(C.STIFFNESS_MODELS))
 @pytest.mark.parametrize("damping", DISSIPATIVE)
 def test_every_pair_keeps_the_law_properties(stiffness, damping, geometry, e_star):

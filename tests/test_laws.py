@@ -131,21 +131,6 @@ def test_friction_names():
     assert exuclear.friction_law("paper") == ModifiedCoulomb.paper()
 
 
-@pytest.mark.parametrize("name", sorted(CONTACT_LAWS))
-def test_force_expression_is_normal_force_on_floats(name, geometry, e_star):
-    # the compiled element records force_expression: on floats it must be normal_force,
-    # bit for bit up to the order of operations (1e-12 relative)
-    from exuclear._ops import FLOAT_OPS
-
-    cr = 1.0 if name == "hertz" else 0.4
-    law = contact_law(name, geometry, e_star, cr)
-    for delta in (-1e-6, 0.0, 1e-9, 1e-6, 5e-6):
-        for rate in (-0.5, -1e-4, 0.0, 0.3):
-            for v0 in (-0.1, 0.0, 1e-5, 0.3):
-                expected = law.normal_force(delta, rate, v0)
-                got = law.force_expression(delta, rate, v0, FLOAT_OPS)
-                assert got == pytest.approx(expected, rel=1e-12, abs=0.0)
-
 
 @pytest.mark.parametrize("law", [ModifiedCoulomb.paper(), exuclear.Coulomb(0.1, v_eps=2e-4)], ids=["paper", "coulomb"])
 def test_friction_expression_matches_the_branch_formula(law):
