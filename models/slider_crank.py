@@ -12,7 +12,7 @@
       ground pivot,      [slider]====> X   (ideal prismatic guide, y = 0)
       crank turns at a constant omega
 
-Two formulations, both assembled from Exudyn items by the library:
+Three formulations, all assembled from Exudyn items by the library:
 
 - ``"redundant"``: ``ObjectRigidBody2D`` bodies with ideal ``JointRevolute2D`` (O, A)
   and ``JointPrismatic2D`` (slider) constraints; the crank speed is a velocity-level
@@ -21,6 +21,10 @@ Two formulations, both assembled from Exudyn items by the library:
 - ``"minimal"``: an ``ObjectKinematicTree`` with coordinates (crank angle, rod angle
   relative to the crank, slider x), so that explicit adaptive solvers (DOPRI5) apply.
   See :func:`build` for how the crank speed is held there.
+- ``"spatial"``: the same mechanism built as an Exudyn user builds 3D models, six
+  degrees of freedom per body (``mbs.CreateRigidBody``, ``mbs.CreateRevoluteJoint``,
+  ``mbs.CreatePrismaticJoint``, ``exuclear.CreateClearanceJoint``); see
+  :func:`_build_spatial`.  Needs an implicit solver.
 
 Run ``python -m models.slider_crank --help`` for the command line.
 """
@@ -51,6 +55,7 @@ from exudyn.itemInterface import (
     SensorNode,
     SensorObject,
 )
+from exudyn.rigidBodyUtilities import RigidBodyInertia
 
 import exuclear
 from exuclear import SolverSettings
@@ -58,7 +63,7 @@ from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_
 from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings
 from models._cli import write_csv as _write_columns
 
-FORMULATIONS = ("redundant", "minimal")
+FORMULATIONS = ("redundant", "minimal", "spatial")
 
 #: Inertia added to the crank in the minimal formulation [kg m^2] to hold its speed
 #: (see :func:`build`): 2.5e10 times the paper crank's own inertia about O, so a 100 N m
@@ -107,7 +112,7 @@ class SliderCrankParams:
         (crank-rod), ``"B"`` (rod-slider, the paper's); all with the same geometry,
         law and materials.  Only ``("B",)`` in the minimal formulation.
     formulation : str
-        ``"redundant"`` or ``"minimal"``, see the module docstring.
+        ``"redundant"``, ``"minimal"`` or ``"spatial"``, see the module docstring.
     backend : str
         How the clearance joints' forces are evaluated, see
         :func:`exuclear.CreateClearanceJoint`: ``"compiled"`` (default where built) or ``"python"``.
@@ -310,6 +315,135 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
     return {"B": handle}, sensors
 
 
+#: Rotation node of the spatial formulation's bodies, see :func:`_build_spatial`.
+SPATIAL_NODE_TYPE = exu.NodeType.RotationRxyz
+
+#: Index of the rotation about z among an Rxyz node's coordinates ``[x, y, z, rx, ry, rz]``.
+_RXYZ_ANGLE_Z = 5
+
+
+def _build_spatial(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dict]:
+    """The slider-crank from 3D rigid bodies, as an Exudyn user builds it.
+
+    Bodies: crank, rod and slider from ``mbs.CreateRigidBody`` with six degrees of
+    freedom each, nodes at the centres of mass, gravity along -Y.  Their inertia about
+    x and y never enters the motion (the angular velocities stay along z, a principal
+    axis, and the joints hold the tilt), so each body gets its planar moment of inertia
+    about all three axes; the slider's, which its guide keeps from turning, is that of
+    the redundant formulation.
+
+    Rotation node: ``NodeRigidBodyRxyz`` (:data:`SPATIAL_NODE_TYPE`), chosen over
+    ``CreateRigidBody``'s default Euler parameters and the rotation vector:
+
+    - its third angle ``rz`` is, while the tilts ``rx = ry = 0``, the rotation about z
+      itself and its rate the angular velocity about z (``omega = e_x rx' + Rx e_y ry'
+      + Rx Ry e_z rz'``), unbounded as the crank turns; so the crank speed is held as in
+      the redundant formulation, by a velocity-level ``CreateCoordinateConstraint`` on
+      ``rz`` (``rz' = omega``), and its multiplier is the moment about z (the virtual
+      work ``M . Rx Ry e_z drz`` at zero tilt).  Euler parameters have no coordinate
+      whose rate is the angular velocity about z; the rotation-vector node is made for
+      Exudyn's explicit Lie-group integrators, and as plain coordinates for an implicit
+      solver its rotation vector meets the ``2 pi`` singularity in every crank turn;
+    - the Rxyz singularity lies at ``ry = +-90 deg``; the joints hold ``ry`` at zero;
+    - three rotation coordinates and no Euler-parameter normalisation constraint.  (The
+      joints need an implicit solver anyway: Exudyn's explicit solvers drop constraints,
+      and they refuse Euler-parameter nodes.)
+
+    Joints: ``mbs.CreateRevoluteJoint`` at O (ground-crank) and A (rod-crank), the slider
+    guide ``mbs.CreatePrismaticJoint`` along X, and ``exuclear.CreateClearanceJoint`` at
+    B with the bearing in the slider and the journal on the rod (``itemNumbers`` is
+    [bearing body, journal body] throughout, as in the redundant formulation).
+
+    Out-of-plane motion, counted: 3 bodies x 6 = 18 coordinates; a revolute joint holds
+    5 (all but the rotation about its axis), the prismatic guide 5 (all but the slide
+    along X), the drive 1, the clearance joint at B none (``constrainAxial=False``): 18 -
+    16 = 2 degrees of freedom, the journal's in-plane motion in its bearing, as in the
+    2D formulations.  The crank's out-of-plane motion (z, tilt) is held by O, the rod's
+    by A alone (relative to the crank), the slider's by its guide; a joint at B holding
+    the axial motion too would make 3 constraints redundant (a singular Jacobian, as
+    for every planar loop of spatial revolute joints).  So the other cases keep that
+    split:
+
+    - ideal joint at B (``ideal``, or clearance at O or A only): a pin holding the two
+      in-plane translations only, ``mbs.CreateGenericJoint`` with constrained axes
+      x, y;
+    - clearance at O or A: it replaces the only joint that holds the crank's or the
+      rod's out-of-plane motion, so a ``mbs.CreateGenericJoint`` holds axial
+      translation and tilt there (constrained axes z, rx, ry; what
+      ``constrainAxial=True`` of the clearance joint is meant to add).
+
+    No load acts out of the plane, so the out-of-plane displacements stay zero to
+    round-off (:func:`out_of_plane`).
+    """
+    r, l, w = p.crank_length, p.rod_length, p.crank_speed
+    rod_rate, _ = _initial_velocities(p)
+    ground = mbs.AddObject(ObjectGround())
+
+    def rigid_body(name: str, x: float, mass: float, inertia: float, v_y: float, omega: float) -> dict:
+        return mbs.CreateRigidBody(
+            name=name, referencePosition=[x, 0.0, 0.0], initialVelocity=[0.0, v_y, 0.0],
+            initialAngularVelocity=[0.0, 0.0, omega], gravity=[0.0, -p.gravity, 0.0], nodeType=SPATIAL_NODE_TYPE,
+            inertia=RigidBodyInertia(mass=mass, inertiaTensor=inertia * np.eye(3), inertiaTensorAtCOM=True),
+            returnDict=True)
+
+    # all links along +X at t = 0, velocities of the ideal mechanism at crank angle 0
+    crank = rigid_body("crank", r / 2, p.crank_mass, p.crank_inertia, w * r / 2, w)
+    rod = rigid_body("rod", r + l / 2, p.rod_mass, p.rod_inertia, w * r + rod_rate * l / 2, rod_rate)
+    slider = rigid_body("slider", r + l, p.slider_mass, p.slider_mass * 1e-4, 0.0, 0.0)
+    crank_body, rod_body, slider_body = crank["bodyNumber"], rod["bodyNumber"], slider["bodyNumber"]
+
+    # revolute joints: (name, bearing body, journal body, centre); O holds the crank's
+    # out-of-plane motion, A the rod's, the guide the slider's; B none (docstring)
+    revolutes = (("O", ground, crank_body, [0.0, 0.0, 0.0]), ("A", rod_body, crank_body, [r, 0.0, 0.0]),
+                 ("B", slider_body, rod_body, [r + l, 0.0, 0.0]))
+    drawn = dict(axisRadius=p.bearing_radius, axisLength=p.bearing_length)  # Exudyn's defaults are 0.1 m, 0.4 m
+    in_plane, out_of_plane_axes = [1, 1, 0, 0, 0, 0], [0, 0, 1, 1, 1, 0]  # constrainedAxes of a generic joint
+    joints = {}
+    for name, bearing, journal, centre in revolutes:
+        pair = dict(itemNumbers=[bearing, journal], position=centre)
+        if name in p.clearance_joints and not p.ideal:
+            joints[name] = exuclear.CreateClearanceJoint(mbs, name=name, axis=[0.0, 0.0, 1.0], joint=p.joint,
+                                                         backend=p.backend, maxPenetration=p.max_penetration, **pair)
+            if name != "B":
+                mbs.CreateGenericJoint(name=f"{name}:axial", constrainedAxes=out_of_plane_axes, show=False, **pair)
+        elif name == "B":
+            mbs.CreateGenericJoint(name=name, constrainedAxes=in_plane, show=False, **pair)
+        else:
+            mbs.CreateRevoluteJoint(name=name, axis=[0.0, 0.0, 1.0], **drawn, **pair)
+    mbs.CreatePrismaticJoint(name="guide", itemNumbers=[ground, slider_body], position=[r + l, 0.0, 0.0],
+                             axis=[1.0, 0.0, 0.0], **drawn)
+    # drive: rz' = omega on the crank, a velocity-level coordinate constraint to ground;
+    # its Lagrange multiplier is (minus) the driving moment
+    drive = mbs.CreateCoordinateConstraint(name="drive", itemNumbers=[None, crank_body],
+                                           coordinates=[None, _RXYZ_ANGLE_Z], velocityLevel=True, offset=w,
+                                           show=False)
+    store = dict(storeInternal=True, writeToFile=False)
+    nodes = {"crank": crank["nodeNumber"], "rod": rod["nodeNumber"], "slider": slider["nodeNumber"]}
+    coordinates = exu.OutputVariableType.Coordinates
+    sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=coordinates, **store))
+               for key, node in nodes.items()}  # the crank's last column is rz, its angle (see _columns)
+    for key, kind in (("slider_x", exu.OutputVariableType.Position), ("slider_v", exu.OutputVariableType.Velocity),
+                      ("slider_a", exu.OutputVariableType.Acceleration)):
+        sensors[key] = mbs.AddSensor(SensorNode(nodeNumber=nodes["slider"], outputVariableType=kind, **store))
+    sensors["moment"] = mbs.AddSensor(SensorObject(objectNumber=drive, outputVariableType=exu.OutputVariableType.Force,
+                                                   **store))
+    return joints, sensors
+
+
+def out_of_plane(model: SliderCrankModel) -> dict[str, float]:
+    """Largest out-of-plane motion of a spatial run, per body: ``{body}_z``, the largest
+    ``|z|`` of its centre of mass [m], and ``{body}_tilt``, the largest ``|rx|``,
+    ``|ry|`` of its Rxyz angles [rad], for ``body`` in crank, rod, slider."""
+    if model.params.formulation != "spatial":
+        raise ValueError(f"out_of_plane needs the spatial formulation, got {model.params.formulation!r}")
+    found = {}
+    for body in ("crank", "rod", "slider"):
+        q = np.asarray(model.mbs.GetSensorStoredData(model.sensors[body]))  # time, x, y, z, rx, ry, rz
+        found[f"{body}_z"] = float(np.abs(q[:, 3]).max())
+        found[f"{body}_tilt"] = float(np.abs(q[:, 4:6]).max())
+    return found
+
+
 def build(params: SliderCrankParams) -> SliderCrankModel:
     """Assemble the slider-crank in Exudyn.
 
@@ -320,7 +454,8 @@ def build(params: SliderCrankParams) -> SliderCrankModel:
     of :data:`FLYWHEEL_INERTIA`: its speed then changes by less than 1e-6 of 500 rpm
     over the run, and the driving moment is the flywheel's reaction
     ``-FLYWHEEL_INERTIA * crank_angle_tt``, which equals the moment an exact drive
-    would need up to that relative error.
+    would need up to that relative error.  The spatial formulation holds it as the
+    redundant one does, on the crank's rotation coordinate about z (:func:`_build_spatial`).
     """
     if params.ideal and params.formulation == "minimal":
         raise ValueError("the ideal mechanism is a closed loop, which a kinematic tree cannot hold: "
@@ -330,7 +465,7 @@ def build(params: SliderCrankParams) -> SliderCrankModel:
                          f"use formulation 'redundant' for clearance_joints {params.clearance_joints}")
     start = time.perf_counter()
     mbs = exu.SystemContainer().AddSystem()
-    builder = _build_minimal if params.formulation == "minimal" else _build_redundant
+    builder = {"minimal": _build_minimal, "redundant": _build_redundant, "spatial": _build_spatial}[params.formulation]
     joints, sensors = builder(params, mbs)
     mbs.Assemble()
     return SliderCrankModel(params, mbs, joints, sensors, time.perf_counter() - start)
@@ -425,7 +560,8 @@ def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
     else:
         crank = data("crank")
         t = crank[:, 0]
-        cols = {"time": t, "crank_angle": np.degrees(crank[:, 3]), "slider_x": data("slider_x")[:, 1],
+        # the crank angle is the node's last coordinate: phi of a 2D node, rz of an Rxyz node
+        cols = {"time": t, "crank_angle": np.degrees(crank[:, -1]), "slider_x": data("slider_x")[:, 1],
                 "slider_v": data("slider_v")[:, 1], "slider_a": data("slider_a")[:, 1],
                 # the multiplier is the constraint's reaction on the crank: the drive is its negative
                 "crank_moment": -data("moment")[:, 1]}
