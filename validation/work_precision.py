@@ -79,7 +79,7 @@ class Config:
     side: str                      # "exuclear" or "scipy"
     points: tuple[object, ...]     # settings changes (exuclear) or (method, rtol) (scipy)
     formulation: str = "minimal"
-    backend: str = "python"
+    backend: str = exuclear.DEFAULT_BACKEND
 
 
 def crank_configs(quick: bool) -> list[Config]:
@@ -93,18 +93,19 @@ def crank_configs(quick: bool) -> list[Config]:
 
     rtols = (1e-5, 1e-6) if quick else (1e-5, 1e-6, 1e-7, 1e-8)
     impacts = (2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
+    compiled = exuclear.DEFAULT_BACKEND
     configs = [
-        Config("minimal, python, dopri5", "exuclear", dopri(rtols)),
-        Config("minimal, symbolic, dopri5", "exuclear", dopri(rtols[:3]), backend="symbolic"),
-        Config("minimal, python, dopri5 (step <= 1e-5 s, the paper's)", "exuclear", dopri((1e-6,) if quick else
-                                                                                         (1e-6, 1e-8), 1e-5)),
-        Config("redundant, python, generalized-alpha, fixed step", "exuclear",
+        Config(f"minimal, {compiled}, dopri5", "exuclear", dopri(rtols)),
+        Config("minimal, python, dopri5", "exuclear", dopri(rtols[:3]), backend="python"),
+        Config(f"minimal, {compiled}, dopri5 (step <= 1e-5 s, the paper's)", "exuclear",
+               dopri((1e-6,) if quick else (1e-6, 1e-8), 1e-5)),
+        Config(f"redundant, {compiled}, generalized-alpha, fixed step", "exuclear",
                alpha((1e-5,) if quick else (1e-5, 4e-6, 2e-6), (None,) * 3), formulation="redundant"),
-        Config("redundant, python, generalized-alpha, impact-aware steps", "exuclear",
+        Config(f"redundant, {compiled}, generalized-alpha, impact-aware steps", "exuclear",
                alpha((2e-5,) * len(impacts), impacts), formulation="redundant"),
-        Config("redundant, symbolic, generalized-alpha, impact-aware steps", "exuclear",
+        Config("redundant, python, generalized-alpha, impact-aware steps", "exuclear",
                alpha((2e-5,) * 2, impacts[-3:-1] if not quick else impacts[:1]), formulation="redundant",
-               backend="symbolic"),
+               backend="python"),
     ]
     scipy_rtols = {"DOP853": (1e-6, 1e-7, 1e-8, 1e-9), "RK45": (1e-5, 1e-6, 1e-7, 1e-8),
                    "LSODA": (1e-5, 1e-6, 1e-7, 1e-8), "Radau": (1e-4, 1e-5, 1e-6, 1e-7)}
@@ -307,7 +308,7 @@ def cheapest_within(points: Sequence[Point], scene: str, label: str, target: flo
 # =======================================================================================
 @dataclass
 class Profile:
-    """Split of one default run (Python backend) by cProfile: calls and inclusive time of
+    """Split of one default run (default backend) by cProfile: calls and inclusive time of
     the element's force callback, the per-step hooks and the output sensor; the rest is
     Exudyn's own solver (C++), obtained as the difference.  cProfile slows Python code,
     so the shares are upper bounds for Python; the un-profiled wall time is beside them."""
@@ -320,8 +321,10 @@ class Profile:
     groups: dict[str, tuple[int, float]]   # name -> (calls, inclusive seconds)
 
 
-_PROFILE_GROUPS = {"force callback": ("force_function",), "per-step hooks": ("post_step", "pre_step", "post_newton"),
-                   "output sensor": ("_sensor_function",)}
+#: Python functions of a run (with the compiled kernel, only simulate's watchdog step hooks remain).
+_PROFILE_GROUPS = {"Python force callback": ("force_torque", "probe", "torque"),
+                   "Python post-Newton": ("post_newton", "probe_post_newton"),
+                   "simulate's step hooks": ("post_step", "pre_step")}
 
 
 def profile_default(scene: str, cr: float, formulation: str) -> Profile:
@@ -427,20 +430,20 @@ def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: S
     lines += [markdown_table(("scene", "configuration", "cheapest setting", "wall [s]", "error",
                                  "vs fastest SciPy at that error"), rows), ""]
     if profiles:
-        lines += ["## Where the time goes (default settings, Python backend)", "", _PROFILE_NOTE, "",
+        lines += [f"## Where the time goes (default settings, {exuclear.DEFAULT_BACKEND} backend)", "", _PROFILE_NOTE, "",
                   profile_md(profiles), ""]
     return "\n".join(lines)
 
 
-_PROFILE_NOTE = ("cProfile of one run each: calls and inclusive time of the element's Python force callback (every "
-                 "Runge-Kutta stage, Newton iteration and Jacobian column calls it), of the per-step hooks (contact "
-                 "history, failure checks, impact-aware steps) and of the output sensor; the remainder is Exudyn's "
-                 "solver in C++ (time integration, the kinematic tree's or the constraints' equations) and the "
-                 "profiler's own overhead.")
+_PROFILE_NOTE = ("cProfile of one run each: calls and inclusive time of the joint's Python user functions (zero "
+                 "with the compiled kernel, which Exudyn calls without Python) and of the step hooks that "
+                 "exuclear.simulate installs for its watchdogs; the remainder is Exudyn's solver in C++ (time "
+                 "integration, the markers' kinematics, the kinematic tree's or the constraints' equations, the "
+                 "compiled kernel) and the profiler's own overhead.")
 
 
 def headline(points: Sequence[Point]) -> list[str]:
-    """The figures the README quotes: each formulation's default settings (Python backend)."""
+    """The figures the README quotes: each formulation's default settings (default backend)."""
     out = []
     for scene, cr in CRANK_SCENES:
         for formulation in sc_model.FORMULATIONS:
@@ -448,7 +451,7 @@ def headline(points: Sequence[Point]) -> list[str]:
             default = replace(sc_model.default_settings(params), output_step=OUTPUT_STEP)
             for p in points:
                 if (p.scene == scene and p.settings == default and p.config.formulation == formulation
-                        and p.config.backend == "python"):
+                        and p.config.backend == exuclear.DEFAULT_BACKEND):
                     out.append(f"{scene}, default {formulation} ({p.setting}): {p.wall:.3f} s, error {p.error:.2e} c, "
                                f"fastest SciPy at that error: {ratio_text(points, p)}")
     return out
@@ -483,9 +486,9 @@ def main(argv: list[str] | None = None) -> int:
     for line in headline(points):
         print(line)
     for p in profiles:
-        calls, seconds = p.groups["force callback"]
-        print(f"{p.scene}, default {p.formulation}: {p.steps} steps, {calls} force callbacks taking {seconds:.3f} s "
-              f"of {p.profiled:.3f} s profiled ({p.wall:.3f} s not profiled)")
+        python = ", ".join(f"{g}: {calls} calls, {seconds:.3f} s" for g, (calls, seconds) in p.groups.items())
+        print(f"{p.scene}, default {p.formulation}: {p.steps} steps; {python}; of {p.profiled:.3f} s profiled "
+              f"({p.wall:.3f} s not profiled)")
     print(f"total runtime {runtime:.0f} s")
     failed = [p for p in points if not p.success]
     return 1 if failed else 0
