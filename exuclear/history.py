@@ -7,7 +7,7 @@ step) so that a step that is computed again starts from the right history; the c
 kernel (``exuclear/_kernel/clearance_kernel.cpp``, ``History`` and ``accept``) does the
 same, line by line.
 
-Onset velocity (docs/physics.md, section 2): ``v0`` is the penetration rate at the
+Onset velocity (docs/physics.md, section 2.3, eqs. (18)-(19)): ``v0`` is the penetration rate at the
 instant ``delta`` crossed zero.  In the step where contact begins, ``delta`` goes from
 ``d0 <= 0`` (last accepted state) to ``d1 > 0`` (this state), and ``delta_dot`` is
 interpolated linearly in ``delta`` to ``delta = 0``:

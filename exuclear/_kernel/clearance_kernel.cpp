@@ -2,10 +2,10 @@
 //
 // The same formulas as the Python statement of the physics, in the same order and with
 // the same names, so that the two can be read side by side and agree to round-off:
-//   contact kinematics  exuclear/geometry.py   (docs/physics.md eqs. 1-6)
-//   normal force        exuclear/contact.py    (eqs. 7-9)
-//   friction            exuclear/friction.py   (eqs. 10-11)
-//   loads               exuclear/geometry.py   (eq. 12)
+//   contact kinematics  exuclear/geometry.py   (docs/physics.md eqs. (1)-(8))
+//   normal force        exuclear/contact.py    (eqs. (9)-(17))
+//   friction            exuclear/friction.py   (eqs. (20)-(23))
+//   loads               exuclear/geometry.py   (eqs. (24)-(26))
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
 //
@@ -102,7 +102,7 @@ struct Kinematics {
     double ex, ey, ecc, nx, ny, delta, delta_dot, v_t;
 };
 
-// contact_kinematics + kinematics_along (eqs. 1-6), in the joint frame J0 of the bearing
+// contact_kinematics + kinematics_along (eqs. (1)-(8)), in the joint frame J0 of the bearing
 Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx, double dvy, double omega_i,
                               double omega_j) {
     Kinematics k;
@@ -116,9 +116,9 @@ Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx,
         k.nx = 1.0;
         k.ny = 0.0;
     }
-    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. 5
-    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * a.r_j + omega_j * a.r_b;               // eq. 6
-    k.delta = k.ecc - (a.r_b - a.r_j);                                                 // eq. 3
+    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * a.r_j + omega_j * a.r_b;               // eq. (8)
+    k.delta = k.ecc - (a.r_b - a.r_j);                                                 // eq. (4)
     return k;
 }
 
@@ -151,7 +151,7 @@ double elastic_force(const Params& a, double delta) {  // F_e(delta) for delta >
         case 0:  // hertz point contact: K delta^n
         case 6:  // pereira: K delta^n
             return kp[0] * std::pow(delta, kp[1]);
-        case 1:  // liu, eq. 7: (pi E* L / 2) sqrt(1 / (2 (c + delta))) delta^n
+        case 1:  // liu, eq. (11): (pi E* L / 2) sqrt(1 / (2 (c + delta))) delta^n
             return kp[0] * std::sqrt(1.0 / (2.0 * (kp[1] + delta))) * std::pow(delta, kp[2]);
         case 2:  // johnson, radzimovsky, esdu-78035, dubowsky-freudenstein: implicit line contact
         case 3:
@@ -163,7 +163,7 @@ double elastic_force(const Params& a, double delta) {  // F_e(delta) for delta >
     }
 }
 
-double normal_force(const Params& a, double delta, double delta_dot, double v0) {  // eq. 8
+double normal_force(const Params& a, double delta, double delta_dot, double v0) {  // eq. (9)
     if (delta <= 0.0) return 0.0;
     double v0_eff = v0 > a.v_min ? v0 : a.v_min;
     double f = elastic_force(a, delta) * (1.0 + a.damping_factor * delta_dot / v0_eff);
@@ -180,7 +180,7 @@ double smooth_step(double x, double x0, double h0, double x1, double h1) {  // S
 
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
-double friction_coefficient(const Params& a, double v_t) {  // mu(v_T), eqs. 10-11
+double friction_coefficient(const Params& a, double v_t) {  // mu(v_T), eqs. (20)-(23)
     switch (a.friction_code) {
         case FRICTION_COULOMB: {  // fp = (mu, v_eps)
             double mu = a.fp[0], v_eps = a.fp[1];
@@ -310,7 +310,7 @@ const History& history_for(JointState& s, const Params& a, const Kinematics& k, 
 
 V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
 
-// ---- the connector's force (eq. 12) ---------------------------------------------------------
+// ---- the connector's force (eqs. (24)-(26)) ---------------------------------------------------------
 // Returns [F; T] in J0 coordinates: the bearing (marker 0) receives +F, +T, the journal
 // (marker 1) -F, -T.  F = -F_i and T = -M_i; the bearing's own moment M_j differs from
 // -M_i by (R_J - R_B) F_T, which the torque connector adds.

@@ -76,7 +76,7 @@ class PythonJointKernel:
     def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
                      angular_velocity: Any, stiffness: Any, damping: Any, rot0: Any, rot1: Any, offset: Any) -> list:
         """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in the
-        bearing's joint frame, F = -F_i and T = -M_i (docs/physics.md eq. 12)."""
+        bearing's joint frame, F = -F_i and T = -M_i (docs/physics.md eqs. (24)-(26))."""
         kin = self._kinematics(displacement, velocity, angular_velocity)
         history = self.history_for(kin, t)
         if kin.delta <= 0.0:

@@ -3,13 +3,13 @@
 A clearance joint is an ``ObjectConnectorRigidBodySpringDamper`` between a rigid marker
 on the bearing body (marker 0) and one on the journal body (marker 1), whose user
 functions (compiled or Python, :mod:`exuclear.engine.kernel`) compute the contact and
-friction loads of docs/physics.md eq. 12 and, once per accepted step, the contact
+friction loads of docs/physics.md eqs. (24)-(26) and, once per accepted step, the contact
 history (a ``NodeGenericData``, see :mod:`exuclear.engine.layout`).  Exudyn computes the
 markers' kinematics and Jacobians, so any body with a rigid marker works.
 
 The connector sees the journal's motion relative to the bearing, expressed in the
 bearing's joint frame (z along the axis), and applies equal and opposite torques.  Two
-things of the physics need the bearing's own motion: its spin enters the slip (eq. 6,
+things of the physics need the bearing's own motion: its spin enters the slip (eq. (8),
 ``omega_j (R_B - R_J)`` beyond the relative spin), and its moment is ``-R_B F_T``, not
 ``-R_J F_T``.  Where the bearing body can rotate (it is not the ground), two more
 connectors between the bearing marker and a ground marker close that gap: a probe,
