@@ -13,13 +13,20 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
 import exudyn as exu
 
 from ..settings import METHODS, SolverSettings
+from ._diagnostics import chatter_note, check_model
 from .connector import ClearanceJointHandle, _check_system, joints_of
+
+
+class AccuracyWarning(UserWarning):
+    """A run finished, but its path may not be converged (e.g. numerical contact chatter)."""
+
 
 #: Attempts at one step after which a run is ended: DOPRI5 rejects a step a few times at
 #: an impact, but at its minimum step Exudyn's DOPRI5 retries forever.
@@ -53,6 +60,8 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.adaptiveStepRecoverySteps = settings.recovery_steps
         ti.discontinuous.useRecommendedStepSize = True
     if not settings.explicit:
+        ti.newton.relativeTolerance = settings.newton_rtol
+        ti.newton.absoluteTolerance = settings.newton_atol
         ti.generalizedAlpha.spectralRadius = settings.spectral_radius
         ti.generalizedAlpha.computeInitialAccelerations = True
     ss.solution.file.write = False  # results come from sensors kept in memory
@@ -67,7 +76,9 @@ class SimulationResult:
     ``success`` is False when the run stopped early; ``message`` then says why and what
     to try, and ``time_reached`` [s] how far it got.  ``wall_time`` is the solver call
     alone [s]; ``steps`` the number of accepted time steps and ``rejected`` the
-    rejected ones (adaptive methods).
+    rejected ones (adaptive methods).  ``notes`` says where a finished run may not be
+    converged (each also issued as an :class:`AccuracyWarning`), e.g. contact chatter
+    that is a numerical artefact.
     """
 
     success: bool
@@ -76,6 +87,7 @@ class SimulationResult:
     steps: int
     rejected: int
     time_reached: float
+    notes: tuple[str, ...] = ()
 
 
 def _user_function(installed: Any) -> Any:
@@ -92,6 +104,7 @@ class _Watchdog:
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
         self.last, self.attempts, self.problem = 0.0, 0, ""
+        self.step_times: list[float] = []  # accepted steps' end times, for the chatter check
         self.interrupted = False
 
     # Ctrl-C raises KeyboardInterrupt in the next Python code that runs, which during a solve
@@ -123,6 +136,7 @@ class _Watchdog:
     def _post_step(self, mbs: exu.MainSystem, t: float) -> bool:
         self.attempts = 0
         step, self.last = t - self.last, t
+        self.step_times.append(t)
         if 0.0 < step <= self.min_step:
             self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), where "
                             "Exudyn would go on without error control; the problem is too stiff for this explicit method "
@@ -176,6 +190,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     if not mbs.systemIsConsistent:
         mbs.Assemble()
     joints = joints_of(mbs)
+    check_model(mbs, joints)
     if settings.explicit:
         constrained = _constraint_objects(mbs)
         if constrained:
@@ -191,6 +206,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
     start = time.perf_counter()
     with _Watchdog(mbs, min_step) as watchdog:
+        watchdog.step_times.append(ss.timeIntegration.startTime)
         try:
             ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
             message = "" if ok else "Exudyn's solver reported failure"
@@ -217,8 +233,25 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
                                 rejected, t_reached)
     if not ok:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
-                    f"try a smaller `step`{' or tolerances' if settings.adaptive else ''})")
-    return SimulationResult(ok, message, wall, steps, rejected, t_reached)
+                    f"{_solver_advice(message, settings)})")
+        return SimulationResult(ok, message, wall, steps, rejected, t_reached)
+    notes = ()
+    if not settings.explicit:  # adaptive explicit methods resolve separations by their error control
+        notes = tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
+    for note in notes:
+        warnings.warn(note, AccuracyWarning, stacklevel=2)
+    return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes)
+
+
+def _solver_advice(message: str, settings: SolverSettings) -> str:
+    """What to try after Exudyn's solver failed, by its likely cause."""
+    if "singular" in message or "not invertible" in message:
+        return ("the system's mass matrix or Jacobian is singular: a body without mass or inertia, or redundant "
+                "constraints, is the likely cause; a smaller step will not help")
+    if not settings.explicit and ("Newton" in message or "SolveDynamic terminated" in message):
+        return (f"Newton did not converge: try a smaller `step`, or looser `newton_rtol` / `newton_atol` (now "
+                f"{settings.newton_rtol:g} / {settings.newton_atol:g}) if the residual stalls at round-off")
+    return f"try a smaller `step`{' or tolerances' if settings.adaptive else ''}"
 
 
 def _advice(reason: str, handle: ClearanceJointHandle) -> str:
