@@ -18,6 +18,7 @@ from .contact import (
     WangLiu,
     contact_law,
 )
+from .convergence import ConvergenceResult, JointRecord, RunRecord, check_convergence, refined_settings
 from .engine import (
     BACKENDS,
     DATA_COLUMNS,
@@ -62,4 +63,5 @@ __all__ = [
     "ClearanceJoint", "ContactHistory", "JointResponse", "make_joint",
     "MATERIALS", "Material", "composite_modulus", "material",
     "METHODS", "SolverSettings", "UnitWarning",
+    "ConvergenceResult", "JointRecord", "RunRecord", "check_convergence", "refined_settings",
 ]
