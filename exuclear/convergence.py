@@ -53,7 +53,9 @@ DEFAULT_FACTOR = 4.0
 DEFAULT_BOUND = 0.01
 
 #: Impacts match one by one when their onsets are mutual nearest neighbours in time, lie
-#: less than the reference contact's duration apart, and their onset velocities and
+#: apart by less than the reference contact's duration or than the time in which the
+#: approach speed ``|v0|`` covers the path bound (``bound c / |v0|``: paths that agree
+#: to the bound may reach the wall that much apart), and their onset velocities and
 #: peak forces agree within this relative tolerance: ten times the largest peak-force
 #: difference of a converged default run in the cross-check (0.42 %, README), and well
 #: below the scatter of impacts in a chaotic sequence.
@@ -394,7 +396,8 @@ def _compare_joint(a: JointRecord, b: JointRecord, end: float, bound: float) -> 
         shift = abs(ra.onset_time - rb.onset_time)
         v_diff = abs(ra.onset_velocity - rb.onset_velocity)
         f_diff = abs(ra.peak_force - rb.peak_force)
-        if (shift <= max(rb.duration, 0.0)
+        window = max(rb.duration, bound * c / max(abs(rb.onset_velocity), IMPACT_V0_FLOOR))
+        if (shift <= window
                 and v_diff <= IMPACT_RTOL * abs(rb.onset_velocity) + IMPACT_V0_FLOOR
                 and f_diff <= IMPACT_RTOL * rb.peak_force + force_floor):
             good_ref.add(j)
@@ -553,8 +556,10 @@ class ConvergenceResult:
                 lines.append("  but not every signal: " + ", ".join(f"{s.name} only until t = {s.horizon:.6g} s"
                                                                     for s in parted) + ".")
         else:
-            lines.append(f"  trust the time histories up to t = {self.horizon:.6g} s only; after it the runs follow "
+            lines.append(f"  trust the joints' paths up to t = {self.horizon:.6g} s only; after it the runs follow "
                          "different paths.")
+            if parted:
+                lines.append("  signals: " + ", ".join(f"{s.name} until t = {s.horizon:.6g} s" for s in parted) + ".")
             held = [s.name.split(" (")[0] for j in self.joints.values() for s in j.statistics if s.agrees]
             held += [s.spectrum.name.split(" (")[0] for s in self.signals.values() if s.spectrum.agrees]
             failed = [s.name.split(" (")[0] for j in self.joints.values() for s in j.statistics if not s.agrees]
