@@ -549,7 +549,11 @@ class ConvergenceResult:
                 lines.append(f"    {_statistic_line(s.spectrum)}")
         lines.append("Verdict:")
         parted = [s for s in self.signals.values() if not s.path_agrees]
-        if self.path_agrees:
+        if not self.joints:
+            lines.append("  no clearance joint was recorded: " + (
+                "every signal agrees over the whole run at this bound." if not parted and self.complete else
+                "signals part: " + ", ".join(f"{s.name} at t = {s.horizon:.6g} s" for s in parted) + "."))
+        elif self.path_agrees:
             lines.append("  the joints' paths agree over the whole run at this bound: the settings are converged "
                          "for this model and run length.")
             if parted:

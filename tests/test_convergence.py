@@ -234,3 +234,18 @@ def test_four_bar_command_line(capsys):
     assert "Joint B (clearance 0.5 mm):" in out and "Signals" in out
     assert four_bar.main(["--rpm", "0"]) == 2
     assert "error: `rpm` must be non-zero" in capsys.readouterr().err
+
+
+def test_signals_only_horizon_relative_to_the_range():
+    # a signal of range 2 (a sine) and a run that drifts linearly by 2 % of the range over
+    # the run: it leaves 1 % of the range at half the run, in closed form
+    t = np.linspace(0.0, 1.0, 100001)
+    y_ref = np.sin(2.0 * np.pi * 5.0 * t)
+    run = RunRecord({}, {"y": (t, y_ref + 0.04 * t)})
+    result = check_convergence(lambda s: RunRecord({}, {"y": (t, y_ref)}),
+                               SolverSettings(end_time=1.0, method="generalized-alpha", step=1e-5), baseline=run)
+    s = result.signals["y"]
+    assert s.scale == pytest.approx(2.0, rel=1e-6)  # sampled sine: peaks hit to 1e-6
+    assert s.horizon == pytest.approx(0.5, abs=1e-5) and not s.path_agrees and not result.signals_agree
+    assert s.spectrum.agrees  # a slow drift moves no line of a 5 Hz sine
+    assert "signals part: y at t = 0.5" in result.report()
