@@ -258,7 +258,8 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.add_clearance_joint(
                 mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
-                name=name, backend=p.backend, max_penetration=p.max_penetration)
+                name=name, backend=p.backend, max_penetration=p.max_penetration,
+                bearing_rotates=bearing != slider)  # the guide holds the slider's rotation
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
@@ -404,7 +405,9 @@ def _build_spatial(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
         pair = dict(itemNumbers=[bearing, journal], position=centre)
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.CreateClearanceJoint(mbs, name=name, axis=[0.0, 0.0, 1.0], joint=p.joint,
-                                                         backend=p.backend, maxPenetration=p.max_penetration, **pair)
+                                                         backend=p.backend, maxPenetration=p.max_penetration,
+                                                         bearingRotates=bearing != slider_body,  # the guide holds it
+                                                         **pair)
             if name != "B":
                 mbs.CreateGenericJoint(name=f"{name}:axial", constrainedAxes=out_of_plane_axes, show=False, **pair)
         elif name == "B":

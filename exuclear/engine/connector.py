@@ -38,6 +38,7 @@ from exudyn.itemInterface import (
     SensorNode,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
+    VObjectJointGeneric,
 )
 
 from .._checks import check_choice, check_positive
@@ -358,6 +359,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     backend: str | None = None,
     maxPenetration: float | None = None,
     constrainAxial: bool = False,
+    bearingRotates: bool | None = None,
     record: bool = True,
     show: bool = True,
     **joint_parameters: Any,
@@ -388,6 +390,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         raise ValueError(f"`axis` must not be zero, got {axis!r}")
     if not isinstance(name, str):
         raise ValueError(f"`name` must be a string, got {name!r}")
+    if bearingRotates is not None and not isinstance(bearingRotates, bool):
+        raise ValueError(f"`bearingRotates` must be True, False or None (decide from the marker), got {bearingRotates!r}")
     for flag, value in (("constrainAxial", constrainAxial), ("record", record), ("show", show)):
         if not isinstance(value, bool):
             raise ValueError(f"`{flag}` must be True or False, got {value!r}")
@@ -411,7 +415,9 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     handle._axis_local = axis_local / np.linalg.norm(axis_local)
     fns = _user_functions(handle)
     hidden = VObjectConnectorRigidBodySpringDamper(show=False)
-    if not _orientation_is_fixed(mbs, m_bearing):
+    if bearingRotates is None:
+        bearingRotates = not _orientation_is_fixed(mbs, m_bearing)
+    if bearingRotates:
         # the bearing can rotate: probe before the joint, torque connector after it (module docstring)
         ground = mbs.AddObject(ObjectGround(visualization=VObjectGround(show=False)))
         m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
@@ -435,7 +441,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         handle.constraintNumber = mbs.AddObject(ObjectJointGeneric(
             name=f"{name}:axial" if name else "", markerNumbers=[m_bearing, m_journal],
             constrainedAxes=[0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
-            visualization={"show": False}))
+            visualization=VObjectJointGeneric(show=False)))
     if show:  # journal and bearing drawn by a graphics function, which only a renderer calls
         handle.drawingNumber = mbs.AddObject(ObjectGround(visualization=VObjectGround(
             show=True, graphicsDataUserFunction=drawing_function(handle))))
@@ -503,6 +509,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     backend: str | None = None,
     maxPenetration: float | None = None,
     constrainAxial: bool = False,
+    bearingRotates: bool | None = None,
     record: bool = True,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
@@ -543,6 +550,13 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the out-of-plane motion stays free of redundant constraints.  True: an
         ``ObjectJointGeneric`` also holds axial translation and tilt, as the replaced
         revolute joint did (3D bodies; needs an implicit solver).
+    bearingRotates : bool, optional
+        Whether the bearing body can turn about the axis.  Where it can, two helper
+        connectors supply the bearing's own spin to the slip and its own moment
+        (docs/physics.md section 4.1).  None (default): True unless the bearing is the
+        ground or a kinematic-tree link behind prismatic joints only.  Give False where
+        the model's constraints hold the bearing's rotation (a slider in a prismatic
+        guide): it saves two connector evaluations per force evaluation.
     record : bool
         Record the joint's outputs (:meth:`ClearanceJointHandle.outputs`).
 
@@ -576,8 +590,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=b0, localPosition=(a0.T @ (p - p0)).tolist())),
                mbs.AddMarker(MarkerBodyRigid(bodyNumber=b1, localPosition=(a1.T @ (p - p1)).tolist()))]
     return AddClearanceJoint(mbs, markers, axis=(a0.T @ a).tolist(), name=name, joint=joint, backend=backend,
-                             maxPenetration=maxPenetration, constrainAxial=constrainAxial, record=record, show=show,
-                             **joint_parameters)
+                             maxPenetration=maxPenetration, constrainAxial=constrainAxial,
+                             bearingRotates=bearingRotates, record=record, show=show, **joint_parameters)
 
 
 def add_clearance_joint(
@@ -594,6 +608,7 @@ def add_clearance_joint(
     name: str = "",
     max_penetration: float | None = None,
     backend: str | None = None,
+    bearing_rotates: bool | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """A planar clearance joint from body-frame points (the form of exuclear 0.1).
@@ -613,7 +628,7 @@ def add_clearance_joint(
     if journal_body == bearing_body and journal_link == bearing_link:
         raise ValueError("`journal_body` and `bearing_body` are the same body")
     return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=max_penetration,
-                             record=record, **joint_parameters)
+                             bearingRotates=bearing_rotates, record=record, **joint_parameters)
 
 
 def _point_marker(mbs: exu.MainSystem, body: Any, point: Sequence[float], link: int | None, role: str) -> Any:
