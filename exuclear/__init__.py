@@ -21,6 +21,7 @@ from .contact import (
 from .convergence import ConvergenceResult, JointRecord, RunRecord, check_convergence, refined_settings
 from .engine import (
     BACKENDS,
+    AccuracyWarning,
     DATA_COLUMNS,
     DEFAULT_BACKEND,
     OUTPUT_COLUMNS,
@@ -55,7 +56,7 @@ __all__ = [
     "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
     "LankaraniNikravesh", "WangLiu", "contact_law",
     "BACKENDS", "DATA_COLUMNS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
-    "KernelWarning", "SimulationResult", "add_clearance_joint", "simulate", "simulation_settings",
+    "KernelWarning", "AccuracyWarning", "SimulationResult", "add_clearance_joint", "simulate", "simulation_settings",
     "ContactState", "ImpactRecord",
     "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
     "friction_law", "smooth_step",

@@ -61,14 +61,16 @@ def check_output_file(option: str, path: str) -> str:
     return path
 
 
-def write_csv(path: str, columns: Mapping[str, np.ndarray], names: Sequence[str], incomplete: str = "") -> None:
+def write_csv(path: str, columns: Mapping[str, np.ndarray], names: Sequence[str], incomplete: str = "",
+              notes: Sequence[str] = ()) -> None:
     """Write the arrays ``columns[name]`` for ``names`` as CSV with a header line.
 
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
-    ``# INCOMPLETE: ...`` before the header.
+    ``# INCOMPLETE: ...`` before the header.  ``notes``: why the path may not be
+    converged, one comment line ``# NOTE: ...`` each, after it.
     """
     data = np.column_stack([columns[name] for name in names])
-    header = ",".join(names)
-    if incomplete:
-        header = f"# INCOMPLETE: {' '.join(incomplete.split())}\n{header}"
+    comments = [f"# INCOMPLETE: {' '.join(incomplete.split())}"] if incomplete else []
+    comments += [f"# NOTE: {' '.join(note.split())}" for note in notes]
+    header = "\n".join([*comments, ",".join(names)])
     np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")

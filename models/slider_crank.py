@@ -34,6 +34,7 @@ import argparse
 import math
 import sys
 import time
+import warnings
 from dataclasses import dataclass, field, replace
 
 import exudyn as exu
@@ -528,6 +529,9 @@ class SliderCrankResult:
     steps: int
     rejected: int
     onset_times: np.ndarray  # contact onsets [s], found at accepted steps (none is missed by output sampling)
+    #: Why the path may not be converged: the defaults' limits (:func:`accuracy_notes`) and
+    #: the run's own findings (:attr:`exuclear.SimulationResult.notes`).
+    notes: tuple[str, ...] = ()
 
     @property
     def impacts(self) -> int:
@@ -606,21 +610,32 @@ def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
 
 
 def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> SliderCrankResult:
-    """Build and simulate; returns the recorded :data:`COLUMNS` and the run's summary."""
+    """Build and simulate; returns the recorded :data:`COLUMNS` and the run's summary.
+
+    With the default settings, where those are not shown to hold 1 % of c
+    (:func:`accuracy_notes`), the run warns (:class:`exuclear.AccuracyWarning`) and the
+    result's ``notes`` say why and what to do.
+    """
     model = build(params)
-    sim = exuclear.simulate(model.mbs, settings or default_settings(params))
+    notes: tuple[str, ...] = ()
+    if settings is None:
+        settings = default_settings(params)
+        notes = tuple(accuracy_notes(params, settings))
+        for note in notes:
+            warnings.warn(note, exuclear.AccuracyWarning, stacklevel=2)
+    sim = exuclear.simulate(model.mbs, settings)
     onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])  # joint B
     return SliderCrankResult(_columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
-                             sim.steps, sim.rejected, onsets)
+                             sim.steps, sim.rejected, onsets, notes + sim.notes)
 
 
-def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "") -> None:
+def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", notes: tuple[str, ...] = ()) -> None:
     """Write :data:`COLUMNS` with a header line (SI units, angles in degrees).
 
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
-    ``# INCOMPLETE: ...`` before the header.
+    ``# INCOMPLETE: ...`` before the header; ``notes`` follow as ``# NOTE: ...`` lines.
     """
-    _write_columns(path, columns, COLUMNS, incomplete)
+    _write_columns(path, columns, COLUMNS, incomplete, notes)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -688,7 +703,7 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
     # on the paper's case instead of 2.1e3 N)
     family = MINIMAL_DEFAULTS if exuclear.METHODS[method][1] else (
         SPATIAL_DEFAULTS if params.formulation == "spatial" else REDUNDANT_DEFAULTS)
-    base = SolverSettings(end_time=params.end_time, **{**family, "method": method})
+    base = SolverSettings(end_time=params.end_time, **_scaled_defaults(params, {**family, "method": method}))
     changes = {k: v for k, v in (("step", args.step), ("rtol", args.rtol), ("atol", args.atol)) if v is not None}
     if base.impact_step is not None and args.step is not None and args.step <= base.impact_step:
         changes["impact_step"] = None  # a step at or below the impact step: plain fixed steps
@@ -728,6 +743,10 @@ def main(argv: list[str] | None = None) -> int:
             check_output_file("--csv", args.csv)
         if args.plot is not None:
             check_output_dir("--plot", args.plot)
+        defaults = args.step is None and args.rtol is None and args.atol is None
+        notes = tuple(accuracy_notes(params, settings)) if defaults else ()
+        for note in notes:
+            warnings.warn(note, exuclear.AccuracyWarning, stacklevel=1)
         result = run(params, settings)
     except ValueError as err:
         return bad_input(err)
@@ -755,7 +774,7 @@ def main(argv: list[str] | None = None) -> int:
 
         print(check_slider_crank(params, settings).report())
     if args.csv is not None:
-        write_csv(args.csv, result.columns, incomplete="" if result.success else result.message)
+        write_csv(args.csv, result.columns, incomplete="" if result.success else result.message, notes=notes + result.notes)
         print(f"wrote {args.csv}")
     if args.plot is not None:
         from exuclear.plotting import slider_crank_figures

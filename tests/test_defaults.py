@@ -54,3 +54,24 @@ def test_notes_where_the_defaults_are_not_shown_to_hold():
     assert "beyond the 5000 rpm" in " ".join(_defaults.accuracy_notes(1e4 * math.pi / 30, 1e-4, 1, False))
     assert "about 1 % of c" in " ".join(_defaults.accuracy_notes(5000 * math.pi / 30, 1e-4, 1, True))
     assert "outside the 0.05-0.5 mm" in " ".join(_defaults.accuracy_notes(500 * math.pi / 30, 1e-3, 1, False))
+
+
+def test_a_default_run_that_may_not_hold_warns_and_its_csv_says_so(tmp_path):
+    # clearance at O, A and B: the case where no default holds the path beyond a few ms
+    import warnings
+
+    import exuclear
+
+    three = params(formulation="redundant", clearance_joints=("O", "A", "B"), revolutions=0.01)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = sc.run(three)
+    assert result.success, result.message
+    assert any(issubclass(w.category, exuclear.AccuracyWarning) and "3 clearance joints" in str(w.message)
+               for w in caught)
+    assert result.notes and "3 clearance joints" in result.notes[0]
+    path = tmp_path / "oab.csv"
+    sc.write_csv(str(path), result.columns, notes=result.notes)
+    first, header = path.read_text(encoding="utf-8").splitlines()[:2]
+    assert first.startswith("# NOTE: 3 clearance joints") and header.startswith("time,")
+    assert sc.run(params(revolutions=0.01)).notes == ()  # the paper's case: nothing to say

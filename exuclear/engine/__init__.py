@@ -19,8 +19,8 @@ from .connector import (
 )
 from .kernel import KernelWarning
 from .layout import DATA_COLUMNS
-from .solver import SimulationResult, simulate, simulation_settings
+from .solver import AccuracyWarning, SimulationResult, simulate, simulation_settings
 
 __all__ = ["BACKENDS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "DATA_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle",
            "CreateClearanceJoint", "add_clearance_joint", "default_penetration_limit", "KernelWarning",
-           "SimulationResult", "simulate", "simulation_settings"]
+           "AccuracyWarning", "SimulationResult", "simulate", "simulation_settings"]
