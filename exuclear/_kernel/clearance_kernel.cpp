@@ -8,6 +8,8 @@
 //   loads               exuclear/geometry.py   (eqs. (24)-(26))
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
+//   spatial joint       exuclear/spatial.py and SpatialJointKernel in _python_kernel.py
+//                       (eqs. (33)-(45)): functions spatial_*
 //
 // Exudyn calls these functions through raw function pointers, without Python, when they
 // are bound by pybind11, capture nothing and have exactly Exudyn's signature
@@ -76,6 +78,9 @@ struct Params {
     double kp[6];
     int friction_code;
     double fp[4];
+    int slices;  // 0: the planar joint; N > 0: the spatial joint of N slices
+    double length;
+    V3 axis_journal;
 };
 
 Params decode(const M6& p) {
@@ -94,6 +99,9 @@ Params decode(const M6& p) {
     for (int i = 0; i < 6; ++i) a.kp[i] = p[2][i];
     a.friction_code = static_cast<int>(p[3][0]);
     for (int i = 0; i < 4; ++i) a.fp[i] = p[3][i + 1];
+    a.slices = static_cast<int>(p[5][0]);
+    a.length = p[5][1];
+    a.axis_journal = V3{p[5][2], p[5][3], p[5][4]};
     return a;
 }
 
@@ -225,8 +233,10 @@ double onset_velocity(const History& h, double delta, double delta_dot) {
 }
 
 // ContactHistory.accept: the history after an accepted state (kinematics k, time t);
-// a contact that ends appends its record.
-History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records) {
+// a contact that ends appends its record.  share: a spatial slice's share w / L of the
+// law (eq. (41)); 1 for the planar joint (x * 1.0 == x, so the planar joint is unchanged).
+History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records,
+               double share = 1.0) {
     History n = h;
     double delta = k.delta, delta_dot = k.delta_dot;
     if (delta > 0.0) {
@@ -255,7 +265,7 @@ History accept(const History& h, const Params& a, const Kinematics& k, double ti
     n.ex = k.ex;
     n.ey = k.ey;
     n.v_t = k.v_t;
-    n.f_n = n.in_contact ? normal_force(a, delta, delta_dot, n.v0) : 0.0;
+    n.f_n = n.in_contact ? share * normal_force(a, delta, delta_dot, n.v0) : 0.0;
     n.f_t = n.in_contact && a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * n.f_n : 0.0;
     if (n.in_contact) {
         n.peak_force = n.f_n > n.peak_force ? n.f_n : n.peak_force;
@@ -272,6 +282,13 @@ struct JointState {
     std::vector<Record> records;
     double omega_bearing = 0.0;    // bearing's angular velocity about the axis, from the probe
     double torque_correction = 0.0;  // m_i + m_j, for the torque connector
+    // the spatial joint (one History per slice)
+    std::vector<History> sprev, scur, sinitial;
+    std::vector<std::vector<Record>> srecords;
+    V3 omega_bearing3{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
+    V3 torque_correction3{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
+    V3 initial_axis{0.0, 0.0, 1.0};
+    double initial_axial = 0.0;
     long force_calls = 0, post_newton_calls = 0, dispatch_calls = 0;
     std::string failure;
     double failure_time = 0.0;
@@ -337,16 +354,200 @@ V6 main_force(const Params& a, double t, const V3& displacement, const V3& veloc
     return V6{-fx, -fy, 0.0, 0.0, 0.0, -m_i};
 }
 
-V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3, V3 velocity, V3 angularVelocity, M6 parameters,
-                M6, M3, M3, V6) {
+// ---- the spatial joint: spatial.py (docs/physics.md section 9, eqs. (33)-(45)) --------------
+V3 cross(const V3& a, const V3& b) {
+    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::vector<double> slice_centres(double length, int slices) {  // eq. (33)
+    double width = length / slices;
+    std::vector<double> z(static_cast<size_t>(slices));
+    for (int k = 0; k < slices; ++k) z[static_cast<size_t>(k)] = -0.5 * length + (k + 0.5) * width;
+    return z;
+}
+
+V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) Ry(b) Rz(c) a_J
+    double ca = std::cos(angles[0]), sa = std::sin(angles[0]);
+    double cb = std::cos(angles[1]), sb = std::sin(angles[1]);
+    double cc = std::cos(angles[2]), sc = std::sin(angles[2]);
+    V3 r0{cb * cc, -cb * sc, sb};
+    V3 r1{ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb};
+    V3 r2{sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb};
+    return V3{dot(r0, axis_journal), dot(r1, axis_journal), dot(r2, axis_journal)};
+}
+
+struct SliceKinematics {
+    double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
+};
+
+SliceKinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv,
+                                 const V3& dw, const V3& w_j) {
+    SliceKinematics k;
+    k.s = (z - p[2]) / u[2];                                            // eq. (35)
+    k.ex = p[0] + k.s * u[0];
+    k.ey = p[1] + k.s * u[1];
+    k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
+    if (k.ecc > 0.0) {
+        k.nx = k.ex / k.ecc;
+        k.ny = k.ey / k.ecc;
+    } else {  // journal axis on the bearing axis: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
+    k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
+    k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];               // eq. (38)
+    V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};                // Q_J - P_J, eq. (39)
+    V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};      // Q_J - Q_B - p
+    V3 wr = cross(dw, r);
+    V3 wl = cross(w_j, lever);
+    V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
+    k.v_t = v[0] * k.ny - v[1] * k.nx;                                   // eq. (40)
+    k.v_a = v[2];
+    k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
+    return k;
+}
+
+void slice_friction(double mu, double f_n, const SliceKinematics& k, double& f_t, double& f_a) {  // eq. (42)
+    if (!(k.speed > 0.0)) {
+        f_t = 0.0;
+        f_a = 0.0;
+        return;
+    }
+    double g = mu * f_n;
+    f_t = g * (k.v_t / k.speed);
+    f_a = g * (k.v_a / k.speed);
+}
+
+// loads = [force (3), torque (3), correction (3)], eqs. (43)-(45)
+void add_slice_loads(double* loads, double r_j, const V3& u, const SliceKinematics& k, double f_n, double f_t,
+                     double f_a) {
+    V3 n_force{f_n * k.nx, f_n * k.ny, -f_n * k.a};                     // F_N m, on the bearing at c, eq. (41)
+    V3 t_force{f_t * k.ny, -f_t * k.nx, f_a};                             // friction on the bearing at Q_B, eq. (42)
+    V3 total{n_force[0] + t_force[0], n_force[1] + t_force[1], n_force[2] + t_force[2]};
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 arm = cross(su, total);
+    V3 rim = cross(V3{r_j * k.nx, r_j * k.ny, 0.0}, t_force);
+    V3 couple = cross(V3{k.delta * k.nx, k.delta * k.ny, 0.0}, t_force);
+    for (int i = 0; i < 3; ++i) {
+        loads[i] += total[i];                                           // eq. (43)
+        loads[3 + i] += arm[i] + rim[i];                                // eq. (44)
+        loads[6 + i] -= couple[i];                                      // eq. (45), p x F added at the end
+    }
+}
+
+Kinematics slice_accepted(const SliceKinematics& k) {  // _accepted: what accept reads; v_t the slip speed
+    Kinematics a;
+    a.ex = k.ex;
+    a.ey = k.ey;
+    a.ecc = k.ecc;
+    a.nx = k.nx;
+    a.ny = k.ny;
+    a.delta = k.delta;
+    a.delta_dot = k.delta_dot;
+    a.v_t = k.speed;
+    return a;
+}
+
+bool slice_finite(const SliceKinematics& k) {
+    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
+}
+
+struct SpatialInput {
+    V3 p, u;
+    std::vector<SliceKinematics> kins;
+};
+
+SpatialInput spatial_kinematics(const Params& a, const JointState& s, const V3& displacement, const V3& rotation,
+                                const V3& velocity, const V3& angularVelocity) {
+    SpatialInput in;
+    in.p = displacement;
+    in.u = journal_axis(rotation, a.axis_journal);                     // eq. (34)
+    std::vector<double> centres = slice_centres(a.length, a.slices);
+    in.kins.reserve(centres.size());
+    for (double z : centres) {
+        in.kins.push_back(slice_kinematics(a.r_j, a.r_b, z, in.p, in.u, velocity, angularVelocity, s.omega_bearing3));
+    }
+    return in;
+}
+
+// SpatialJointKernel.history_for: the slices' history an evaluation at time t uses
+const std::vector<History>& spatial_history_for(JointState& s, const Params& a, const SpatialInput& in, double t) {
+    if (!s.started || t < s.sprev[0].time) {
+        s.initial_axis = in.u;
+        s.initial_axial = in.p[2];
+        s.srecords.assign(in.kins.size(), std::vector<Record>());
+        s.failure.clear();
+        double share = 1.0 / a.slices;
+        s.scur.clear();
+        for (size_t k = 0; k < in.kins.size(); ++k) {
+            History fresh;
+            fresh.time = t;
+            s.scur.push_back(accept(fresh, a, slice_accepted(in.kins[k]), t, s.srecords[k], share));
+        }
+        s.sprev = s.scur;
+        s.sinitial = s.scur;
+        s.started = true;
+        for (const SliceKinematics& k : in.kins) {
+            if (!slice_finite(k)) {
+                s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+                s.failure_time = t;
+                throw std::runtime_error("exuclear: " + s.failure);
+            }
+        }
+    }
+    return t <= s.scur[0].time ? s.sprev : s.scur;
+}
+
+V6 spatial_force(const Params& a, double t, const V3& displacement, const V3& rotation, const V3& velocity,
+                 const V3& angularVelocity) {
+    JointState& s = state(a.id);
+    s.force_calls++;
+    SpatialInput in = spatial_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    const std::vector<History>& history = spatial_history_for(s, a, in, t);
+    double share = 1.0 / a.slices;
+    double loads[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < in.kins.size(); ++i) {
+        const SliceKinematics& k = in.kins[i];
+        if (k.delta <= 0.0) continue;
+        double v0 = onset_velocity(history[i], k.delta, k.delta_dot);
+        double f_n = share * normal_force(a, k.delta, k.delta_dot, v0);                      // eq. (41)
+        double mu = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.speed) : 0.0;
+        double f_t, f_a;
+        slice_friction(mu, f_n, k, f_t, f_a);                                                // eq. (42)
+        add_slice_loads(loads, a.r_j, in.u, k, f_n, f_t, f_a);
+    }
+    V3 force{loads[0], loads[1], loads[2]};
+    V3 pf = cross(in.p, force);                                                              // eq. (45)
+    s.torque_correction3 = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
+    return V6{loads[0], loads[1], loads[2], loads[3], loads[4], loads[5]};
+}
+
+V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, V3 velocity, V3 angularVelocity,
+                M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
     switch (a.role) {
-        case PROBE:  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
-            state(a.id).omega_bearing = -angularVelocity[2];
+        case PROBE: {  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
+            JointState& s = state(a.id);
+            s.omega_bearing = -angularVelocity[2];
+            s.omega_bearing3 = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
             return zeros6();
-        case TORQUE:
-            return V6{0.0, 0.0, 0.0, 0.0, 0.0, state(a.id).torque_correction};
+        }
+        case TORQUE: {
+            const JointState& s = state(a.id);
+            if (a.slices > 0) {
+                return V6{0.0, 0.0, 0.0, s.torque_correction3[0], s.torque_correction3[1], s.torque_correction3[2]};
+            }
+            return V6{0.0, 0.0, 0.0, 0.0, 0.0, s.torque_correction};
+        }
         default:
+            if (a.slices > 0) return spatial_force(a, t, displacement, rotation, velocity, angularVelocity);
             return main_force(a, t, displacement, velocity, angularVelocity);
     }
 }
@@ -373,17 +574,81 @@ std::string fmt(double x) {
     return o.str();
 }
 
+// SpatialJointKernel.post_newton: the slices' history update, once per accepted step
+StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, const V3& displacement,
+                              const V3& rotation, const V3& velocity, const V3& angularVelocity) {
+    StdVector out{0.0, -1.0};
+    JointState& s = state(a.id);
+    s.post_newton_calls++;
+    SpatialInput in = spatial_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    spatial_history_for(s, a, in, t);  // starts a run if needed
+    bool advance = t > s.scur[0].time;
+    const std::vector<History> base = advance ? s.scur : s.sprev;  // a repeated step starts again from its start
+    double deepest = -INF;
+    for (const SliceKinematics& k : in.kins) {
+        if (!slice_finite(k)) {
+            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+            s.failure_time = t;
+            throw std::runtime_error("exuclear: " + s.failure);
+        }
+    }
+    for (const SliceKinematics& k : in.kins) deepest = k.delta > deepest ? k.delta : deepest;
+    if (deepest > a.max_penetration) {
+        s.failure = "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
+        s.failure_time = t;
+        throw std::runtime_error("exuclear: " + s.failure);
+    }
+    if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
+        for (size_t i = 0; i < in.kins.size(); ++i) {
+            if (!base[i].in_contact && in.kins[i].delta > 0.0) {
+                out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
+                out[1] = a.impact_step;
+                out.insert(out.end(), data.begin(), data.end());
+                return out;
+            }
+        }
+    }
+    double share = 1.0 / a.slices;
+    std::vector<History> next;
+    next.reserve(in.kins.size());
+    for (size_t i = 0; i < in.kins.size(); ++i) {
+        s.srecords[i].resize(static_cast<size_t>(base[i].closed));
+        History h = accept(base[i], a, slice_accepted(in.kins[i]), t, s.srecords[i], share);
+        if (!std::isfinite(h.f_n)) {
+            s.failure = "the contact force became non-finite (NaN or inf)";
+            s.failure_time = t;
+            throw std::runtime_error("exuclear: " + s.failure);
+        }
+        next.push_back(h);
+    }
+    if (advance) s.sprev = s.scur;
+    s.scur = next;
+    out.push_back(t);  // spatial_data_values
+    out.push_back(in.u[0]);
+    out.push_back(in.u[1]);
+    out.push_back(in.p[2]);
+    for (const History& h : s.scur) {
+        StdVector row;
+        write_data(h, row);
+        out.insert(out.end(), row.begin() + 1, row.end());
+    }
+    return out;
+}
+
 // Post-Newton function: once per accepted step, the history update (mirrors
 // _python_kernel.JointTable.post_newton).  Returns [error, recommended step, data...].
-StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3, V3 velocity,
+StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3 rotation, V3 velocity,
                       V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
     StdVector out{0.0, -1.0};
     if (a.role == PROBE) {
-        state(a.id).omega_bearing = -angularVelocity[2];
+        JointState& s = state(a.id);
+        s.omega_bearing = -angularVelocity[2];
+        s.omega_bearing3 = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
+    if (a.slices > 0) return spatial_post_newton(a, t, data, displacement, rotation, velocity, angularVelocity);
     JointState& s = state(a.id);
     s.post_newton_calls++;
     double omega_j = s.omega_bearing;
@@ -482,6 +747,36 @@ PYBIND11_MODULE(_ckernel, m) {
             out.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
         }
         return out;
+    });
+    m.def("slice_history", [](long id) {
+        JointState& s = state(id);
+        py::dict d;
+        for (const char* which : {"current", "previous", "initial"}) {
+            const std::vector<History>& hs = std::string(which) == "current"    ? s.scur
+                                             : std::string(which) == "previous" ? s.sprev
+                                                                                : s.sinitial;
+            py::list l;
+            for (const History& h : hs) l.append(history_dict(h));
+            d[which] = l;
+        }
+        return d;
+    });
+    m.def("slice_records", [](long id) {
+        JointState& s = state(id);
+        py::list out;
+        for (const std::vector<Record>& rs : s.srecords) {
+            py::list l;
+            for (const Record& r : rs) {
+                l.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
+            }
+            out.append(l);
+        }
+        return out;
+    });
+    m.def("initial_axis", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(py::make_tuple(s.initial_axis[0], s.initial_axis[1], s.initial_axis[2]),
+                              s.initial_axial);
     });
     m.def("failure", [](long id) {
         JointState& s = state(id);

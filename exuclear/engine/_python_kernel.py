@@ -21,11 +21,21 @@ start (``previous``) and at the end (``current``) of the last step it post-proce
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 from ..geometry import ContactKinematics, contact_kinematics, joint_loads
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint
+from ..spatial import (
+    V3,
+    SliceKinematics,
+    add_slice_loads,
+    finish_loads,
+    journal_axis,
+    slice_centres,
+    slice_friction,
+    slice_kinematics,
+)
 
 #: Error a post-Newton function returns to make Exudyn redo a step: anything above
 #: Exudyn's ``discontinuous.iterationTolerance`` (default 1).
@@ -138,7 +148,7 @@ class PythonJointKernel:
         raise KernelFailure(f"exuclear: {message}")
 
 
-def _finite(kin: ContactKinematics) -> bool:
+def _finite(kin: ContactKinematics | SliceKinematics) -> bool:
     return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))
 
 
@@ -147,3 +157,179 @@ def data_values(s: ContactState) -> list[float]:
     return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
             s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
             s.peak_force, s.max_penetration]
+
+
+# -- the spatial joint (docs/physics.md section 9) -------------------------------------------
+class _ScaledLaw:
+    """A slice's share ``w / L`` of the joint's contact law (eq. (41))."""
+
+    def __init__(self, law: Any, share: float) -> None:
+        self.law, self.share = law, share
+
+    def normal_force(self, delta: float, delta_dot: float, v0: float) -> float:
+        return self.share * self.law.normal_force(delta, delta_dot, v0)
+
+
+class _SliceJoint:
+    """What :meth:`ContactState.accept` reads of a joint, for one slice: its share of the
+    law, and the joint's friction law (applied to the slip speed, eq. (42))."""
+
+    def __init__(self, joint: ClearanceJoint, share: float) -> None:
+        self.law, self.friction = _ScaledLaw(joint.law, share), joint.friction
+
+
+class _SliceAccepted(NamedTuple):
+    """A slice's kinematics as :meth:`ContactState.accept` reads them; ``v_t`` is the slip
+    speed ``|v_s|`` (the slice records friction magnitudes)."""
+
+    delta: float
+    delta_dot: float
+    ex: float
+    ey: float
+    v_t: float
+
+
+def _accepted(kin: SliceKinematics) -> _SliceAccepted:
+    return _SliceAccepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, kin.speed)
+
+
+class SpatialJointKernel:
+    """The spatial joint's user functions: one :class:`ContactState` per slice, with the
+    planar joint's history rules (module docstring) applied to all slices at once.
+
+    ``slices`` N, ``axis_journal`` the journal axis in the journal marker's frame.
+    """
+
+    def __init__(self, joint: ClearanceJoint, slices: int, axis_journal: Any) -> None:
+        self.slices = slices
+        self.axis_journal = tuple(float(v) for v in axis_journal)
+        self.joint = joint
+        self.reset()
+
+    @property
+    def joint(self) -> ClearanceJoint:
+        return self._joint
+
+    @joint.setter
+    def joint(self, joint: ClearanceJoint) -> None:
+        g = joint.geometry
+        self._joint = joint
+        self.centres = slice_centres(g.length, self.slices)
+        self.share = 1.0 / self.slices  # w / L, eq. (41)
+        self.slice_joint = _SliceJoint(joint, self.share)
+
+    def reset(self) -> None:
+        self.started = False
+        empty = tuple(ContactState() for _ in range(self.slices))
+        self.previous = self.current = self.initial = empty
+        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.slices)]
+        self.omega_bearing = (0.0, 0.0, 0.0)
+        self.torque_correction = (0.0, 0.0, 0.0)
+        self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
+        self.failure, self.failure_time = "", 0.0
+
+    # -- bookkeeping -------------------------------------------------------------------
+    def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
+                    ) -> tuple[V3, V3, list[SliceKinematics]]:
+        g = self._joint.geometry
+        p = (displacement[0], displacement[1], displacement[2])
+        u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)     # eq. (34)
+        dv = (velocity[0], velocity[1], velocity[2])
+        dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
+        kins = [slice_kinematics(g.journal_radius, g.bearing_radius, z, p, u, dv, dw, self.omega_bearing)
+                for z in self.centres]
+        return p, u, kins
+
+    def history_for(self, kins: list[SliceKinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
+        """The slices' history an evaluation at time ``t`` uses (the planar rules); ``u``,
+        ``axial``: the journal's axis and axial displacement, kept for the initial outputs."""
+        if not self.started or t < self.previous[0].time:
+            self.initial_axis, self.initial_axial = u, axial
+            self.records = [[] for _ in range(self.slices)]
+            self.failure = ""
+            self.current = tuple(ContactState(time=t).accept(_accepted(k), self.slice_joint, t)[0] for k in kins)
+            self.previous = self.initial = self.current
+            self.started = True
+            if not all(_finite(k) for k in kins):
+                self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
+        return self.previous if t <= self.current[0].time else self.current
+
+    # -- Exudyn user functions ---------------------------------------------------------
+    def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
+                     angular_velocity: Any, stiffness: Any, damping: Any, rot0: Any, rot1: Any, offset: Any) -> list:
+        """``[F; T]`` in J0: F the force on the bearing, T minus the journal's moment about
+        its marker point (docs/physics.md eqs. (41)-(45))."""
+        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
+        history = self.history_for(kins, t, u, p[2])
+        joint, r_j = self._joint, self._joint.geometry.journal_radius
+        loads = [0.0] * 9
+        for kin, h in zip(kins, history):
+            if kin.delta <= 0.0:
+                continue
+            v0 = h.onset_velocity(kin.delta, kin.delta_dot)
+            f_n = self.share * joint.law.normal_force(kin.delta, kin.delta_dot, v0)                  # eq. (41)
+            mu = joint.friction.coefficient(kin.speed) if joint.friction.active else 0.0
+            f_t, f_a = slice_friction(mu, f_n, kin)                                                  # eq. (42)
+            add_slice_loads(loads, r_j, u, kin, f_n, f_t, f_a)
+        total = finish_loads(loads, p)
+        self.torque_correction = total.correction
+        return [*total.force, *total.torque]
+
+    def probe(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
+              angular_velocity: Any, *parameters: Any) -> list:
+        """The bearing-spin probe: records the bearing's angular velocity (J0); applies nothing."""
+        self.omega_bearing = (-angular_velocity[0], -angular_velocity[1], -angular_velocity[2])
+        return [0.0] * 6
+
+    def torque(self, mbs: Any, t: float, item: int, *arguments: Any) -> list:
+        """The bearing-torque connector: the bearing's moment beyond what the joint applies (eq. (45))."""
+        return [0.0, 0.0, 0.0, *self.torque_correction]
+
+    def probe_post_newton(self, mbs: Any, t: float, item: int, data: Any, displacement: Any, rotation: Any,
+                          velocity: Any, angular_velocity: Any, *parameters: Any) -> list:
+        self.omega_bearing = (-angular_velocity[0], -angular_velocity[1], -angular_velocity[2])
+        return [0.0, -1.0, *data]
+
+    def post_newton(self, mbs: Any, t: float, item: int, data: Any, displacement: Any, rotation: Any, velocity: Any,
+                    angular_velocity: Any, stiffness: Any, *parameters: Any) -> list:
+        """The slices' history update, once per accepted step; ``[error, step, data...]``."""
+        max_penetration, impact_step = stiffness[0][4], stiffness[0][5]
+        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
+        self.history_for(kins, t, u, p[2])
+        advance = t > self.current[0].time
+        base = self.current if advance else self.previous
+        if not all(_finite(k) for k in kins):
+            self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
+        deepest = max(k.delta for k in kins)
+        if deepest > max_penetration:
+            self._fail(f"penetration {deepest:.4g} m exceeds the limit {max_penetration:.4g} m", t)
+        if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and any(
+                not b.in_contact and k.delta > 0.0 for k, b in zip(kins, base)):
+            return [REDO_STEP_ERROR, impact_step, *data]  # a contact begins in a long step: redo it
+        states = []
+        for k, (kin, b) in enumerate(zip(kins, base)):
+            del self.records[k][b.closed:]
+            state, record = b.accept(_accepted(kin), self.slice_joint, t)
+            if record is not None:
+                self.records[k].append(record)
+            if state.normal_force != state.normal_force or abs(state.normal_force) == float("inf"):
+                self._fail("the contact force became non-finite (NaN or inf)", t)
+            states.append(state)
+        if advance:
+            self.previous = self.current
+        self.current = tuple(states)
+        return [0.0, -1.0, *spatial_data_values(t, u, p[2], self.current)]
+
+    def _fail(self, message: str, t: float) -> None:
+        self.failure, self.failure_time = message, t
+        raise KernelFailure(f"exuclear: {message}")
+
+
+def spatial_data_values(t: float, u: Any, axial: float, states: Any) -> list[float]:
+    """The spatial data node's entries (layout.spatial_data_columns): time, journal axis
+    x, y (tilt, rad for small angles), axial displacement, then each slice's
+    ``data_values`` without the time."""
+    out = [t, u[0], u[1], axial]
+    for s in states:
+        out.extend(data_values(s)[1:])
+    return out

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -45,8 +46,9 @@ from .._checks import check_choice, check_positive
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint, make_joint
 from . import kernel
-from ._python_kernel import PythonJointKernel, data_values
-from .layout import DATA_COLUMNS, MAIN, PROBE, TORQUE, parameters
+from ..spatial import slice_centres
+from ._python_kernel import PythonJointKernel, SpatialJointKernel, data_values, spatial_data_values
+from .layout import DATA_COLUMNS, MAIN, PROBE, SLICE_COLUMNS, TORQUE, parameters, spatial_data_columns
 
 #: How the joint's user functions are evaluated.
 BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default where it passed its self-test)",
@@ -58,6 +60,18 @@ DEFAULT_BACKEND = kernel.default_backend()
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                   "slip_velocity", "v0", "in_contact")
+#: A spatial joint's outputs: the journal's tilt (axis components x, y in the bearing's
+#: joint frame) and axial displacement [m], then :data:`OUTPUT_COLUMNS` per slice
+#: (arrays of shape (times, slices); ``slip_velocity`` is the slip speed, ``tangential_force``
+#: the friction force's magnitude).
+SPATIAL_OUTPUT_COLUMNS = ("tilt_x", "tilt_y", "axial_displacement")
+
+#: Default number of slices of a spatial joint (docs/physics.md section 9.3: the
+#: convergence study of the tilted journal; 20 slices hold the restoring moment of a
+#: journal tilted onto both edges within 0.2 % and the edge load within 2 %).
+DEFAULT_SLICES = 20
+#: An axis whose length differs from 1 by more than this is normalised with a warning.
+AXIS_UNIT_TOLERANCE = 1e-9
 
 #: Default penetration bound, the larger of these fractions of the clearance and of the
 #: journal radius: it catches blow-ups (a journal sinking through its bearing), not hard
@@ -164,10 +178,17 @@ class ClearanceJointHandle:
     """
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, backend: str,
-                 max_penetration: float) -> None:
+                 max_penetration: float, slices: int = 0,
+                 axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> None:
         self.mbs, self.name, self.backend, self.max_penetration = mbs, name, backend, max_penetration
         self._joint = joint
-        self.python_kernel = PythonJointKernel(joint) if backend == "python" else None
+        self.slices, self.axis_journal = slices, axis_journal
+        if backend != "python":
+            self.python_kernel = None
+        elif slices:
+            self.python_kernel = SpatialJointKernel(joint, slices, axis_journal)
+        else:
+            self.python_kernel = PythonJointKernel(joint)
         self.joint_id = kernel.COMPILED.new_joint() if backend == "compiled" else -1
         self.objectNumber: Any = None
         self.nodeNumber: Any = None
@@ -205,7 +226,8 @@ class ClearanceJointHandle:
         for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
                 p = parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
-                               compiled=self.python_kernel is None)
+                               compiled=self.python_kernel is None, slices=self.slices,
+                               axis_journal=self.axis_journal)
                 p[4][0] = float(self.token)
                 self.mbs.SetObjectParameter(number, "stiffness", p)
 
@@ -225,21 +247,68 @@ class ClearanceJointHandle:
             kernel.COMPILED.reset(self.joint_id)
 
     def state(self) -> ContactState:
-        """The contact history after the last accepted step."""
+        """The contact history after the last accepted step (a spatial joint: that of its
+        most penetrated slice)."""
+        if self.slices:
+            return max(self.slice_states(), key=lambda s: s.delta)
         if self.python_kernel is not None:
             return self.python_kernel.current
         return ContactState(**_state_fields(kernel.COMPILED.history(self.joint_id)["current"]))
 
+    def slice_states(self, which: str = "current") -> list[ContactState]:
+        """A spatial joint's slice histories after the last accepted step (``which=
+        "initial"``: at the run's initial state), slice 0 at ``z = -L/2``."""
+        if not self.slices:
+            raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
+        if self.python_kernel is not None:
+            return list(getattr(self.python_kernel, which))
+        return [ContactState(**_state_fields(h)) for h in kernel.COMPILED.slice_history(self.joint_id)[which]]
+
+    @property
+    def slice_positions(self) -> np.ndarray:
+        """Axial positions ``z_k`` [m] of a spatial joint's slice planes in the bearing's
+        joint frame (docs/physics.md eq. (33))."""
+        if not self.slices:
+            raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
+        return np.array(slice_centres(self._joint.geometry.length, self.slices))
+
     def _initial_state(self) -> ContactState | None:
         if self.python_kernel is not None:
             k = self.python_kernel
-            return k.initial if k.started else None
+            return (k.initial if not self.slices else k.initial[0]) if k.started else None
         h = kernel.COMPILED.history(self.joint_id)
-        return ContactState(**_state_fields(h["initial"])) if h["started"] else None
+        if not h["started"]:
+            return None
+        if self.slices:
+            return ContactState(**_state_fields(kernel.COMPILED.slice_history(self.joint_id)["initial"][0]))
+        return ContactState(**_state_fields(h["initial"]))
+
+    def _initial_data(self) -> list[float]:
+        """The data node's entries at the run's initial state."""
+        if not self.slices:
+            return data_values(self._initial_state())
+        if self.python_kernel is not None:
+            u, axial = self.python_kernel.initial_axis, self.python_kernel.initial_axial
+        else:
+            u, axial = kernel.COMPILED.initial_axis(self.joint_id)
+        states = self.slice_states("initial")
+        return spatial_data_values(states[0].time, u, axial, states)
+
+    def slice_impacts(self) -> list[list[ImpactRecord]]:
+        """A spatial joint's ended contacts, per slice."""
+        if not self.slices:
+            raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
+        if self.python_kernel is not None:
+            return [list(r) for r in self.python_kernel.records]
+        return [[ImpactRecord(*r) for r in rs] for rs in kernel.COMPILED.slice_records(self.joint_id)]
 
     def impacts(self) -> list[ImpactRecord]:
         """Records of the contacts that ended in the last run, in order; a contact still
-        going on at the end is :meth:`state` (``in_contact``)."""
+        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
+        slice's records, by onset time (one contact of a tilted journal may touch
+        several slices, each a record)."""
+        if self.slices:
+            return sorted((r for rs in self.slice_impacts() for r in rs), key=lambda r: r.onset_time)
         if self.python_kernel is not None:
             return list(self.python_kernel.records)
         return [ImpactRecord(*r) for r in kernel.COMPILED.records(self.joint_id)]
@@ -287,7 +356,14 @@ class ClearanceJointHandle:
         initial = self._initial_state()
         if initial is not None and data[0, 0] == initial.time:  # the data node holds no state before the first step
             data = data.copy()
-            data[0, 1:] = data_values(initial)
+            data[0, 1:] = self._initial_data()
+        if self.slices:
+            n_joint, n_slice = 4, len(SLICE_COLUMNS)
+            out = {"time": data[:, 0], "tilt_x": data[:, 2], "tilt_y": data[:, 3], "axial_displacement": data[:, 4]}
+            block = data[:, 1 + n_joint:].reshape(data.shape[0], self.slices, n_slice)
+            for c in OUTPUT_COLUMNS:
+                out[c] = block[:, :, SLICE_COLUMNS.index(c)]
+            return out
         column = {c: data[:, k + 1] for k, c in enumerate(DATA_COLUMNS)}
         return {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
 
@@ -362,14 +438,16 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     bearingRotates: bool | None = None,
     record: bool = True,
     show: bool = True,
+    slices: int | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Add a clearance joint between two rigid markers: the bearing hole's centre on
     ``markerNumbers[0]``, the journal's centre on ``markerNumbers[1]``.
 
     ``axis`` is the bearing axis in marker 0's frame (default its z axis); the contact acts
-    in the plane normal to it.  The other arguments are those of
-    :func:`CreateClearanceJoint`.  Call before ``mbs.Assemble()``.
+    in the plane normal to it (planar joint), or slice by slice along it (``slices``; the
+    journal's axis is taken parallel to it in the reference configuration).  The other
+    arguments are those of :func:`CreateClearanceJoint`.  Call before ``mbs.Assemble()``.
     """
     _check_system(mbs)
     if isinstance(markerNumbers, (str, bytes)) or len(markerNumbers) != 2:
@@ -388,6 +466,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     axis_local = _vector3("axis", axis)
     if not np.linalg.norm(axis_local) > 0.0:
         raise ValueError(f"`axis` must not be zero, got {axis!r}")
+    _warn_non_unit(axis_local, axis)
+    slices = _check_slices(slices)
     if not isinstance(name, str):
         raise ValueError(f"`name` must be a string, got {name!r}")
     if bearingRotates is not None and not isinstance(bearingRotates, bool):
@@ -409,8 +489,10 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     frame = joint_frame(axis_local)  # in marker 0's frame
     rotation0 = frame.tolist()
     rotation1 = (a_journal.T @ a_bearing @ frame).tolist()  # the same joint frame, seen from marker 1
+    # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
+    axis_journal = tuple(float(v) for v in a_journal.T @ a_bearing @ frame[:, 2])
 
-    handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration))
+    handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal)
     handle.markerNumbers = [m_bearing, m_journal]
     handle._axis_local = axis_local / np.linalg.norm(axis_local)
     fns = _user_functions(handle)
@@ -426,8 +508,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
             name=f"{name}:probe" if name else "", markerNumbers=[m_bearing, m_ground], nodeNumber=probe_node,
             rotationMarker0=rotation0, springForceTorqueUserFunction=fns["probe"],
             postNewtonStepUserFunction=fns["probe_post_newton"], visualization=hidden))
-    handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * len(DATA_COLUMNS),
-                                                    numberOfDataCoordinates=len(DATA_COLUMNS)))
+    n_data = len(spatial_data_columns(slices)) if slices else len(DATA_COLUMNS)
+    handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * n_data, numberOfDataCoordinates=n_data))
     handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,
         rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
@@ -440,7 +522,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     if constrainAxial:
         handle.constraintNumber = mbs.AddObject(ObjectJointGeneric(
             name=f"{name}:axial" if name else "", markerNumbers=[m_bearing, m_journal],
-            constrainedAxes=[0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
+            constrainedAxes=[0, 0, 1, 0, 0, 0] if slices else [0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
             visualization=VObjectJointGeneric(show=False)))
     if show:  # journal and bearing drawn by a graphics function, which only a renderer calls
         handle.drawingNumber = mbs.AddObject(ObjectGround(visualization=VObjectGround(
@@ -486,6 +568,24 @@ def drawing_function(handle: ClearanceJointHandle,
     return draw
 
 
+def _warn_non_unit(axis_local: np.ndarray, given: Any) -> None:
+    length = float(np.linalg.norm(axis_local))
+    if abs(length - 1.0) > AXIS_UNIT_TOLERANCE:
+        warnings.warn(f"`axis` {given!r} is not a unit vector (length {length:.6g}); it is normalised", UserWarning,
+                      stacklevel=3)
+
+
+def _check_slices(slices: Any) -> int:
+    """0 for the planar joint (None or 0), else the number of slices (an int >= 1)."""
+    if slices is None:
+        return 0
+    if isinstance(slices, bool) or not isinstance(slices, (int, np.integer)):
+        raise ValueError(f"`slices` must be None (planar joint) or an integer >= 1, got {slices!r}")
+    if slices < 0:
+        raise ValueError(f"`slices` must be None (planar joint) or an integer >= 1, got {slices!r}")
+    return int(slices)
+
+
 def _user_functions(handle: ClearanceJointHandle) -> dict[str, Any]:
     if handle.python_kernel is not None:
         k = handle.python_kernel
@@ -511,6 +611,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     constrainAxial: bool = False,
     bearingRotates: bool | None = None,
     record: bool = True,
+    slices: int | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
@@ -549,7 +650,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         False (default): the joint adds no constraint, so a model whose other joints hold
         the out-of-plane motion stays free of redundant constraints.  True: an
         ``ObjectJointGeneric`` also holds axial translation and tilt, as the replaced
-        revolute joint did (3D bodies; needs an implicit solver).
+        revolute joint did (3D bodies; needs an implicit solver); for a spatial joint
+        (``slices``) the axial translation only, since the slices carry the tilt.
     bearingRotates : bool, optional
         Whether the bearing body can turn about the axis.  Where it can, two helper
         connectors supply the bearing's own spin to the slip and its own moment
@@ -559,6 +661,15 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         guide): it saves two connector evaluations per force evaluation.
     record : bool
         Record the joint's outputs (:meth:`ClearanceJointHandle.outputs`).
+    slices : int, optional
+        None or 0 (default): the planar joint.  N >= 1: the spatial joint of
+        docs/physics.md section 9, for 3D bodies: the bearing length is cut into N slices,
+        each a share ``L / N`` of the contact law at its own penetration, so that a tilted
+        journal loads the bearing's edges and feels the restoring moment; the journal may
+        also move along the axis (there is no axial contact: hold it by the model, e.g.
+        ``constrainAxial`` or other joints; the journal is taken longer than the bearing).  :data:`DEFAULT_SLICES` is the converged
+        choice.  The bearing's own rotation (all three components) enters as in the planar
+        joint, through the probe and torque connectors.
 
     Returns
     -------
@@ -591,7 +702,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                mbs.AddMarker(MarkerBodyRigid(bodyNumber=b1, localPosition=(a1.T @ (p - p1)).tolist()))]
     return AddClearanceJoint(mbs, markers, axis=(a0.T @ a).tolist(), name=name, joint=joint, backend=backend,
                              maxPenetration=maxPenetration, constrainAxial=constrainAxial,
-                             bearingRotates=bearingRotates, record=record, show=show, **joint_parameters)
+                             bearingRotates=bearingRotates, record=record, show=show, slices=slices,
+                             **joint_parameters)
 
 
 def add_clearance_joint(

@@ -14,13 +14,17 @@ row   entries
 2     the stiffness model's constants (``kernel_parameters()``, up to 6)
 3     friction code, then up to 4 friction constants
 4     the handle's token (which handle owns the connector)
+5     spatial joint (docs/physics.md section 9): number of slices N (0: the planar
+      joint), bearing length L [m], the journal axis in the journal marker's frame (3)
 ====  ==========================================================================
 
 The codes are those of ``exuclear/_kernel/clearance_kernel.cpp``.
 
 Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
 quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
-``OutputVariableType.Coordinates`` records them.
+``OutputVariableType.Coordinates`` records them.  A spatial joint's node holds
+:func:`spatial_data_columns` instead: the journal's tilt and axial position, then the
+planar columns (without the time) once per slice.
 """
 from __future__ import annotations
 
@@ -35,6 +39,18 @@ MAIN, PROBE, TORQUE = 0, 1, 2
 #: The data node's entries, in order (the compiled kernel's ``write_data``).
 DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                 "slip_velocity", "v0", "in_contact", "onsets", "onset_time", "peak_force", "max_penetration")
+
+#: The spatial joint's own entries, before the slices' (``spatial_data_values``).
+SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
+#: Each slice's entries in the spatial data node, in order.
+SLICE_COLUMNS = DATA_COLUMNS[1:]
+
+
+def spatial_data_columns(slices: int) -> tuple[str, ...]:
+    """Names of a spatial joint's data-node entries: ``SPATIAL_JOINT_COLUMNS``, then
+    ``SLICE_COLUMNS`` of slice 0, 1, ... as ``"normal_force[3]"``."""
+    return SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
+
 
 FRICTION_CODES = {NoFriction: 0, Coulomb: 1, ModifiedCoulomb: 2}
 
@@ -65,9 +81,12 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
-               impact_step: float = 0.0, compiled: bool = True) -> list[list[float]]:
+               impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
+               axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> list[list[float]]:
     """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring);
-    ``compiled=False`` (the Python kernel) accepts laws without a compiled form."""
+    ``compiled=False`` (the Python kernel) accepts laws without a compiled form; ``slices``
+    > 0 makes it a spatial joint whose journal axis is ``axis_journal`` in the journal
+    marker's frame."""
     law, g = joint.law, joint.geometry
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
@@ -79,6 +98,8 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     p[2, :len(extra)] = extra
     p[3, 0] = f_code
     p[3, 1:1 + len(f_params)] = f_params
+    if slices:
+        p[5, :] = [slices, g.length, *axis_journal, 0.0]
     return p.tolist()
 
 
