@@ -46,7 +46,7 @@ from .friction import (
 )
 from .history import ContactState, ImpactRecord
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, contact_kinematics, joint_loads
-from .joint import ClearanceJoint, ContactHistory, JointResponse, make_joint
+from .joint import ClearanceJoint, JointResponse, make_joint
 from .materials import MATERIALS, Material, composite_modulus, material
 from .settings import METHODS, SolverSettings
 
@@ -61,7 +61,7 @@ __all__ = [
     "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
     "friction_law", "smooth_step",
     "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",
-    "ClearanceJoint", "ContactHistory", "JointResponse", "make_joint",
+    "ClearanceJoint", "JointResponse", "make_joint",
     "MATERIALS", "Material", "composite_modulus", "material",
     "METHODS", "SolverSettings", "UnitWarning",
     "ConvergenceResult", "JointRecord", "RunRecord", "check_convergence", "refined_settings",

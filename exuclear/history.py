@@ -100,10 +100,10 @@ class ContactState:
                 new["closed"] = self.closed + 1
         state = replace(self, delta=delta, delta_dot=delta_dot, time=time, ecc_x=kin.ex, ecc_y=kin.ey,
                         slip_velocity=kin.v_t, **new)
+        response = joint.response(kin, state)  # in contact, the state's own v0
+        f_n, f_t = response.f_n, response.f_t
         if not state.in_contact:
             return replace(state, normal_force=0.0, tangential_force=0.0), record
-        f_n = joint.law.normal_force(delta, delta_dot, state.v0)
-        f_t = joint.friction.coefficient(kin.v_t) * f_n if joint.friction.active else 0.0
         return replace(state, normal_force=f_n, tangential_force=f_t,
                        peak_force=f_n if f_n > state.peak_force else state.peak_force,
                        max_penetration=delta if delta > state.max_penetration else state.max_penetration), record

@@ -1,75 +1,19 @@
-"""The clearance joint as physics: geometry, contact law, friction law, contact history.
+"""The clearance joint as physics: geometry, contact law and friction law.
 
-Pure Python; the Exudyn glue in :mod:`exuclear.exudyn_element` reads the body states,
-calls :meth:`ClearanceJoint.loads` and maps the result onto generalized forces.
+Pure Python; the kernels of :mod:`exuclear.engine` evaluate :meth:`ClearanceJoint.response`
+on the contact kinematics Exudyn's connector provides, with the contact history of
+:mod:`exuclear.history`.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import NamedTuple
 
 from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, is_elastic, pair_name, split_law_name
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
+from .history import ContactState
 from .materials import Material, composite_modulus
-
-
-@dataclass
-class ContactHistory:
-    """Per-joint history: whether the last accepted state was in contact, and ``v0``.
-
-    ``v0`` (docs/physics.md section 2.3) is the penetration rate at the instant ``delta``
-    crossed zero.  It is updated only by :meth:`accept`, once per accepted time step;
-    force evaluations (Newton iterations, Jacobian perturbations, Runge-Kutta stages)
-    call the side-effect-free :meth:`onset_velocity`.
-
-    Onset interpolation: in the step where contact begins, ``delta`` goes from
-    ``d0 <= 0`` (last accepted state) to ``d1 > 0`` (trial state).  ``delta_dot`` is
-    interpolated linearly in ``delta`` to ``delta = 0``:
-    ``v0 = dd0 + (dd1 - dd0) * d0 / (d0 - d1)`` (docs/physics.md eqs. (18)-(19)).  This is exact when the contact
-    starts at an accepted state (``d0 = 0``, the journal-bearing scene) and has an
-    error of order (step)^2 * acceleration otherwise, instead of order
-    step * acceleration for taking ``dd1`` of the first penetrated state.
-    """
-
-    in_contact: bool = False
-    v0: float = 0.0
-    delta: float = float("-inf")
-    delta_dot: float = 0.0
-    time: float = 0.0
-    #: Contact onset instants since the last reset [s], interpolated like ``v0``.
-    onset_times: list[float] = field(default_factory=list)
-
-    @property
-    def onsets(self) -> int:
-        """Contacts begun since the last reset (impacts)."""
-        return len(self.onset_times)
-
-    def onset_velocity(self, delta: float, delta_dot: float) -> float:
-        """``v0`` for a trial state (``delta > 0``) of the coming step; no side effects."""
-        if self.in_contact:
-            return self.v0
-        d0 = self.delta
-        if d0 == float("-inf"):  # no accepted state yet: the joint starts in contact
-            return delta_dot
-        return self.delta_dot + (delta_dot - self.delta_dot) * d0 / (d0 - delta)
-
-    def accept(self, delta: float, delta_dot: float, time: float = 0.0) -> None:
-        """Record an accepted state at ``time`` [s]; idempotent when repeated with the same state."""
-        if delta > 0.0:
-            if not self.in_contact:
-                self.v0 = self.onset_velocity(delta, delta_dot)
-                self.in_contact = True
-                d0 = self.delta
-                share = d0 / (d0 - delta) if d0 != float("-inf") else 0.0
-                self.onset_times.append(self.time + share * (time - self.time))
-        else:
-            self.in_contact = False
-        self.delta, self.delta_dot, self.time = delta, delta_dot, time
-
-    def reset(self) -> None:
-        self.in_contact, self.v0, self.delta, self.delta_dot, self.time = False, 0.0, float("-inf"), 0.0, 0.0
-        self.onset_times = []
 
 
 class JointResponse(NamedTuple):
@@ -109,8 +53,9 @@ class ClearanceJoint:
     def geometry(self) -> BearingGeometry:
         return self.law.geometry
 
-    def response(self, kin: ContactKinematics, history: ContactHistory) -> JointResponse:
-        """Forces for the contact state ``kin`` given the last accepted ``history``."""
+    def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:
+        """Forces for the contact state ``kin`` given the last accepted ``history``
+        (docs/physics.md eqs. (9), (20), (24)-(26))."""
         if kin.delta <= 0.0:
             return JointResponse(0.0, 0.0, history.v0 if history.in_contact else 0.0, _NO_LOADS)
         v0 = history.onset_velocity(kin.delta, kin.delta_dot)

@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from exuclear import ContactHistory, contact_kinematics, joint_loads
+from exuclear import contact_kinematics, joint_loads
 
 
 def test_kinematics_of_a_journal_pressed_along_x(geometry):
@@ -32,31 +32,6 @@ def test_power_of_the_loads_is_the_contact_dissipation(geometry):
     vxj, vyj, wi, vxb, vyb, wj = state[2], state[3], state[4], state[7], state[8], state[9]
     power = loads.fx * (vxj - vxb) + loads.fy * (vyj - vyb) + loads.m_i * wi + loads.m_j * wj
     assert power == pytest.approx(-(f_n * kin.delta_dot + f_t * kin.v_t), rel=1e-12)
-
-
-def test_history_onset_is_interpolated_to_zero_penetration():
-    # delta_dot linear in delta: from (-1e-6, 0.2) to (+1e-6, 0.4) the onset rate is 0.3
-    h = ContactHistory()
-    h.accept(-1e-6, 0.2)
-    assert h.onset_velocity(1e-6, 0.4) == pytest.approx(0.3)
-    h.accept(1e-6, 0.4)
-    h.accept(1e-6, 0.4)  # the same state accepted twice changes nothing
-    assert h.in_contact and h.v0 == pytest.approx(0.3)
-    h.accept(2e-6, 0.1)
-    assert h.v0 == pytest.approx(0.3)  # kept for the whole contact
-    h.accept(-1e-7, -0.3)
-    assert not h.in_contact
-
-
-def test_history_onset_time_is_interpolated():
-    # delta from -1e-6 at t = 1.0 to +3e-6 at t = 1.4: zero crossing at t = 1.1
-    h = ContactHistory()
-    h.accept(-1e-6, 0.2, 1.0)
-    h.accept(3e-6, 0.4, 1.4)
-    h.accept(3e-6, 0.4, 1.4)  # the same state again: no second onset
-    assert h.onset_times == [pytest.approx(1.1)]
-    h.reset()
-    assert h.onsets == 0 and not h.in_contact
 
 
 def test_loads_conserve_momentum_and_turn_by_the_friction_couple(geometry):

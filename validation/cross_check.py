@@ -416,7 +416,7 @@ def recorded_onsets(cols: dict[str, np.ndarray]) -> Crossings:
     """The :class:`Crossings` of ``cols["penetration"]`` on ``cols["time"]``.
 
     With a record at every accepted step this is the onset rule of
-    :class:`exuclear.ContactHistory`, on the recorded times.
+    :class:`exuclear.ContactState`, on the recorded times.
     """
     t, d = cols["time"], cols["penetration"]
     k = np.flatnonzero((d[:-1] <= 0.0) & (d[1:] > 0.0))
@@ -844,7 +844,7 @@ def write_report(path: str, x: CrossCheck) -> str:
         cranks_md(x.cranks) + "\n",
         "## Onset bookkeeping of the library\n",
         "`SliderCrankResult.onset_times` against the upward zero crossings of the same run's recorded penetration "
-        "(recorded at every accepted step, interpolated linearly as `exuclear.ContactHistory` does).\n",
+        "(recorded at every accepted step, interpolated linearly as `exuclear.ContactState` does).\n",
         bookkeeping_md(x.cranks) + "\n", bookkeeping_sentence(x.cranks),
         "## Failing cases\n", failing_md(x),
     ]
