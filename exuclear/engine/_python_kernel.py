@@ -170,12 +170,27 @@ class _ScaledLaw:
         return self.share * self.law.normal_force(delta, delta_dot, v0)
 
 
+class _SliceResponse(NamedTuple):
+    f_n: float
+    f_t: float
+    v0: float
+
+
 class _SliceJoint:
     """What :meth:`ContactState.accept` reads of a joint, for one slice: its share of the
-    law, and the joint's friction law (applied to the slip speed, eq. (42))."""
+    law, and the joint's friction law (applied to the slip speed, eq. (42)); ``response``
+    gives the slice's force magnitudes as :meth:`ClearanceJoint.response` does a joint's."""
 
     def __init__(self, joint: ClearanceJoint, share: float) -> None:
         self.law, self.friction = _ScaledLaw(joint.law, share), joint.friction
+
+    def response(self, kin: Any, history: ContactState) -> _SliceResponse:
+        if kin.delta <= 0.0:
+            return _SliceResponse(0.0, 0.0, history.v0 if history.in_contact else 0.0)
+        v0 = history.onset_velocity(kin.delta, kin.delta_dot)
+        f_n = self.law.normal_force(kin.delta, kin.delta_dot, v0)
+        f_t = self.friction.coefficient(kin.v_t) * f_n if self.friction.active else 0.0
+        return _SliceResponse(f_n, f_t, v0)
 
 
 class _SliceAccepted(NamedTuple):

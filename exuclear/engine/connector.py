@@ -462,6 +462,9 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                              f"(position and orientation): {', '.join(_RIGID_MARKERS)}")
     if int(markerNumbers[0]) == int(markerNumbers[1]):
         raise ValueError("`markerNumbers` names the same marker twice")
+    if "axial_clearance" in joint_parameters:  # docs/physics.md section 9.6
+        raise ValueError("axial clearance (contact of shoulders with the bearing's end faces) is not implemented; "
+                         "hold the journal axially by the model (`constrainAxial=True` or other joints)")
     joint = _physics(joint, joint_parameters)
     axis_local = _vector3("axis", axis)
     if not np.linalg.norm(axis_local) > 0.0:
