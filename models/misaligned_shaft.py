@@ -1,0 +1,212 @@
+"""A rigid shaft in two misaligned clearance bearings: tilt, edge loads and the force along each bearing.
+
+Scene of exuclear (issue 14, docs/physics.md section 9.5); no published scene with numbers
+was reached, so it is stated here in full.  A steel shaft (radius R_J, length 0.12 m)
+runs in two fixed bearings A and B, 0.1 m apart, each of the paper's journal-bearing
+geometry (R_B = 10 mm, c = 0.1 mm, L = 15 mm).  Bearing B sits ``misalignment`` higher than
+A (default 0.3 mm, three clearances), so the shaft must tilt in both bearings, and it
+spins at ``speed``.  Gravity pulls it down at t = 0 from the straight line through both
+bearing centres (no contact there: each edge is 20 um from its wall)::
+
+         y
+         ^            bearing B (raised by the misalignment)
+         |   A                 ____
+        _|__               ===|____|===
+    ===|____|=====shaft===/
+        -+--------------------------------> z
+         0                0.1 m
+
+The shaft's axial motion is held at A (``constrainAxial``), so the run is implicit
+(generalized-alpha, impact-aware steps).  Outputs: the shaft's tilt in each bearing, the
+edge loads (first and last slice) and the normal force per unit length along each bearing.
+
+    python -m models.misaligned_shaft --plot out/
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import dataclass, replace
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import MarkerBodyRigid
+from exudyn.rigidBodyUtilities import RotationMatrixX
+from exudyn.utilities import InertiaCylinder
+
+import exuclear
+from exuclear import SolverSettings
+
+from ._cli import OneLineParser, bad_input, check_output_dir, one_line_warnings
+
+
+@dataclass(frozen=True)
+class ShaftParams:
+    """The scene's parameters (SI units); :meth:`default` is the scene of the module docstring."""
+
+    journal_radius: float = 9.9e-3
+    bearing_radius: float = 10e-3
+    length: float = 15e-3
+    shaft_length: float = 0.12
+    spacing: float = 0.1
+    misalignment: float = 0.3e-3
+    speed: float = 50.0
+    law: str = "wang-liu"
+    cr: float = 0.7
+    friction: str = "coulomb:0.1"
+    slices: int = 20
+    end_time: float = 0.05
+    backend: str = exuclear.DEFAULT_BACKEND
+
+    @classmethod
+    def default(cls, **changes) -> ShaftParams:
+        return replace(cls(), **changes)
+
+
+def build(params: ShaftParams) -> tuple[exu.MainSystem, list[exuclear.ClearanceJointHandle], int]:
+    """The shaft and its two bearings; returns (system, [joint A, joint B], shaft node)."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.CreateGround()
+    tilt = np.arctan2(params.misalignment, params.spacing)  # the line through both bearing centres
+    shaft = mbs.CreateRigidBody(
+        inertia=InertiaCylinder(7800.0, params.shaft_length, params.journal_radius, 2),
+        referencePosition=[0.0, 0.0, params.spacing / 2], gravity=[0.0, -9.81, 0.0],
+        initialDisplacement=[0.0, params.misalignment / 2, 0.0], initialRotationMatrix=RotationMatrixX(-tilt),
+        initialAngularVelocity=(RotationMatrixX(-tilt) @ [0.0, 0.0, params.speed]).tolist(),
+        nodeType=exu.NodeType.RotationRxyz, returnDict=True)
+    physics = dict(journal_radius=params.journal_radius, bearing_radius=params.bearing_radius, length=params.length,
+                   law=params.law, cr=params.cr, friction=params.friction, backend=params.backend,
+                   slices=params.slices, show=False)
+    joints = []
+    for name, z, y in (("A", 0.0, 0.0), ("B", params.spacing, params.misalignment)):
+        # bearing centre at (0, y, z); the journal centre on the shaft's axis (the shaft's
+        # reference configuration is parallel to the bearings, as the joint takes its axis from it)
+        mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, y, z]))
+        mj = mbs.AddMarker(MarkerBodyRigid(bodyNumber=shaft["bodyNumber"], localPosition=[0.0, 0.0, z - params.spacing / 2]))
+        joints.append(exuclear.AddClearanceJoint(mbs, [mb, mj], name=name, constrainAxial=name == "A", **physics))
+    mbs.Assemble()
+    return mbs, joints, shaft["nodeNumber"]
+
+
+def settings_for(params: ShaftParams) -> SolverSettings:
+    """Generalized-alpha with impact-aware steps (the axial constraint needs an implicit method)."""
+    return SolverSettings(end_time=params.end_time, method="generalized-alpha", step=2e-5, impact_step=1e-6,
+                          output_step=1e-4)
+
+
+def run(params: ShaftParams, settings: SolverSettings | None = None) -> tuple[exuclear.SimulationResult, dict]:
+    """Simulate; returns the result and per bearing its outputs (``"A"``, ``"B"``) and
+    the slice positions ``"z"``."""
+    mbs, joints, _ = build(params)
+    result = exuclear.simulate(mbs, settings or settings_for(params))
+    out = {h.name: h.outputs() for h in joints}
+    out["z"] = joints[0].slice_positions
+    return result, out
+
+
+def summary(params: ShaftParams, out: dict) -> dict[str, float]:
+    """Tilt and loads at the end of the run, per bearing (SI units)."""
+    width = params.length / params.slices
+    s = {}
+    for name in ("A", "B"):
+        o = out[name]
+        f = o["normal_force"][-1]
+        s[f"{name}_tilt"] = float(np.hypot(o["tilt_x"][-1], o["tilt_y"][-1]))
+        s[f"{name}_force"] = float(f.sum())
+        s[f"{name}_edge_force_per_length"] = float(max(f[0], f[-1]) / width)
+        s[f"{name}_mean_force_per_length"] = float(f.sum() / params.length)
+        s[f"{name}_slices_in_contact"] = float((o["in_contact"][-1] > 0).sum())
+    return s
+
+
+def plot(params: ShaftParams, out: dict, directory: str) -> list[str]:
+    """Three figures: tilt over time, edge loads over time, force per length along each bearing."""
+    import os
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    os.makedirs(directory, exist_ok=True)
+    width = params.length / params.slices
+    paths = []
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for name in ("A", "B"):
+        o = out[name]
+        ax.plot(o["time"] * 1e3, np.hypot(o["tilt_x"], o["tilt_y"]) * 1e3, label=f"bearing {name}")
+    ax.axhline(2 * (params.bearing_radius - params.journal_radius) / params.length * 1e3, color="grey", ls=":",
+               label="2c / L: both edges touch at zero penetration")
+    ax.set(xlabel="time [ms]", ylabel="tilt of the shaft in the bearing [mrad]", title="Tilt")
+    ax.legend()
+    paths.append(os.path.join(directory, "misaligned_shaft_tilt.png"))
+    fig.savefig(paths[-1], dpi=120, bbox_inches="tight")
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for name, style in (("A", "-"), ("B", "--")):
+        f = out[name]["normal_force"] / width
+        t = out[name]["time"] * 1e3
+        ax.plot(t, f[:, 0] / 1e3, style, label=f"{name}, edge z = -L/2")
+        ax.plot(t, f[:, -1] / 1e3, style, label=f"{name}, edge z = +L/2")
+    ax.set(xlabel="time [ms]", ylabel="normal force per length at the edge slice [N/mm]", title="Edge loads")
+    ax.legend()
+    paths.append(os.path.join(directory, "misaligned_shaft_edge_loads.png"))
+    fig.savefig(paths[-1], dpi=120, bbox_inches="tight")
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for name in ("A", "B"):
+        f = out[name]["normal_force"]
+        late = out[name]["time"] >= 0.5 * out[name]["time"][-1]
+        ax.plot(out["z"] * 1e3, f[late].mean(axis=0) / width / 1e3, "o-", label=f"bearing {name}, mean of 2nd half")
+        ax.plot(out["z"] * 1e3, f[-1] / width / 1e3, "x:", label=f"bearing {name}, end")
+    ax.set(xlabel="axial position in the bearing z [mm]", ylabel="normal force per length [N/mm]",
+           title="Force distribution along the bearing")
+    ax.legend()
+    paths.append(os.path.join(directory, "misaligned_shaft_force_distribution.png"))
+    fig.savefig(paths[-1], dpi=120, bbox_inches="tight")
+    plt.close("all")
+    return paths
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = ShaftParams.default()
+    ap = OneLineParser(prog="python -m models.misaligned_shaft", description=__doc__.split("\n")[0])
+    ap.add_argument("--misalignment", type=float, default=p.misalignment,
+                    help="height of bearing B above A [m] (default %(default)s)")
+    ap.add_argument("--speed", type=float, default=p.speed, help="shaft speed [rad/s] (default %(default)s)")
+    ap.add_argument("--slices", type=int, default=p.slices, help="slices per bearing (default %(default)s)")
+    ap.add_argument("--friction", default=p.friction, help="friction law (default %(default)s)")
+    ap.add_argument("--end-time", type=float, default=p.end_time, help="simulated time [s] (default %(default)s)")
+    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
+                    help="kernel (default %(default)s)")
+    ap.add_argument("--plot", metavar="DIR", help="write the tilt, edge-load and force-distribution figures to DIR")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    one_line_warnings()
+    try:
+        params = ShaftParams.default(misalignment=args.misalignment, speed=args.speed, slices=args.slices,
+                                     friction=args.friction, end_time=args.end_time, backend=args.backend)
+        if args.plot is not None:
+            check_output_dir("--plot", args.plot)
+        result, out = run(params)
+    except ValueError as err:
+        return bad_input(err)
+    s = summary(params, out)
+    print(f"misaligned shaft: {params.misalignment * 1e3:g} mm misalignment, {params.speed:g} rad/s, "
+          f"{params.slices} slices, {result.steps} steps, {result.wall_time:.2f} s")
+    for name in ("A", "B"):
+        print(f"  bearing {name}: tilt {s[f'{name}_tilt'] * 1e3:.3f} mrad, force {s[f'{name}_force']:.2f} N, "
+              f"edge {s[f'{name}_edge_force_per_length'] / 1e3:.3f} N/mm vs mean "
+              f"{s[f'{name}_mean_force_per_length'] / 1e3:.3f} N/mm, {s[f'{name}_slices_in_contact']:.0f} slices in contact")
+    if args.plot is not None:
+        for path in plot(params, out, args.plot):
+            print(f"wrote {path}")
+    if not result.success:
+        print(f"error: {result.message}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
