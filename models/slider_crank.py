@@ -743,11 +743,11 @@ def main(argv: list[str] | None = None) -> int:
             check_output_file("--csv", args.csv)
         if args.plot is not None:
             check_output_dir("--plot", args.plot)
+        result = run(params, settings)
         defaults = args.step is None and args.rtol is None and args.atol is None
         notes = tuple(accuracy_notes(params, settings)) if defaults else ()
-        for note in notes:
+        for note in notes:  # after the run: a model that cannot be built is refused without them
             warnings.warn(note, exuclear.AccuracyWarning, stacklevel=1)
-        result = run(params, settings)
     except ValueError as err:
         return bad_input(err)
     kind = "ideal joint at B" if params.ideal else (

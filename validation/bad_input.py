@@ -209,7 +209,8 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("CLI", "inconsistent input", f"{_SC} --step 1", "exit 2"),
     BadInput("CLI", "inconsistent input", f"{_SC} --revolutions -1", "exit 2"),
     BadInput("CLI", "inconsistent input", f"{_SC} --gravity -9.81", "exit 2"),
-    BadInput("CLI", "likely unit mistake", f"{_SC} --rpm 2e5 --revolutions 0.001", "exit 2 + warning"),
+    BadInput("CLI", "likely unit mistake", f"{_SC} --rpm 2e5 --revolutions 0.001", "exit 0 + warning",
+             says="above 1e5 rpm"),
     BadInput("CLI", "unwritable output", f"{_SC} --revolutions 0.01 --csv {UNWRITABLE}.csv", "exit 2"),
     BadInput("CLI", "unwritable output", f"{_SC} --revolutions 0.01 --plot {UNWRITABLE}", "exit 2"),
     # -- CLI: journal-bearing
