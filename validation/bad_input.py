@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import exudyn as exu
-from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+from exudyn.itemInterface import MarkerBodyPosition, MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
 from models.journal_bearing import JournalBearingParams
@@ -54,6 +54,13 @@ def system() -> tuple[exu.MainSystem, int, int]:
     return mbs, body, ground
 
 
+def markers() -> tuple[exu.MainSystem, list]:
+    """A fresh :func:`system` with a position (not rigid) marker on the ground and a rigid
+    one on the body: ``(mbs, [position marker, rigid marker])``."""
+    mbs, body, ground = system()
+    return mbs, [mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))]
+
+
 def build_journal(params: JournalBearingParams) -> object:
     """:func:`models.journal_bearing.build`, imported late."""
     from models.journal_bearing import build
@@ -63,7 +70,8 @@ def build_journal(params: JournalBearingParams) -> object:
 
 #: Names the API rows may use.
 NAMESPACE = {"exuclear": exuclear, "PAPER": PAPER, "SliderCrankParams": SliderCrankParams,
-             "JournalBearingParams": JournalBearingParams, "system": system, "build_journal": build_journal,
+             "JournalBearingParams": JournalBearingParams, "system": system, "markers": markers,
+             "build_journal": build_journal,
              "nan": math.nan, "inf": math.inf}
 
 
@@ -152,6 +160,19 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "unknown name", 'SliderCrankParams.paper(formulation="tree")', "ValueError"),
     BadInput("API", "unknown name", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, backend="numba")',
              "ValueError"),
+    # -- API: the joint as an Exudyn item (CreateClearanceJoint / AddClearanceJoint)
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], "
+                                          "axis=[0, 0, 0], **PAPER, cr=0.9)", "ValueError", says="`axis`"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 7], **PAPER, "
+                                          "cr=0.9)", "ValueError", says="not an object"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[1, 1], **PAPER, "
+                                          "cr=0.9)", "ValueError", says="same body"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], "
+                                          "position=[0, 0], **PAPER, cr=0.9)", "ValueError", says="`position`"),
+    BadInput("API", "inconsistent input", "exuclear.AddClearanceJoint(*markers(), **PAPER, cr=0.9)", "ValueError",
+             says="rigid markers"),
+    BadInput("API", "unknown name", 'exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], **PAPER, '
+                                    'cr=0.9, bearingRotates="yes")', "ValueError", says="`bearingRotates`"),
     # -- API: inconsistent input
     BadInput("API", "inconsistent input", "exuclear.make_joint(journal_radius=10e-3, bearing_radius=10e-3, "
                                           "length=15e-3, cr=0.9)", "ValueError"),
