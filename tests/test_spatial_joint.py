@@ -368,3 +368,19 @@ def test_axial_clearance_is_not_offered():
     with pytest.raises(ValueError, match="axial clearance"):
         exuclear.CreateClearanceJoint(mbs, itemNumbers=items, slices=5, axial_clearance=1e-4, journal_radius=R_J,
                                       bearing_radius=R_B, length=L, law="hertz")
+
+
+def test_the_misaligned_shaft_loads_the_bearing_edges(tmp_path):
+    # docs/physics.md section 9.5: both bearings carry the shaft on an edge slice
+    from models import misaligned_shaft
+
+    params = misaligned_shaft.ShaftParams.default(end_time=0.02)
+    result, out = misaligned_shaft.run(params)
+    assert result.success, result.message
+    s = misaligned_shaft.summary(params, out)
+    for name in ("A", "B"):
+        assert s[f"{name}_tilt"] == pytest.approx(params.misalignment / params.spacing, rel=0.05)
+        f = out[name]["normal_force"][out[name]["time"] >= 0.01].sum(axis=0)
+        assert f.argmax() in (0, params.slices - 1)  # the edge carries the load
+    assert misaligned_shaft.main(["--end-time", "0.005", "--plot", str(tmp_path)]) == 0
+    assert len(list(tmp_path.glob("*.png"))) == 3
