@@ -852,16 +852,13 @@ def _elastic_energy(law: exuclear.ContactLaw, delta: float) -> float:
     return 0.0 if delta <= 0.0 else quad(law.elastic_force, 0.0, delta, epsabs=0.0, epsrel=1e-12)[0]
 
 
-def _energy_audit(model: SliderCrankModel) -> dict[str, float]:
-    """Energy balance of a minimal-formulation run with outputs at every step [J].
-
-    Drive work (what the flywheel gave up, ``-J_fly (w_end^2 - w_0^2) / 2``) = change of
-    the links' kinetic and potential energy + energy the contact absorbed (elastic energy
-    stored at the end, plus ``int (F_N - F_el) delta' + F_T v_T dt`` dissipated, trapezoid
-    rule) + residual.  ``energy_residual_rel`` is the residual over the gross contact
-    work ``int |F_N delta' + F_T v_T| dt``; it includes the round-off of the flywheel's
-    energy (``validation/hard_cases.py`` bounds it).
-    """
+def mechanical_energy(model: SliderCrankModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Kinetic plus potential energy of crank (its own inertia, not the flywheel's), rod
+    and slider of a minimal-formulation run [J], from the recorded tree coordinates (crank
+    angle, rod angle relative to the crank, slider x); returns ``(time, energy, crank
+    speed)`` at the recorded instants."""
+    if model.params.formulation != "minimal":
+        raise ValueError(f"the energy is written for the minimal formulation, got {model.params.formulation!r}")
     p, mbs = model.params, model.mbs
     r, l = p.crank_length, p.rod_length
     q = np.asarray(mbs.GetSensorStoredData(model.sensors["q"]))
@@ -873,8 +870,22 @@ def _energy_audit(model: SliderCrankModel) -> dict[str, float]:
     kinetic = (0.5 * (p.crank_inertia + p.crank_mass * r**2 / 4) * thd**2 + 0.5 * p.rod_mass * (gx**2 + gy**2)
                + 0.5 * p.rod_inertia * phid**2 + 0.5 * p.slider_mass * xd**2)
     potential = p.gravity * (p.crank_mass * r / 2 * np.sin(th) + p.rod_mass * (r * np.sin(th) + l / 2 * np.sin(phi)))
-    change = float((kinetic + potential)[-1] - (kinetic + potential)[0])
-    work = float(-0.5 * FLYWHEEL_INERTIA * (thd[-1] - thd[0]) * (thd[-1] + thd[0]))
+    return q[:, 0], kinetic + potential, thd
+
+
+def _energy_audit(model: SliderCrankModel) -> dict[str, float]:
+    """Energy balance of a minimal-formulation run with outputs at every step [J].
+
+    Drive work (what the flywheel gave up, ``-J_fly (w_end^2 - w_0^2) / 2``) = change of
+    the links' kinetic and potential energy + energy the contact absorbed (elastic energy
+    stored at the end, plus ``int (F_N - F_el) delta' + F_T v_T dt`` dissipated, trapezoid
+    rule) + residual.  ``energy_residual_rel`` is the residual over the gross contact
+    work ``int |F_N delta' + F_T v_T| dt``; it includes the round-off of the flywheel's
+    energy (``validation/hard_cases.py`` bounds it).
+    """
+    t, energy, omega = mechanical_energy(model)
+    change = float(energy[-1] - energy[0])
+    work = float(-0.5 * FLYWHEEL_INERTIA * (omega[-1] - omega[0]) * (omega[-1] + omega[0]))
     out, law = model.joint.outputs(), model.joint.joint.law
     t, delta, f_n, rate = out["time"], out["penetration"], out["normal_force"], out["penetration_rate"]
     friction = out["tangential_force"] * out["slip_velocity"]

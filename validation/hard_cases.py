@@ -336,25 +336,14 @@ def flywheel_roundoff(omega: float, steps: int) -> float:
 def audit_minimal(model: sc_model.SliderCrankModel, steps: int) -> Audit:
     """Energy audit of a minimal-coordinate slider-crank run (outputs at every step).
 
-    Kinetic and potential energy of crank (its own inertia), rod and slider are written
-    here from the tree coordinates (crank angle, rod angle relative to the crank, slider
-    x).  The drive work is what the flywheel gave up, ``-J_fly (omega_end^2 - omega_0^2) / 2``:
+    Kinetic and potential energy of crank (its own inertia), rod and slider from
+    :func:`models.slider_crank.mechanical_energy`.  The drive work is what the flywheel gave up, ``-J_fly (omega_end^2 - omega_0^2) / 2``:
     exact, but only to the round-off of :func:`flywheel_roundoff` (some 1e-5 J at 500
     rpm).  (The trapezoid rule on the recorded crank moment misses by 4 to 30 %: the
     moment varies by its own size within one step at an impact.)
     """
     p = model.params
-    r, l = p.crank_length, p.rod_length
-    q = np.asarray(model.mbs.GetSensorStoredData(model.sensors["q"]))
-    q_t = np.asarray(model.mbs.GetSensorStoredData(model.sensors["q_t"]))
-    th, thd = q[:, 1], q_t[:, 1]
-    phi, phid, xd = th + q[:, 2], thd + q_t[:, 2], q_t[:, 3]
-    gx = -r * np.sin(th) * thd - l / 2 * np.sin(phi) * phid
-    gy = r * np.cos(th) * thd + l / 2 * np.cos(phi) * phid
-    kinetic = (0.5 * (p.crank_inertia + p.crank_mass * r**2 / 4) * thd**2 + 0.5 * p.rod_mass * (gx**2 + gy**2)
-               + 0.5 * p.rod_inertia * phid**2 + 0.5 * p.slider_mass * xd**2)
-    potential = p.gravity * (p.crank_mass * r / 2 * np.sin(th) + p.rod_mass * (r * np.sin(th) + l / 2 * np.sin(phi)))
-    energy = kinetic + potential
+    _, energy, thd = sc_model.mechanical_energy(model)
     work = -0.5 * FLYWHEEL_INERTIA * (thd[-1] - thd[0]) * (thd[-1] + thd[0])
     return _audit(work, float(energy[-1] - energy[0]), list(model.joints.values()),
                   floor=flywheel_roundoff(p.crank_speed, steps))
