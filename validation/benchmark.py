@@ -76,6 +76,43 @@ def impact_row(repeats: int) -> tuple[str, str, str]:
             f"{walls[exuclear.DEFAULT_BACKEND] * 1e3:.2f} ms: {ratio:.1f}x")
 
 
+def floor_rows(repeats: int) -> list[tuple[str, str, str]]:
+    """What Exudyn itself costs in these runs: the minimal model's connector evaluated on
+    its two kinematic-tree markers with and without the kernel, per evaluation (RK44 at a
+    fixed step, 4 evaluations per step, so that every variant takes the same steps); and
+    the ideal redundant mechanism at the redundant defaults."""
+    import exudyn as exu
+
+    params = sc_model.SliderCrankParams.paper()
+    steps = 9000
+    settings = exuclear.SolverSettings(end_time=params.end_time, method="rk44", step=params.end_time / steps,
+                                       output_step=params.end_time)
+    ss = exuclear.simulation_settings(settings)
+    model = sc_model.build(params)
+
+    def solve() -> float:
+        start = time.perf_counter()
+        model.mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.RK44)
+        return time.perf_counter() - start
+
+    joint = model.joint.objectNumber
+    with_kernel = _median(solve, repeats)
+    model.mbs.SetObjectParameter(joint, "postNewtonStepUserFunction", 0)
+    model.mbs.SetObjectParameter(joint, "springForceTorqueUserFunction", 0)
+    model.mbs.SetObjectParameter(joint, "stiffness", np.zeros((6, 6)).tolist())
+    bare = _median(solve, repeats)
+    model.mbs.SetObjectParameter(joint, "activeConnector", False)
+    none = _median(solve, repeats)
+    evaluations = 4 * steps
+    ideal = replace(params, formulation="redundant", ideal=True)
+    ideal_wall = _median(lambda: sc_model.run(ideal, sc_model.default_settings(replace(ideal, ideal=False))).wall_time,
+                         repeats)
+    return [("context: Exudyn's connector on the minimal model's two kinematic-tree markers", "-",
+             f"{(bare - none) / evaluations * 1e6:.2f} us per evaluation without a user function, "
+             f"{(with_kernel - none) / evaluations * 1e6:.2f} us with the compiled kernel (RK44, {steps} steps)"),
+            ("context: the ideal redundant mechanism at the redundant defaults", "-", f"{ideal_wall:.3f} s")]
+
+
 def spatial_row() -> tuple[str, str, str] | None:
     if "spatial" not in sc_model.FORMULATIONS:
         return None
@@ -102,7 +139,7 @@ def main(argv: list[str] | None = None) -> int:
         ap.error("--repeats must be at least 1")
     print(f"compiled kernel: {exuclear.engine.kernel.STATUS}; default backend: {exuclear.DEFAULT_BACKEND}; "
           f"medians of {args.repeats}")
-    rows = crank_rows(args.repeats) + [impact_row(args.repeats)]
+    rows = crank_rows(args.repeats) + [impact_row(args.repeats)] + floor_rows(args.repeats)
     spatial = spatial_row()
     if spatial is not None:
         rows.append(spatial)
