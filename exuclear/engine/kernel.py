@@ -15,6 +15,7 @@ The last two warn once, saying why.
 """
 from __future__ import annotations
 
+import importlib
 import warnings
 from types import ModuleType
 
@@ -27,7 +28,7 @@ class KernelWarning(UserWarning):
 
 def _load() -> tuple[ModuleType | None, str, str]:
     try:
-        from .. import _ckernel
+        _ckernel = importlib.import_module("exuclear._ckernel")
     except ImportError as err:
         return None, STATUS_MISSING, (f"the compiled kernel exuclear._ckernel is not built ({err}); the clearance joint "
                                       "runs its Python kernel, 3 to 10 times slower. Reinstall with a C++ compiler "
@@ -90,7 +91,8 @@ def _self_test(module: ModuleType) -> int:
 
 COMPILED, STATUS, REASON = _load()
 if STATUS != STATUS_DIRECT:
-    warnings.warn(REASON, KernelWarning, stacklevel=2)
+    # one line, with no source line under it (the cause is the install, not a line of code)
+    warnings.warn_explicit(REASON, KernelWarning, filename="exuclear", lineno=0, module="exuclear.engine.kernel")
 
 
 def default_backend() -> str:
