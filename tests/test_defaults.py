@@ -50,7 +50,7 @@ def test_notes_where_the_defaults_are_not_shown_to_hold():
     assert sc.accuracy_notes(params(), sc.default_settings(params())) == []
     three = params(formulation="redundant", clearance_joints=("O", "A", "B"))
     notes = sc.accuracy_notes(three, sc.default_settings(three))
-    assert len(notes) == 1 and "3 clearance joints" in notes[0] and "6 ms" in notes[0]
+    assert len(notes) == 1 and "3 clearance joints" in notes[0] and "until 8 ms" in notes[0]
     assert "beyond the 5000 rpm" in " ".join(_defaults.accuracy_notes(1e4 * math.pi / 30, 1e-4, 1, False))
     assert "about 1 % of c" in " ".join(_defaults.accuracy_notes(5000 * math.pi / 30, 1e-4, 1, True))
     assert "outside the 0.05-0.5 mm" in " ".join(_defaults.accuracy_notes(500 * math.pi / 30, 1e-3, 1, False))
