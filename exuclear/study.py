@@ -292,7 +292,9 @@ def _run_one(function: Callable[[Params], Mapping[str, Any]], params: Params, ke
         clash = sorted((set(summary) & set(params)) | (set(summary) & {"wall_time", "run_id"}))
         if clash:
             raise ValueError(f"the summary repeats the names {clash} (parameters or status columns)")
-        metrics = {k: _plain(v) for k, v in summary.items() if k not in ("success", "message")}
+        # arrays travel back whole (pickled); the table turns them into lists
+        metrics = {k: v if isinstance(v, np.ndarray) else _plain(v) for k, v in summary.items()
+                   if k not in ("success", "message")}
         row.update(metrics)
         row["success"] = bool(summary.get("success", True))
         row["message"] = str(summary.get("message", ""))
@@ -389,6 +391,8 @@ class _SerialExecutor(cf.Executor):
 def _encode(value: Any) -> str:
     if value is None:
         return ""
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
     if isinstance(value, list):
         return json.dumps(value)
     return str(value)  # str(float) is the shortest text that reads back to the same float
@@ -397,19 +401,24 @@ def _encode(value: Any) -> str:
 class _Table:
     """The study's CSV: rows appended one by one; when a row brings a new column or
     replaces a row, the file is rewritten (to a temporary file, then renamed, so that a
-    crash never leaves half a table)."""
+    crash never leaves half a table).
 
-    def __init__(self, path: Path | None, parameter_names: Sequence[str]) -> None:
+    With ``keep_arrays`` (a table in memory only), array values stay as the run returned
+    them, out of the text."""
+
+    def __init__(self, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False) -> None:
         self.path = path
         self.columns: list[str] = []
         self.rows: dict[str, dict[str, str]] = {}  # run_id -> row as text
         self.parameter_names = list(parameter_names)
+        self.keep_arrays = keep_arrays
+        self.arrays: dict[str, dict[str, np.ndarray]] = {}  # run_id -> arrays kept in memory
 
     @classmethod
-    def open(cls, path: Path | None, parameter_names: Sequence[str]) -> _Table:
+    def open(cls, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False) -> _Table:
         """The table at ``path``, resumed if it exists (``ValueError`` if it holds another
         study), or a new one."""
-        table = cls(path, parameter_names)
+        table = cls(path, parameter_names, keep_arrays)
         if path is None or not path.exists() or path.stat().st_size == 0:
             return table
         table._read()
@@ -446,7 +455,9 @@ class _Table:
         os.replace(tmp, self.path)
 
     def add(self, row: Mapping[str, Any]) -> None:
-        text = {k: _encode(v) for k, v in row.items()}
+        if self.keep_arrays:
+            self.arrays[row["run_id"]] = {k: v for k, v in row.items() if isinstance(v, np.ndarray)}
+        text = {k: "" if k in self.arrays.get(row["run_id"], ()) else _encode(v) for k, v in row.items()}
         new = [k for k in row if k not in self.columns]
         replaces = text["run_id"] in self.rows  # a failed run done again (retry_failed)
         self.rows[text["run_id"]] = text
@@ -478,8 +489,12 @@ class _Table:
         buffer.seek(0)
         # floats must read back exactly: pandas 3 does by default, pandas 2 when asked
         exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
-        return _decode(pd.read_csv(buffer, keep_default_na=False, na_values=["", "nan", "NaN"],
-                                   dtype={"run_id": str, "message": str}, **exact))
+        df = _decode(pd.read_csv(buffer, keep_default_na=False, na_values=["", "nan", "NaN"],
+                                 dtype={"run_id": str, "message": str}, **exact))
+        kept = list(dict.fromkeys(name for k in keys for name in self.arrays.get(k, ())))
+        for name in kept:
+            df[name] = pd.Series([self.arrays.get(k, {}).get(name) for k in keys], index=df.index, dtype=object)
+        return df
 
 
 def _decode(df):
@@ -620,7 +635,7 @@ def prepare(study: Study | Callable, runs: Iterable[Mapping[str, Any]]) -> list[
 def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterable[Mapping[str, Any]],
               out: str | os.PathLike | None = None, *, workers: int | None = None, scheduler: str | None = None,
               executor: cf.Executor | None = None, batch_size: int | None = None, retry_failed: bool = False,
-              progress: bool = True):
+              progress: bool = True, keep_arrays: bool = False):
     """Run ``study`` over ``runs``; returns the table (a DataFrame, rows in the order of
     ``runs``).
 
@@ -648,6 +663,10 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
         Also redo the runs that failed in the existing table.
     progress : bool
         Show a tqdm progress bar (done, failed, rate, ETA) on stderr.
+    keep_arrays : bool
+        Only with ``out=None``: array metrics come back as the numpy arrays the runs
+        returned, not through the table's text as lists; for time series a table on
+        disk would not carry.
 
     Raises
     ------
@@ -665,13 +684,15 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
         raise ValueError(f"`batch_size` must be a positive integer, got {batch_size!r}")
     prepared = prepare(study, runs)
     path = None if out is None else Path(out)
+    if keep_arrays and path is not None:
+        raise ValueError("`keep_arrays` keeps arrays in memory: give it with `out=None`")
     if path is not None and path.suffix.lower() != ".csv":
         raise ValueError(f"`out` must name a .csv file (Parquet is written next to it), got {str(out)!r}")
     if path is not None and not path.parent.exists():
         path.parent.mkdir(parents=True)
     names = list(study.parameters) if study.parameters is not None else list(dict.fromkeys(
         k for _, p in prepared for k in p))
-    table = _Table.open(path, names)
+    table = _Table.open(path, names, keep_arrays)
     done = {k for k, row in table.rows.items() if not (retry_failed and row.get("success") == "False")}
     todo = deque((k, p) for k, p in prepared if k not in done)
     order = [k for k, _ in prepared]

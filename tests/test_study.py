@@ -121,6 +121,25 @@ def test_failed_run_is_a_row_and_table_reads_back(tmp_path: Path):
     pd.testing.assert_frame_equal(back, df, check_exact=True)
 
 
+def test_arrays_kept_in_memory(tmp_path: Path):
+    """keep_arrays: the arrays come back as the runs returned them, from worker processes
+    as from a serial run, equal to the lists of the text table; only without a file."""
+    runs = st.grid(x=range(5), k=[0.5, 2.0])
+    serial = st.run_study(square, runs, workers=1, progress=False, keep_arrays=True)
+    processes = st.run_study(square, runs, workers=2, progress=False, keep_arrays=True)
+    text = st.run_study(square, runs, workers=1, progress=False)
+    good = serial["success"].to_numpy()
+    assert all(isinstance(v, np.ndarray) for v in serial["pair"][good])
+    for a, b, c in zip(serial["pair"][good], processes["pair"][good], text["pair"][good]):
+        np.testing.assert_array_equal(a, b)
+        assert a.tolist() == c
+    assert serial["pair"][~good].isna().all()  # the failed runs returned nothing
+    pd.testing.assert_frame_equal(_values(processes.drop(columns="pair")), _values(serial.drop(columns="pair")),
+                                  check_exact=True)
+    with pytest.raises(ValueError, match="keep_arrays"):
+        st.run_study(square, runs, tmp_path / "t.csv", workers=1, progress=False, keep_arrays=True)
+
+
 def test_own_failure_status_resume_and_retry(tmp_path: Path):
     out = tmp_path / "t.csv"
     CALLS.clear()
