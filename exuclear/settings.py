@@ -5,7 +5,9 @@ holds only the documented choices and their checks.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Literal
 
 from ._checks import check_choice, check_positive, check_real
 
@@ -24,6 +26,13 @@ SPECTRAL_RADIUS_DEFAULT = 0.9
 #: paper's redundant run takes 24101 steps instead of 18257 (measured side by side).
 NEWTON_RTOL_DEFAULT = 1e-8
 NEWTON_ATOL_DEFAULT = 1e-6
+
+#: The step when none is given [s]: the paper's maximum step.
+DEFAULT_STEP = 1e-5
+
+#: The value of ``step`` that asks :func:`exuclear.simulate` to choose it from the model
+#: (:func:`exuclear.engine.solver.automatic_step`).
+AUTO = "auto"
 
 #: Method name -> (Exudyn DynamicSolverType name, explicit?, adaptive by default?).
 METHODS: dict[str, tuple[str, bool, bool]] = {
@@ -47,9 +56,32 @@ class SolverSettings:
         One of :data:`METHODS`: ``"dopri5"`` (adaptive Dormand-Prince 5(4), explicit:
         only for models without constraints), ``"ode23"``, ``"rk44"`` (fixed step),
         ``"generalized-alpha"`` or ``"trapezoidal"`` (implicit, any model).
-    step : float
+    step : float or "auto"
         Fixed step for fixed-step methods; the largest step for adaptive ones [s].
-        Default 1e-5 s, the paper's maximum step.
+        Default :data:`DEFAULT_STEP`, 1e-5 s, the paper's maximum step.
+
+        ``"auto"``: :func:`exuclear.simulate` chooses the step from the model
+        (:func:`exuclear.engine.solver.automatic_step`; ``result.step`` says which).
+        Fixed-step methods (generalized-alpha, trapezoidal, RK44) take
+
+            step = min(T_c / 10 over the clearance joints, end_time / 1000)
+
+        (:func:`exuclear.timescales.step_from_contact_periods`).  ``T_c`` is a joint's
+        contact period ``2 pi sqrt(m / k)`` [s]: ``m`` the reduced mass of its two
+        bodies, ``k`` the tangent stiffness of its contact law under the weight of ``m``
+        (the model's gravity; 9.81 m/s^2 where it has none).  This is the estimate by
+        which :func:`exuclear.simulate` judges chatter, so a run at the automatic step
+        is never flagged for it.  Ten steps per period resolve a contact that opens
+        (issue 15's pendulum: steps of 2.3 periods chatter, a quarter period does not).
+        The force is a rough estimate, and need be no more: under a Hertz-like law
+        ``T_c`` varies as ``F**(-1/6)``, so a load ten times the weight shortens it by
+        a third, within the margin of the ten steps.  ``end_time / 1000`` bounds the step
+        of a model without clearance joints; it knows nothing of the model's own
+        frequencies (check such a run at half the step).  Explicit adaptive methods
+        (DOPRI5, ODE23) control their step by their error estimate and keep
+        :data:`DEFAULT_STEP` as their largest step.  ``impact_step`` and ``min_step``
+        must not exceed the chosen step.  :func:`exuclear.check_convergence` needs a
+        number: give it the settings with ``step=result.step``.
     rtol, atol : float
         Relative and absolute error tolerances of adaptive explicit methods.  Default
         rtol 1e-6 (the paper's tolerance) and atol 1e-9 m, i.e. 1e-5 of the paper's
@@ -85,7 +117,7 @@ class SolverSettings:
 
     end_time: float
     method: str = "dopri5"
-    step: float = 1e-5
+    step: float | Literal["auto"] = DEFAULT_STEP
     rtol: float = 1e-6
     atol: float = 1e-9
     min_step: float = 1e-12
@@ -100,10 +132,13 @@ class SolverSettings:
     def __post_init__(self) -> None:
         check_positive("end_time", self.end_time)
         check_choice("method", self.method, METHODS)
-        check_positive("step", self.step)
+        if self.step is None or isinstance(self.step, str) and self.step != AUTO:
+            raise ValueError(f"`step` must be a positive number [s] or {AUTO!r} (chosen from the model), got {self.step!r}")
+        if not self.automatic:
+            check_positive("step", self.step)
         check_positive("rtol", self.rtol)
         check_positive("atol", self.atol)
-        if check_positive("min_step", self.min_step) > self.step:
+        if check_positive("min_step", self.min_step) > self._step_or(math.inf):
             raise ValueError(f"`min_step` must not exceed `step`, got min_step = {self.min_step}, step = {self.step}")
         rho = check_real("spectral_radius", self.spectral_radius)
         if not 0.0 <= rho <= 1.0:
@@ -123,13 +158,22 @@ class SolverSettings:
             if self.explicit:
                 raise ValueError(f"`impact_step` applies to the implicit methods; {self.method!r} controls its "
                                  "step by its error estimate (use rtol, atol)")
-            if check_positive("impact_step", self.impact_step) > self.step:
+            if check_positive("impact_step", self.impact_step) > self._step_or(math.inf):
                 raise ValueError(f"`impact_step` must not exceed `step`, got impact_step = {self.impact_step}, "
                                  f"step = {self.step}")
         if isinstance(self.recovery_steps, bool) or not isinstance(self.recovery_steps, int) or self.recovery_steps < 1:
             raise ValueError(f"`recovery_steps` must be a positive integer, got {self.recovery_steps!r}")
-        if self.step > self.end_time:
+        if self._step_or(0.0) > self.end_time:
             raise ValueError(f"`step` must not exceed `end_time`, got step = {self.step}, end_time = {self.end_time}")
+
+    @property
+    def automatic(self) -> bool:
+        """True if ``step`` is ``"auto"`` (chosen from the model by :func:`exuclear.simulate`)."""
+        return self.step == AUTO
+
+    def _step_or(self, default: float) -> float:
+        """``step`` [s], or ``default`` where it is ``"auto"``."""
+        return default if self.automatic else float(self.step)
 
     @property
     def explicit(self) -> bool:

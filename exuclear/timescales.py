@@ -10,11 +10,13 @@ effective mass of the joint's relative motion, the **contact period** is
 (exuclear's estimate: the linearised contact mode).  For the Wang-Liu law of the paper's
 slider-crank (``F`` ~ 30 N, ``m`` ~ 0.2 kg) it is about 0.3 ms; for a steel pendulum of
 0.6 kg hanging on a 10 um pin, about 0.4 ms.  An implicit method without error control
-needs steps of a fraction of ``T_c`` wherever a contact can open (:data:`STEPS_PER_CONTACT_PERIOD`).
+needs steps of a fraction of ``T_c`` wherever a contact can open (:data:`STEPS_PER_CONTACT_PERIOD`);
+:func:`step_from_contact_periods` is that rule for a whole run (``SolverSettings(step="auto")``).
 """
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
 from .contact import ContactLaw
 
@@ -23,6 +25,11 @@ from .contact import ContactLaw
 #: 68 times in 2 s; at 1e-4 s (a quarter period) and below it stays in contact, as DOPRI5
 #: and physics say (issue 15).  Ten leaves a margin of 2.5 for the crude effective mass.
 STEPS_PER_CONTACT_PERIOD = 10
+
+#: Steps a run takes at least with an automatic step: the bound where no clearance joint
+#: sets a shorter one (a model without such joints).  It resolves a motion of a tenth of
+#: the run's duration with 100 steps, and is no statement about the model's own frequencies.
+MIN_STEPS_PER_RUN = 1000
 
 #: Relative perturbation of the penetration for the tangent stiffness (central difference).
 _STIFFNESS_EPS = 1e-6
@@ -73,3 +80,16 @@ def reduced_mass(m1: float, m2: float) -> float:
     if math.isinf(m2):
         return m1
     return m1 * m2 / (m1 + m2)
+
+
+def step_from_contact_periods(contact_periods: Iterable[float], end_time: float) -> float:
+    """The automatic fixed step [s] of a run of ``end_time`` [s] whose clearance joints
+    have the ``contact_periods`` [s]: a tenth of the shortest
+    (:data:`STEPS_PER_CONTACT_PERIOD`), and no more than ``end_time /``
+    :data:`MIN_STEPS_PER_RUN`."""
+    step = end_time / MIN_STEPS_PER_RUN
+    for period in contact_periods:
+        if not period > 0.0 or not math.isfinite(period):
+            raise ValueError(f"contact periods must be positive and finite, got {period}")
+        step = min(step, period / STEPS_PER_CONTACT_PERIOD)
+    return step

@@ -1,4 +1,5 @@
-"""Issue 15, section 1: robust implicit runs (Newton tolerances, numerical chatter, failure causes).
+"""Issue 15, section 1: robust implicit runs (Newton tolerances, numerical chatter, failure causes,
+steps chosen from the model).
 
 The model of the issue: a steel bar (0.3 m, 0.6 kg) hanging on a clearance pin from the
 ground, c = 10 um, gravity, released at 0.5 rad with the journal resting on the wall.
@@ -7,12 +8,13 @@ import math
 import warnings
 
 import exudyn as exu
+import numpy as np
 import pytest
-from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
 
 import exuclear
-from exuclear.engine.solver import AccuracyWarning
-from exuclear.timescales import contact_period, penetration_at
+from exuclear.engine.solver import AccuracyWarning, automatic_step
+from exuclear.timescales import MIN_STEPS_PER_RUN, STEPS_PER_CONTACT_PERIOD, contact_period, penetration_at
 
 LENGTH, MASS, CLEARANCE = 0.3, 0.6, 10e-6
 
@@ -99,3 +101,74 @@ def test_failure_names_the_likely_cause(kwargs, cause, method):
     mbs, _ = pendulum(**kwargs)
     with pytest.raises(ValueError, match=cause):
         exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.01, method=method, step=1e-4))
+
+
+# -- issue 15: steps chosen from the model (SolverSettings(step="auto"))
+
+def swing_period(end_time, **settings):
+    """Run the pendulum (released at 0.5 rad) for ``end_time`` [s]; return the result, the
+    joint's contact onsets and the mean period [s] between downward zero crossings of the
+    angle, each interpolated linearly between outputs 1 ms apart."""
+    theta0 = 0.5
+    mbs, handle = pendulum(theta0)
+    sensor = mbs.AddSensor(SensorNode(nodeNumber=0, storeInternal=True, writeToFile=False,
+                                      outputVariableType=exu.OutputVariableType.Coordinates))
+    mbs.Assemble()
+    result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=end_time, output_step=1e-3, **settings))
+    data = mbs.GetSensorStoredData(sensor)
+    t, theta = data[:, 0], theta0 + data[:, 3]  # the sensor gives displacements from the reference angle
+    k = np.nonzero((theta[:-1] > 0.0) & (theta[1:] <= 0.0))[0]
+    crossings = t[k] + (t[k + 1] - t[k]) * theta[k] / (theta[k] - theta[k + 1])
+    return result, handle.history.onsets, (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+
+
+def test_automatic_step_of_the_pendulum_holds_contact_and_period():
+    # The issue's 10 s run: at the default 1e-5 s it took 43.9 s.  The automatic step is a
+    # tenth of the contact period (3.5e-5 s), where the journal stays on the wall (one onset,
+    # the initial contact) and the swing period is DOPRI5's.  Measured: 0.9113776 s against
+    # DOPRI5's 0.9113779 s (3e-7 relative); single periods scatter by 3e-6 relative through
+    # the interpolated crossings, so 1e-5 bounds the difference of the means with a margin
+    # (generalized-alpha's own period error, ~(omega h)^2, is 6e-8 here).
+    result, onsets, period = swing_period(10.0, method="generalized-alpha", step="auto")
+    assert result.success, result.message
+    law = exuclear.make_joint(journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3, length=15e-3, cr=0.9).law
+    assert result.step == pytest.approx(contact_period(law, MASS, MASS * 9.81) / STEPS_PER_CONTACT_PERIOD, rel=1e-12)
+    assert onsets == 1 and result.notes == ()
+    reference, ref_onsets, ref_period = swing_period(3.0, method="dopri5")  # three swings, rtol 1e-6
+    assert reference.success and ref_onsets == 1
+    assert period == pytest.approx(ref_period, rel=1e-5)
+
+
+def test_automatic_step_rules():
+    mbs, _ = pendulum()
+    # explicit adaptive methods control their step by error: the largest step stays the default
+    assert automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, step="auto")) == exuclear.SolverSettings(
+        end_time=1.0).step
+    # rk44 is fixed-step: the contact period rules it as it does the implicit methods
+    alpha = automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto"))
+    assert automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, method="rk44", step="auto")) == alpha
+    # a run shorter than MIN_STEPS_PER_RUN steps of the contact rule is bounded by its duration
+    short = exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha", step="auto")
+    assert automatic_step(mbs, short) == pytest.approx(1e-3 / MIN_STEPS_PER_RUN)
+    # without a clearance joint: end_time / MIN_STEPS_PER_RUN
+    free = exu.SystemContainer().AddSystem()
+    node = free.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
+    free.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1.0))
+    free.Assemble()
+    settings = exuclear.SolverSettings(end_time=2.0, method="generalized-alpha", step="auto")
+    assert automatic_step(free, settings) == pytest.approx(2.0 / MIN_STEPS_PER_RUN)
+    result = exuclear.simulate(free, settings)
+    assert result.success and result.step == pytest.approx(2.0 / MIN_STEPS_PER_RUN) and result.steps == MIN_STEPS_PER_RUN
+
+
+def test_automatic_step_bad_values():
+    with pytest.raises(ValueError, match="`step` must be a positive number .* or 'auto'"):
+        exuclear.SolverSettings(end_time=1.0, step="fast")
+    with pytest.raises(ValueError, match="`step` must be a positive number .* or 'auto'"):
+        exuclear.SolverSettings(end_time=1.0, step=None)
+    with pytest.raises(ValueError, match="chosen from the model"):  # the mapping alone does not know the model
+        exuclear.simulation_settings(exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto"))
+    mbs, _ = pendulum()
+    settings = exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto", impact_step=1e-3)
+    with pytest.raises(ValueError, match="`impact_step` must not exceed the step, but `step` 'auto' chose 3.51e-05 s"):
+        exuclear.simulate(mbs, settings)

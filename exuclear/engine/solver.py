@@ -5,7 +5,8 @@ A clearance joint needs none of this: ``mbs.SolveDynamic`` runs it as any Exudyn
 study wants: one typed settings object (:class:`exuclear.SolverSettings`), the refusal of
 explicit methods for constrained models (Exudyn's explicit solvers would silently drop
 the constraints), impact-aware steps, watchdogs for an adaptive step that collapses or
-is retried without end, and a result that says why a run stopped.  The watchdogs are
+is retried without end, a step chosen from the model (``step="auto"``,
+:func:`automatic_step`), and a result that says why a run stopped.  The watchdogs are
 pre- and post-step functions installed for the run only; the user's own step functions
 are called from them and restored afterwards.
 """
@@ -14,13 +15,14 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import exudyn as exu
 
-from ..settings import METHODS, SolverSettings
-from ._diagnostics import chatter_note, check_model
+from ..settings import DEFAULT_STEP, METHODS, SolverSettings
+from ..timescales import step_from_contact_periods
+from ._diagnostics import chatter_note, check_model, joint_contact_period
 from .connector import ClearanceJointHandle, _check_system, joints_of
 
 
@@ -38,7 +40,13 @@ IMPACT_STEP_FLOOR = 0.5
 
 
 def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
-    """Map :class:`SolverSettings` onto ``exu.SimulationSettings`` (the only place)."""
+    """Map :class:`SolverSettings` onto ``exu.SimulationSettings`` (the only place).
+
+    ``step="auto"`` needs the model: :func:`simulate` replaces it by
+    :func:`automatic_step` before it maps the settings."""
+    if settings.automatic:
+        raise ValueError("`step` is 'auto', which is chosen from the model: run exuclear.simulate(mbs, settings), or "
+                         "map dataclasses.replace(settings, step=automatic_step(mbs, settings))")
     ss = exu.SimulationSettings()
     ti = ss.timeIntegration
     ti.endTime = settings.end_time
@@ -75,7 +83,8 @@ class SimulationResult:
 
     ``success`` is False when the run stopped early; ``message`` then says why and what
     to try, and ``time_reached`` [s] how far it got.  ``wall_time`` is the solver call
-    alone [s]; ``steps`` the number of accepted time steps and ``rejected`` the
+    alone [s]; ``step`` [s] the step the run was given (the largest for adaptive
+    methods), chosen from the model where the settings said ``"auto"``; ``steps`` the number of accepted time steps and ``rejected`` the
     rejected ones (adaptive methods).  ``notes`` says where a finished run may not be
     converged (each also issued as an :class:`AccuracyWarning`), e.g. contact chatter
     that is a numerical artefact.
@@ -88,6 +97,7 @@ class SimulationResult:
     rejected: int
     time_reached: float
     notes: tuple[str, ...] = ()
+    step: float = math.nan
 
 
 def _user_function(installed: Any) -> Any:
@@ -172,10 +182,52 @@ def _joints_in_contact(joints: list[ClearanceJointHandle]) -> str:
     return f"; in contact then: {', '.join(names)}" if names else "; no clearance joint was in contact then"
 
 
+def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
+    """The step [s] that ``SolverSettings(step="auto")`` stands for in the assembled ``mbs``.
+
+    Fixed-step methods (implicit, RK44): a tenth of the shortest contact period of the
+    model's clearance joints, and no more than ``end_time / 1000``
+    (:func:`exuclear.timescales.step_from_contact_periods`).  A joint's period is its
+    two bodies' reduced mass on the tangent stiffness of its law under the weight of
+    that mass (``joint_contact_period``, the estimate of the chatter check; the rule and
+    its reasons are in the docstring of :class:`SolverSettings`).  Explicit adaptive
+    methods control their step by their error estimate: the largest step stays
+    :data:`~exuclear.settings.DEFAULT_STEP` (within ``end_time``).
+
+    ``ValueError`` if a joint's period cannot be estimated (a body whose mass is not
+    read from its Exudyn object).
+    """
+    if settings.explicit and settings.adaptive:
+        return min(DEFAULT_STEP, settings.end_time)
+    periods = []
+    for handle in joints_of(mbs):
+        period = joint_contact_period(mbs, handle)
+        if not period > 0.0:
+            raise ValueError(f"`step` 'auto': the contact period of clearance joint {handle.name or handle.objectNumber!r} "
+                             "cannot be estimated, because the mass of one of its bodies is not read from its Exudyn "
+                             "object; give `step` in seconds")
+        periods.append(period)
+    return step_from_contact_periods(periods, settings.end_time)
+
+
+def _with_step(mbs: exu.MainSystem, settings: SolverSettings) -> SolverSettings:
+    """``settings`` with ``step="auto"`` replaced by :func:`automatic_step`."""
+    if not settings.automatic:
+        return settings
+    step = automatic_step(mbs, settings)
+    for name in ("impact_step", "min_step"):
+        value = getattr(settings, name)
+        if value is not None and value > step:
+            raise ValueError(f"`{name}` must not exceed the step, but `step` 'auto' chose {step:.3g} s for this model "
+                             f"and {name} = {value:g} s; give a smaller `{name}` or `step` in seconds")
+    return replace(settings, step=step)
+
+
 def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     """Assemble if needed and integrate ``mbs`` with ``settings``.
 
-    Explicit methods are refused for systems with constraints (joints, coordinate
+    ``settings.step`` ``"auto"`` is replaced by :func:`automatic_step` (the run's
+    ``result.step``).  Explicit methods are refused for systems with constraints (joints, coordinate
     constraints): Exudyn's explicit solvers would silently ignore them.  Every clearance
     joint starts from the initial state (its history is reset).
 
@@ -191,6 +243,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         mbs.Assemble()
     joints = joints_of(mbs)
     check_model(mbs, joints)
+    settings = _with_step(mbs, settings)
     if settings.explicit:
         constrained = _constraint_objects(mbs)
         if constrained:
@@ -227,20 +280,20 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         if reason:
             return SimulationResult(False, f"stopped at t = {when:.6g} s, joint {handle.name or handle.objectNumber!r}: "
                                     f"{reason}. {_advice(reason, handle)}; results up to then are kept",
-                                    wall, steps, rejected, t_reached)
+                                    wall, steps, rejected, t_reached, step=settings.step)
     if watchdog.problem:
         return SimulationResult(False, f"stopped {watchdog.problem}; results up to then are kept", wall, steps,
-                                rejected, t_reached)
+                                rejected, t_reached, step=settings.step)
     if not ok:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
                     f"{_solver_advice(message, settings)})")
-        return SimulationResult(ok, message, wall, steps, rejected, t_reached)
+        return SimulationResult(ok, message, wall, steps, rejected, t_reached, step=settings.step)
     notes = ()
     if not settings.explicit:  # adaptive explicit methods resolve separations by their error control
         notes = tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)
-    return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes)
+    return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes, step=settings.step)
 
 
 def _solver_advice(message: str, settings: SolverSettings) -> str:
