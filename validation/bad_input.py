@@ -131,6 +131,7 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time="0.1")', "ValueError"),
     BadInput("API", "wrong type", "exuclear.SolverSettings(end_time=0.1, method=5)", "ValueError"),
     BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time=0.1, verbose="yes")', "ValueError"),
+    BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time=0.1, step="fast")', "ValueError", says="'auto'"),
     BadInput("API", "wrong type", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, journal_point="ab")',
              "ValueError"),
     BadInput("API", "wrong type", "exuclear.add_clearance_joint(system()[0], 1.5, 0, **PAPER, cr=0.9)", "ValueError"),
@@ -182,6 +183,12 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", "exuclear.SolverSettings(end_time=0.1, step=1.0)", "ValueError"),
     BadInput("API", "inconsistent input", "exuclear.SolverSettings(end_time=0.1, step=1e-5, min_step=1e-4)",
              "ValueError", says="`min_step`"),
+    BadInput("API", "inconsistent input", 'exuclear.simulate(system()[0], exuclear.SolverSettings(end_time=0.1, '
+                                          'method="generalized-alpha", step="auto", impact_step=1e-3))', "ValueError",
+             says="`impact_step`"),
+    BadInput("API", "inconsistent input", 'exuclear.simulation_settings(exuclear.SolverSettings(end_time=0.1, '
+                                          'method="generalized-alpha", step="auto"))', "ValueError",
+             says="chosen from the model"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)',
              "ValueError", says="`spectral_radius`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',

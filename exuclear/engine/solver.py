@@ -46,7 +46,7 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
     :func:`automatic_step` before it maps the settings."""
     if settings.automatic:
         raise ValueError("`step` is 'auto', which is chosen from the model: run exuclear.simulate(mbs, settings), or "
-                         "map dataclasses.replace(settings, step=automatic_step(mbs, settings))")
+                         "map dataclasses.replace(settings, step=exuclear.engine.solver.automatic_step(mbs, settings))")
     ss = exu.SimulationSettings()
     ti = ss.timeIntegration
     ti.endTime = settings.end_time
