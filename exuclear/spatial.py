@@ -18,6 +18,7 @@ journal axis, ``t = (n_y, -n_x, 0)``, penetration ``delta = e - c`` (> 0: contac
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import NamedTuple
 
 V3 = tuple[float, float, float]
@@ -150,3 +151,92 @@ def finish_loads(loads: list[float], p: V3) -> SpatialLoads:
     pf = cross(p, force)
     return SpatialLoads(force, (loads[3], loads[4], loads[5]),
                         (pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]))
+
+
+# -- axial clearance: the journal's shoulders against the bearing's end faces (section 9.6) ----
+FACE_SIDES = (-1, 1)  # face 0 at z = -L/2, face 1 at z = +L/2 (the order of the slices)
+
+
+@dataclass(frozen=True)
+class ShoulderGeometry:
+    """The axial clearance of a spatial joint (docs/physics.md section 9.6), SI units.
+
+    ``axial_clearance`` g [m]: the total axial play, the sum of both gaps between the
+    journal's shoulders and the bearing's end faces with the journal centred; the shoulders'
+    faces are ``L + g`` apart.  ``shoulder_radius`` R_S [m]: outer radius of the annulus in
+    which a shoulder meets an end face (the smaller of the collar's and the end face's
+    outer radius); its inner radius is the bearing radius R_B.  Checked at the public
+    boundary (``exuclear.engine.connector``): ``g > 0``, ``R_S > R_B``.
+    """
+
+    axial_clearance: float
+    shoulder_radius: float
+    bearing_radius: float
+
+    @property
+    def friction_radius(self) -> float:
+        """R_e [m] of eq. (51): the friction radius of the annulus under uniform pressure."""
+        r_o, r_i = self.shoulder_radius, self.bearing_radius
+        return 2.0 / 3.0 * (r_o**3 - r_i**3) / (r_o**2 - r_i**2)
+
+    def face_stiffness(self, e_star: float) -> float:
+        """K_f [N/m] of eq. (52): a flat circular punch of radius R_S (Sneddon 1965), an
+        upper bound for the annulus."""
+        return 2.0 * e_star * self.shoulder_radius
+
+
+class FaceKinematics(NamedTuple):
+    """Contact quantities of one end face, eqs. (48)-(51), in J0 (SI units).
+
+    ``side`` f = -1 (face at z = -L/2) or +1; ``s`` the journal-axis parameter of the
+    shoulder's centre ``c_f = p + s u``; ``(ex, ey)`` that centre's offset from the bearing
+    axis; ``delta``, ``delta_dot`` the axial penetration and its exact rate; ``v_t`` the
+    circumferential slip at the friction radius (positive: the journal spins faster about
+    its axis than the bearing).
+    """
+
+    side: int
+    s: float
+    ex: float
+    ey: float
+    delta: float
+    delta_dot: float
+    v_t: float
+
+
+def face_kinematics(length: float, play: float, r_e: float, side: int, p: V3, u: V3, dv: V3, dw: V3,
+                    w_j: V3) -> FaceKinematics:
+    """The kinematics of the end face ``side`` (docs/physics.md eqs. (48)-(51))."""
+    s = side * 0.5 * (length + play)                            # eq. (48)
+    cz = p[2] + s * u[2]
+    delta = 0.5 * length - side * cz                            # eq. (49)
+    su = (s * u[0], s * u[1], s * u[2])
+    wp = cross(w_j, p)
+    ws = cross(dw, su)
+    delta_dot = -side * (dv[2] - wp[2] + ws[2])                  # eq. (50)
+    v_t = r_e * dot(dw, u)                                      # eq. (51)
+    return FaceKinematics(side, s, p[0] + su[0], p[1] + su[1], delta, delta_dot, v_t)
+
+
+def face_normal_force(k_face: float, damping_factor: float, v_min: float, delta: float, delta_dot: float,
+                      v0: float) -> float:
+    """F_N,f [N] of eq. (53): eq. (9) with ``F_e = K_f delta`` and the joint law's ``D`` and
+    ``v_min``; 0 without penetration, no adhesion."""
+    if delta <= 0.0:
+        return 0.0
+    v0_eff = v0 if v0 > v_min else v_min
+    f = k_face * delta * (1.0 + damping_factor * delta_dot / v0_eff)
+    return 0.0 if f < 0.0 else f  # a NaN stays NaN, to be caught
+
+
+def add_face_loads(loads: list[float], r_e: float, u: V3, kin: FaceKinematics, f_n: float, f_t: float) -> None:
+    """Add one end face's loads to ``loads`` = [force (3), torque (3), correction (3)] (eq. (54)):
+    ``-f F_N e_z`` on the bearing along the axis through the shoulder's centre, and the
+    friction couple ``R_e F_T u`` on the bearing (its negative on the journal)."""
+    total = (0.0, 0.0, -kin.side * f_n)                          # on the bearing, at c_f
+    su = (kin.s * u[0], kin.s * u[1], kin.s * u[2])
+    arm = cross(su, total)
+    couple = (r_e * f_t * u[0], r_e * f_t * u[1], r_e * f_t * u[2])
+    for i in range(3):
+        loads[i] += total[i]                                    # eq. (54)
+        loads[3 + i] += arm[i] + couple[i]                      # eq. (54); the correction is p x F (eq. (45))

@@ -362,14 +362,6 @@ def test_a_non_unit_axis_is_normalised_with_a_warning():
     assert np.allclose(handle.axis_journal, [0, 0, 1], atol=1e-15)
 
 
-def test_axial_clearance_is_not_offered():
-    # docs/physics.md section 9.6: no shoulder contact yet; the option is refused by name
-    mbs, items = _bodies()
-    with pytest.raises(ValueError, match="axial clearance"):
-        exuclear.CreateClearanceJoint(mbs, itemNumbers=items, slices=5, axial_clearance=1e-4, journal_radius=R_J,
-                                      bearing_radius=R_B, length=L, law="hertz")
-
-
 def test_the_misaligned_shaft_loads_the_bearing_edges(tmp_path):
     # docs/physics.md section 9.5: both bearings carry the shaft on an edge slice
     from models import misaligned_shaft

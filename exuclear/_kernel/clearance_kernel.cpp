@@ -9,7 +9,8 @@
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
 //   spatial joint       exuclear/spatial.py and SpatialJointKernel in _python_kernel.py
-//                       (eqs. (33)-(45)): functions spatial_*
+//                       (eqs. (33)-(45)): functions spatial_*; its axial clearance
+//                       (eqs. (48)-(54)): functions face_*
 //
 // Exudyn calls these functions through raw function pointers, without Python, when they
 // are bound by pybind11, capture nothing and have exactly Exudyn's signature
@@ -81,6 +82,9 @@ struct Params {
     int slices;  // 0: the planar joint; N > 0: the spatial joint of N slices
     double length;
     V3 axis_journal;
+    // the spatial joint's axial clearance (section 9.6): total play (0: none), shoulder,
+    // friction radius R_e, face stiffness K_f
+    double play, shoulder_radius, friction_radius, face_stiffness;
 };
 
 Params decode(const M6& p) {
@@ -102,6 +106,10 @@ Params decode(const M6& p) {
     a.slices = static_cast<int>(p[5][0]);
     a.length = p[5][1];
     a.axis_journal = V3{p[5][2], p[5][3], p[5][4]};
+    a.play = p[4][1];
+    a.shoulder_radius = p[4][2];
+    a.friction_radius = p[4][3];
+    a.face_stiffness = p[4][4];
     return a;
 }
 
@@ -178,6 +186,15 @@ double normal_force(const Params& a, double delta, double delta_dot, double v0) 
     return f < 0.0 ? 0.0 : f;  // no adhesion; a NaN stays NaN, to be caught
 }
 
+// spatial.py face_normal_force, eq. (53): eq. (9) with F_e = K_f delta, the law's D and v_min
+double face_normal_force(double k_face, double damping_factor, double v_min, double delta, double delta_dot,
+                         double v0) {
+    if (delta <= 0.0) return 0.0;
+    double v0_eff = v0 > v_min ? v0 : v_min;
+    double f = k_face * delta * (1.0 + damping_factor * delta_dot / v0_eff);
+    return f < 0.0 ? 0.0 : f;  // a NaN stays NaN, to be caught
+}
+
 // ---- physics: friction.py ------------------------------------------------------------------
 double smooth_step(double x, double x0, double h0, double x1, double h1) {  // S(x; x0, h0, x1, h1)
     double s = (x - x0) / (x1 - x0);
@@ -235,8 +252,9 @@ double onset_velocity(const History& h, double delta, double delta_dot) {
 // ContactHistory.accept: the history after an accepted state (kinematics k, time t);
 // a contact that ends appends its record.  share: a spatial slice's share w / L of the
 // law (eq. (41)); 1 for the planar joint (x * 1.0 == x, so the planar joint is unchanged).
+// face: an end face of the axial clearance, whose force is eq. (53) (_FaceJoint).
 History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records,
-               double share = 1.0) {
+               double share = 1.0, bool face = false) {
     History n = h;
     double delta = k.delta, delta_dot = k.delta_dot;
     if (delta > 0.0) {
@@ -265,7 +283,9 @@ History accept(const History& h, const Params& a, const Kinematics& k, double ti
     n.ex = k.ex;
     n.ey = k.ey;
     n.v_t = k.v_t;
-    n.f_n = n.in_contact ? share * normal_force(a, delta, delta_dot, n.v0) : 0.0;
+    n.f_n = !n.in_contact ? 0.0
+            : face      ? face_normal_force(a.face_stiffness, a.damping_factor, a.v_min, delta, delta_dot, n.v0)
+                        : share * normal_force(a, delta, delta_dot, n.v0);
     n.f_t = n.in_contact && a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * n.f_n : 0.0;
     if (n.in_contact) {
         n.peak_force = n.f_n > n.peak_force ? n.f_n : n.peak_force;
@@ -282,7 +302,7 @@ struct JointState {
     std::vector<Record> records;
     double omega_bearing = 0.0;    // bearing's angular velocity about the axis, from the probe
     double torque_correction = 0.0;  // m_i + m_j, for the torque connector
-    // the spatial joint (one History per slice)
+    // the spatial joint (one History per slice, then per end face with an axial clearance)
     std::vector<History> sprev, scur, sinitial;
     std::vector<std::vector<Record>> srecords;
     V3 omega_bearing3{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
@@ -442,6 +462,60 @@ void add_slice_loads(double* loads, double r_j, const V3& u, const SliceKinemati
     }
 }
 
+// ---- axial clearance: spatial.py face_* (docs/physics.md section 9.6, eqs. (48)-(54)) ----------
+const int FACE_SIDES[2] = {-1, 1};  // face 0 at z = -L/2, face 1 at z = +L/2
+
+struct FaceKinematics {
+    int side;
+    double s, ex, ey, delta, delta_dot, v_t;
+};
+
+FaceKinematics face_kinematics(double length, double play, double r_e, int side, const V3& p, const V3& u,
+                               const V3& dv, const V3& dw, const V3& w_j) {
+    FaceKinematics k;
+    k.side = side;
+    k.s = side * 0.5 * (length + play);                                 // eq. (48)
+    double cz = p[2] + k.s * u[2];
+    k.delta = 0.5 * length - side * cz;                                 // eq. (49)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    k.delta_dot = -side * (dv[2] - wp[2] + ws[2]);                      // eq. (50)
+    k.v_t = r_e * dot(dw, u);                                           // eq. (51)
+    k.ex = p[0] + su[0];
+    k.ey = p[1] + su[1];
+    return k;
+}
+
+// loads = [force (3), torque (3), correction (3)]; eq. (54)
+void add_face_loads(double* loads, double r_e, const V3& u, const FaceKinematics& k, double f_n, double f_t) {
+    V3 total{0.0, 0.0, -k.side * f_n};                                  // on the bearing, at c_f
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 arm = cross(su, total);
+    V3 couple{r_e * f_t * u[0], r_e * f_t * u[1], r_e * f_t * u[2]};
+    for (int i = 0; i < 3; ++i) {
+        loads[i] += total[i];                                           // eq. (54)
+        loads[3 + i] += arm[i] + couple[i];                             // eq. (54); the correction is p x F
+    }
+}
+
+Kinematics face_accepted(const FaceKinematics& k) {  // _accepted: an end face records its signed slip
+    Kinematics a;
+    a.ex = k.ex;
+    a.ey = k.ey;
+    a.ecc = 0.0;
+    a.nx = 1.0;
+    a.ny = 0.0;
+    a.delta = k.delta;
+    a.delta_dot = k.delta_dot;
+    a.v_t = k.v_t;
+    return a;
+}
+
+bool face_finite(const FaceKinematics& k) {
+    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
+}
+
 Kinematics slice_accepted(const SliceKinematics& k) {  // _accepted: what accept reads; v_t the slip speed
     Kinematics a;
     a.ex = k.ex;
@@ -462,6 +536,7 @@ bool slice_finite(const SliceKinematics& k) {
 struct SpatialInput {
     V3 p, u;
     std::vector<SliceKinematics> kins;
+    std::vector<FaceKinematics> faces;  // empty without an axial clearance
 };
 
 SpatialInput spatial_kinematics(const Params& a, const JointState& s, const V3& displacement, const V3& rotation,
@@ -474,6 +549,12 @@ SpatialInput spatial_kinematics(const Params& a, const JointState& s, const V3& 
     for (double z : centres) {
         in.kins.push_back(slice_kinematics(a.r_j, a.r_b, z, in.p, in.u, velocity, angularVelocity, s.omega_bearing3));
     }
+    if (a.play > 0.0) {
+        for (int side : FACE_SIDES) {
+            in.faces.push_back(face_kinematics(a.length, a.play, a.friction_radius, side, in.p, in.u, velocity,
+                                               angularVelocity, s.omega_bearing3));
+        }
+    }
     return in;
 }
 
@@ -482,7 +563,7 @@ const std::vector<History>& spatial_history_for(JointState& s, const Params& a, 
     if (!s.started || t < s.sprev[0].time) {
         s.initial_axis = in.u;
         s.initial_axial = in.p[2];
-        s.srecords.assign(in.kins.size(), std::vector<Record>());
+        s.srecords.assign(in.kins.size() + in.faces.size(), std::vector<Record>());
         s.failure.clear();
         double share = 1.0 / a.slices;
         s.scur.clear();
@@ -491,15 +572,22 @@ const std::vector<History>& spatial_history_for(JointState& s, const Params& a, 
             fresh.time = t;
             s.scur.push_back(accept(fresh, a, slice_accepted(in.kins[k]), t, s.srecords[k], share));
         }
+        for (size_t k = 0; k < in.faces.size(); ++k) {
+            History fresh;
+            fresh.time = t;
+            s.scur.push_back(accept(fresh, a, face_accepted(in.faces[k]), t, s.srecords[in.kins.size() + k], 1.0,
+                                    true));
+        }
         s.sprev = s.scur;
         s.sinitial = s.scur;
         s.started = true;
-        for (const SliceKinematics& k : in.kins) {
-            if (!slice_finite(k)) {
-                s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-                s.failure_time = t;
-                throw std::runtime_error("exuclear: " + s.failure);
-            }
+        bool finite = true;
+        for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
+        for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
+        if (!finite) {
+            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+            s.failure_time = t;
+            throw std::runtime_error("exuclear: " + s.failure);
         }
     }
     return t <= s.scur[0].time ? s.sprev : s.scur;
@@ -522,6 +610,14 @@ V6 spatial_force(const Params& a, double t, const V3& displacement, const V3& ro
         double f_t, f_a;
         slice_friction(mu, f_n, k, f_t, f_a);                                                // eq. (42)
         add_slice_loads(loads, a.r_j, in.u, k, f_n, f_t, f_a);
+    }
+    for (size_t i = 0; i < in.faces.size(); ++i) {  // the end faces, section 9.6
+        const FaceKinematics& k = in.faces[i];
+        if (k.delta <= 0.0) continue;
+        double v0 = onset_velocity(history[in.kins.size() + i], k.delta, k.delta_dot);
+        double f_n = face_normal_force(a.face_stiffness, a.damping_factor, a.v_min, k.delta, k.delta_dot, v0);  // eq. (53)
+        double f_t = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * f_n : 0.0;          // eq. (53)
+        add_face_loads(loads, a.friction_radius, in.u, k, f_n, f_t);                                        // eq. (54)
     }
     V3 force{loads[0], loads[1], loads[2]};
     V3 pf = cross(in.p, force);                                                              // eq. (45)
@@ -585,22 +681,25 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
     bool advance = t > s.scur[0].time;
     const std::vector<History> base = advance ? s.scur : s.sprev;  // a repeated step starts again from its start
     double deepest = -INF;
-    for (const SliceKinematics& k : in.kins) {
-        if (!slice_finite(k)) {
-            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-            s.failure_time = t;
-            throw std::runtime_error("exuclear: " + s.failure);
-        }
+    bool finite = true;
+    for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
+    for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
+    if (!finite) {
+        s.failure = "the state became non-finite (NaN or inf); the integration diverged";
+        s.failure_time = t;
+        throw std::runtime_error("exuclear: " + s.failure);
     }
     for (const SliceKinematics& k : in.kins) deepest = k.delta > deepest ? k.delta : deepest;
+    for (const FaceKinematics& k : in.faces) deepest = k.delta > deepest ? k.delta : deepest;
     if (deepest > a.max_penetration) {
         s.failure = "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
         s.failure_time = t;
         throw std::runtime_error("exuclear: " + s.failure);
     }
     if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
-        for (size_t i = 0; i < in.kins.size(); ++i) {
-            if (!base[i].in_contact && in.kins[i].delta > 0.0) {
+        for (size_t i = 0; i < in.kins.size() + in.faces.size(); ++i) {
+            double delta = i < in.kins.size() ? in.kins[i].delta : in.faces[i - in.kins.size()].delta;
+            if (!base[i].in_contact && delta > 0.0) {
                 out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
                 out[1] = a.impact_step;
                 out.insert(out.end(), data.begin(), data.end());
@@ -610,10 +709,13 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
     }
     double share = 1.0 / a.slices;
     std::vector<History> next;
-    next.reserve(in.kins.size());
-    for (size_t i = 0; i < in.kins.size(); ++i) {
+    size_t n_slices = in.kins.size();
+    next.reserve(n_slices + in.faces.size());
+    for (size_t i = 0; i < n_slices + in.faces.size(); ++i) {
         s.srecords[i].resize(static_cast<size_t>(base[i].closed));
-        History h = accept(base[i], a, slice_accepted(in.kins[i]), t, s.srecords[i], share);
+        History h = i < n_slices ? accept(base[i], a, slice_accepted(in.kins[i]), t, s.srecords[i], share)
+                                 : accept(base[i], a, face_accepted(in.faces[i - n_slices]), t, s.srecords[i], 1.0,
+                                          true);
         if (!std::isfinite(h.f_n)) {
             s.failure = "the contact force became non-finite (NaN or inf)";
             s.failure_time = t;

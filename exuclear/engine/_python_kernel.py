@@ -27,9 +27,15 @@ from ..geometry import ContactKinematics, contact_kinematics, joint_loads
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint
 from ..spatial import (
+    FACE_SIDES,
     V3,
+    FaceKinematics,
+    ShoulderGeometry,
     SliceKinematics,
+    add_face_loads,
     add_slice_loads,
+    face_kinematics,
+    face_normal_force,
     finish_loads,
     journal_axis,
     slice_centres,
@@ -204,20 +210,45 @@ class _SliceAccepted(NamedTuple):
     v_t: float
 
 
-def _accepted(kin: SliceKinematics) -> _SliceAccepted:
+def _accepted(kin: SliceKinematics | FaceKinematics) -> _SliceAccepted:
+    if isinstance(kin, FaceKinematics):  # an end face records its signed circumferential slip
+        return _SliceAccepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, kin.v_t)
     return _SliceAccepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, kin.speed)
+
+
+class _FaceLaw:
+    """An end face's contact law, eq. (53): ``K_f delta`` with the joint law's ``D`` and ``v_min``."""
+
+    def __init__(self, law: Any, k_face: float) -> None:
+        self.k_face, self.damping_factor, self.v_min = k_face, law.damping_factor, law.v_min
+
+    def normal_force(self, delta: float, delta_dot: float, v0: float) -> float:
+        return face_normal_force(self.k_face, self.damping_factor, self.v_min, delta, delta_dot, v0)
+
+
+class _FaceJoint(_SliceJoint):
+    """What :meth:`ContactState.accept` reads of a joint, for one end face: the face law
+    and the joint's friction law applied to the circumferential slip (eq. (53))."""
+
+    def __init__(self, joint: ClearanceJoint, k_face: float) -> None:
+        self.law, self.friction = _FaceLaw(joint.law, k_face), joint.friction
 
 
 class SpatialJointKernel:
     """The spatial joint's user functions: one :class:`ContactState` per slice, with the
     planar joint's history rules (module docstring) applied to all slices at once.
 
-    ``slices`` N, ``axis_journal`` the journal axis in the journal marker's frame.
+    ``slices`` N, ``axis_journal`` the journal axis in the journal marker's frame;
+    ``shoulders`` the axial clearance (section 9.6) or None.  With shoulders, the two end
+    faces follow the slices in every per-contact sequence (states, records, data).
     """
 
-    def __init__(self, joint: ClearanceJoint, slices: int, axis_journal: Any) -> None:
+    def __init__(self, joint: ClearanceJoint, slices: int, axis_journal: Any,
+                 shoulders: ShoulderGeometry | None = None) -> None:
         self.slices = slices
         self.axis_journal = tuple(float(v) for v in axis_journal)
+        self.shoulders = shoulders
+        self.contacts = slices + (len(FACE_SIDES) if shoulders is not None else 0)
         self.joint = joint
         self.reset()
 
@@ -232,12 +263,17 @@ class SpatialJointKernel:
         self.centres = slice_centres(g.length, self.slices)
         self.share = 1.0 / self.slices  # w / L, eq. (41)
         self.slice_joint = _SliceJoint(joint, self.share)
+        self.contact_joints = [self.slice_joint] * self.slices
+        if self.shoulders is not None:
+            self.friction_radius = self.shoulders.friction_radius                              # eq. (51)
+            self.face_law = _FaceLaw(joint.law, self.shoulders.face_stiffness(joint.law.E_star))  # eq. (52)
+            self.contact_joints += [_FaceJoint(joint, self.face_law.k_face)] * len(FACE_SIDES)
 
     def reset(self) -> None:
         self.started = False
-        empty = tuple(ContactState() for _ in range(self.slices))
+        empty = tuple(ContactState() for _ in range(self.contacts))
         self.previous = self.current = self.initial = empty
-        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.slices)]
+        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.contacts)]
         self.omega_bearing = (0.0, 0.0, 0.0)
         self.torque_correction = (0.0, 0.0, 0.0)
         self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
@@ -245,14 +281,21 @@ class SpatialJointKernel:
 
     # -- bookkeeping -------------------------------------------------------------------
     def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
-                    ) -> tuple[V3, V3, list[SliceKinematics]]:
+                    ) -> tuple[V3, V3, list[SliceKinematics | FaceKinematics]]:
+        """The journal's centre and axis, and the kinematics of each contact: the slices,
+        then the end faces (eqs. (48)-(51)) where there is an axial clearance."""
         g = self._joint.geometry
         p = (displacement[0], displacement[1], displacement[2])
         u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)     # eq. (34)
         dv = (velocity[0], velocity[1], velocity[2])
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
-        kins = [slice_kinematics(g.journal_radius, g.bearing_radius, z, p, u, dv, dw, self.omega_bearing)
-                for z in self.centres]
+        kins: list[SliceKinematics | FaceKinematics] = [
+            slice_kinematics(g.journal_radius, g.bearing_radius, z, p, u, dv, dw, self.omega_bearing)
+            for z in self.centres]
+        if self.shoulders is not None:
+            play = self.shoulders.axial_clearance
+            kins += [face_kinematics(g.length, play, self.friction_radius, side, p, u, dv, dw, self.omega_bearing)
+                     for side in FACE_SIDES]
         return p, u, kins
 
     def history_for(self, kins: list[SliceKinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
@@ -260,9 +303,10 @@ class SpatialJointKernel:
         ``axial``: the journal's axis and axial displacement, kept for the initial outputs."""
         if not self.started or t < self.previous[0].time:
             self.initial_axis, self.initial_axial = u, axial
-            self.records = [[] for _ in range(self.slices)]
+            self.records = [[] for _ in range(self.contacts)]
             self.failure = ""
-            self.current = tuple(ContactState(time=t).accept(_accepted(k), self.slice_joint, t)[0] for k in kins)
+            self.current = tuple(ContactState(time=t).accept(_accepted(k), j, t)[0]
+                                 for k, j in zip(kins, self.contact_joints))
             self.previous = self.initial = self.current
             self.started = True
             if not all(_finite(k) for k in kins):
@@ -278,7 +322,7 @@ class SpatialJointKernel:
         history = self.history_for(kins, t, u, p[2])
         joint, r_j = self._joint, self._joint.geometry.journal_radius
         loads = [0.0] * 9
-        for kin, h in zip(kins, history):
+        for kin, h in zip(kins[:self.slices], history):
             if kin.delta <= 0.0:
                 continue
             v0 = h.onset_velocity(kin.delta, kin.delta_dot)
@@ -286,6 +330,13 @@ class SpatialJointKernel:
             mu = joint.friction.coefficient(kin.speed) if joint.friction.active else 0.0
             f_t, f_a = slice_friction(mu, f_n, kin)                                                  # eq. (42)
             add_slice_loads(loads, r_j, u, kin, f_n, f_t, f_a)
+        for kin, h in zip(kins[self.slices:], history[self.slices:]):  # the end faces, section 9.6
+            if kin.delta <= 0.0:
+                continue
+            v0 = h.onset_velocity(kin.delta, kin.delta_dot)
+            f_n = self.face_law.normal_force(kin.delta, kin.delta_dot, v0)                           # eq. (53)
+            f_t = joint.friction.coefficient(kin.v_t) * f_n if joint.friction.active else 0.0        # eq. (53)
+            add_face_loads(loads, self.friction_radius, u, kin, f_n, f_t)                            # eq. (54)
         total = finish_loads(loads, p)
         self.torque_correction = total.correction
         return [*total.force, *total.torque]
@@ -322,9 +373,9 @@ class SpatialJointKernel:
                 not b.in_contact and k.delta > 0.0 for k, b in zip(kins, base)):
             return [REDO_STEP_ERROR, impact_step, *data]  # a contact begins in a long step: redo it
         states = []
-        for k, (kin, b) in enumerate(zip(kins, base)):
+        for k, (kin, b, j) in enumerate(zip(kins, base, self.contact_joints)):
             del self.records[k][b.closed:]
-            state, record = b.accept(_accepted(kin), self.slice_joint, t)
+            state, record = b.accept(_accepted(kin), j, t)
             if record is not None:
                 self.records[k].append(record)
             if state.normal_force != state.normal_force or abs(state.normal_force) == float("inf"):
@@ -343,7 +394,7 @@ class SpatialJointKernel:
 def spatial_data_values(t: float, u: Any, axial: float, states: Any) -> list[float]:
     """The spatial data node's entries (layout.spatial_data_columns): time, journal axis
     x, y (tilt, rad for small angles), axial displacement, then each slice's
-    ``data_values`` without the time."""
+    ``data_values`` without the time (with an axial clearance, the two end faces follow)."""
     out = [t, u[0], u[1], axial]
     for s in states:
         out.extend(data_values(s)[1:])

@@ -46,7 +46,7 @@ from .._checks import check_choice, check_positive
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint, make_joint
 from . import kernel
-from ..spatial import slice_centres
+from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ._python_kernel import PythonJointKernel, SpatialJointKernel, data_values, spatial_data_values
 from .layout import DATA_COLUMNS, MAIN, PROBE, SLICE_COLUMNS, TORQUE, parameters, spatial_data_columns
 
@@ -65,6 +65,11 @@ OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_f
 #: (arrays of shape (times, slices); ``slip_velocity`` is the slip speed, ``tangential_force``
 #: the friction force's magnitude).
 SPATIAL_OUTPUT_COLUMNS = ("tilt_x", "tilt_y", "axial_displacement")
+#: With an axial clearance (docs/physics.md section 9.6), the end faces' outputs: ``"face_"``
+#: and each of :data:`OUTPUT_COLUMNS`, arrays of shape (times, 2), face 0 at z = -L/2
+#: (``slip_velocity`` the signed circumferential slip at the friction radius,
+#: ``tangential_force`` the signed friction force there).
+FACE_OUTPUT_PREFIX = "face_"
 
 #: Recommended number of slices of a spatial joint (docs/physics.md section 9.3): total
 #: force within 0.22 % and restoring moment within 0.47 % while the contact zone spans at
@@ -179,14 +184,15 @@ class ClearanceJointHandle:
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, backend: str,
                  max_penetration: float, slices: int = 0,
-                 axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> None:
+                 axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
+                 shoulders: ShoulderGeometry | None = None) -> None:
         self.mbs, self.name, self.backend, self.max_penetration = mbs, name, backend, max_penetration
         self._joint = joint
-        self.slices, self.axis_journal = slices, axis_journal
+        self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
         if backend != "python":
             self.python_kernel = None
         elif slices:
-            self.python_kernel = SpatialJointKernel(joint, slices, axis_journal)
+            self.python_kernel = SpatialJointKernel(joint, slices, axis_journal, shoulders)
         else:
             self.python_kernel = PythonJointKernel(joint)
         self.joint_id = kernel.COMPILED.new_joint() if backend == "compiled" else -1
@@ -227,7 +233,7 @@ class ClearanceJointHandle:
             if number is not None:
                 p = parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
                                compiled=self.python_kernel is None, slices=self.slices,
-                               axis_journal=self.axis_journal)
+                               axis_journal=self.axis_journal, shoulders=self.shoulders)
                 p[4][0] = float(self.token)
                 self.mbs.SetObjectParameter(number, "stiffness", p)
 
@@ -248,21 +254,35 @@ class ClearanceJointHandle:
 
     def state(self) -> ContactState:
         """The contact history after the last accepted step (a spatial joint: that of its
-        most penetrated slice)."""
+        most penetrated slice or end face)."""
         if self.slices:
-            return max(self.slice_states(), key=lambda s: s.delta)
+            return max(self._contact_states(), key=lambda s: s.delta)
         if self.python_kernel is not None:
             return self.python_kernel.current
         return ContactState(**_state_fields(kernel.COMPILED.history(self.joint_id)["current"]))
+
+    def _contact_states(self, which: str = "current") -> list[ContactState]:
+        """The slices' histories, then the end faces' (with an axial clearance)."""
+        if self.python_kernel is not None:
+            return list(getattr(self.python_kernel, which))
+        return [ContactState(**_state_fields(h)) for h in kernel.COMPILED.slice_history(self.joint_id)[which]]
 
     def slice_states(self, which: str = "current") -> list[ContactState]:
         """A spatial joint's slice histories after the last accepted step (``which=
         "initial"``: at the run's initial state), slice 0 at ``z = -L/2``."""
         if not self.slices:
             raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
-        if self.python_kernel is not None:
-            return list(getattr(self.python_kernel, which))
-        return [ContactState(**_state_fields(h)) for h in kernel.COMPILED.slice_history(self.joint_id)[which]]
+        return self._contact_states(which)[:self.slices]
+
+    def face_states(self, which: str = "current") -> list[ContactState]:
+        """The end faces' contact histories (docs/physics.md section 9.6), face 0 at
+        ``z = -L/2``; ``delta`` is the axial penetration."""
+        self._check_faces()
+        return self._contact_states(which)[self.slices:]
+
+    def _check_faces(self) -> None:
+        if self.shoulders is None:
+            raise ValueError(f"joint {self.name!r} has no axial clearance (axial_clearance=None): it has no end faces")
 
     @property
     def slice_positions(self) -> np.ndarray:
@@ -291,24 +311,32 @@ class ClearanceJointHandle:
             u, axial = self.python_kernel.initial_axis, self.python_kernel.initial_axial
         else:
             u, axial = kernel.COMPILED.initial_axis(self.joint_id)
-        states = self.slice_states("initial")
+        states = self._contact_states("initial")
         return spatial_data_values(states[0].time, u, axial, states)
+
+    def _contact_impacts(self) -> list[list[ImpactRecord]]:
+        if self.python_kernel is not None:
+            return [list(r) for r in self.python_kernel.records]
+        return [[ImpactRecord(*r) for r in rs] for rs in kernel.COMPILED.slice_records(self.joint_id)]
 
     def slice_impacts(self) -> list[list[ImpactRecord]]:
         """A spatial joint's ended contacts, per slice."""
         if not self.slices:
             raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
-        if self.python_kernel is not None:
-            return [list(r) for r in self.python_kernel.records]
-        return [[ImpactRecord(*r) for r in rs] for rs in kernel.COMPILED.slice_records(self.joint_id)]
+        return self._contact_impacts()[:self.slices]
+
+    def face_impacts(self) -> list[list[ImpactRecord]]:
+        """The end faces' ended contacts (axial impacts), per face (face 0 at ``z = -L/2``)."""
+        self._check_faces()
+        return self._contact_impacts()[self.slices:]
 
     def impacts(self) -> list[ImpactRecord]:
         """Records of the contacts that ended in the last run, in order; a contact still
         going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
         slice's records, by onset time (one contact of a tilted journal may touch
-        several slices, each a record)."""
+        several slices, each a record), and the end faces' with an axial clearance."""
         if self.slices:
-            return sorted((r for rs in self.slice_impacts() for r in rs), key=lambda r: r.onset_time)
+            return sorted((r for rs in self._contact_impacts() for r in rs), key=lambda r: r.onset_time)
         if self.python_kernel is not None:
             return list(self.python_kernel.records)
         return [ImpactRecord(*r) for r in kernel.COMPILED.records(self.joint_id)]
@@ -360,9 +388,14 @@ class ClearanceJointHandle:
         if self.slices:
             n_joint, n_slice = 4, len(SLICE_COLUMNS)
             out = {"time": data[:, 0], "tilt_x": data[:, 2], "tilt_y": data[:, 3], "axial_displacement": data[:, 4]}
-            block = data[:, 1 + n_joint:].reshape(data.shape[0], self.slices, n_slice)
+            end = 1 + n_joint + self.slices * n_slice
+            block = data[:, 1 + n_joint:end].reshape(data.shape[0], self.slices, n_slice)
             for c in OUTPUT_COLUMNS:
                 out[c] = block[:, :, SLICE_COLUMNS.index(c)]
+            if self.shoulders is not None:
+                faces = data[:, end:].reshape(data.shape[0], len(FACE_SIDES), n_slice)
+                for c in OUTPUT_COLUMNS:
+                    out[FACE_OUTPUT_PREFIX + c] = faces[:, :, SLICE_COLUMNS.index(c)]
             return out
         column = {c: data[:, k + 1] for k, c in enumerate(DATA_COLUMNS)}
         return {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
@@ -462,15 +495,15 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                              f"(position and orientation): {', '.join(_RIGID_MARKERS)}")
     if int(markerNumbers[0]) == int(markerNumbers[1]):
         raise ValueError("`markerNumbers` names the same marker twice")
-    if "axial_clearance" in joint_parameters:  # docs/physics.md section 9.6
-        raise ValueError("axial clearance (contact of shoulders with the bearing's end faces) is not implemented; "
-                         "hold the journal axially by the model (`constrainAxial=True` or other joints)")
+    axial_clearance = joint_parameters.pop("axial_clearance", None)
+    shoulder_radius = joint_parameters.pop("shoulder_radius", None)
     joint = _physics(joint, joint_parameters)
     axis_local = _vector3("axis", axis)
     if not np.linalg.norm(axis_local) > 0.0:
         raise ValueError(f"`axis` must not be zero, got {axis!r}")
     _warn_non_unit(axis_local, axis)
     slices = _check_slices(slices)
+    shoulders = _check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     if not isinstance(name, str):
         raise ValueError(f"`name` must be a string, got {name!r}")
     if bearingRotates is not None and not isinstance(bearingRotates, bool):
@@ -495,7 +528,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
     axis_journal = tuple(float(v) for v in a_journal.T @ a_bearing @ frame[:, 2])
 
-    handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal)
+    handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal, shoulders)
     handle.markerNumbers = [m_bearing, m_journal]
     handle._axis_local = axis_local / np.linalg.norm(axis_local)
     fns = _user_functions(handle)
@@ -511,7 +544,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
             name=f"{name}:probe" if name else "", markerNumbers=[m_bearing, m_ground], nodeNumber=probe_node,
             rotationMarker0=rotation0, springForceTorqueUserFunction=fns["probe"],
             postNewtonStepUserFunction=fns["probe_post_newton"], visualization=hidden))
-    n_data = len(spatial_data_columns(slices)) if slices else len(DATA_COLUMNS)
+    n_faces = len(FACE_SIDES) if shoulders is not None else 0
+    n_data = len(spatial_data_columns(slices, n_faces)) if slices else len(DATA_COLUMNS)
     handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * n_data, numberOfDataCoordinates=n_data))
     handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,
@@ -587,6 +621,32 @@ def _check_slices(slices: Any) -> int:
     if slices < 0:
         raise ValueError(f"`slices` must be None (planar joint) or an integer >= 1, got {slices!r}")
     return int(slices)
+
+
+def _check_shoulders(axial_clearance: Any, shoulder_radius: Any, slices: int, constrain_axial: Any,
+                     joint: ClearanceJoint) -> ShoulderGeometry | None:
+    """The axial clearance of docs/physics.md section 9.6, or None where none is given."""
+    if axial_clearance is None:
+        if shoulder_radius is not None:
+            raise ValueError(f"`shoulder_radius` ({shoulder_radius!r}) is given without `axial_clearance`; give both "
+                             "for shoulder contact, or neither")
+        return None
+    play = check_positive("axial_clearance", axial_clearance)
+    if not slices:
+        raise ValueError("`axial_clearance` needs the spatial joint: give `slices` (e.g. "
+                         f"{DEFAULT_SLICES}); the planar joint has no axial direction")
+    if shoulder_radius is None:
+        raise ValueError("`axial_clearance` needs the shoulder geometry: give `shoulder_radius`, the outer radius [m] "
+                         "of the annulus where a shoulder meets a bearing end face (> `bearing_radius`)")
+    r_s = check_positive("shoulder_radius", shoulder_radius)
+    r_b = joint.geometry.bearing_radius
+    if not r_s > r_b:
+        raise ValueError(f"`shoulder_radius` must exceed `bearing_radius` {r_b} (the end face's annulus starts at the "
+                         f"bearing radius), got {r_s}")
+    if constrain_axial is True:
+        raise ValueError("`constrainAxial=True` holds the journal axially, which leaves `axial_clearance` nothing to "
+                         "do: give one or the other")
+    return ShoulderGeometry(play, r_s, r_b)
 
 
 def _user_functions(handle: ClearanceJointHandle) -> dict[str, Any]:
@@ -669,10 +729,18 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         docs/physics.md section 9, for 3D bodies: the bearing length is cut into N slices,
         each a share ``L / N`` of the contact law at its own penetration, so that a tilted
         journal loads the bearing's edges and feels the restoring moment; the journal may
-        also move along the axis (there is no axial contact: hold it by the model, e.g.
-        ``constrainAxial`` or other joints; the journal is taken longer than the bearing).  :data:`DEFAULT_SLICES` is the converged
-        choice.  The bearing's own rotation (all three components) enters as in the planar
+        also move along the axis (without ``axial_clearance`` there is no axial contact:
+        hold it by the model, e.g. ``constrainAxial`` or other joints; the journal is taken
+        longer than the bearing).  :data:`DEFAULT_SLICES` is the converged choice.  The bearing's own rotation (all three components) enters as in the planar
         joint, through the probe and torque connectors.
+    axial_clearance, shoulder_radius : float, optional (keyword, spatial joint only)
+        Shoulder contact (docs/physics.md section 9.6): ``axial_clearance`` is the total
+        axial play [m] (the journal's shoulders are ``length + axial_clearance`` apart),
+        ``shoulder_radius`` the outer radius [m] of the annulus where a shoulder meets a
+        bearing end face (inner radius ``bearing_radius``).  Each end face is a contact
+        with its own history: a linear flat-punch stiffness ``2 E* shoulder_radius`` with
+        the joint law's damping, and the joint's friction law against the relative spin
+        at the annulus's friction radius.  Not with ``constrainAxial=True``.
 
     Returns
     -------

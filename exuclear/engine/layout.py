@@ -13,7 +13,9 @@ row   entries
       v_min [m/s], c [m]
 2     the stiffness model's constants (``kernel_parameters()``, up to 6)
 3     friction code, then up to 4 friction constants
-4     the handle's token (which handle owns the connector)
+4     the handle's token (which handle owns the connector); the spatial joint's axial
+      clearance (section 9.6): total play g [m] (0: none), shoulder radius R_S [m],
+      friction radius R_e [m], face stiffness K_f [N/m]
 5     spatial joint (docs/physics.md section 9): number of slices N (0: the planar
       joint), bearing length L [m], the journal axis in the journal marker's frame (3)
 ====  ==========================================================================
@@ -24,7 +26,8 @@ Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
 quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
 ``OutputVariableType.Coordinates`` records them.  A spatial joint's node holds
 :func:`spatial_data_columns` instead: the journal's tilt and axial position, then the
-planar columns (without the time) once per slice.
+planar columns (without the time) once per slice, then, with an axial clearance, once per
+end face.
 """
 from __future__ import annotations
 
@@ -33,6 +36,7 @@ import numpy as np
 from ..contact import ContactLaw
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
+from ..spatial import ShoulderGeometry
 
 MAIN, PROBE, TORQUE = 0, 1, 2
 
@@ -46,10 +50,12 @@ SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
 SLICE_COLUMNS = DATA_COLUMNS[1:]
 
 
-def spatial_data_columns(slices: int) -> tuple[str, ...]:
+def spatial_data_columns(slices: int, faces: int = 0) -> tuple[str, ...]:
     """Names of a spatial joint's data-node entries: ``SPATIAL_JOINT_COLUMNS``, then
-    ``SLICE_COLUMNS`` of slice 0, 1, ... as ``"normal_force[3]"``."""
-    return SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
+    ``SLICE_COLUMNS`` of slice 0, 1, ... as ``"normal_force[3]"``, then those of the
+    ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``."""
+    return (SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
+            + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS))
 
 
 FRICTION_CODES = {NoFriction: 0, Coulomb: 1, ModifiedCoulomb: 2}
@@ -82,11 +88,12 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
-               axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> list[list[float]]:
+               axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
+               shoulders: ShoulderGeometry | None = None) -> list[list[float]]:
     """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring);
     ``compiled=False`` (the Python kernel) accepts laws without a compiled form; ``slices``
     > 0 makes it a spatial joint whose journal axis is ``axis_journal`` in the journal
-    marker's frame."""
+    marker's frame, with the axial clearance ``shoulders`` (or None)."""
     law, g = joint.law, joint.geometry
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
@@ -100,6 +107,9 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     p[3, 1:1 + len(f_params)] = f_params
     if slices:
         p[5, :] = [slices, g.length, *axis_journal, 0.0]
+    if shoulders is not None:
+        p[4, 1:5] = [shoulders.axial_clearance, shoulders.shoulder_radius, shoulders.friction_radius,
+                     shoulders.face_stiffness(law.E_star)]
     return p.tolist()
 
 
