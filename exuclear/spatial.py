@@ -14,6 +14,9 @@ slice ``k`` is the plane ``z = z_k`` through its centre, eq. (33).
 
 Sign conventions follow the planar joint (section 1): ``n`` from the bearing axis to the
 journal axis, ``t = (n_y, -n_x, 0)``, penetration ``delta = e - c`` (> 0: contact).
+
+With an axial clearance (section 9.6, eqs. (48)-(54); compiled ``face_*``) the journal's
+shoulders meet the bearing's end faces: each face is one more contact, after the slices.
 """
 from __future__ import annotations
 

@@ -79,7 +79,7 @@ def test_a_journal_pushed_axially_rests_at_the_face_with_the_flat_punch_penetrat
     # the residual 1e-8 N is 4e-18 m of penetration, ulp(L/2) ~ 9e-19 m; relative to p_z ~ 5e-5 m
     assert q[2] == pytest.approx(-(0.5 * PLAY + delta), rel=1e-12)
     upper, lower = handle.face_states()[1], handle.face_states()[0]
-    assert upper.delta == pytest.approx(delta, rel=1e-9) and upper.in_contact  # 2e-11 measured: see above
+    assert upper.delta == pytest.approx(delta, rel=1e-10) and upper.in_contact  # measured 2e-12: see above
     assert lower.delta == pytest.approx(-PLAY - delta, rel=1e-9) and not lower.in_contact
     assert all(not s.in_contact for s in handle.slice_states())  # held on the axis: no radial contact
     force = mbs.GetObjectOutput(handle.objectNumber, exu.OutputVariableType.ForceLocal)
@@ -100,9 +100,10 @@ def test_an_elastic_axial_impact_returns_the_axial_speed(backend):
     assert len(upper) == 1 and len(lower) == 1  # down onto face 1, back across the play onto face 0
     assert upper[0].onset_velocity == pytest.approx(v, rel=1e-9)
     assert upper[0].duration == pytest.approx(math.pi * math.sqrt(SHAFT.Mass() / K_FACE), rel=1e-4)
+    # the largest penetration at an accepted step (1 us output, ~19 us contact): measured 3e-5 short
     assert upper[0].max_penetration == pytest.approx(v * math.sqrt(SHAFT.Mass() / K_FACE), rel=1e-3)
     vz = mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Velocity)[2]
-    # DOPRI5 at rtol 1e-10 over two impacts: measured |vz| / v - 1 of order 1e-9
+    # DOPRI5 at rtol 1e-10 over two impacts: measured |vz| / v - 1 = -9.6e-9
     assert abs(vz) == pytest.approx(v, rel=1e-7) and vz < 0.0
 
 
@@ -118,9 +119,9 @@ def test_a_dissipative_axial_impact_has_the_damping_models_restitution(backend):
     (record,) = handle.face_impacts()[1]
     vz = mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Velocity)[2]
     e = restitution_of_damping(handle.joint.law.damping_factor)
-    # the onset velocity is interpolated between steps (eq. (18), error O(step^2 x acceleration) = 0)
+    # before contact the journal flies free, so eq. (18) interpolates v0 exactly
     assert record.onset_velocity == pytest.approx(v, rel=1e-9)
-    assert vz == pytest.approx(e * v, rel=1e-6)
+    assert vz == pytest.approx(e * v, rel=1e-6)  # measured 6e-9: DOPRI5 at rtol 1e-10
 
 
 def _tumbling(backend, friction="none", play=PLAY):
@@ -153,8 +154,9 @@ def test_elastic_shoulders_and_slices_conserve_energy_under_tilt_and_spin(backen
     assert sum(len(r) for r in handle.slice_impacts()) >= 10  # and radial edge contacts
     out = handle.outputs()
     assert np.abs(out["tilt_x"]).max() > 0.5 * C / L and np.abs(out["tilt_y"]).max() > 0.5 * C / L
-    # DOPRI5 at rtol 1e-10: the integrator's error, as in tests/test_spatial_joint.py
-    assert energy() == pytest.approx(e0, rel=1e-6)
+    # the integrator's error: measured drift -2.7e-6, -3.2e-9, 3.3e-10 of the energy at DOPRI5
+    # rtol 1e-8, 1e-10, 1e-12 (10 face and 23 slice contacts), falling with the tolerance
+    assert energy() == pytest.approx(e0, rel=1e-7)
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -173,8 +175,8 @@ def test_face_friction_is_the_couple_mu_f_r_e_against_the_spin(backend):
     w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)
     i_zz = SHAFT.InertiaCOM()[2][2]
     expected = spin - mu * load * R_E / i_zz * 1e-3  # about 10 rad/s less
-    # starting at the static penetration, the face force stays P to 1e-6 (no impact)
-    assert w[2] == pytest.approx(expected, rel=1e-6)
+    # starting at the static penetration the face force stays P (no impact): measured 4e-14
+    assert w[2] == pytest.approx(expected, rel=1e-9)
     assert abs(w[0]) + abs(w[1]) <= 1e-12 * spin
     face = handle.face_states()[1]
     assert face.slip_velocity == pytest.approx(R_E * w[2], rel=1e-12)
