@@ -731,8 +731,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         journal loads the bearing's edges and feels the restoring moment; the journal may
         also move along the axis (without ``axial_clearance`` there is no axial contact:
         hold it by the model, e.g. ``constrainAxial`` or other joints; the journal is taken
-        longer than the bearing).  :data:`DEFAULT_SLICES` is the converged choice.  The bearing's own rotation (all three components) enters as in the planar
-        joint, through the probe and torque connectors.
+        longer than the bearing).  :data:`DEFAULT_SLICES` is the converged choice.  The
+        bearing's own rotation (all three components) enters as in the planar joint,
+        through the probe and torque connectors.
     axial_clearance, shoulder_radius : float, optional (keyword, spatial joint only)
         Shoulder contact (docs/physics.md section 9.6): ``axial_clearance`` is the total
         axial play [m] (the journal's shoulders are ``length + axial_clearance`` apart),
