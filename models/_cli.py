@@ -74,3 +74,19 @@ def write_csv(path: str, columns: Mapping[str, np.ndarray], names: Sequence[str]
     comments += [f"# NOTE: {' '.join(note.split())}" for note in notes]
     header = "\n".join([*comments, ",".join(names)])
     np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
+
+
+def add_law_options(ap: argparse.ArgumentParser, law: str, cr: float) -> None:
+    """The contact-law options every scene has: ``--law``, ``--stiffness``, ``--damping``,
+    ``--cr``, with the scene's own ``law`` and ``cr`` as what they fall back to
+    (:func:`exuclear.contact.law_and_restitution` resolves them)."""
+    from exuclear.contact import ALIASES, CONTACT_LAWS, DAMPING_MODELS, STIFFNESS_MODELS
+
+    ap.add_argument("--law", help=f"contact law: {', '.join(CONTACT_LAWS)}, or STIFFNESS+DAMPING (default {law})")
+    ap.add_argument("--stiffness", help=f"stiffness model, instead of --law: {', '.join(STIFFNESS_MODELS)} "
+                                        f"(default with --damping: {ALIASES[law][0]})")
+    ap.add_argument("--damping", help=f"damping model, instead of --law: {', '.join(DAMPING_MODELS)} "
+                                      f"(default with --stiffness: {ALIASES[law][1]})")
+    ap.add_argument("--cr", type=float,
+                    help=f"coefficient of restitution in (0, 1] (default {cr}; 1 for the elastic laws)")
+    ap.set_defaults(paper_law=law, paper_cr=cr)  # what --law and --cr fall back to

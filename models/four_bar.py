@@ -51,8 +51,8 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_restitution
-from models._cli import OneLineParser, bad_input, check_output_file, one_line_warnings
+from exuclear.contact import law_and_restitution
+from models._cli import OneLineParser, add_law_options, bad_input, check_output_file, one_line_warnings
 from models._cli import write_csv as _write_columns
 
 #: Output columns of a run (SI units, angles in degrees), in CSV order.
@@ -363,15 +363,7 @@ def check_convergence(params: FourBarParams, settings: SolverSettings | None = N
 def _parser() -> argparse.ArgumentParser:
     p = FourBarParams.crank_rocker()
     ap = OneLineParser(prog="python -m models.four_bar", description=__doc__.split("\n")[0])
-    ap.add_argument("--law", help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)}, or STIFFNESS+DAMPING "
-                                  f"(default {p.law})")
-    ap.add_argument("--stiffness", help=f"stiffness model, instead of --law: {', '.join(STIFFNESS_MODELS)} "
-                                        f"(default with --damping: {ALIASES[p.law][0]})")
-    ap.add_argument("--damping", help=f"damping model, instead of --law: {', '.join(DAMPING_MODELS)} "
-                                      f"(default with --stiffness: {ALIASES[p.law][1]})")
-    ap.add_argument("--cr", type=float,
-                    help=f"coefficient of restitution in (0, 1] (default {p.cr}; 1 for the elastic laws)")
-    ap.set_defaults(paper_law=p.law, paper_cr=p.cr)
+    add_law_options(ap, p.law, p.cr)
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
     ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")

@@ -35,8 +35,8 @@ from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigid
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import ALIASES, DAMPING_MODELS, STIFFNESS_MODELS, law_and_restitution
-from models._cli import OneLineParser, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
+from exuclear.contact import law_and_restitution
+from models._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (docs/physics.md section 8), so this samples it ~400 times.
@@ -202,15 +202,7 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 def _parser() -> argparse.ArgumentParser:
     p = JournalBearingParams.paper()
     ap = OneLineParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
-    ap.add_argument("--law", help=f"contact law: {', '.join(exuclear.CONTACT_LAWS)}, or STIFFNESS+DAMPING "
-                                  f"(default {p.law})")
-    ap.add_argument("--stiffness", help=f"stiffness model, instead of --law: {', '.join(STIFFNESS_MODELS)} "
-                                        f"(default with --damping: {ALIASES[p.law][0]})")
-    ap.add_argument("--damping", help=f"damping model, instead of --law: {', '.join(DAMPING_MODELS)} "
-                                      f"(default with --stiffness: {ALIASES[p.law][1]})")
-    ap.add_argument("--cr", type=float,
-                    help=f"coefficient of restitution in (0, 1] (default {p.cr}; 1 for the elastic laws)")
-    ap.set_defaults(paper_law=p.law, paper_cr=p.cr)  # what --law and --cr fall back to
+    add_law_options(ap, p.law, p.cr)
     ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
