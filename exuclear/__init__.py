@@ -21,10 +21,10 @@ from .contact import (
 from .convergence import ConvergenceResult, JointRecord, RunRecord, check_convergence, refined_settings
 from .engine import (
     BACKENDS,
-    AccuracyWarning,
     DATA_COLUMNS,
     DEFAULT_BACKEND,
     OUTPUT_COLUMNS,
+    AccuracyWarning,
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
@@ -44,8 +44,8 @@ from .friction import (
     friction_law,
     smooth_step,
 )
-from .history import ContactState, ImpactRecord
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, contact_kinematics, joint_loads
+from .history import ContactState, ImpactRecord
 from .joint import ClearanceJoint, JointResponse, make_joint
 from .materials import MATERIALS, Material, composite_modulus, material
 from .settings import METHODS, SolverSettings

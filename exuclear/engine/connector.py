@@ -45,8 +45,8 @@ from exudyn.itemInterface import (
 from .._checks import check_choice, check_positive
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint, make_joint
-from . import kernel
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
+from . import kernel
 from ._python_kernel import PythonJointKernel, SpatialJointKernel, data_values, spatial_data_values
 from .layout import DATA_COLUMNS, MAIN, PROBE, SLICE_COLUMNS, TORQUE, parameters, spatial_data_columns
 
