@@ -7,16 +7,24 @@ equations.
 """
 from ._checks import UnitWarning
 from .contact import (
+    ALIASES,
     CONTACT_LAWS,
+    DAMPING_MODELS,
     DEFAULT_LAW,
+    STIFFNESS_MODELS,
     V_MIN_DEFAULT,
     ContactLaw,
     Flores,
     Hertz,
     HuntCrossley,
     LankaraniNikravesh,
+    ValidityWarning,
     WangLiu,
+    compose_law,
     contact_law,
+    damping_model,
+    restitution_of_damping,
+    stiffness_model,
 )
 from .convergence import ConvergenceResult, JointRecord, RunRecord, check_convergence, refined_settings
 from .engine import (
@@ -53,6 +61,8 @@ from .settings import METHODS, SolverSettings
 __version__ = "0.1.0"
 
 __all__ = [
+    "ALIASES", "DAMPING_MODELS", "STIFFNESS_MODELS", "ValidityWarning", "compose_law", "damping_model",
+    "restitution_of_damping", "stiffness_model",
     "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
     "LankaraniNikravesh", "WangLiu", "contact_law",
     "BACKENDS", "DATA_COLUMNS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
