@@ -6,8 +6,9 @@ systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-
 restated in ``docs/physics.md`` section 6.1: a 0.04 kg journal starts touching a
 fixed bearing (R_B = 10 mm, R_J = 9.9 mm) and moves into it at 0.3 m/s.
 
-Every run goes through :func:`models.journal_bearing.run`; this script only chooses
-the cases, draws the curves and writes the tables:
+Every run goes through :func:`models.journal_bearing.run`, as a run of the study runner
+(:func:`exuclear.study.run_study`); this script only chooses the cases, draws the curves
+and writes the tables:
 
 - Fig. 4: cr sweep, Wang-Liu law; Fig. 5: the same with Lankarani-Nikravesh;
 - Fig. 6: bearing length sweep at cr = 0.9 (Wang-Liu);
@@ -17,26 +18,36 @@ the cases, draws the curves and writes the tables:
 
 Run from the repository root::
 
-    python -m validation.journal_bearing [--out DIR]
+    python -m validation.journal_bearing [--out DIR] [--workers N]
 
 Exit status 0 if every run succeeded, 1 otherwise (the failed runs are listed).
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 import time
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
 import exuclear
 from exuclear.plotting import impact_curves
+from exuclear.study import run_study
 from models.journal_bearing import ImpactResult, JournalBearingParams, run
 from validation._tables import write_csv
 
 DEFAULT_OUT = os.path.join("results", "journal_bearing")
+#: Worker processes of the study runner by default: 1, the runner's serial path in this
+#: process.  The 45 runs take about 0.05 s each (about 2 s in all), and a worker process
+#: must start and import Exudyn, NumPy and SciPy before its first run: on 2 idle cores,
+#: 2 workers took 2.5 s for the whole script against 2.7 s in this process, a gain that
+#: a busy machine turns into a loss; in this process the README's first command also
+#: needs no process start-up nor pickling of this module's functions.
+DEFAULT_WORKERS = 1
 
 #: Restitution coefficients of the paper's Figs. 4 and 5.
 CR_SWEEP = (0.3, 0.5, 0.7, 0.9, 1.0)
@@ -123,20 +134,44 @@ def paper_cases() -> tuple[Case, ...]:
     )
 
 
+def impact(values: dict[str, object]) -> dict[str, object]:
+    """Study function of one impact: ``values`` holds the fields of a
+    :class:`JournalBearingParams`.  Returns the summary (as JSON text, so that it comes
+    back exactly) and the joint's recorded outputs (``out.<name>``, arrays)."""
+    result, out = run(JournalBearingParams(**values))
+    return {"result": json.dumps(asdict(result)), **{f"out.{name}": v for name, v in out.items()}}
+
+
 class ImpactRunner:
-    """Runs impacts through :func:`models.journal_bearing.run` and keeps every run.
+    """Runs impacts through :func:`exuclear.study.run_study` and keeps every run.
 
     The cases share runs (Wang-Liu at cr = 0.9, L = 15 mm, steel-steel appears in
-    Figs. 4, 6 and 7 and in the restitution table), so each parameter set runs once;
-    :meth:`failures` lists the runs that did not succeed.
+    Figs. 4, 6 and 7 and in the restitution table), so each parameter set runs once.
+    :meth:`run` runs a list of parameter sets on ``workers`` local processes (None: all
+    cores; 1: in this process); calling the runner returns a run, running it first if
+    it is not there yet; :meth:`failures` lists the runs that did not succeed.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, workers: int | None = DEFAULT_WORKERS) -> None:
+        self.workers = workers
         self.runs: dict[JournalBearingParams, tuple[ImpactResult, dict[str, np.ndarray]]] = {}
 
+    def run(self, cases: Sequence[JournalBearingParams]) -> None:
+        """Run the parameter sets of ``cases`` not run yet."""
+        todo = [p for p in dict.fromkeys(cases) if p not in self.runs]
+        if not todo:
+            return
+        table = run_study(impact, [asdict(p) for p in todo], workers=self.workers, progress=False,
+                          keep_arrays=True)
+        for params, rec in zip(todo, table.to_dict("records"), strict=True):
+            if not rec["success"]:  # run() raised: not a failed impact but a broken case
+                raise RuntimeError(f"run {describe(params)} raised {rec['message']}")
+            out = {name[len("out."):]: v for name, v in rec.items()
+                   if name.startswith("out.") and isinstance(v, np.ndarray)}
+            self.runs[params] = (ImpactResult(**json.loads(rec["result"])), out)
+
     def __call__(self, params: JournalBearingParams) -> tuple[ImpactResult, dict[str, np.ndarray]]:
-        if params not in self.runs:
-            self.runs[params] = run(params)
+        self.run([params])
         return self.runs[params]
 
     def failures(self) -> list[tuple[str, ImpactResult]]:
@@ -150,8 +185,8 @@ def describe(params: JournalBearingParams) -> str:
             f"{params.journal_material} journal / {params.bearing_material} bearing")
 
 
-def run_case(runner: ImpactRunner, case: Case, index: int, total: int) -> CaseRows:
-    """Run every variant of ``case``, printing one progress line per run."""
+def case_rows(runner: ImpactRunner, case: Case, index: int, total: int) -> CaseRows:
+    """The runs of every variant of ``case`` (run first if missing), printing one line per run."""
     print(f"case {index}/{total}: {case.title}", flush=True)
     rows = []
     for variant in case.variants:
@@ -236,6 +271,12 @@ def restitution_row(runner: ImpactRunner, law: str) -> RestitutionRow:
         values.append(runner(params)[0].effective_restitution)
     note = f"rejects cr = {', '.join(rejected)} (first message: {reasons[0]})" if rejected else ""
     return RestitutionRow(law, tuple(values), note)
+
+
+def restitution_params() -> list[JournalBearingParams]:
+    """The runs of the restitution table: every law at every cr of the grid it accepts."""
+    grid = [JournalBearingParams.paper(law=law, cr=cr) for law in exuclear.CONTACT_LAWS for cr in CR_GRID]
+    return [params for params in grid if not _rejection(params)]
 
 
 def restitution_sweep(runner: ImpactRunner) -> list[RestitutionRow]:
@@ -330,19 +371,29 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="python -m validation.journal_bearing", description=__doc__.split("\n")[0])
     ap.add_argument("--out", metavar="DIR", default=DEFAULT_OUT,
                     help="directory of the figures and tables (default %(default)s)")
+    ap.add_argument("--workers", type=int, metavar="N", default=DEFAULT_WORKERS,
+                    help="local worker processes of the study runner (default %(default)s: in this process; "
+                         "these short runs gain little from starting workers)")
     return ap
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run all cases, write figures, CSV tables and the report; 1 if any run failed."""
-    args = _parser().parse_args(argv)
+    ap = _parser()
+    args = ap.parse_args(argv)
+    if args.workers < 1:
+        ap.error(f"--workers must be a positive integer, got {args.workers}")
     start = time.perf_counter()
     os.makedirs(args.out, exist_ok=True)
-    runner = ImpactRunner()
+    runner = ImpactRunner(args.workers)
     cases = paper_cases()
+    runs = [JournalBearingParams.paper(**v.changes) for case in cases for v in case.variants] + restitution_params()
+    print(f"running {len(set(runs))} impacts (the cases of Figs. 4-7 and the restitution table) "
+          f"on {args.workers} worker{'s' if args.workers > 1 else ''}", flush=True)
+    runner.run(runs)
     done, paths = [], []
     for k, case in enumerate(cases, start=1):
-        rows = run_case(runner, case, k, len(cases))
+        rows = case_rows(runner, case, k, len(cases))
         paths += write_case_files(case, rows, args.out)
         done.append((case, rows))
     restitution = restitution_sweep(runner)
