@@ -25,7 +25,11 @@ Every pass/fail criterion is listed with its reason in the report.
 
 Run from the repository root::
 
-    python -m validation.cross_check [--out DIR] [--quick]
+    python -m validation.cross_check [--out DIR] [--quick] [--workers N]
+
+Every run (library or reference) is a run of the study runner
+(:func:`exuclear.study.run_study`), on all cores by default; the comparisons follow in
+this process.
 
 ``--quick`` runs two laws and the first 0.03 s of two slider-crank cases (which holds
 every impact of the paper's case).  Exit status 0 if every journal-bearing case, every
@@ -36,18 +40,19 @@ onset bookkeeping passed, 1 otherwise; the rows at default settings are reported
 from __future__ import annotations
 
 import argparse
-import itertools
+import json
 import math
 import os
 import sys
 import time
-from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field, replace
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
 
 import exuclear
+from exuclear.study import run_id, run_study
 from models import journal_bearing as jb_model
 from models import slider_crank as sc_model
 from models.journal_bearing import JournalBearingParams
@@ -338,9 +343,15 @@ class Sensitivity:
         return self.horizon < self.end_time
 
 
-def sensitivity(case: CrankCase, params: SliderCrankParams, base: sc_reference.Result) -> Sensitivity:
-    """Run the perturbed reference and find the horizon of point-by-point comparison."""
-    perturbed = reference_run(replace(params, clearance=params.clearance + PERTURBATION))
+def perturbed_params(params: SliderCrankParams) -> SliderCrankParams:
+    """``params`` with the clearance enlarged by :data:`PERTURBATION`."""
+    return replace(params, clearance=params.clearance + PERTURBATION)
+
+
+def sensitivity(case: CrankCase, params: SliderCrankParams, base: sc_reference.Result,
+                perturbed: sc_reference.Result) -> Sensitivity:
+    """The horizon of point-by-point comparison, from the reference of ``params`` and
+    that of :func:`perturbed_params`."""
     divergence = eccentricity_difference(perturbed.columns, base.columns) / params.clearance
     t = base.columns["time"]
     # a perturbed run that stopped early says nothing beyond its end: count that as divergence
@@ -372,10 +383,17 @@ def reference_case(case: CrankCase, horizon: float | None, check_sensitivity: bo
     """Run the reference of ``case`` (and, optionally, its perturbed twin)."""
     params = case.params(horizon)
     result = reference_run(params)
+    twin = reference_run(perturbed_params(params)) if check_sensitivity else None
+    return assemble_reference(case, params, result, reference_peak_force(params, result), twin)
+
+
+def assemble_reference(case: CrankCase, params: SliderCrankParams, result: sc_reference.Result, peak_force: float,
+                       twin: sc_reference.Result | None) -> ReferenceCase:
+    """The :class:`ReferenceCase` of finished runs: the reference of ``params``, its peak
+    force (:func:`reference_peak_force`) and its perturbed twin (None: no sensitivity)."""
     ideal = sc_reference.ideal_kinematics(params, result.columns["time"])
-    sens = sensitivity(case, params, result) if check_sensitivity else None
-    return ReferenceCase(case, params, result, reference_peak_force(params, result),
-                         float(np.sqrt(np.mean(ideal["slider_a"] ** 2))), sens)
+    sens = sensitivity(case, params, result, twin) if twin is not None else None
+    return ReferenceCase(case, params, result, peak_force, float(np.sqrt(np.mean(ideal["slider_a"] ** 2))), sens)
 
 
 def library_settings(params: SliderCrankParams, variant: Variant) -> exuclear.SolverSettings:
@@ -503,11 +521,18 @@ def _run_notes(lib: sc_model.SliderCrankResult, ref: sc_reference.Result, *notes
     return out
 
 
-def compare_crank(ref: ReferenceCase, variant: Variant) -> CrankRow:
-    """Run the library on ``ref``'s case with ``variant``'s settings and compare."""
+def library_run(params: SliderCrankParams, variant: Variant) -> sc_model.SliderCrankResult:
+    """The library on ``params`` in ``variant``'s formulation, at its settings."""
+    params = replace(params, formulation=variant.formulation)
+    return sc_model.run(params, library_settings(params, variant))
+
+
+def compare_crank(ref: ReferenceCase, variant: Variant, lib: sc_model.SliderCrankResult | None = None) -> CrankRow:
+    """Compare the library on ``ref``'s case with ``variant``'s settings (``lib``, its
+    :func:`library_run`; run here if not given) with the reference."""
     params = replace(ref.params, formulation=variant.formulation)
     settings = library_settings(params, variant)
-    lib = sc_model.run(params, settings)
+    lib = lib if lib is not None else library_run(ref.params, variant)
     ecc, acc = _point_metrics(lib.columns, ref)
     shift, note = onset_shift(np.asarray(lib.onset_times), ref.result.onsets, ref.horizon)
     values = {"ecc": ecc, "peak_force": _relative(lib.peak_force, ref.peak_force), "onset_shift": shift, "acc": acc}
@@ -533,9 +558,15 @@ class Convergence:
         return self.ecc <= REF_CONVERGENCE_LIMIT and self.impacts[0] == self.impacts[1]
 
 
-def reference_convergence(ref: ReferenceCase) -> Convergence:
-    """Rerun ``ref``'s case at the tight tolerances and measure the difference."""
-    tight = reference_run(ref.params, REF_TIGHT_RTOL, REF_TIGHT_ATOL)
+def tight_reference_run(params: SliderCrankParams) -> sc_reference.Result:
+    """The reference of ``params`` at the tolerances of the convergence check."""
+    return reference_run(params, REF_TIGHT_RTOL, REF_TIGHT_ATOL)
+
+
+def reference_convergence(ref: ReferenceCase, tight: sc_reference.Result | None = None) -> Convergence:
+    """Measure the difference of ``ref``'s case at the tight tolerances (``tight``, its
+    :func:`tight_reference_run`; run here if not given)."""
+    tight = tight if tight is not None else tight_reference_run(ref.params)
     base = ref.result
     ecc = float(eccentricity_difference(tight.columns, base.columns).max() / ref.params.clearance)
     shift, _ = onset_shift(base.onsets, tight.onsets, ref.params.end_time)
@@ -585,49 +616,145 @@ def _print(line: str) -> None:
     print(line, flush=True)
 
 
-def run_impacts(laws: Sequence[str], numbers: Iterator[int], total: int, progress: Progress) -> list[ImpactRow]:
-    """Compare every accepted (law, cr) of the sweep; ``numbers`` yields the case numbers."""
-    rows = []
-    for law, cr in impact_cases(laws)[0]:
-        row = compare_impact(law, cr)
-        progress(f"case {next(numbers)}/{total}: journal-bearing {law}, cr = {cr:g}: "
-                 f"{'pass' if row.passed else 'FAILING'}")
-        rows.append(row)
-    return rows
+# =======================================================================================
+# the runs, through the study runner
+# =======================================================================================
 
 
-def run_cranks(cases: Sequence[CrankCase], horizon: float | None, numbers: Iterator[int], total: int,
-               progress: Progress) -> tuple[list[ReferenceCase], list[CrankRow]]:
-    """Reference (with sensitivity) and the four library rows of every case."""
-    refs, rows = [], []
+def _crank_values(case: CrankCase, horizon: float | None) -> dict[str, object]:
+    return {"cr": case.cr, "journal": case.journal, "friction": case.friction, "horizon": horizon}
+
+
+def study_runs(jb_cases: Sequence[tuple[str, float]], cases: Sequence[CrankCase],
+               horizon: float | None) -> list[dict[str, object]]:
+    """The parameter sets of :func:`run_part` for a cross-check: the slider-crank runs
+    first, the short journal-bearing comparisons last, so that no long run starts late."""
+    runs: list[dict[str, object]] = []
     for case in cases:
-        progress(f"reference: slider-crank {case.label} (and its perturbed twin)")
-        ref = reference_case(case, horizon)
-        refs.append(ref)
-        for variant in VARIANTS:
-            row = compare_crank(ref, variant)
-            progress(f"case {next(numbers)}/{total}: slider-crank {case.label}, {variant.formulation} "
-                     f"{variant.kind} ({row.settings}): {'pass' if row.passed else 'FAILING'}")
-            rows.append(row)
-    return refs, rows
+        crank = _crank_values(case, horizon)
+        runs += [{"part": "reference", **crank}, {"part": "twin", **crank}]
+        if case == CrankCase(*CONVERGENCE_CASE):
+            runs.append({"part": "tight", **crank})
+    runs += [{"part": "library", **_crank_values(case, horizon), "variant": k}
+             for case in cases for k in range(len(VARIANTS))]
+    runs += [{"part": "impact", "law": law, "cr": cr} for law, cr in jb_cases]
+    return runs
 
 
-def cross_check(quick: bool = False, progress: Progress = _print) -> CrossCheck:
-    """Run every comparison of a full (or quick) cross-check; see the module docstring."""
+def _json(**values: object) -> str:
+    """Scalars as JSON text, which reads back to the same floats (numpy scalars as Python's)."""
+    return json.dumps(values, default=lambda v: v.item())
+
+
+def _arrays(rec: dict[str, object], prefix: str) -> dict[str, np.ndarray]:
+    return {k[len(prefix):]: v for k, v in rec.items() if k.startswith(prefix) and isinstance(v, np.ndarray)}
+
+
+def _reference_summary(result: sc_reference.Result, **extra: float) -> dict[str, object]:
+    scalars = _json(n_impacts=result.n_impacts, wall_time=result.wall_time, n_rhs=result.n_rhs,
+                    success=result.success, message=result.message, **extra)
+    return {"scalars": scalars, "onsets": np.asarray(result.onsets),
+            **{f"columns.{k}": v for k, v in result.columns.items()},
+            **{f"energy.{k}": v for k, v in result.energy.items()}}
+
+
+def _reference_result(rec: dict[str, object]) -> sc_reference.Result:
+    s = json.loads(rec["scalars"])
+    return sc_reference.Result(columns=_arrays(rec, "columns."), onsets=rec["onsets"], n_impacts=s["n_impacts"],
+                               wall_time=s["wall_time"], n_rhs=s["n_rhs"], success=s["success"],
+                               message=s["message"], energy=_arrays(rec, "energy."))
+
+
+def _library_summary(lib: sc_model.SliderCrankResult) -> dict[str, object]:
+    scalars = _json(success=lib.success, message=lib.message, wall_time=lib.wall_time, build_time=lib.build_time,
+                    steps=lib.steps, rejected=lib.rejected, notes=list(lib.notes))
+    return {"scalars": scalars, "onset_times": np.asarray(lib.onset_times),
+            **{f"columns.{k}": v for k, v in lib.columns.items()}}
+
+
+def _library_result(rec: dict[str, object]) -> sc_model.SliderCrankResult:
+    s = json.loads(rec["scalars"])
+    return sc_model.SliderCrankResult(columns=_arrays(rec, "columns."), success=s["success"], message=s["message"],
+                                      wall_time=s["wall_time"], build_time=s["build_time"], steps=s["steps"],
+                                      rejected=s["rejected"], onset_times=rec["onset_times"], notes=tuple(s["notes"]))
+
+
+def run_part(values: dict[str, object]) -> dict[str, object]:
+    """Study function of one run of the cross-check, by ``values["part"]``.
+
+    ``impact``: the journal-bearing comparison of ``law`` at ``cr``
+    (:func:`compare_impact`).  The others belong to the slider-crank case (``cr``,
+    ``journal``, ``friction``) over ``horizon`` [s] (None: :data:`REVOLUTIONS`):
+    ``reference`` (with its peak force), ``twin`` (:func:`perturbed_params`), ``tight``
+    (:func:`tight_reference_run`) and ``library`` (:func:`library_run` of the
+    :data:`VARIANTS` row ``variant``).  Scalars come back as JSON text, arrays whole.
+    """
+    part = values["part"]
+    if part == "impact":
+        return {"row": _json(**asdict(compare_impact(values["law"], values["cr"])))}
+    case = CrankCase(values["cr"], values["journal"], values["friction"])
+    params = case.params(values["horizon"])
+    if part == "reference":
+        result = reference_run(params)
+        return _reference_summary(result, peak_force=reference_peak_force(params, result))
+    if part == "twin":
+        return _reference_summary(reference_run(perturbed_params(params)))
+    if part == "tight":
+        return _reference_summary(tight_reference_run(params))
+    if part == "library":
+        return _library_summary(library_run(params, VARIANTS[values["variant"]]))
+    raise ValueError(f"unknown part {part!r} of the cross-check")
+
+
+def cross_check(quick: bool = False, progress: Progress = _print, workers: int | None = None) -> CrossCheck:
+    """Run every comparison of a full (or quick) cross-check; see the module docstring.
+
+    The runs go through the study runner on ``workers`` local processes (None: all
+    cores; 1: in this process); the comparisons follow here, in the order of the report.
+    """
     start = time.perf_counter()
     laws = QUICK_LAWS if quick else tuple(exuclear.CONTACT_LAWS)
     cases = crank_cases(quick)
     horizon = QUICK_HORIZON if quick else None
     jb_cases, skipped = impact_cases(laws)
+    runs = study_runs(jb_cases, cases, horizon)
+    progress(f"running {len(runs)} runs of the library and the reference through the study runner")
+    table = run_study(run_part, runs, workers=workers, progress=False, keep_arrays=True)
+    done = {}
+    for values, rec in zip(runs, table.to_dict("records"), strict=True):
+        if not rec["success"]:  # a comparison that raised: the script is broken, not the case
+            raise RuntimeError(f"run {values} raised {rec['message']}")
+        done[run_id(values)] = rec
+
+    def record(**values: object) -> dict[str, object]:
+        return done[run_id(values)]
+
     total = len(jb_cases) + len(cases) * len(VARIANTS)
-    numbers = itertools.count(1)
-    impacts = run_impacts(laws, numbers, total, progress)
-    refs, cranks = run_cranks(cases, horizon, numbers, total, progress)
+    impacts = []
+    for k, (law, cr) in enumerate(jb_cases, start=1):
+        row = ImpactRow(**json.loads(record(part="impact", law=law, cr=cr)["row"]))
+        progress(f"case {k}/{total}: journal-bearing {law}, cr = {cr:g}: {'pass' if row.passed else 'FAILING'}")
+        impacts.append(row)
+    refs, cranks = [], []
+    for case in cases:
+        crank = _crank_values(case, horizon)
+        progress(f"reference: slider-crank {case.label} (and its perturbed twin)")
+        base = record(part="reference", **crank)
+        ref = assemble_reference(case, case.params(horizon), _reference_result(base),
+                                 json.loads(base["scalars"])["peak_force"],
+                                 _reference_result(record(part="twin", **crank)))
+        refs.append(ref)
+        for index, variant in enumerate(VARIANTS):
+            row = compare_crank(ref, variant, _library_result(record(part="library", variant=index, **crank)))
+            progress(f"case {len(impacts) + len(cranks) + 1}/{total}: slider-crank {case.label}, "
+                     f"{variant.formulation} {variant.kind} ({row.settings}): {'pass' if row.passed else 'FAILING'}")
+            cranks.append(row)
     conv_ref = next((r for r in refs if r.case == CrankCase(*CONVERGENCE_CASE)), None)
     convergence = None
     if conv_ref is not None:
         progress(f"reference convergence: {conv_ref.case.label} at rtol {REF_TIGHT_RTOL:g}")
-        convergence = reference_convergence(conv_ref)
+        tight = _reference_result(record(part="tight", **_crank_values(conv_ref.case, horizon)))
+        convergence = reference_convergence(conv_ref, tight)
     return CrossCheck(quick, impacts, skipped, cranks, refs, convergence, time.perf_counter() - start)
 
 
@@ -899,13 +1026,18 @@ def _parser() -> argparse.ArgumentParser:
                     "(default %(default)s)")
     ap.add_argument("--quick", action="store_true",
                     help=f"two laws and the first {QUICK_HORIZON:g} s of two slider-crank cases")
+    ap.add_argument("--workers", type=int, metavar="N",
+                    help="local worker processes of the study runner (default: all cores; 1: in this process)")
     return ap
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the cross-check and write the report; 1 if a case that must pass failed."""
-    args = _parser().parse_args(argv)
-    x = cross_check(quick=args.quick)
+    ap = _parser()
+    args = ap.parse_args(argv)
+    if args.workers is not None and args.workers < 1:
+        ap.error(f"--workers must be a positive integer, got {args.workers}")
+    x = cross_check(quick=args.quick, workers=args.workers)
     for path in write_outputs(x, args.out):
         print(f"wrote {path}")
     print(f"total runtime {x.runtime:.1f} s")
