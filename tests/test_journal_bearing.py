@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -94,3 +95,33 @@ def test_outputs_are_recorded():
     assert np.all(out["normal_force"][~contact] == 0.0)
     assert np.all(out["normal_force"] >= 0.0)
     assert out["v0"][contact] == pytest.approx(0.3)
+
+
+# --------------------------------------------------------------------------------------
+# the validation script (validation/journal_bearing.py)
+# --------------------------------------------------------------------------------------
+def test_script_runs_come_back_from_the_study_runner_as_run_returns_them():
+    # the script runs its impacts through exuclear.study.run_study (summary as JSON text,
+    # outputs as arrays in memory): they must equal run()'s, value by value (wall time aside)
+    from validation import journal_bearing as script
+
+    cases = [JournalBearingParams.paper(cr=0.3), JournalBearingParams.paper(law="hunt-crossley", length=30e-3)]
+    runner = script.ImpactRunner(workers=1)
+    runner.run(cases)
+    for params in cases:
+        result, out = runner(params)
+        direct, direct_out = run(params)
+        assert replace(result, wall_time=0.0) == replace(direct, wall_time=0.0)
+        assert list(out) == list(direct_out)
+        assert all(np.array_equal(out[k], direct_out[k]) for k in out)
+
+
+def test_script_writes_every_table(tmp_path):
+    # the README's first command, at its default (in this process)
+    from validation import journal_bearing as script
+
+    assert script.main(["--out", str(tmp_path)]) == 0
+    stems = [case.stem for case in script.paper_cases()] + ["effective_restitution"]
+    for stem in stems:
+        assert (tmp_path / f"{stem}.csv").is_file()
+    assert "Effective restitution" in (tmp_path / "journal_bearing.md").read_text(encoding="utf-8")
