@@ -13,7 +13,8 @@ import pytest
 README = pathlib.Path(__file__).resolve().parents[1] / "README.md"
 
 
-def test_the_readme_example_runs_and_prints_the_departure_velocity():
+def test_the_readme_example_runs_and_prints_the_departure_velocity(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # Exudyn writes its solution file to the working directory
     block = re.search(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), re.S).group(1)
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):
