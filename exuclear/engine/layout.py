@@ -58,7 +58,6 @@ def spatial_data_columns(slices: int, faces: int = 0) -> tuple[str, ...]:
             + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS))
 
 
-FRICTION_CODES = {NoFriction: 0, Coulomb: 1, ModifiedCoulomb: 2}
 
 
 #: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
@@ -111,14 +110,3 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
         p[4, 1:5] = [shoulders.axial_clearance, shoulders.shoulder_radius, shoulders.friction_radius,
                      shoulders.face_stiffness(law.E_star)]
     return p.tolist()
-
-
-class Params:
-    """The decoded ``stiffness`` matrix, for the Python kernel (the compiled ``decode``)."""
-
-    __slots__ = ("id", "role", "r_j", "r_b", "max_penetration", "impact_step")
-
-    def __init__(self, p: list) -> None:
-        row = p[0]
-        self.id, self.role = int(row[0]), int(row[1])
-        self.r_j, self.r_b, self.max_penetration, self.impact_step = row[2], row[3], row[4], row[5]
