@@ -36,7 +36,6 @@ from __future__ import annotations
 import math
 import warnings
 from abc import ABC, abstractmethod
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -112,7 +111,7 @@ class StiffnessModel(ABC):
         """The model's leading constant (the first of :meth:`kernel_parameters`)."""
 
     @abstractmethod
-    def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
+    def stiffness(self, delta: float) -> float:
         """``K_eff(delta) = F_e(delta) / delta^n`` [N/m^n] for ``delta >= 0``."""
 
     @abstractmethod
@@ -140,7 +139,7 @@ class _PowerLaw(StiffnessModel):
     def k0(self) -> float:
         return self._K
 
-    def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
+    def stiffness(self, delta: float) -> float:
         return self._K
 
     def elastic_force(self, delta: float) -> float:
@@ -214,8 +213,8 @@ class Liu(StiffnessModel):
     def k0(self) -> float:
         return self._K0
 
-    def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
-        return self._K0 * sqrt(1.0 / (2.0 * (self._c + delta)))
+    def stiffness(self, delta: float) -> float:
+        return self._K0 * math.sqrt(1.0 / (2.0 * (self._c + delta)))
 
     def elastic_force(self, delta: float) -> float:
         if delta <= 0.0:
@@ -369,7 +368,7 @@ class _LogLineContact(StiffnessModel):
             return 0.0
         return self._ks * self._solve(delta)
 
-    def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
+    def stiffness(self, delta: float) -> float:
         """``F_e(delta) / delta`` (the secant stiffness; 0 at ``delta = 0``, where ``F_e ~ delta / ln(1/delta)``)."""
         if delta <= 0.0:
             return 0.0
@@ -837,9 +836,9 @@ class ContactLaw:
         """The stiffness model's constants for the compiled kernel."""
         return self.stiffness_model.kernel_parameters()
 
-    def stiffness(self, delta: float, sqrt: Callable[[float], float] = math.sqrt) -> float:
-        """``K_eff(delta)`` [N/m^n]; ``sqrt`` is injectable for a symbolic backend."""
-        return self.stiffness_model.stiffness(delta, sqrt)
+    def stiffness(self, delta: float) -> float:
+        """``K_eff(delta)`` [N/m^n]."""
+        return self.stiffness_model.stiffness(delta)
 
     # -- the shared formula -----------------------------------------------------------
     def elastic_force(self, delta: float) -> float:

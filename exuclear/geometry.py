@@ -110,8 +110,8 @@ def kinematics_along(
     geometry: BearingGeometry, ex: float, ey: float, ecc: float, nx: float, ny: float,
     dvx: float, dvy: float, omega_i: float, omega_j: float,
 ) -> ContactKinematics:
-    """The rest of :func:`contact_kinematics` once ``|e|`` and ``n`` are known; plain
-    arithmetic, so it also runs on symbolic numbers.  ``(dvx, dvy) = v(P_J) - v(P_B)``."""
+    """The rest of :func:`contact_kinematics` once ``|e|`` and ``n`` are known.
+    ``(dvx, dvy) = v(P_J) - v(P_B)``."""
     # omega x (R n) = R omega (-ny, nx) = -R omega t, so only the tangential component changes
     r_j, r_b = geometry.journal_radius, geometry.bearing_radius
     delta_dot = dvx * nx + dvy * ny

@@ -213,7 +213,7 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--velocity", type=float, default=p.impact_velocity, help="impact velocity [m/s] (default %(default)s)")
     ap.add_argument("--v-min", type=float, default=p.v_min, help="floor of v0 in the damping term [m/s] (default %(default)s)")
     ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="force evaluation: python callback or compiled symbolic expression (default %(default)s)")
+                    help="the joint's kernel: compiled (C++) or python (default %(default)s)")
     ap.add_argument("--end-time", type=float, default=p.end_time,
                     help="simulated time [s]; the journal must have left the wall by then (default %(default)s)")
     ap.add_argument("--dt-out", type=float, default=IMPACT_STEP / 10,

@@ -661,8 +661,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="joints with clearance, letters of OAB (crank-ground, crank-rod, rod-slider); "
                          "more than B needs --formulation redundant or spatial (default %(default)s)")
     ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="force evaluation of the clearance joint: python callback or compiled symbolic expression "
-                         "(default %(default)s)")
+                    help="the joint's kernel: compiled (C++) or python (default %(default)s)")
     ap.add_argument("--method", choices=list(exuclear.METHODS),
                     help="solver (default: per formulation); an implicit method gets the implicit default steps "
                          f"({REDUNDANT_DEFAULTS['step']:g} s, {REDUNDANT_DEFAULTS['impact_step']:g} s from each "
