@@ -78,8 +78,9 @@ class ContactState:
     def accept(self, kin: Any, joint: Any, time: float) -> tuple[ContactState, ImpactRecord | None]:
         """The state after accepting the contact kinematics ``kin`` at ``time``.
 
-        ``joint`` (a :class:`exuclear.ClearanceJoint`) gives the forces recorded as
-        outputs.  Returns the new state and, when a contact ended in this step, its record.
+        ``joint`` (anything with ``response(kin, history)``: a :class:`exuclear.ClearanceJoint`,
+        or a spatial slice or end face) gives the forces recorded as outputs.  Returns the
+        new state and, when a contact ended in this step, its record.
         """
         delta, delta_dot = kin.delta, kin.delta_dot
         new = {}
@@ -98,12 +99,14 @@ class ContactState:
                 record = ImpactRecord(self.onset_time, self.v0, self.peak_force, end - self.onset_time,
                                       self.max_penetration)
                 new["closed"] = self.closed + 1
-        state = replace(self, delta=delta, delta_dot=delta_dot, time=time, ecc_x=kin.ex, ecc_y=kin.ey,
-                        slip_velocity=kin.v_t, **new)
-        response = joint.response(kin, state)  # in contact, the state's own v0
-        f_n, f_t = response.f_n, response.f_t
-        if not state.in_contact:
-            return replace(state, normal_force=0.0, tangential_force=0.0), record
-        return replace(state, normal_force=f_n, tangential_force=f_t,
-                       peak_force=f_n if f_n > state.peak_force else state.peak_force,
-                       max_penetration=delta if delta > state.max_penetration else state.max_penetration), record
+        if delta > 0.0:
+            # from this state: in contact its v0, at an onset the same interpolation as new["v0"]
+            response = joint.response(kin, self)
+            f_n, peak, deepest = response.f_n, new.get("peak_force", self.peak_force), new.get("max_penetration",
+                                                                                                  self.max_penetration)
+            new.update(normal_force=f_n, tangential_force=response.f_t, peak_force=f_n if f_n > peak else peak,
+                       max_penetration=delta if delta > deepest else deepest)
+        else:
+            new.update(normal_force=0.0, tangential_force=0.0)
+        return replace(self, delta=delta, delta_dot=delta_dot, time=time, ecc_x=kin.ex, ecc_y=kin.ey,
+                       slip_velocity=kin.v_t, **new), record

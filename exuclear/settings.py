@@ -1,6 +1,6 @@
 """Solver settings: one typed object, mapped onto Exudyn in exactly one place.
 
-The mapping lives in :func:`exuclear.exudyn_element.simulation_settings`; this module
+The mapping lives in :func:`exuclear.engine.solver.simulation_settings`; this module
 holds only the documented choices and their checks.
 """
 from __future__ import annotations

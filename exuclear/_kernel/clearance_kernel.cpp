@@ -9,12 +9,12 @@
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
 //   spatial joint       exuclear/spatial.py and SpatialJointKernel in _python_kernel.py
-//                       (eqs. (33)-(45)): functions spatial_*; its axial clearance
+//                       (eqs. (33)-(45)): the same names, the drivers spatial_*; its axial clearance
 //                       (eqs. (48)-(54)): functions face_*
 //
 // Exudyn calls these functions through raw function pointers, without Python, when they
 // are bound by pybind11, capture nothing and have exactly Exudyn's signature
-// (../shared/research/compiled-exudyn.md); exuclear/engine/kernel.py checks that at import.
+// (see exuclear/engine/kernel.py, which checks that at import).
 // Parameters reach the functions through the connector's `stiffness` matrix (layout in
 // exuclear/engine/layout.py); the per-joint dynamic state lives in a table indexed by the
 // joint id stored there.
@@ -249,12 +249,12 @@ double onset_velocity(const History& h, double delta, double delta_dot) {
     return h.delta_dot + (delta_dot - h.delta_dot) * d0 / (d0 - delta);
 }
 
-// ContactHistory.accept: the history after an accepted state (kinematics k, time t);
-// a contact that ends appends its record.  share: a spatial slice's share w / L of the
+// ContactState.accept (exuclear/history.py): the history after an accepted state (kinematics k, time t);
+// a contact that ends appends its record.  law_share: a spatial slice's share w / L of the
 // law (eq. (41)); 1 for the planar joint (x * 1.0 == x, so the planar joint is unchanged).
 // face: an end face of the axial clearance, whose force is eq. (53) (_FaceJoint).
 History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records,
-               double share = 1.0, bool face = false) {
+               double law_share = 1.0, bool face = false) {
     History n = h;
     double delta = k.delta, delta_dot = k.delta_dot;
     if (delta > 0.0) {
@@ -285,7 +285,7 @@ History accept(const History& h, const Params& a, const Kinematics& k, double ti
     n.v_t = k.v_t;
     n.f_n = !n.in_contact ? 0.0
             : face      ? face_normal_force(a.face_stiffness, a.damping_factor, a.v_min, delta, delta_dot, n.v0)
-                        : share * normal_force(a, delta, delta_dot, n.v0);
+                        : law_share * normal_force(a, delta, delta_dot, n.v0);
     n.f_t = n.in_contact && a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * n.f_n : 0.0;
     if (n.in_contact) {
         n.peak_force = n.f_n > n.peak_force ? n.f_n : n.peak_force;
@@ -309,7 +309,7 @@ struct JointState {
     V3 torque_correction3{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
     V3 initial_axis{0.0, 0.0, 1.0};
     double initial_axial = 0.0;
-    long force_calls = 0, post_newton_calls = 0, dispatch_calls = 0;
+    long force_calls = 0, post_newton_calls = 0;
     std::string failure;
     double failure_time = 0.0;
 };
@@ -323,7 +323,15 @@ JointState& state(long id) {
     return g_joints[static_cast<size_t>(id)];
 }
 
-// Which history an evaluation at time t uses (mirrors _python_kernel.JointTable.history_for).
+// Record why the run cannot go on, and stop it (an exception ends Exudyn's solve; mirrors
+// _python_kernel's _fail).
+[[noreturn]] void fail(JointState& s, double t, const std::string& message) {
+    s.failure = message;
+    s.failure_time = t;
+    throw std::runtime_error("exuclear: " + message);
+}
+
+// Which history an evaluation at time t uses (mirrors _python_kernel.PythonJointKernel.history_for).
 // A time before the last step's start means a new run: forget everything and take this
 // evaluation's state as the run's initial accepted state.
 const History& history_for(JointState& s, const Params& a, const Kinematics& k, double t) {
@@ -337,9 +345,7 @@ const History& history_for(JointState& s, const Params& a, const Kinematics& k, 
         s.initial = s.cur;
         s.started = true;
         if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
-            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-            s.failure_time = t;
-            throw std::runtime_error("exuclear: " + s.failure);
+            fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
         }
     }
     return t <= s.cur.time ? s.prev : s.cur;
@@ -585,9 +591,7 @@ const std::vector<History>& spatial_history_for(JointState& s, const Params& a, 
         for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
         for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
         if (!finite) {
-            s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-            s.failure_time = t;
-            throw std::runtime_error("exuclear: " + s.failure);
+            fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
         }
     }
     return t <= s.scur[0].time ? s.sprev : s.scur;
@@ -679,22 +683,18 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
     SpatialInput in = spatial_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
     spatial_history_for(s, a, in, t);  // starts a run if needed
     bool advance = t > s.scur[0].time;
-    const std::vector<History> base = advance ? s.scur : s.sprev;  // a repeated step starts again from its start
+    const std::vector<History>& base = advance ? s.scur : s.sprev;  // a repeated step starts again from its start
     double deepest = -INF;
     bool finite = true;
     for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
     for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
     if (!finite) {
-        s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-        s.failure_time = t;
-        throw std::runtime_error("exuclear: " + s.failure);
+        fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
     }
     for (const SliceKinematics& k : in.kins) deepest = k.delta > deepest ? k.delta : deepest;
     for (const FaceKinematics& k : in.faces) deepest = k.delta > deepest ? k.delta : deepest;
     if (deepest > a.max_penetration) {
-        s.failure = "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
-        s.failure_time = t;
-        throw std::runtime_error("exuclear: " + s.failure);
+        fail(s, t, "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m");
     }
     if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
         for (size_t i = 0; i < in.kins.size() + in.faces.size(); ++i) {
@@ -717,14 +717,12 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
                                  : accept(base[i], a, face_accepted(in.faces[i - n_slices]), t, s.srecords[i], 1.0,
                                           true);
         if (!std::isfinite(h.f_n)) {
-            s.failure = "the contact force became non-finite (NaN or inf)";
-            s.failure_time = t;
-            throw std::runtime_error("exuclear: " + s.failure);
+            fail(s, t, "the contact force became non-finite (NaN or inf)");
         }
         next.push_back(h);
     }
-    if (advance) s.sprev = s.scur;
-    s.scur = next;
+    if (advance) s.sprev = s.scur;  // base is not read after this
+    s.scur = std::move(next);
     out.push_back(t);  // spatial_data_values
     out.push_back(in.u[0]);
     out.push_back(in.u[1]);
@@ -738,7 +736,7 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
 }
 
 // Post-Newton function: once per accepted step, the history update (mirrors
-// _python_kernel.JointTable.post_newton).  Returns [error, recommended step, data...].
+// _python_kernel.PythonJointKernel.post_newton).  Returns [error, recommended step, data...].
 StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3 rotation, V3 velocity,
                       V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
@@ -760,14 +758,10 @@ StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displ
     bool advance = t > s.cur.time;
     const History base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
     if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
-        s.failure = "the state became non-finite (NaN or inf); the integration diverged";
-        s.failure_time = t;
-        throw std::runtime_error("exuclear: " + s.failure);
+        fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
     }
     if (k.delta > a.max_penetration) {
-        s.failure = "penetration " + fmt(k.delta) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
-        s.failure_time = t;
-        throw std::runtime_error("exuclear: " + s.failure);
+        fail(s, t, "penetration " + fmt(k.delta) + " m exceeds the limit " + fmt(a.max_penetration) + " m");
     }
     if (a.impact_step > 0.0 && !base.in_contact && k.delta > 0.0 &&
         t - base.time > a.impact_step * (1.0 + STEP_SLACK)) {
@@ -779,9 +773,7 @@ StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displ
     s.records.resize(static_cast<size_t>(base.closed));
     History next = accept(base, a, k, t, s.records);
     if (!std::isfinite(next.f_n)) {
-        s.failure = "the contact force became non-finite (NaN or inf)";
-        s.failure_time = t;
-        throw std::runtime_error("exuclear: " + s.failure);
+        fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
     if (advance) s.prev = s.cur;
     s.cur = next;

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
-from ..geometry import ContactKinematics, contact_kinematics, joint_loads
+from ..geometry import ContactKinematics, contact_kinematics
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint
 from ..spatial import (
@@ -98,11 +98,7 @@ class PythonJointKernel:
         if kin.delta <= 0.0:
             self.torque_correction = 0.0
             return [0.0] * 6
-        v0 = history.onset_velocity(kin.delta, kin.delta_dot)
-        joint = self.joint
-        f_n = joint.law.normal_force(kin.delta, kin.delta_dot, v0)
-        f_t = joint.friction.coefficient(kin.v_t) * f_n if joint.friction.active else 0.0
-        loads = joint_loads(joint.geometry, kin, f_n, f_t)
+        loads = self.joint.response(kin, history).loads
         self.torque_correction = loads.m_j + loads.m_i  # the bearing's moment beyond -M_i
         return [-loads.fx, -loads.fy, 0.0, 0.0, 0.0, -loads.m_i]
 

@@ -259,13 +259,13 @@ class ClearanceJointHandle:
             return max(self._contact_states(), key=lambda s: s.delta)
         if self.python_kernel is not None:
             return self.python_kernel.current
-        return ContactState(**_state_fields(kernel.COMPILED.history(self.joint_id)["current"]))
+        return ContactState(**kernel.COMPILED.history(self.joint_id)["current"])
 
     def _contact_states(self, which: str = "current") -> list[ContactState]:
         """The slices' histories, then the end faces' (with an axial clearance)."""
         if self.python_kernel is not None:
             return list(getattr(self.python_kernel, which))
-        return [ContactState(**_state_fields(h)) for h in kernel.COMPILED.slice_history(self.joint_id)[which]]
+        return [ContactState(**h) for h in kernel.COMPILED.slice_history(self.joint_id)[which]]
 
     def slice_states(self, which: str = "current") -> list[ContactState]:
         """A spatial joint's slice histories after the last accepted step (``which=
@@ -300,8 +300,8 @@ class ClearanceJointHandle:
         if not h["started"]:
             return None
         if self.slices:
-            return ContactState(**_state_fields(kernel.COMPILED.slice_history(self.joint_id)["initial"][0]))
-        return ContactState(**_state_fields(h["initial"]))
+            return ContactState(**kernel.COMPILED.slice_history(self.joint_id)["initial"][0])
+        return ContactState(**h["initial"])
 
     def _initial_data(self) -> list[float]:
         """The data node's entries at the run's initial state."""
@@ -432,14 +432,6 @@ def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
     live = [h for h in mbs.variables.get(REGISTRY_KEY, []) if h.is_live()]
     mbs.variables[REGISTRY_KEY] = live
     return live
-
-
-def _state_fields(h: dict) -> dict:
-    return {"time": h["time"], "delta": h["delta"], "delta_dot": h["delta_dot"], "in_contact": h["in_contact"],
-            "v0": h["v0"], "onsets": h["onsets"], "closed": h["closed"], "onset_time": h["onset_time"],
-            "peak_force": h["peak_force"], "max_penetration": h["max_penetration"],
-            "normal_force": h["normal_force"], "tangential_force": h["tangential_force"],
-            "slip_velocity": h["slip_velocity"], "ecc_x": h["ecc_x"], "ecc_y": h["ecc_y"]}
 
 
 def _physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJoint:

@@ -108,13 +108,14 @@ class _Watchdog:
     """Pre- and post-step functions for one run: end a step retried without end and an
     adaptive step that collapsed to its minimum; the user's functions are called from them."""
 
-    def __init__(self, mbs: exu.MainSystem, min_step: float) -> None:
+    def __init__(self, mbs: exu.MainSystem, min_step: float, record_steps: bool) -> None:
         self.mbs = mbs
         self.user_pre = _user_function(mbs.GetPreStepUserFunction())
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
         self.last, self.attempts, self.problem = 0.0, 0, ""
-        self.step_times: list[float] = []  # accepted steps' end times, for the chatter check
+        # accepted steps' end times, for the chatter check of implicit runs (None: not kept)
+        self.step_times: list[float] | None = [] if record_steps else None
         self.interrupted = False
 
     # Ctrl-C raises KeyboardInterrupt in the next Python code that runs, which during a solve
@@ -122,37 +123,33 @@ class _Watchdog:
     # interrupt is noted here and raised again once the solver has returned.
     def pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
         try:
-            return self._pre_step(mbs, t)
+            self.attempts += 1
+            if self.attempts > MAX_STEP_ATTEMPTS:
+                self.problem = (f"at t = {self.last:.6g} s, the solver retried one step {MAX_STEP_ATTEMPTS} times "
+                                "without accepting it (Exudyn's DOPRI5 does so when its minimum step cannot meet the "
+                                "tolerances); loosen the tolerances, lower `min_step`, or use an implicit method")
+                raise RuntimeError(self.problem)  # returning False would not end Exudyn's retry loop
+            return self.user_pre(mbs, t) if self.user_pre is not None else True
         except KeyboardInterrupt:
             self.interrupted = True
             raise
 
     def post_step(self, mbs: exu.MainSystem, t: float) -> bool:
         try:
-            return self._post_step(mbs, t)
+            self.attempts = 0
+            step, self.last = t - self.last, t
+            if self.step_times is not None:
+                self.step_times.append(t)
+            if 0.0 < step <= self.min_step:
+                self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), "
+                                "where Exudyn would go on without error control; the problem is too stiff for this "
+                                "explicit method here: try an implicit method, looser tolerances, or a smaller "
+                                "`min_step`")
+                return False
+            return self.user_post(mbs, t) if self.user_post is not None else True
         except KeyboardInterrupt:
             self.interrupted = True
             raise
-
-    def _pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
-        self.attempts += 1
-        if self.attempts > MAX_STEP_ATTEMPTS:
-            self.problem = (f"at t = {self.last:.6g} s, the solver retried one step {MAX_STEP_ATTEMPTS} times without "
-                            "accepting it (Exudyn's DOPRI5 does so when its minimum step cannot meet the tolerances); "
-                            "loosen the tolerances, lower `min_step`, or use an implicit method")
-            raise RuntimeError(self.problem)  # returning False would not end Exudyn's retry loop
-        return self.user_pre(mbs, t) if self.user_pre is not None else True
-
-    def _post_step(self, mbs: exu.MainSystem, t: float) -> bool:
-        self.attempts = 0
-        step, self.last = t - self.last, t
-        self.step_times.append(t)
-        if 0.0 < step <= self.min_step:
-            self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), where "
-                            "Exudyn would go on without error control; the problem is too stiff for this explicit method "
-                            "here: try an implicit method, looser tolerances, or a smaller `min_step`")
-            return False
-        return self.user_post(mbs, t) if self.user_post is not None else True
 
     def __enter__(self) -> _Watchdog:
         self.mbs.SetPreStepUserFunction(self.pre_step)
@@ -258,8 +255,9 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
     start = time.perf_counter()
-    with _Watchdog(mbs, min_step) as watchdog:
-        watchdog.step_times.append(ss.timeIntegration.startTime)
+    with _Watchdog(mbs, min_step, record_steps=not settings.explicit) as watchdog:
+        if watchdog.step_times is not None:
+            watchdog.step_times.append(ss.timeIntegration.startTime)
         try:
             ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
             message = "" if ok else "Exudyn's solver reported failure"
