@@ -143,7 +143,7 @@ class SolverSettings:
         rho = check_real("spectral_radius", self.spectral_radius)
         if not 0.0 <= rho <= 1.0:
             raise ValueError(f"`spectral_radius` must lie in [0, 1], got {rho}")
-        if rho != SPECTRAL_RADIUS_DEFAULT and METHODS[self.method][1]:
+        if rho != SPECTRAL_RADIUS_DEFAULT and self.explicit:
             raise ValueError(f"`spectral_radius` applies to the implicit methods (generalized-alpha, trapezoidal); "
                              f"{self.method!r} is explicit and has no numerical damping to set, got {rho}")
         check_positive("output_step", self.output_step)

@@ -209,3 +209,17 @@ def test_every_body_type_gives_the_paper_departure_velocity(kind, backend):
     # the paper's 0.269 m/s to its 3 digits; generalized-alpha's numerical damping (spectral
     # radius 0.9) at 2e-7 s steps costs less than that
     assert -v == pytest.approx(0.269, abs=5e-4)
+
+
+@COMPILED
+def test_the_kernels_layout_constants_agree():
+    # the compiled kernel's data-node width and stiffness codes are those layout.py writes
+    from exuclear.engine.layout import DATA_COLUMNS, KERNEL_STIFFNESS_CODES
+
+    assert kernel.COMPILED.N_DATA == len(DATA_COLUMNS)
+    assert set(range(kernel.COMPILED.STIFFNESS_CODES)) == KERNEL_STIFFNESS_CODES
+    assert {law.kernel_code for law in (exuclear.contact_law(name + "+none", _GEOMETRY, 1e11)
+                                        for name in exuclear.STIFFNESS_MODELS)} == KERNEL_STIFFNESS_CODES
+
+
+_GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)

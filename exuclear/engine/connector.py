@@ -48,7 +48,16 @@ from ..joint import ClearanceJoint, make_joint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import kernel
 from ._python_kernel import PythonJointKernel, SpatialJointKernel, data_values, spatial_data_values
-from .layout import DATA_COLUMNS, MAIN, PROBE, SLICE_COLUMNS, TORQUE, parameters, spatial_data_columns
+from .layout import (
+    DATA_COLUMNS,
+    MAIN,
+    PROBE,
+    SLICE_COLUMNS,
+    SPATIAL_JOINT_COLUMNS,
+    TORQUE,
+    parameters,
+    spatial_data_columns,
+)
 
 #: How the joint's user functions are evaluated.
 BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default where it passed its self-test)",
@@ -134,12 +143,10 @@ def _reference_pose(mbs: exu.MainSystem, body: Any) -> tuple[np.ndarray, np.ndar
     return p, a
 
 
-def _marker_pose(mbs: exu.MainSystem, marker: Any) -> tuple[np.ndarray, np.ndarray]:
-    ref = exu.ConfigurationType.Reference
-    p = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position, configuration=ref), dtype=float)
-    a = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.RotationMatrix, configuration=ref),
-                   dtype=float).reshape(3, 3)
-    return p, a
+def _marker_rotation(mbs: exu.MainSystem, marker: Any) -> np.ndarray:
+    """A marker's rotation matrix in the reference configuration."""
+    return np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.RotationMatrix,
+                                          configuration=exu.ConfigurationType.Reference), dtype=float).reshape(3, 3)
 
 
 def _orientation_is_fixed(mbs: exu.MainSystem, marker: Any) -> bool:
@@ -386,8 +393,9 @@ class ClearanceJointHandle:
             data = data.copy()
             data[0, 1:] = self._initial_data()
         if self.slices:
-            n_joint, n_slice = 4, len(SLICE_COLUMNS)
-            out = {"time": data[:, 0], "tilt_x": data[:, 2], "tilt_y": data[:, 3], "axial_displacement": data[:, 4]}
+            n_joint, n_slice = len(SPATIAL_JOINT_COLUMNS), len(SLICE_COLUMNS)
+            # after the sensor's time: the data node's own time, then SPATIAL_OUTPUT_COLUMNS
+            out = {"time": data[:, 0], **{c: data[:, 2 + k] for k, c in enumerate(SPATIAL_OUTPUT_COLUMNS)}}
             end = 1 + n_joint + self.slices * n_slice
             block = data[:, 1 + n_joint:end].reshape(data.shape[0], self.slices, n_slice)
             for c in OUTPUT_COLUMNS:
@@ -512,8 +520,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
 
     parameters(joint, 0, MAIN, maxPenetration, compiled=backend == "compiled")  # refuses what the kernel cannot do
     m_bearing, m_journal = markerNumbers
-    _, a_bearing = _marker_pose(mbs, m_bearing)
-    _, a_journal = _marker_pose(mbs, m_journal)
+    a_bearing = _marker_rotation(mbs, m_bearing)
+    a_journal = _marker_rotation(mbs, m_journal)
     frame = joint_frame(axis_local)  # in marker 0's frame
     rotation0 = frame.tolist()
     rotation1 = (a_journal.T @ a_bearing @ frame).tolist()  # the same joint frame, seen from marker 1
