@@ -195,3 +195,30 @@ def test_constrain_axial_holds_axial_motion_and_tilt_as_the_revolute_joint_did()
     assert abs(position[2]) < 1e-12 and abs(omega[0]) < 3e-6 and abs(omega[1]) < 3e-6
     # the in-plane motion stays free: 0.1 m/s crosses the 0.1 mm clearance in 1 ms and hits the wall
     assert handle.history.onsets >= 1 and handle.impacts()[0].onset_time == pytest.approx(1e-3, rel=0.05)
+
+
+def test_a_run_continued_from_where_it_stopped_keeps_the_contact_history():
+    # Exudyn's continuation: the state reached becomes the initial state and the next run
+    # starts at the time reached. Split in the middle of the impact (at 20 us of ~35 us), the
+    # two runs must give the single run's record and departure velocity exactly.
+    def settings(t0, t1):
+        ss = exu.SimulationSettings()
+        ss.timeIntegration.startTime, ss.timeIntegration.endTime = t0, t1
+        ss.timeIntegration.numberOfSteps = int(round((t1 - t0) / 1e-6))
+        ss.solution.file.write = False
+        return ss
+
+    runs = []
+    for split in (None, 2e-5):
+        mbs = exu.SystemContainer().AddSystem()
+        handle, node = _impact_scene(mbs)
+        mbs.Assemble()
+        if split is not None:
+            mbs.SolveDynamic(settings(0.0, split), solverType=exu.DynamicSolverType.RK44)
+            assert handle.history.in_contact  # stopped inside the impact
+            data = mbs.systemData
+            data.SetODE2Coordinates(data.GetODE2Coordinates(), configuration=exu.ConfigurationType.Initial)
+            data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(), configuration=exu.ConfigurationType.Initial)
+        mbs.SolveDynamic(settings(split or 0.0, 2e-4), solverType=exu.DynamicSolverType.RK44)
+        runs.append((handle.impacts(), _departure(mbs, node)))
+    assert runs[0] == runs[1] and len(runs[0][0]) == 1
