@@ -57,6 +57,7 @@ from .history import ContactState, ImpactRecord
 from .joint import ClearanceJoint, JointResponse, make_joint
 from .materials import MATERIALS, Material, composite_modulus, material
 from .settings import METHODS, SolverSettings
+from .study import Study, grid, run_study, sample
 
 __version__ = "0.1.0"
 
@@ -73,6 +74,6 @@ __all__ = [
     "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",
     "ClearanceJoint", "JointResponse", "make_joint",
     "MATERIALS", "Material", "composite_modulus", "material",
-    "METHODS", "SolverSettings", "UnitWarning",
+    "METHODS", "SolverSettings", "Study", "grid", "run_study", "sample", "UnitWarning",
     "ConvergenceResult", "JointRecord", "RunRecord", "check_convergence", "refined_settings",
 ]
