@@ -387,11 +387,9 @@ V3 cross(const V3& a, const V3& b) {
 
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-std::vector<double> slice_centres(double length, int slices) {  // eq. (33)
+double slice_centre(double length, int slices, int k) {  // eq. (33): the centre of slice k
     double width = length / slices;
-    std::vector<double> z(static_cast<size_t>(slices));
-    for (int k = 0; k < slices; ++k) z[static_cast<size_t>(k)] = -0.5 * length + (k + 0.5) * width;
-    return z;
+    return -0.5 * length + (k + 0.5) * width;
 }
 
 V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) Ry(b) Rz(c) a_J
@@ -550,10 +548,10 @@ SpatialInput spatial_kinematics(const Params& a, const JointState& s, const V3& 
     SpatialInput in;
     in.p = displacement;
     in.u = journal_axis(rotation, a.axis_journal);                     // eq. (34)
-    std::vector<double> centres = slice_centres(a.length, a.slices);
-    in.kins.reserve(centres.size());
-    for (double z : centres) {
-        in.kins.push_back(slice_kinematics(a.r_j, a.r_b, z, in.p, in.u, velocity, angularVelocity, s.omega_bearing3));
+    in.kins.reserve(static_cast<size_t>(a.slices));
+    for (int k = 0; k < a.slices; ++k) {  // no per-evaluation allocation of the centres
+        in.kins.push_back(slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, a.slices, k), in.p, in.u, velocity,
+                                           angularVelocity, s.omega_bearing3));
     }
     if (a.play > 0.0) {
         for (int side : FACE_SIDES) {
@@ -660,11 +658,12 @@ const double STEP_SLACK = 1e-9;
 // Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS).
 const int N_DATA = 14;
 
-void write_data(const History& h, StdVector& out) {
+// Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
+void write_data(const History& h, StdVector& out, int first = 0) {
     double values[N_DATA] = {h.time, h.delta == -INF ? 0.0 : h.delta, h.delta_dot, h.ex, h.ey, h.f_n, h.f_t, h.v_t,
                              h.v0, h.in_contact ? 1.0 : 0.0, static_cast<double>(h.onsets), h.onset_time,
                              h.peak_force, h.max_penetration};
-    for (int i = 0; i < N_DATA; ++i) out.push_back(values[i]);
+    for (int i = first; i < N_DATA; ++i) out.push_back(values[i]);
 }
 
 std::string fmt(double x) {
@@ -727,11 +726,8 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
     out.push_back(in.u[0]);
     out.push_back(in.u[1]);
     out.push_back(in.p[2]);
-    for (const History& h : s.scur) {
-        StdVector row;
-        write_data(h, row);
-        out.insert(out.end(), row.begin() + 1, row.end());
-    }
+    out.reserve(out.size() + s.scur.size() * (N_DATA - 1));
+    for (const History& h : s.scur) write_data(h, out, 1);  // each contact's entries without its time
     return out;
 }
 
