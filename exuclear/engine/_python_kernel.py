@@ -54,7 +54,23 @@ class KernelFailure(RuntimeError):
     """A joint's state cannot go on (non-finite, penetration beyond the limit)."""
 
 
-class PythonJointKernel:
+class _Failing:
+    """What both kernels do when a run cannot go on: record why and when, and raise
+    (the compiled kernel's ``fail``)."""
+
+    failure: str
+    failure_time: float
+
+    def _fail(self, message: str, t: float) -> None:
+        self.failure, self.failure_time = message, t
+        raise KernelFailure(f"exuclear: {message}")
+
+    def _check_force(self, state: ContactState, t: float) -> None:
+        if not math.isfinite(state.normal_force):
+            self._fail("the contact force became non-finite (NaN or inf)", t)
+
+
+class PythonJointKernel(_Failing):
     """One joint's user functions and table entry; the compiled kernel's ``JointState``."""
 
     def __init__(self, joint: ClearanceJoint) -> None:
@@ -138,16 +154,12 @@ class PythonJointKernel:
         state, record = base.accept(kin, self.joint, t)
         if record is not None:
             self.records.append(record)
-        if state.normal_force != state.normal_force or abs(state.normal_force) == float("inf"):
-            self._fail("the contact force became non-finite (NaN or inf)", t)
+        self._check_force(state, t)
         if advance:
             self.previous = self.current
         self.current = state
         return [0.0, -1.0, *data_values(state)]
 
-    def _fail(self, message: str, t: float) -> None:
-        self.failure, self.failure_time = message, t
-        raise KernelFailure(f"exuclear: {message}")
 
 
 def _finite(kin: ContactKinematics | SliceKinematics) -> bool:
@@ -230,7 +242,7 @@ class _FaceJoint(_SliceJoint):
         self.law, self.friction = _FaceLaw(joint.law, k_face), joint.friction
 
 
-class SpatialJointKernel:
+class SpatialJointKernel(_Failing):
     """The spatial joint's user functions: one :class:`ContactState` per slice, with the
     planar joint's history rules (module docstring) applied to all slices at once.
 
@@ -374,17 +386,13 @@ class SpatialJointKernel:
             state, record = b.accept(_accepted(kin), j, t)
             if record is not None:
                 self.records[k].append(record)
-            if state.normal_force != state.normal_force or abs(state.normal_force) == float("inf"):
-                self._fail("the contact force became non-finite (NaN or inf)", t)
+            self._check_force(state, t)
             states.append(state)
         if advance:
             self.previous = self.current
         self.current = tuple(states)
         return [0.0, -1.0, *spatial_data_values(t, u, p[2], self.current)]
 
-    def _fail(self, message: str, t: float) -> None:
-        self.failure, self.failure_time = message, t
-        raise KernelFailure(f"exuclear: {message}")
 
 
 def spatial_data_values(t: float, u: Any, axial: float, states: Any) -> list[float]:
