@@ -57,6 +57,7 @@ from models import journal_bearing as jb_model
 from models import slider_crank as sc_model
 from models.journal_bearing import JournalBearingParams
 from models.slider_crank import SliderCrankParams
+from validation._cli import add_workers_option
 from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
 from validation.reference import slider_crank as sc_reference
@@ -1026,8 +1027,7 @@ def _parser() -> argparse.ArgumentParser:
                     "(default %(default)s)")
     ap.add_argument("--quick", action="store_true",
                     help=f"two laws and the first {QUICK_HORIZON:g} s of two slider-crank cases")
-    ap.add_argument("--workers", type=int, metavar="N",
-                    help="local worker processes of the study runner (default: all cores; 1: in this process)")
+    add_workers_option(ap)
     return ap
 
 
@@ -1035,8 +1035,6 @@ def main(argv: list[str] | None = None) -> int:
     """Run the cross-check and write the report; 1 if a case that must pass failed."""
     ap = _parser()
     args = ap.parse_args(argv)
-    if args.workers is not None and args.workers < 1:
-        ap.error(f"--workers must be a positive integer, got {args.workers}")
     x = cross_check(quick=args.quick, workers=args.workers)
     for path in write_outputs(x, args.out):
         print(f"wrote {path}")

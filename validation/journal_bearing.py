@@ -38,6 +38,7 @@ import exuclear
 from exuclear.plotting import impact_curves
 from exuclear.study import run_study
 from models.journal_bearing import ImpactResult, JournalBearingParams, run
+from validation._cli import add_workers_option
 from validation._tables import write_csv
 
 DEFAULT_OUT = os.path.join("results", "journal_bearing")
@@ -371,9 +372,8 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="python -m validation.journal_bearing", description=__doc__.split("\n")[0])
     ap.add_argument("--out", metavar="DIR", default=DEFAULT_OUT,
                     help="directory of the figures and tables (default %(default)s)")
-    ap.add_argument("--workers", type=int, metavar="N", default=DEFAULT_WORKERS,
-                    help="local worker processes of the study runner (default %(default)s: in this process; "
-                         "these short runs gain little from starting workers)")
+    add_workers_option(ap, DEFAULT_WORKERS, "default %(default)s: in this process; these short runs gain little "
+                                            "from starting workers")
     return ap
 
 
@@ -381,8 +381,6 @@ def main(argv: list[str] | None = None) -> int:
     """Run all cases, write figures, CSV tables and the report; 1 if any run failed."""
     ap = _parser()
     args = ap.parse_args(argv)
-    if args.workers < 1:
-        ap.error(f"--workers must be a positive integer, got {args.workers}")
     start = time.perf_counter()
     os.makedirs(args.out, exist_ok=True)
     runner = ImpactRunner(args.workers)

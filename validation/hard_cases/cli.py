@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from validation._cli import add_workers_option
 from validation.hard_cases.cases import run_study
 from validation.hard_cases.common import DEFAULT_OUT
 from validation.hard_cases.report import write_outputs
@@ -16,8 +17,7 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="python -m validation.hard_cases", description=__doc__.split("\n")[0])
     ap.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="directory of the report (default %(default)s)")
     ap.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
-    ap.add_argument("--workers", type=int, metavar="N",
-                    help="local worker processes of the study runner (default: all cores; 1: serial)")
+    add_workers_option(ap)
     return ap
 
 
@@ -25,8 +25,6 @@ def main(argv: list[str] | None = None) -> int:
     """Run the study and write the report; 1 if a case failed."""
     ap = _parser()
     args = ap.parse_args(argv)
-    if args.workers is not None and args.workers < 1:
-        ap.error(f"--workers must be a positive integer, got {args.workers}")
     study = run_study(quick=args.quick, workers=args.workers)
     for path in write_outputs(study, args.out):
         print(f"wrote {path}")

@@ -12,6 +12,7 @@ import sys
 import time
 
 from models.slider_crank import SliderCrankParams
+from validation._cli import add_workers_option
 from validation.slider_crank.cases import DEFAULT_OUT, MIN_REVOLUTIONS, Runner, ideal_params, paper_sweeps
 from validation.slider_crank.diagnostics import first_runs, run_diagnostics, run_sweep, sweep_lags
 from validation.slider_crank.files import write_diagnostic_files, write_sweep_files
@@ -25,8 +26,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="directory of the figures, tables and report (default %(default)s)")
     ap.add_argument("--revolutions", type=float, default=SliderCrankParams.paper().revolutions,
                     help=f"crank revolutions per run, at least {MIN_REVOLUTIONS:.4g} (default %(default)s)")
-    ap.add_argument("--workers", type=int, metavar="N",
-                    help="local worker processes of the study runner (default: all cores; 1: serial)")
+    add_workers_option(ap)
     return ap
 
 
@@ -39,8 +39,6 @@ def main(argv: list[str] | None = None) -> int:
                  f"got {args.revolutions}")
     start = time.perf_counter()
     os.makedirs(args.out, exist_ok=True)
-    if args.workers is not None and args.workers < 1:
-        ap.error(f"--workers must be a positive integer, got {args.workers}")
     runner = Runner(args.workers)
     sweeps = paper_sweeps(args.revolutions)
     first = first_runs(sweeps, args.revolutions)
