@@ -311,7 +311,7 @@ def slider_crank_sweep_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]
     Parameters
     ----------
     cases : sequence of (str, dict)
-        ``(label, columns)`` with the columns of :data:`models.slider_crank.COLUMNS`
+        ``(label, columns)`` with the columns of :data:`exuclear.models.slider_crank.COLUMNS`
         (angles in degrees, SI units).
     baseline : dict or None
         Columns of the ideal mechanism.

@@ -25,9 +25,13 @@ rows and raises ``KeyboardInterrupt``; running the same study again skips the ru
 deterministic (the same parameter set gives the same summary), and then a row does not
 depend on the executor that ran it, except for ``wall_time``.
 
-Scenes (``models.slider_crank``, ``models.journal_bearing``, or any module with the same
-three names) are studies: :func:`scene` reads their ``study`` function, their parameter
-defaults ``STUDY_PARAMETERS`` and their check ``check_study``.  The command line::
+A *scene* is a module with a ``study`` function, its parameter defaults
+``STUDY_PARAMETERS`` and (optionally) its check ``check_study``; :func:`scene` makes it a
+:class:`Study`, from a dotted module path or from a short name.  The library never imports
+its scenes: short names come from the entry-point group :data:`SCENE_ENTRY_POINTS`, which
+installed distributions fill (exuclear's own scenes declare ``slider-crank`` and
+``journal-bearing`` in its ``pyproject.toml``; a user's package can add its own).  The
+command line::
 
     python -m exuclear.study slider-crank --cr 0.3:0.9:0.2 --clearance 5e-5,1e-4,2e-4 \\
         --rpm 200:5000:50 --workers 2 --out study.csv
@@ -81,8 +85,8 @@ RANGE_DIGITS = 12
 #: Columns every row has, after the parameters and the summary.
 STATUS_COLUMNS = ("success", "message", "wall_time", "run_id")
 
-#: Scenes the command line knows by short name: ``models.<name with _ for ->``.
-SCENE_PACKAGE = "models"
+#: Entry-point group of the scenes known by short name (``name = "package.module"``).
+SCENE_ENTRY_POINTS = "exuclear.scenes"
 
 Params = dict[str, Any]
 
@@ -847,11 +851,30 @@ def _batch_size(timing: list, left: int, workers: int) -> int:
 # =======================================================================================
 
 
+def scene_names() -> dict[str, str]:
+    """The scenes known by short name: name -> module path, from the installed
+    distributions' entry points in the group :data:`SCENE_ENTRY_POINTS` (the first of a
+    name wins, as on ``sys.path``)."""
+    from importlib.metadata import entry_points
+
+    found: dict[str, str] = {}
+    for point in entry_points(group=SCENE_ENTRY_POINTS):
+        found.setdefault(point.name, point.value)
+    return found
+
+
 def scene(name: str) -> Study:
-    """The study of a scene: ``"slider-crank"`` is ``models.slider_crank``; a dotted name
-    is any module with a ``study`` function, ``STUDY_PARAMETERS`` (defaults) and
-    ``check_study``."""
-    module_name = name if "." in name else f"{SCENE_PACKAGE}.{name.replace('-', '_')}"
+    """The study of a scene: a short name of :func:`scene_names` (``"slider-crank"``), or
+    a dotted path of any module with a ``study`` function, ``STUDY_PARAMETERS`` (defaults)
+    and ``check_study``."""
+    if "." in name:
+        module_name = name
+    else:
+        known = scene_names()
+        if name not in known:
+            raise ValueError(f"unknown scene {name!r}; known: {', '.join(sorted(known)) or 'none installed'}, "
+                             "or a module path (package.module)")
+        module_name = known[name]
     try:
         module = importlib.import_module(module_name)
     except ModuleNotFoundError as err:
@@ -961,8 +984,9 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     prog = "python -m exuclear.study"
     if not argv or argv[0] in ("-h", "--help"):
-        print(f"usage: {prog} SCENE [--PARAMETER VALUES ...] --out FILE.csv   (SCENE: slider-crank, "
-              f"journal-bearing, or a module path)\n       {prog} SCENE --help\n       {prog} plot TABLE --metric M "
+        names = ", ".join(sorted(scene_names())) or "none installed"
+        print(f"usage: {prog} SCENE [--PARAMETER VALUES ...] --out FILE.csv   (SCENE: {names}, "
+              f"or a module path)\n       {prog} SCENE --help\n       {prog} plot TABLE --metric M "
               f"--x P [--by P | --y P] --out FIG")
         return 0 if argv else 2
     if argv[0] == "plot":

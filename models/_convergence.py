@@ -1,7 +1,7 @@
 """The convergence check (:func:`exuclear.check_convergence`) for the slider-crank scene.
 
-The four-bar carries its own (:func:`models.four_bar.check_convergence`); the slider-crank
-module is edited by others, so its adapter lives here and ``models.slider_crank`` only
+The four-bar carries its own (:func:`exuclear.models.four_bar.check_convergence`); the slider-crank
+module is edited by others, so its adapter lives here and ``exuclear.models.slider_crank`` only
 calls it for ``--check-convergence``.
 """
 from __future__ import annotations
@@ -15,9 +15,9 @@ SLIDER_CRANK_SIGNALS = ("slider_x", "slider_v", "crank_moment")
 
 
 def slider_crank_record(params, settings: SolverSettings) -> exuclear.RunRecord:
-    """Build and run the slider-crank (``models.slider_crank``) and return what the check compares:
+    """Build and run the slider-crank (``exuclear.models.slider_crank``) and return what the check compares:
     every clearance joint by its name (O, A, B) and :data:`SLIDER_CRANK_SIGNALS`."""
-    from models.slider_crank import _columns, build
+    from .slider_crank import _columns, build
 
     model = build(params)
     sim = exuclear.simulate(model.mbs, settings)

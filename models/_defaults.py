@@ -72,7 +72,7 @@ def accuracy_notes(crank_speed: float, clearance: float, clearance_joints: int, 
             "of onset time. With clearance at O, A and B at 500 rpm the default path agrees with a run at a quarter "
             "of the steps to 1 % of c only until 8 ms (3 % of two revolutions); beyond, impact counts and the "
             "distributions of peak force and onset velocity agree statistically, while the spectrum of |e| at B and "
-            "the crank moment do not (models.slider_crank --clearance-joints OAB --check-convergence). Check "
+            "the crank moment do not (exuclear.models.slider_crank --clearance-joints OAB --check-convergence). Check "
             "convergence (exuclear.check_convergence, or --check-convergence) before trusting the path")
     w = abs(crank_speed)
     if not CHECKED_SPEEDS[0] * 0.999 <= w <= CHECKED_SPEEDS[1] * 1.001 and w > CHECKED_SPEEDS[0]:

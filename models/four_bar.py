@@ -22,7 +22,7 @@ The four-bar is the textbook scene where clearance-joint motion turns chaotic: a
 a few start-up impacts, runs at different steps follow different impact sequences
 (see :func:`exuclear.check_convergence` and ``--check-convergence``).
 
-Run ``python -m models.four_bar --help`` for the command line.
+Run ``python -m exuclear.models.four_bar --help`` for the command line.
 """
 from __future__ import annotations
 
@@ -52,8 +52,8 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear import SolverSettings
 from exuclear.contact import law_and_restitution
-from models._cli import OneLineParser, add_law_options, bad_input, check_output_file, one_line_warnings
-from models._cli import write_csv as _write_columns
+from ._cli import OneLineParser, add_law_options, bad_input, check_output_file, one_line_warnings
+from ._cli import write_csv as _write_columns
 
 #: Output columns of a run (SI units, angles in degrees), in CSV order.
 COLUMNS = ("time", "crank_angle", "coupler_angle", "rocker_angle", "rocker_rate", "crank_moment",
@@ -362,7 +362,7 @@ def check_convergence(params: FourBarParams, settings: SolverSettings | None = N
 
 def _parser() -> argparse.ArgumentParser:
     p = FourBarParams.crank_rocker()
-    ap = OneLineParser(prog="python -m models.four_bar", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m exuclear.models.four_bar", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")

@@ -19,7 +19,7 @@ drawn lying on its side, "down" points at the wall) and a gap at the start
 ``v_impact = 0``) or dropped onto it from the centre (``start_gap = c``): build it with
 :func:`build` and integrate it with :func:`exuclear.simulate`.
 
-Run ``python -m models.journal_bearing --help`` for the options.
+Run ``python -m exuclear.models.journal_bearing --help`` for the options.
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigid
 import exuclear
 from exuclear import SolverSettings
 from exuclear.contact import law_and_restitution
-from models._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
+from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (docs/physics.md section 8), so this samples it ~400 times.
@@ -201,7 +201,7 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 
 def _parser() -> argparse.ArgumentParser:
     p = JournalBearingParams.paper()
-    ap = OneLineParser(prog="python -m models.journal_bearing", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m exuclear.models.journal_bearing", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
     ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
     materials = ", ".join(exuclear.MATERIALS)

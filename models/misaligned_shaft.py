@@ -20,7 +20,7 @@ The shaft's axial motion is held at A (``constrainAxial``), so the run is implic
 (generalized-alpha, impact-aware steps).  Outputs: the shaft's tilt in each bearing, the
 edge loads (first and last slice) and the normal force per unit length along each bearing.
 
-    python -m models.misaligned_shaft --plot out/
+    python -m exuclear.models.misaligned_shaft --plot out/
 """
 from __future__ import annotations
 
@@ -168,7 +168,7 @@ def plot(params: ShaftParams, out: dict, directory: str) -> list[str]:
 
 def _parser() -> argparse.ArgumentParser:
     p = ShaftParams.default()
-    ap = OneLineParser(prog="python -m models.misaligned_shaft", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m exuclear.models.misaligned_shaft", description=__doc__.split("\n")[0])
     ap.add_argument("--misalignment", type=float, default=p.misalignment,
                     help="height of bearing B above A [m] (default %(default)s)")
     ap.add_argument("--speed", type=float, default=p.speed, help="shaft speed [rad/s] (default %(default)s)")

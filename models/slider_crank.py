@@ -26,7 +26,7 @@ Three formulations, all assembled from Exudyn items by the library:
   ``mbs.CreatePrismaticJoint``, ``exuclear.CreateClearanceJoint``); see
   :func:`_build_spatial`.  Needs an implicit solver.
 
-Run ``python -m models.slider_crank --help`` for the command line.
+Run ``python -m exuclear.models.slider_crank --help`` for the command line.
 """
 from __future__ import annotations
 
@@ -61,9 +61,9 @@ from exudyn.rigidBodyUtilities import RigidBodyInertia
 import exuclear
 from exuclear import SolverSettings
 from exuclear.contact import law_and_restitution
-from models import _defaults
-from models._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings
-from models._cli import write_csv as _write_columns
+from . import _defaults
+from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings
+from ._cli import write_csv as _write_columns
 
 FORMULATIONS = ("redundant", "minimal", "spatial")
 
@@ -498,7 +498,7 @@ def default_settings(params: SliderCrankParams) -> SolverSettings:
     """Solver settings of a formulation (:data:`MINIMAL_DEFAULTS`,
     :data:`REDUNDANT_DEFAULTS`, :data:`SPATIAL_DEFAULTS`, measured at 500 rpm and
     c = 0.1 mm) carried to the model's crank speed and clearance by
-    :func:`models._defaults.scaled`; outputs every 1e-5 s."""
+    :func:`exuclear.models._defaults.scaled`; outputs every 1e-5 s."""
     return SolverSettings(end_time=params.end_time, **_scaled_defaults(params, _DEFAULTS[params.formulation]))
 
 
@@ -640,7 +640,7 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", n
 
 def _parser() -> argparse.ArgumentParser:
     p = SliderCrankParams.paper()
-    ap = OneLineParser(prog="python -m models.slider_crank", description=__doc__.split("\n")[0])
+    ap = OneLineParser(prog="python -m exuclear.models.slider_crank", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
     materials = ", ".join(exuclear.MATERIALS)
     ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
@@ -761,7 +761,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
     if args.check_convergence:
-        from models._convergence import check_slider_crank
+        from ._convergence import check_slider_crank
 
         print(check_slider_crank(params, settings).report())
     if args.csv is not None:

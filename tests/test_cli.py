@@ -18,9 +18,9 @@ import pytest
 from exudyn.itemInterface import SensorObject
 
 import exuclear
-from models import journal_bearing as jb
-from models import slider_crank as sc
-from models.slider_crank import SliderCrankParams
+from exuclear.models import journal_bearing as jb
+from exuclear.models import slider_crank as sc
+from exuclear.models.slider_crank import SliderCrankParams
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -262,10 +262,10 @@ def test_empty_output_names_are_refused(module, option):
 
 
 @pytest.mark.parametrize("module, args", [
-    ("models.slider_crank", ("--cr",)),
-    ("models.slider_crank", ("--method", "rk45")),
-    ("models.journal_bearing", ("--mass", "4e-2kg")),
-    ("models.journal_bearing", ("--no-such-option",)),
+    ("exuclear.models.slider_crank", ("--cr",)),
+    ("exuclear.models.slider_crank", ("--method", "rk45")),
+    ("exuclear.models.journal_bearing", ("--mass", "4e-2kg")),
+    ("exuclear.models.journal_bearing", ("--no-such-option",)),
 ])
 def test_parser_errors_are_one_line(module, args):
     # README: "Bad input prints one line `error: ...` and exits with status 2"

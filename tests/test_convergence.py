@@ -11,8 +11,8 @@ import pytest
 
 import exuclear
 from exuclear import ImpactRecord, JointRecord, RunRecord, SolverSettings, check_convergence, refined_settings
-from models import four_bar
-from models.journal_bearing import JournalBearingParams, build, settings_for
+from exuclear.models import four_bar
+from exuclear.models.journal_bearing import JournalBearingParams, build, settings_for
 
 C = 1e-4  # clearance of the synthetic records [m]
 
@@ -217,7 +217,7 @@ def test_four_bar_impacts_before_the_horizon_are_the_same(four_bar_check):
 # ---------------------------------------------------------------------------------------
 
 def test_slider_crank_flag_reports_agreement_on_a_short_run(capsys):
-    from models import slider_crank
+    from exuclear.models import slider_crank
 
     # half a revolution of the paper's case: the start-up impacts only, no chaos
     assert slider_crank.main(["--revolutions", "0.5", "--check-convergence"]) == 0

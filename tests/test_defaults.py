@@ -7,8 +7,8 @@ import math
 
 import pytest
 
-from models import _defaults
-from models import slider_crank as sc
+from exuclear.models import _defaults
+from exuclear.models import slider_crank as sc
 
 
 def params(rpm=500.0, clearance=1e-4, **kw):

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from models.four_bar import FourBarParams, ideal_configuration
+from exuclear.models.four_bar import FourBarParams, ideal_configuration
 
 CASE = FourBarParams.crank_rocker()
 

@@ -18,10 +18,10 @@ import pytest
 from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
-from models import journal_bearing as jb_model
-from models import slider_crank as sc_model
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation import bad_input
 from validation import hard_cases as hc
 
@@ -229,7 +229,7 @@ def test_cli_run_failure_writes_the_csv_and_says_incomplete(tmp_path):
 
 
 # --------------------------------------------------------------------------------------
-# the resting-journal scene of models.journal_bearing
+# the resting-journal scene of exuclear.models.journal_bearing
 # --------------------------------------------------------------------------------------
 def test_journal_bearing_scene_checks_its_new_inputs():
     with pytest.raises(ValueError, match="`start_gap` must not exceed the clearance"):
@@ -277,8 +277,8 @@ def test_bad_input_gets_the_reply_the_rules_ask_for(case):
 
 
 @pytest.mark.parametrize("args, message", [
-    (("models.slider_crank", "--clearance-joints", "XB"), "error: `clearance_joints` must name some of O, A, B"),
-    (("models.journal_bearing", "--mass", "nan"), "error: `mass` must be finite, got nan"),
+    (("exuclear.models.slider_crank", "--clearance-joints", "XB"), "error: `clearance_joints` must name some of O, A, B"),
+    (("exuclear.models.journal_bearing", "--mass", "nan"), "error: `mass` must be finite, got nan"),
 ])
 def test_cli_bad_input_in_a_real_process(args, message):
     # the in-process replies above stand for real runs: two of them as `python -m`

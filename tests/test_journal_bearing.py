@@ -9,7 +9,7 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 import exuclear
-from models.journal_bearing import JournalBearingParams, run
+from exuclear.models.journal_bearing import JournalBearingParams, run
 
 
 @pytest.mark.parametrize("cr, published", [(0.3, 0.098), (0.5, 0.145), (0.9, 0.269)])

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import exuclear
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation.reference import journal_bearing, slider_crank
 
 #: Short horizon of the clearance slider-crank checks [s]: 60 degrees of crank, which

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import exuclear
-from models.slider_crank import COLUMNS, SliderCrankParams, _columns, build, default_settings, mechanical_energy, run
+from exuclear.models.slider_crank import COLUMNS, SliderCrankParams, _columns, build, default_settings, mechanical_energy, run
 
 PAPER = SliderCrankParams.paper()
 R, L = PAPER.crank_length, PAPER.rod_length
@@ -138,7 +138,7 @@ def test_energy_audit_over_two_revolutions(friction):
 
 
 def test_csv_columns(tmp_path):
-    from models.slider_crank import write_csv
+    from exuclear.models.slider_crank import write_csv
 
     p = SliderCrankParams.paper(revolutions=0.05)
     res = run(p, replace(default_settings(p), step=1e-5))  # the paper's largest step
@@ -175,7 +175,7 @@ def test_cli_bad_options(args, message):
     import subprocess
     import sys
 
-    proc = subprocess.run([sys.executable, "-m", "models.slider_crank", *args], capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-m", "exuclear.models.slider_crank", *args], capture_output=True, text=True)
     assert proc.returncode == 2
     assert message in proc.stderr
     assert "Traceback" not in proc.stderr

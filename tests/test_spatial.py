@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import exuclear
-from models.slider_crank import SliderCrankParams, build, default_settings, out_of_plane, run
+from exuclear.models.slider_crank import SliderCrankParams, build, default_settings, out_of_plane, run
 
 #: The paper's case: cr 0.9, steel on steel, no friction, two revolutions.
 PAPER = SliderCrankParams.paper()
@@ -107,7 +107,7 @@ def test_ideal_and_other_clearance_joints_match_the_redundant_formulation():
 
 
 def test_command_line(capsys):
-    from models.slider_crank import main
+    from exuclear.models.slider_crank import main
 
     assert main(["--formulation", "spatial", "--revolutions", "0.05"]) == 0
     out = capsys.readouterr().out

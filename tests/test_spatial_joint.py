@@ -364,7 +364,7 @@ def test_a_non_unit_axis_is_normalised_with_a_warning():
 
 def test_the_misaligned_shaft_loads_the_bearing_edges(tmp_path):
     # docs/physics.md section 9.5: both bearings carry the shaft on an edge slice
-    from models import misaligned_shaft
+    from exuclear.models import misaligned_shaft
 
     params = misaligned_shaft.ShaftParams.default(end_time=0.02)
     result, out = misaligned_shaft.run(params)

@@ -263,7 +263,7 @@ def test_batch_size():
 
 
 def test_ideal_slider_acceleration_matches_finite_differences():
-    from models.slider_crank import ideal_slider_acceleration
+    from exuclear.models.slider_crank import ideal_slider_acceleration
 
     r, l, w = 0.05, 0.30, 52.36
     theta = np.linspace(0.0, 2.0 * math.pi, 361)
@@ -281,7 +281,7 @@ def test_ideal_slider_acceleration_matches_finite_differences():
 
 def test_slider_crank_study_paper_case():
     """Two revolutions of the paper's case (cr 0.9, one start-up revolution)."""
-    from models.slider_crank import study
+    from exuclear.models.slider_crank import study
 
     row = study({"cr": 0.9, "startup": 1.0, "revolutions": 1.0})
     assert row["success"], row["message"]
@@ -295,7 +295,7 @@ def test_slider_crank_study_paper_case():
 
 
 def test_journal_bearing_study_energy_audit():
-    from models.journal_bearing import study
+    from exuclear.models.journal_bearing import study
 
     row = study({"cr": 0.5})
     assert row["success"] and row["impacts"] == 1

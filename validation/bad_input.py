@@ -34,8 +34,8 @@ import exudyn as exu
 from exudyn.itemInterface import MarkerBodyPosition, MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 
 DOC = os.path.join("docs", "bad_input.md")
 
@@ -62,8 +62,8 @@ def markers() -> tuple[exu.MainSystem, list]:
 
 
 def build_journal(params: JournalBearingParams) -> object:
-    """:func:`models.journal_bearing.build`, imported late."""
-    from models.journal_bearing import build
+    """:func:`exuclear.models.journal_bearing.build`, imported late."""
+    from exuclear.models.journal_bearing import build
 
     return build(params)
 
@@ -118,8 +118,8 @@ class Reply(NamedTuple):
     message: str
 
 
-_SC = "python -m models.slider_crank"
-_JB = "python -m models.journal_bearing"
+_SC = "python -m exuclear.models.slider_crank"
+_JB = "python -m exuclear.models.journal_bearing"
 
 BAD_INPUTS: tuple[BadInput, ...] = (
     # -- API: wrong types
@@ -336,7 +336,7 @@ def document(replies: Sequence[tuple[BadInput, Reply]]) -> str:
         "with status 2 and show no traceback; warnings are one line `warning: ...`.",
         "",
         f"`PAPER` is `{PAPER}` (the paper's journal and bearing); `system()` is a fresh system with a ground and",
-        "one rigid body, `(mbs, body, ground)`; `build_journal` is `models.journal_bearing.build`.",
+        "one rigid body, `(mbs, body, ground)`; `build_journal` is `exuclear.models.journal_bearing.build`.",
         "`<file>/out` is a path below a regular file (nothing can be written there). CLI replies list the",
         "warning and error lines of stderr.",
         "",

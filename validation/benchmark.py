@@ -26,8 +26,8 @@ from dataclasses import replace
 import numpy as np
 
 import exuclear
-from models import journal_bearing as jb_model
-from models import slider_crank as sc_model
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models import slider_crank as sc_model
 from validation import work_precision as wp
 
 #: SciPy solvers and tolerances searched for the fastest run at a given error.

@@ -6,7 +6,7 @@ multi-body systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) 
 587-597, restated in ``docs/physics.md`` sections 6.1 (journal-bearing impact) and
 5.2 (slider-crank with a clearance joint between rod and slider).
 
-The library (:mod:`models.journal_bearing`, :mod:`models.slider_crank`, through the
+The library (:mod:`exuclear.models.journal_bearing`, :mod:`exuclear.models.slider_crank`, through the
 Exudyn element) and the reference (:mod:`validation.reference`, which shares only the
 contact and friction laws) run the same cases:
 
@@ -53,10 +53,10 @@ import numpy as np
 
 import exuclear
 from exuclear.study import run_id, run_study
-from models import journal_bearing as jb_model
-from models import slider_crank as sc_model
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation._cli import add_workers_option
 from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
@@ -873,7 +873,7 @@ def _default_explanations(rows: Sequence[CrankRow]) -> list[str]:
     missed = {k for r in rows for k in r.failed}
     text = []
     if rows:
-        text.append("Rows at default settings use the defaults of `models.slider_crank.default_settings`, chosen "
+        text.append("Rows at default settings use the defaults of `exuclear.models.slider_crank.default_settings`, chosen "
                     "for an eccentricity error below 1 % of c at the least work (validation/work_precision.py): they "
                     "are not converged, and their converged rows show where the differences go.")
     if "ecc" in missed:
@@ -941,7 +941,7 @@ def write_report(path: str, x: CrossCheck) -> str:
         "integration, output sampling excluded.\n",
         "## Pass/fail criteria\n", criteria_md() + "\n",
         "Library settings of the journal-bearing runs: DOPRI5, steps <= 1e-7 s, rtol 1e-9, atol 1e-13 "
-        "(`models.journal_bearing.settings_for`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
+        "(`exuclear.models.journal_bearing.settings_for`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
         "penetration and the release. Slider-crank reference: "
         f"{REF_METHOD} at rtol {REF_RTOL:g}, atol {REF_ATOL:g}, outputs every {GRID_STEP:g} s from its dense "
         f"output; the library records every accepted step (output_step {EXUDYN_OUTPUT_STEP:g} s; Exudyn records at "

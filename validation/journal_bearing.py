@@ -6,7 +6,7 @@ systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-
 restated in ``docs/physics.md`` section 6.1: a 0.04 kg journal starts touching a
 fixed bearing (R_B = 10 mm, R_J = 9.9 mm) and moves into it at 0.3 m/s.
 
-Every run goes through :func:`models.journal_bearing.run`, as a run of the study runner
+Every run goes through :func:`exuclear.models.journal_bearing.run`, as a run of the study runner
 (:func:`exuclear.study.run_study`); this script only chooses the cases, draws the curves
 and writes the tables:
 
@@ -37,7 +37,7 @@ import numpy as np
 import exuclear
 from exuclear.plotting import impact_curves
 from exuclear.study import run_study
-from models.journal_bearing import ImpactResult, JournalBearingParams, run
+from exuclear.models.journal_bearing import ImpactResult, JournalBearingParams, run
 from validation._cli import add_workers_option
 from validation._tables import write_csv
 

@@ -2,8 +2,8 @@
 
 Source problem: the paper's slider-crank (docs/physics.md section 6.2; cr 0.9, steel, no
 friction, two revolutions), at other crank speeds and clearances.  Each case runs at the
-defaults of :func:`models.slider_crank.default_settings` (scaled by
-:mod:`models._defaults`) in the minimal and the redundant formulation, and is compared
+defaults of :func:`exuclear.models.slider_crank.default_settings` (scaled by
+:mod:`exuclear.models._defaults`) in the minimal and the redundant formulation, and is compared
 with the independent SciPy reference of :mod:`validation.cross_check` (DOP853 at rtol
 1e-10) on the run's own output instants: max |e - e_ref| / c, impact counts, solver time.
 The target: 1 % of c, or a note in the run saying that the defaults may not hold.
@@ -24,7 +24,7 @@ import time
 import warnings
 from dataclasses import replace
 
-from models import slider_crank as sc_model
+from exuclear.models import slider_crank as sc_model
 from validation import cross_check as cc
 from validation._tables import markdown_table, write_csv
 

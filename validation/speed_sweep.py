@@ -8,7 +8,7 @@ literature that follows it does: 101 speeds from 100 to 5000 rpm, ``cr`` 0.9 and
 ``--revolutions`` (default 10) measured.
 
 Every run goes through the study runner (:mod:`exuclear.study`) with the slider-crank's
-study function (:func:`models.slider_crank.study`), so the table is written row by row
+study function (:func:`exuclear.models.slider_crank.study`), so the table is written row by row
 and an interrupted sweep resumes where it stopped.  For each speed the diagram shows one
 point per measured revolution: the impacts in that revolution and its peak contact
 force.  A single point per speed is a periodic response with the crank's period; a

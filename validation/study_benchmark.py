@@ -2,7 +2,7 @@
 
 Source problem: example 2 of X. Wang, G. Liu, S. Ma, R. Tong, J. Mech. Sci. Technol.
 31(2) (2017) 587-597 (the paper's slider-crank with its clearance joint), as a 200-run
-study (:func:`models.slider_crank.study`): ``cr`` 0.3, 0.5, 0.7, 0.9 x 50 crank speeds
+study (:func:`exuclear.models.slider_crank.study`): ``cr`` 0.3, 0.5, 0.7, 0.9 x 50 crank speeds
 from 300 to 1280 rpm, one crank revolution each (no start-up left out).
 
 The same study runs (a) serially in this process, (b) on 2 local worker processes and

@@ -41,10 +41,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 import exuclear
-from models import journal_bearing as jb_model
-from models import slider_crank as sc_model
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation import cross_check as cc
 from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference
@@ -119,7 +119,7 @@ def crank_configs(quick: bool) -> list[Config]:
 def impact_configs(quick: bool) -> list[Config]:
     """The journal-bearing configurations."""
     rtols = (1e-6, 1e-8) if quick else (1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
-    # steps of at most 1e-7 s (models.journal_bearing.IMPACT_STEP): ~400 steps per run, so
+    # steps of at most 1e-7 s (exuclear.models.journal_bearing.IMPACT_STEP): ~400 steps per run, so
     # that the evaluation cost of the backends shows beside the fixed costs
     dopri = tuple({"method": "dopri5", "step": jb_model.IMPACT_STEP, "rtol": r, "atol": r * 1e-7} for r in rtols)
     steps = (1e-7, 2e-8) if quick else (1e-6, 3e-7, 1e-7, 3e-8, 1e-8)

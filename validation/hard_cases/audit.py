@@ -12,9 +12,9 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import exuclear
-from models import slider_crank as sc_model
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import FLYWHEEL_INERTIA
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import FLYWHEEL_INERTIA
 from validation.hard_cases.common import AUDIT_LIMIT
 
 # =======================================================================================
@@ -136,7 +136,7 @@ def audit_minimal(model: sc_model.SliderCrankModel, steps: int) -> Audit:
     """Energy audit of a minimal-coordinate slider-crank run (outputs at every step).
 
     Kinetic and potential energy of crank (its own inertia), rod and slider from
-    :func:`models.slider_crank.mechanical_energy`.  The drive work is what the flywheel gave up, ``-J_fly (omega_end^2 - omega_0^2) / 2``:
+    :func:`exuclear.models.slider_crank.mechanical_energy`.  The drive work is what the flywheel gave up, ``-J_fly (omega_end^2 - omega_0^2) / 2``:
     exact, but only to the round-off of :func:`flywheel_roundoff` (some 1e-5 J at 500
     rpm).  (The trapezoid rule on the recorded crank moment misses by 4 to 30 %: the
     moment varies by its own size within one step at an impact.)

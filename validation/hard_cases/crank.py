@@ -11,8 +11,8 @@ from typing import NamedTuple
 import numpy as np
 
 import exuclear
-from models import slider_crank as sc_model
-from models.slider_crank import SliderCrankParams
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.slider_crank import SliderCrankParams
 from validation import cross_check as cc
 from validation.hard_cases.audit import Audit, _add_body_sensors, _audit_text, _finite, audit_minimal, audit_redundant
 from validation.hard_cases.common import (

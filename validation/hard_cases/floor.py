@@ -6,10 +6,10 @@ import time
 from dataclasses import dataclass
 
 import exuclear
-from models import journal_bearing as jb_model
-from models import slider_crank as sc_model
-from models.journal_bearing import JournalBearingParams
-from models.slider_crank import SliderCrankParams
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models import slider_crank as sc_model
+from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation.hard_cases.common import DROPPED_TIME, QUICK_REVOLUTIONS, REVOLUTIONS, SLOW_ATOL, SLOW_IMPACT_TIME, SLOW_RTOL, SLOW_STEP
 from validation.hard_cases.journal import JournalRun, final_error, resting_params, run_journal, settle_time
 

@@ -10,8 +10,8 @@ from typing import NamedTuple
 import numpy as np
 
 import exuclear
-from models import journal_bearing as jb_model
-from models.journal_bearing import JournalBearingParams
+from exuclear.models import journal_bearing as jb_model
+from exuclear.models.journal_bearing import JournalBearingParams
 from validation import cross_check as cc
 from validation.hard_cases.audit import Audit, _finite, audit_journal, static_penetration, step_load_penetration
 from validation.hard_cases.common import (

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
-from models.journal_bearing import JournalBearingParams
+from exuclear.models.journal_bearing import JournalBearingParams
 
 from ._contact import build_laws, gap
 

@@ -59,7 +59,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from models.slider_crank import SliderCrankParams
+from exuclear.models.slider_crank import SliderCrankParams
 
 from ._contact import Laws, build_laws, contact_kinematics, gap, journal_loads
 

@@ -6,7 +6,7 @@ systems with revolute clearance joint", J. Mech. Sci. Technol. 31(2) (2017) 587-
 restated in ``docs/physics.md`` section 6.2: a crank turning at 500 rpm drives a
 slider through a connecting rod; the rod-slider joint has a radial clearance of 0.1 mm.
 
-Every run goes through :mod:`models.slider_crank`; this script chooses the cases,
+Every run goes through :mod:`exuclear.models.slider_crank`; this script chooses the cases,
 measures them against the ideal mechanism, draws the figures and writes the report:
 
 - restitution sweep: cr = 0.3, 0.5, 0.7, 0.9, steel journal and bearing (Wang-Liu law);

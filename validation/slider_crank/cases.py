@@ -10,7 +10,7 @@ import numpy as np
 
 import exuclear
 from exuclear.study import run_id, run_study
-from models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, run
+from exuclear.models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, run
 
 DEFAULT_OUT = os.path.join("results", "slider_crank")
 
@@ -200,7 +200,7 @@ def _split(values: dict[str, object]) -> tuple[SliderCrankParams, exuclear.Solve
 
 def run_case(values: dict[str, object]) -> dict[str, object]:
     """Study function of one run (:func:`case_values`): the run's summary and its outputs
-    as arrays, ``columns.<name>`` (:data:`models.slider_crank.COLUMNS`), or with
+    as arrays, ``columns.<name>`` (:data:`exuclear.models.slider_crank.COLUMNS`), or with
     ``every_step`` ``out.<name>``: the joint's own outputs (``v0``, slip, forces), which
     :class:`SliderCrankResult` does not carry."""
     params, settings, every_step = _split(values)

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 
 import exuclear
-from models.slider_crank import SliderCrankParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation._tables import markdown_table
 from validation.slider_crank.cases import (
     BAND,

@@ -11,7 +11,7 @@ import os
 import sys
 import time
 
-from models.slider_crank import SliderCrankParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation._cli import add_workers_option
 from validation.slider_crank.cases import DEFAULT_OUT, MIN_REVOLUTIONS, Runner, ideal_params, paper_sweeps
 from validation.slider_crank.diagnostics import first_runs, run_diagnostics, run_sweep, sweep_lags

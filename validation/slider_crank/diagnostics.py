@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import exuclear
-from models.slider_crank import SliderCrankParams, SliderCrankResult
+from exuclear.models.slider_crank import SliderCrankParams, SliderCrankResult
 from validation.slider_crank.cases import TOLERANCE_LADDER, Runner, Sweep, Variant, case_values, describe, ideal_params
 from validation.slider_crank.metrics import (
     CaseMetrics,

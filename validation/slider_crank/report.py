@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from models.slider_crank import SliderCrankParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation._tables import markdown_table
 from validation.slider_crank.cases import ATOL, BAND, DEAD_WINDOW, RTOL, STARTUP, Runner, Sweep
 from validation.slider_crank.claims import (

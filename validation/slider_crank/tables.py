@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from models.slider_crank import SliderCrankParams
+from exuclear.models.slider_crank import SliderCrankParams
 from validation._tables import markdown_table
 from validation.slider_crank.cases import MATERIAL_CR, STARTUP, Sweep
 from validation.slider_crank.diagnostics import Diagnostics, SweepRows
