@@ -1,4 +1,4 @@
-"""What the command lines of models/ share: one-line warnings and errors, no tracebacks."""
+"""What the command lines of the scenes (exuclear.models) share: one-line warnings and errors, no tracebacks."""
 from __future__ import annotations
 
 import argparse

@@ -22,12 +22,14 @@ from __future__ import annotations
 
 import math
 
-from exuclear import ClearanceJoint
+from exuclear.joint import ClearanceJoint
 from exuclear.settings import METHODS
 from exuclear.timescales import STEPS_PER_CONTACT_PERIOD, contact_period
 
-#: The paper's case, where the ``*_DEFAULTS`` were measured: crank speed [rad/s], clearance [m].
-PAPER_CRANK_SPEED = 500.0 * math.pi / 30.0
+#: The paper's case (Wang et al. 2017, example 2), where the ``*_DEFAULTS`` were measured:
+#: crank speed [rpm] and [rad/s], clearance [m].  The scenes take them from here.
+PAPER_RPM = 500.0
+PAPER_CRANK_SPEED = PAPER_RPM * math.pi / 30.0
 PAPER_CLEARANCE = 1e-4
 #: Exponent of the speed ratio in DOPRI5's relative tolerance (module docstring).
 RTOL_SPEED_EXPONENT = 3
@@ -36,7 +38,7 @@ ATOL_PER_CLEARANCE = 1e-6
 #: Impact steps per largest step at least (module docstring).
 IMPACT_STEPS_PER_STEP = 20
 #: Crank speeds [rad/s] and clearances [m] the scaled defaults were checked on.
-CHECKED_SPEEDS = (500.0 * math.pi / 30.0, 5000.0 * math.pi / 30.0)
+CHECKED_SPEEDS = (PAPER_CRANK_SPEED, 5000.0 * math.pi / 30.0)
 CHECKED_CLEARANCES = (5e-5, 5e-4)
 #: Above this crank speed [rad/s] the implicit defaults reach only ~1 % of c (1.07e-2 c
 #: measured at 5000 rpm; 2.3e-3 c at 2000 rpm).

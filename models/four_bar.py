@@ -22,7 +22,8 @@ The four-bar is the textbook scene where clearance-joint motion turns chaotic: a
 a few start-up impacts, runs at different steps follow different impact sequences
 (see :func:`exuclear.check_convergence` and ``--check-convergence``).
 
-Run ``python -m exuclear.models.four_bar --help`` for the command line.
+Run ``python -m exuclear.models.four_bar --help`` for the command line: one option per
+:class:`FourBarParams` field, the crank speed in rpm and the solver settings.
 """
 from __future__ import annotations
 
@@ -51,9 +52,27 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
+from exuclear import convergence as _convergence
+from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
+from exuclear.engine import BACKENDS, DEFAULT_BACKEND
+from exuclear.materials import MATERIALS
+from exuclear.settings import METHODS
+
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_file, one_line_warnings
 from ._cli import write_csv as _write_columns
+from ._params import (
+    add_param_options,
+    changes_from_args,
+    check_fields,
+    nonnegative,
+    nonzero,
+    one_of,
+    optional,
+    param,
+    positive,
+    real,
+)
+from .scene import Scene
 
 #: Output columns of a run (SI units, angles in degrees), in CSV order.
 COLUMNS = ("time", "crank_angle", "coupler_angle", "rocker_angle", "rocker_rate", "crank_moment",
@@ -97,31 +116,34 @@ class FourBarParams:
         Penetration [m] beyond which a run stops; None: the library's default bound.
     """
 
-    crank_length: float
-    coupler_length: float
-    rocker_length: float
-    ground_length: float
-    crank_mass: float
-    coupler_mass: float
-    rocker_mass: float
-    crank_inertia: float
-    coupler_inertia: float
-    rocker_inertia: float
-    crank_speed: float
-    revolutions: float
-    gravity: float
-    bearing_radius: float
-    clearance: float
-    bearing_length: float
-    law: str
-    cr: float
-    journal_material: str
-    bearing_material: str
-    friction: str
-    crank_angle0: float = 0.0
-    v_min: float = exuclear.V_MIN_DEFAULT
-    backend: str = exuclear.DEFAULT_BACKEND
-    max_penetration: float | None = None
+    crank_length: float = field(metadata=param("crank length a, O2-A [m]", positive))
+    coupler_length: float = field(metadata=param("coupler length b, A-B [m]", positive))
+    rocker_length: float = field(metadata=param("rocker length c, O4-B [m]", positive))
+    ground_length: float = field(metadata=param("ground length d, O2-O4 [m]", positive))
+    crank_mass: float = field(metadata=param("crank mass [kg]", positive))
+    coupler_mass: float = field(metadata=param("coupler mass [kg]", positive))
+    rocker_mass: float = field(metadata=param("rocker mass [kg]", positive))
+    crank_inertia: float = field(metadata=param("crank inertia about its centre of mass [kg m^2]", positive))
+    coupler_inertia: float = field(metadata=param("coupler inertia about its centre of mass [kg m^2]", positive))
+    rocker_inertia: float = field(metadata=param("rocker inertia about its centre of mass [kg m^2]", positive))
+    crank_speed: float = field(metadata=param(
+        "crank speed [rad/s]", nonzero("positive counter-clockwise, negative clockwise"), cli=False))  # --rpm
+    revolutions: float = field(metadata=param("crank revolutions", positive))
+    gravity: float = field(metadata=param("gravity along -Y [m/s^2]", nonnegative))
+    bearing_radius: float = field(metadata=param("bearing radius R_B at B [m]", positive))
+    clearance: float = field(metadata=param("radial clearance [m]", positive))
+    bearing_length: float = field(metadata=param("bearing length [m]", option="length"))
+    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
+    cr: float = field(metadata=param("coefficient of restitution", cli=False))
+    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
+    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
+    friction: str = field(metadata=param("none | coulomb:MU | paper"))
+    crank_angle0: float = field(default=0.0, metadata=param("crank angle at t = 0, from O2 towards O4 [rad]", real))
+    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
+        "force evaluation of the clearance joint", one_of(sorted(BACKENDS)), choices=BACKENDS))
+    max_penetration: float | None = field(default=None, metadata=param(
+        "penetration [m] beyond which the run stops (default: the library's bound)", optional(positive)))
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -151,25 +173,14 @@ class FourBarParams:
         return replace(base, **changes)
 
     def __post_init__(self) -> None:
-        check = exuclear._checks
-        lengths = {k: check.check_positive(k, getattr(self, k))
-                   for k in ("crank_length", "coupler_length", "rocker_length", "ground_length")}
-        for name in ("crank_mass", "coupler_mass", "rocker_mass", "crank_inertia", "coupler_inertia",
-                     "rocker_inertia", "revolutions"):
-            check.check_positive(name, getattr(self, name))
-        if check.check_real("crank_speed", self.crank_speed) == 0.0:
-            raise ValueError("`crank_speed` must be non-zero (positive counter-clockwise, negative clockwise), got 0")
-        check.check_real("crank_angle0", self.crank_angle0)
-        check.check_nonnegative("gravity", self.gravity)
+        check_fields(self)
+        lengths = {k: float(getattr(self, k)) for k in ("crank_length", "coupler_length", "rocker_length",
+                                                        "ground_length")}
         s, l = min(lengths.values()), max(lengths.values())
         if s != lengths["crank_length"] or s + l >= sum(lengths.values()) - s - l:
             raise ValueError(f"the link lengths {lengths} do not make a crank-rocker: the crank must be the shortest "
                              "link and shortest + longest < sum of the other two (Grashof)")
-        if self.max_penetration is not None:
-            check.check_positive("max_penetration", self.max_penetration)
-        check.check_choice("backend", self.backend, exuclear.BACKENDS)
-        if check.check_positive("clearance", self.clearance) >= check.check_positive("bearing_radius",
-                                                                                   self.bearing_radius):
+        if self.clearance >= self.bearing_radius:
             raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
                              f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
         joint = exuclear.make_joint(
@@ -214,20 +225,10 @@ def ideal_configuration(p: FourBarParams, theta: float, omega: float) -> dict[st
     return {"crank": (theta, omega), "coupler": (phi3, float(w3)), "rocker": (phi4, float(w4))}
 
 
-@dataclass
-class FourBarModel:
-    """An assembled four-bar: the system and what is needed to read its results."""
-
-    params: FourBarParams
-    mbs: exu.MainSystem
-    joint: exuclear.ClearanceJointHandle  # the clearance joint at B
-    sensors: dict[str, int]
-    build_time: float
-
-
-def build(params: FourBarParams) -> FourBarModel:
+def build(params: FourBarParams) -> Scene:
     """Assemble the four-bar in Exudyn, in the ideal mechanism's configuration and velocities
-    at ``crank_angle0`` (the journal centred in its bearing)."""
+    at ``crank_angle0`` (the journal centred in its bearing); its one clearance joint is
+    ``"B"`` (``Scene.joint``)."""
     p = params
     start = time.perf_counter()
     mbs = exu.SystemContainer().AddSystem()
@@ -288,7 +289,7 @@ def build(params: FourBarParams) -> FourBarModel:
                                              **store)),
     }
     mbs.Assemble()
-    return FourBarModel(p, mbs, handle, sensors, time.perf_counter() - start)
+    return Scene(p, mbs, {"B": handle}, sensors, build_time=time.perf_counter() - start, main_joint="B")
 
 
 def default_settings(params: FourBarParams) -> SolverSettings:
@@ -308,7 +309,7 @@ class FourBarResult:
     steps: int
     rejected: int
     onset_times: np.ndarray  # contact onsets [s], found at accepted steps
-    record: exuclear.RunRecord  # what exuclear.check_convergence compares
+    record: _convergence.RunRecord  # what exuclear.check_convergence compares
 
     @property
     def impacts(self) -> int:
@@ -319,7 +320,7 @@ class FourBarResult:
         return float(np.nanmax(self.columns["contact_force"]))
 
 
-def columns(model: FourBarModel) -> dict[str, np.ndarray]:
+def columns(model: Scene) -> dict[str, np.ndarray]:
     """The recorded :data:`COLUMNS` of a finished run (angles in degrees, unwrapped)."""
     mbs, s = model.mbs, model.sensors
 
@@ -346,37 +347,30 @@ def run(params: FourBarParams, settings: SolverSettings | None = None) -> FourBa
     model = build(params)
     sim = exuclear.simulate(model.mbs, settings or default_settings(params))
     cols = columns(model)
-    record = exuclear.RunRecord.from_handles(sim, {"B": model.joint},
+    record = _convergence.RunRecord.from_handles(sim, {"B": model.joint},
                                              {k: (cols["time"], cols[k]) for k in SIGNALS})
     return FourBarResult(cols, sim.success, sim.message, sim.wall_time, model.build_time, sim.steps, sim.rejected,
                          np.asarray(model.joint.history.onset_times), record)
 
 
 def check_convergence(params: FourBarParams, settings: SolverSettings | None = None,
-                      **options: object) -> exuclear.ConvergenceResult:
+                      **options: object) -> _convergence.ConvergenceResult:
     """:func:`exuclear.check_convergence` of this scene at ``settings`` (default
     :func:`default_settings`); ``options`` go to it (``factor``, ``bound``, ...)."""
-    return exuclear.check_convergence(lambda s: run(params, s).record, settings or default_settings(params),
-                                      **options)
+    return _convergence.check_convergence(lambda s: run(params, s).record, settings or default_settings(params),
+                                          **options)
 
 
 def _parser() -> argparse.ArgumentParser:
+    """The command line: one option per :class:`FourBarParams` field; defaults
+    :meth:`FourBarParams.crank_rocker`."""
     p = FourBarParams.crank_rocker()
     ap = OneLineParser(prog="python -m exuclear.models.four_bar", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
-    materials = ", ".join(exuclear.MATERIALS)
-    ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
-    ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
-    ap.add_argument("--friction", default=p.friction, help="none | coulomb:MU | paper (default %(default)s)")
-    ap.add_argument("--clearance", type=float, default=p.clearance, help="radial clearance [m] (default %(default)s)")
-    ap.add_argument("--length", type=float, default=p.bearing_length, help="bearing length [m] (default %(default)s)")
+    add_param_options(ap, p)
     ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
                     help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
-    ap.add_argument("--revolutions", type=float, default=p.revolutions, help="crank revolutions (default %(default)s)")
-    ap.add_argument("--gravity", type=float, default=p.gravity, help="gravity along -Y [m/s^2] (default %(default)s)")
-    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="force evaluation of the clearance joint (default %(default)s)")
-    ap.add_argument("--method", choices=[m for m, (_, explicit, _) in exuclear.METHODS.items() if not explicit],
+    ap.add_argument("--method", choices=[m for m, (_, explicit, _) in METHODS.items() if not explicit],
                     default=DEFAULT_SETTINGS["method"],
                     help="implicit solver (the joints are constraints) (default %(default)s)")
     ap.add_argument("--step", type=float, default=DEFAULT_SETTINGS["step"],
@@ -384,8 +378,6 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--impact-step", type=float, default=DEFAULT_SETTINGS["impact_step"],
                     help="step from each contact onset [s]; 0: fixed steps of --step (default %(default)s)")
     ap.add_argument("--dt-out", type=float, default=1e-5, help="output interval [s] (default %(default)s)")
-    ap.add_argument("--max-penetration", type=float, metavar="M",
-                    help="penetration [m] beyond which the run stops (default: the library's bound)")
     ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
     ap.add_argument("--check-convergence", action="store_true",
                     help="run again at a tighter step and print what agrees with it, and over which horizon "
@@ -400,14 +392,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
-        if exuclear._checks.check_real("rpm", args.rpm) == 0.0:
-            raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
-        params = FourBarParams.crank_rocker(
-            law=law, cr=cr, journal_material=args.journal, bearing_material=args.bearing, friction=args.friction,
-            clearance=args.clearance, bearing_length=args.length, crank_speed=args.rpm * math.pi / 30.0,
-            revolutions=args.revolutions, gravity=args.gravity, backend=args.backend,
-            max_penetration=args.max_penetration)
-        impact_step = exuclear._checks.check_nonnegative("--impact-step", args.impact_step) or None
+        rpm = nonzero("negative for a clockwise crank")("rpm", args.rpm)
+        params = FourBarParams.crank_rocker(**changes_from_args(args, FourBarParams), law=law, cr=cr,
+                                            crank_speed=rpm * math.pi / 30.0)
+        impact_step = nonnegative("--impact-step", args.impact_step) or None
         settings = SolverSettings(end_time=params.end_time, method=args.method, step=args.step,
                                   impact_step=impact_step, output_step=args.dt_out, verbose=int(args.verbose))
         if args.csv is not None:

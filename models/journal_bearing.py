@@ -19,7 +19,8 @@ drawn lying on its side, "down" points at the wall) and a gap at the start
 ``v_impact = 0``) or dropped onto it from the centre (``start_gap = c``): build it with
 :func:`build` and integrate it with :func:`exuclear.simulate`.
 
-Run ``python -m exuclear.models.journal_bearing --help`` for the options.
+Run ``python -m exuclear.models.journal_bearing --help`` for the options: one per
+:class:`JournalBearingParams` field of the paper's scene, and the outputs.
 """
 from __future__ import annotations
 
@@ -27,7 +28,8 @@ import argparse
 import json
 import math
 import sys
-from dataclasses import asdict, dataclass, replace
+import time
+from dataclasses import asdict, dataclass, field, replace
 
 import exudyn as exu
 import numpy as np
@@ -35,8 +37,13 @@ from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigid
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
+from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
+from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
+from exuclear.materials import MATERIALS
+
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
+from ._params import add_param_options, changes_from_args, check_fields, nonnegative, param, positive
+from .scene import Scene
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
 #: impact lasts about 40 us (docs/physics.md section 8), so this samples it ~400 times.
@@ -58,27 +65,32 @@ class JournalBearingParams:
     the paper) turn the scene into a journal resting on, or dropped onto, its bearing.
     """
 
-    law: str
-    cr: float
-    journal_material: str
-    bearing_material: str
-    journal_radius: float
-    bearing_radius: float
-    length: float
-    mass: float
-    impact_velocity: float
-    v_min: float = exuclear.V_MIN_DEFAULT
-    end_time: float = DEFAULT_END_TIME
+    # the joint's physics: checked by exuclear.make_joint (joint())
+    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
+    cr: float = field(metadata=param("coefficient of restitution", cli=False))
+    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
+    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
+    journal_radius: float = field(metadata=param("R_J [m]"))
+    bearing_radius: float = field(metadata=param("R_B [m]"))
+    length: float = field(metadata=param("bearing length L [m]"))
+    mass: float = field(metadata=param("journal mass [kg]", positive))
+    impact_velocity: float = field(metadata=param("impact velocity [m/s]", nonnegative, option="velocity"))
+    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    end_time: float = field(default=DEFAULT_END_TIME, metadata=param(
+        "simulated time [s]; the journal must have left the wall by then", positive))
     #: Gravitational acceleration [m/s^2] along +X, towards the wall the journal starts
-    #: at; 0 in the paper's scene.
-    gravity: float = 0.0
+    #: at; 0 in the paper's scene (so not an option of its command line, which summarises it).
+    gravity: float = field(default=0.0, metadata=param("gravity along +X [m/s^2]", nonnegative, cli=False))
     #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
     #: c centred.
-    start_gap: float = 0.0
-    backend: str = exuclear.DEFAULT_BACKEND
+    start_gap: float = field(default=0.0, metadata=param("gap at t = 0 [m]", nonnegative, cli=False))
+    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
+        "the joint's kernel: compiled (C++) or python", choices=BACKENDS))  # checked by the library
     #: Penetration [m] beyond which a run stops; None: the library's default bound (see
     #: :func:`exuclear.add_clearance_joint`).
-    max_penetration: float | None = None
+    max_penetration: float | None = field(default=None, metadata=param(
+        "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
+        "journal radius)"))  # checked by the library
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -89,6 +101,9 @@ class JournalBearingParams:
                    impact_velocity=0.3)
         return replace(base, **changes)
 
+    def __post_init__(self) -> None:
+        check_fields(self)
+
     def joint(self) -> exuclear.ClearanceJoint:
         return exuclear.make_joint(
             journal_radius=self.journal_radius, bearing_radius=self.bearing_radius, length=self.length,
@@ -96,16 +111,13 @@ class JournalBearingParams:
             bearing_material=self.bearing_material, v_min=self.v_min)
 
 
-def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.ClearanceJointHandle, int]:
-    """Build the scene; returns the system, the joint handle and the journal's node."""
+def build(params: JournalBearingParams) -> Scene:
+    """Build the scene: its joint ``"journal-bearing"`` (``Scene.joint``) and the journal's
+    node ``nodes["journal"]``."""
+    start = time.perf_counter()
     joint = params.joint()  # checks all physical parameters before anything is built
-    check = exuclear._checks
-    check.check_positive("mass", params.mass)
-    check.check_nonnegative("impact_velocity", params.impact_velocity)
-    check.check_positive("end_time", params.end_time)
-    check.check_nonnegative("gravity", params.gravity)
     c = joint.geometry.clearance
-    gap = check.check_nonnegative("start_gap", params.start_gap)
+    gap = params.start_gap
     if gap > c * (1.0 + GAP_ROUNDOFF):
         raise ValueError(f"`start_gap` must not exceed the clearance {c:g} m (the journal starts inside the "
                          f"bearing), got {gap:g}")
@@ -124,7 +136,8 @@ def build(params: JournalBearingParams) -> tuple[exu.MainSystem, exuclear.Cleara
     handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing",
                                           backend=params.backend, max_penetration=params.max_penetration)
     mbs.Assemble()
-    return mbs, handle, int(node)
+    return Scene(params, mbs, {handle.name: handle}, nodes={"journal": int(node)},
+                 build_time=time.perf_counter() - start, main_joint=handle.name)
 
 
 @dataclass(frozen=True)
@@ -148,7 +161,7 @@ class ImpactResult:
     message: str
 
 
-def settings_for(params: JournalBearingParams) -> SolverSettings:
+def default_settings(params: JournalBearingParams) -> SolverSettings:
     """DOPRI5 with steps no longer than :data:`IMPACT_STEP`; tolerances far below the
     micrometre penetrations (atol 1e-13 m)."""
     return SolverSettings(end_time=params.end_time, method="dopri5", step=IMPACT_STEP,
@@ -164,12 +177,12 @@ def run(params: JournalBearingParams, settings: SolverSettings | None = None) ->
     if params.gravity != 0.0 or params.start_gap != 0.0:
         raise ValueError("run() summarises one impact that starts at t = 0 without gravity; for a resting or "
                          "dropped journal (`gravity`, `start_gap`) use build() and exuclear.simulate()")
-    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
-    mbs, handle, node = build(params)
-    settings = settings or settings_for(params)
-    sim = exuclear.simulate(mbs, settings)
-    out = handle.outputs()
-    v_end = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
+    positive("impact_velocity", params.impact_velocity)
+    scene = build(params)
+    settings = settings or default_settings(params)
+    sim = exuclear.simulate(scene.mbs, settings)
+    out = scene.joint.outputs()
+    v_end = scene.mbs.GetNodeOutput(scene.nodes["journal"], exu.OutputVariableType.Velocity)
     departure = -float(v_end[0])  # free flight after the impact: velocity is constant
     delta = out["penetration"]
     left = np.flatnonzero((delta[:-1] > 0.0) & (delta[1:] <= 0.0))
@@ -200,31 +213,18 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 
 
 def _parser() -> argparse.ArgumentParser:
+    """The command line: one option per :class:`JournalBearingParams` field;
+    defaults :meth:`JournalBearingParams.paper`."""
     p = JournalBearingParams.paper()
     ap = OneLineParser(prog="python -m exuclear.models.journal_bearing", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
-    ap.add_argument("--length", type=float, default=p.length, help="bearing length L [m] (default %(default)s)")
-    materials = ", ".join(exuclear.MATERIALS)
-    ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
-    ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
-    ap.add_argument("--journal-radius", type=float, default=p.journal_radius, help="R_J [m] (default %(default)s)")
-    ap.add_argument("--bearing-radius", type=float, default=p.bearing_radius, help="R_B [m] (default %(default)s)")
-    ap.add_argument("--mass", type=float, default=p.mass, help="journal mass [kg] (default %(default)s)")
-    ap.add_argument("--velocity", type=float, default=p.impact_velocity, help="impact velocity [m/s] (default %(default)s)")
-    ap.add_argument("--v-min", type=float, default=p.v_min, help="floor of v0 in the damping term [m/s] (default %(default)s)")
-    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="the joint's kernel: compiled (C++) or python (default %(default)s)")
-    ap.add_argument("--end-time", type=float, default=p.end_time,
-                    help="simulated time [s]; the journal must have left the wall by then (default %(default)s)")
+    add_param_options(ap, p)
     ap.add_argument("--dt-out", type=float, default=IMPACT_STEP / 10,
                     help="output interval [s]; the summary's peak force, peak penetration and contact duration "
                          "come from these outputs, so a coarser interval samples the impact (~40 us) coarsely "
                          "(default %(default)s)")
-    ap.add_argument("--max-penetration", type=float, metavar="M",
-                    help="penetration [m] beyond which the run stops (default: the larger of half the clearance "
-                         "and 0.1 %% of the journal radius)")
     ap.add_argument("--csv", metavar="FILE",
-                    help="write the joint's time series (columns: time, " + ", ".join(exuclear.OUTPUT_COLUMNS) + ")")
+                    help="write the joint's time series (columns: time, " + ", ".join(OUTPUT_COLUMNS) + ")")
     ap.add_argument("--json", action="store_true", help="print one JSON object instead of the summary")
     ap.add_argument("--plot", metavar="DIR", help="write force-penetration and rate-penetration plots to DIR")
     return ap
@@ -236,13 +236,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
-        params = JournalBearingParams.paper(
-            law=law, cr=cr, length=args.length, journal_material=args.journal,
-            bearing_material=args.bearing, journal_radius=args.journal_radius,
-            bearing_radius=args.bearing_radius, mass=args.mass, impact_velocity=args.velocity, v_min=args.v_min,
-            backend=args.backend, end_time=args.end_time, max_penetration=args.max_penetration)
-        settings = replace(settings_for(params),
-                           output_step=exuclear._checks.check_positive("--dt-out", args.dt_out))
+        params = JournalBearingParams.paper(**changes_from_args(args, JournalBearingParams), law=law, cr=cr)
+        settings = replace(default_settings(params), output_step=positive("--dt-out", args.dt_out))
         if args.csv is not None:
             check_output_file("--csv", args.csv)
         if args.plot is not None:
@@ -263,7 +258,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  contact duration    {result.contact_duration * 1e6:.2f} us")
         print(f"  wall time           {result.wall_time:.3f} s")
     if args.csv is not None:
-        write_csv(args.csv, out, ("time", *exuclear.OUTPUT_COLUMNS), incomplete="" if result.success else result.message)
+        write_csv(args.csv, out, ("time", *OUTPUT_COLUMNS), incomplete="" if result.success else result.message)
         print(f"wrote {args.csv}", file=sys.stderr if args.json else sys.stdout)
     if args.plot is not None:
         for path in plot([(f"{result.law}, cr = {result.cr}", out)], args.plot):
@@ -280,11 +275,9 @@ def main(argv: list[str] | None = None) -> int:
 
 #: Parameters of :func:`study` and their defaults (:meth:`JournalBearingParams.paper`):
 #: :class:`JournalBearingParams` fields of the paper's scene (no gravity, no start gap).
-STUDY_PARAMETERS = {
-    "law": "wang-liu", "cr": 0.9, "length": 15e-3, "journal_material": "steel", "bearing_material": "steel",
-    "journal_radius": 9.9e-3, "bearing_radius": 10e-3, "mass": 0.04, "impact_velocity": 0.3,
-    "v_min": exuclear.V_MIN_DEFAULT, "backend": exuclear.DEFAULT_BACKEND,
-}
+STUDY_PARAMETERS = {name: getattr(JournalBearingParams.paper(), name) for name in (
+    "law", "cr", "length", "journal_material", "bearing_material", "journal_radius", "bearing_radius", "mass",
+    "impact_velocity", "v_min", "backend")}
 
 
 def study_params(values: dict) -> JournalBearingParams:
@@ -295,8 +288,7 @@ def study_params(values: dict) -> JournalBearingParams:
         raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
     params = JournalBearingParams.paper(**{**STUDY_PARAMETERS, **values})
     params.joint()  # checks the physical parameters
-    exuclear._checks.check_positive("mass", params.mass)
-    exuclear._checks.check_positive("impact_velocity", params.impact_velocity)
+    positive("impact_velocity", params.impact_velocity)
     return params
 
 

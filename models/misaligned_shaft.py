@@ -21,12 +21,15 @@ The shaft's axial motion is held at A (``constrainAxial``), so the run is implic
 edge loads (first and last slice) and the normal force per unit length along each bearing.
 
     python -m exuclear.models.misaligned_shaft --plot out/
+
+``--help`` lists the options: one per :class:`ShaftParams` field.
 """
 from __future__ import annotations
 
 import argparse
 import sys
-from dataclasses import dataclass, replace
+import time
+from dataclasses import dataclass, field, replace
 
 import exudyn as exu
 import numpy as np
@@ -36,35 +39,50 @@ from exudyn.utilities import InertiaCylinder
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.contact import law_and_restitution
+from exuclear.engine import BACKENDS, DEFAULT_BACKEND
 
-from ._cli import OneLineParser, bad_input, check_output_dir, one_line_warnings
+from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, one_line_warnings
+from ._params import add_param_options, changes_from_args, check_fields, count, param, positive, real
+from .scene import Scene
 
 
 @dataclass(frozen=True)
 class ShaftParams:
     """The scene's parameters (SI units); :meth:`default` is the scene of the module docstring."""
 
-    journal_radius: float = 9.9e-3
-    bearing_radius: float = 10e-3
-    length: float = 15e-3
-    shaft_length: float = 0.12
-    spacing: float = 0.1
-    misalignment: float = 0.3e-3
-    speed: float = 50.0
-    law: str = "wang-liu"
-    cr: float = 0.7
-    friction: str = "coulomb:0.1"
-    slices: int = 20
-    end_time: float = 0.05
-    backend: str = exuclear.DEFAULT_BACKEND
+    # the bearings' physics: checked by exuclear.AddClearanceJoint
+    journal_radius: float = field(metadata=param("R_J [m]"))
+    bearing_radius: float = field(metadata=param("R_B of both bearings [m]"))
+    length: float = field(metadata=param("length of each bearing [m]"))
+    shaft_length: float = field(metadata=param("shaft length [m]", positive))
+    spacing: float = field(metadata=param("distance between the bearings' centres [m]", positive))
+    misalignment: float = field(metadata=param("height of bearing B above A [m]", real))
+    speed: float = field(metadata=param("shaft speed [rad/s]", real))
+    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
+    cr: float = field(metadata=param("coefficient of restitution", cli=False))
+    friction: str = field(metadata=param("friction law: none | coulomb:MU | paper"))
+    slices: int = field(metadata=param("slices per bearing", count))
+    end_time: float = field(metadata=param("simulated time [s]", positive))
+    backend: str = field(default=DEFAULT_BACKEND, metadata=param("kernel", choices=BACKENDS))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
     @classmethod
     def default(cls, **changes) -> ShaftParams:
-        return replace(cls(), **changes)
+        """The scene of the module docstring: the paper's journal-bearing geometry, 0.3 mm
+        misalignment, 50 rad/s, Wang-Liu with cr 0.7, Coulomb friction 0.1, 20 slices, 0.05 s."""
+        base = cls(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, shaft_length=0.12, spacing=0.1,
+                   misalignment=0.3e-3, speed=50.0, law="wang-liu", cr=0.7, friction="coulomb:0.1", slices=20,
+                   end_time=0.05)
+        return replace(base, **changes)
 
 
-def build(params: ShaftParams) -> tuple[exu.MainSystem, list[exuclear.ClearanceJointHandle], int]:
-    """The shaft and its two bearings; returns (system, [joint A, joint B], shaft node)."""
+def build(params: ShaftParams) -> Scene:
+    """The shaft and its two bearings: joints ``"A"`` and ``"B"``, the shaft's node
+    ``nodes["shaft"]``."""
+    start = time.perf_counter()
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.CreateGround()
     tilt = np.arctan2(params.misalignment, params.spacing)  # the line through both bearing centres
@@ -77,18 +95,18 @@ def build(params: ShaftParams) -> tuple[exu.MainSystem, list[exuclear.ClearanceJ
     physics = dict(journal_radius=params.journal_radius, bearing_radius=params.bearing_radius, length=params.length,
                    law=params.law, cr=params.cr, friction=params.friction, backend=params.backend,
                    slices=params.slices, show=False)
-    joints = []
+    joints = {}
     for name, z, y in (("A", 0.0, 0.0), ("B", params.spacing, params.misalignment)):
         # bearing centre at (0, y, z); the journal centre on the shaft's axis (the shaft's
         # reference configuration is parallel to the bearings, as the joint takes its axis from it)
         mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, y, z]))
         mj = mbs.AddMarker(MarkerBodyRigid(bodyNumber=shaft["bodyNumber"], localPosition=[0.0, 0.0, z - params.spacing / 2]))
-        joints.append(exuclear.AddClearanceJoint(mbs, [mb, mj], name=name, constrainAxial=name == "A", **physics))
+        joints[name] = exuclear.AddClearanceJoint(mbs, [mb, mj], name=name, constrainAxial=name == "A", **physics)
     mbs.Assemble()
-    return mbs, joints, shaft["nodeNumber"]
+    return Scene(params, mbs, joints, nodes={"shaft": shaft["nodeNumber"]}, build_time=time.perf_counter() - start)
 
 
-def settings_for(params: ShaftParams) -> SolverSettings:
+def default_settings(params: ShaftParams) -> SolverSettings:
     """Generalized-alpha with impact-aware steps (the axial constraint needs an implicit method)."""
     return SolverSettings(end_time=params.end_time, method="generalized-alpha", step=2e-5, impact_step=1e-6,
                           output_step=1e-4)
@@ -97,10 +115,10 @@ def settings_for(params: ShaftParams) -> SolverSettings:
 def run(params: ShaftParams, settings: SolverSettings | None = None) -> tuple[exuclear.SimulationResult, dict]:
     """Simulate; returns the result and per bearing its outputs (``"A"``, ``"B"``) and
     the slice positions ``"z"``."""
-    mbs, joints, _ = build(params)
-    result = exuclear.simulate(mbs, settings or settings_for(params))
-    out = {h.name: h.outputs() for h in joints}
-    out["z"] = joints[0].slice_positions
+    scene = build(params)
+    result = exuclear.simulate(scene.mbs, settings or default_settings(params))
+    out = {name: h.outputs() for name, h in scene.joints.items()}
+    out["z"] = scene.joints["A"].slice_positions
     return result, out
 
 
@@ -167,16 +185,12 @@ def plot(params: ShaftParams, out: dict, directory: str) -> list[str]:
 
 
 def _parser() -> argparse.ArgumentParser:
+    """The command line: one option per :class:`ShaftParams` field; defaults
+    :meth:`ShaftParams.default`."""
     p = ShaftParams.default()
     ap = OneLineParser(prog="python -m exuclear.models.misaligned_shaft", description=__doc__.split("\n")[0])
-    ap.add_argument("--misalignment", type=float, default=p.misalignment,
-                    help="height of bearing B above A [m] (default %(default)s)")
-    ap.add_argument("--speed", type=float, default=p.speed, help="shaft speed [rad/s] (default %(default)s)")
-    ap.add_argument("--slices", type=int, default=p.slices, help="slices per bearing (default %(default)s)")
-    ap.add_argument("--friction", default=p.friction, help="friction law (default %(default)s)")
-    ap.add_argument("--end-time", type=float, default=p.end_time, help="simulated time [s] (default %(default)s)")
-    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="kernel (default %(default)s)")
+    add_law_options(ap, p.law, p.cr)
+    add_param_options(ap, p)
     ap.add_argument("--plot", metavar="DIR", help="write the tilt, edge-load and force-distribution figures to DIR")
     return ap
 
@@ -185,8 +199,9 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
     try:
-        params = ShaftParams.default(misalignment=args.misalignment, speed=args.speed, slices=args.slices,
-                                     friction=args.friction, end_time=args.end_time, backend=args.backend)
+        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
+                                       args.paper_cr)
+        params = ShaftParams.default(**changes_from_args(args, ShaftParams), law=law, cr=cr)
         if args.plot is not None:
             check_output_dir("--plot", args.plot)
         result, out = run(params)

@@ -26,7 +26,9 @@ Three formulations, all assembled from Exudyn items by the library:
   ``mbs.CreatePrismaticJoint``, ``exuclear.CreateClearanceJoint``); see
   :func:`_build_spatial`.  Needs an implicit solver.
 
-Run ``python -m exuclear.models.slider_crank --help`` for the command line.
+Run ``python -m exuclear.models.slider_crank --help`` for the command line: one option per
+:class:`SliderCrankParams` field (``--crank-length``, ...), the crank speed in rpm and the
+solver settings.
 """
 from __future__ import annotations
 
@@ -60,10 +62,30 @@ from exudyn.rigidBodyUtilities import RigidBodyInertia
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
+from exuclear import convergence as _convergence
+from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
+from exuclear.engine import BACKENDS, DEFAULT_BACKEND, AccuracyWarning
+from exuclear.materials import MATERIALS
+from exuclear.settings import METHODS
+from exuclear.timescales import reduced_mass
+
 from . import _defaults
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings
 from ._cli import write_csv as _write_columns
+from ._defaults import PAPER_CLEARANCE, PAPER_CRANK_SPEED, PAPER_RPM
+from ._params import (
+    add_param_options,
+    boolean,
+    changes_from_args,
+    check_fields,
+    nonnegative,
+    nonzero,
+    one_of,
+    optional,
+    param,
+    positive,
+)
+from .scene import Scene
 
 FORMULATIONS = ("redundant", "minimal", "spatial")
 
@@ -76,12 +98,13 @@ FLYWHEEL_INERTIA = 1e6
 COLUMNS = ("time", "crank_angle", "slider_x", "slider_v", "slider_a", "contact_force", "crank_moment",
            "ecc_x", "ecc_y", "penetration", "in_contact")
 
-#: 500 rpm in rad/s (the paper's crank speed).
-PAPER_CRANK_SPEED = 500.0 * 2.0 * math.pi / 60.0
-
 #: Crank speeds above this [rad/s] (1e5 rpm) are legal but far beyond any slider-crank:
 #: a warning asks whether rpm were given where rad/s are expected, or the like.
 CRANK_SPEED_WARN = 1e5 * 2.0 * math.pi / 60.0
+
+
+#: The crank speed in rpm (command line, studies): non-zero, its sign the direction.
+RPM_RULE = nonzero("negative for a clockwise crank")
 
 
 @dataclass(frozen=True)
@@ -123,30 +146,36 @@ class SliderCrankParams:
         default None, the library's default bound.
     """
 
-    crank_length: float
-    rod_length: float
-    crank_mass: float
-    rod_mass: float
-    slider_mass: float
-    crank_inertia: float
-    rod_inertia: float
-    crank_speed: float
-    revolutions: float
-    gravity: float
-    bearing_radius: float
-    clearance: float
-    bearing_length: float
-    law: str
-    cr: float
-    journal_material: str
-    bearing_material: str
-    friction: str
-    v_min: float = exuclear.V_MIN_DEFAULT
-    ideal: bool = False
-    formulation: str = "minimal"
-    clearance_joints: tuple[str, ...] = ("B",)
-    backend: str = exuclear.DEFAULT_BACKEND
-    max_penetration: float | None = None
+    crank_length: float = field(metadata=param("crank length r [m]", positive))
+    rod_length: float = field(metadata=param("rod length l [m]", positive))
+    crank_mass: float = field(metadata=param("crank mass [kg]", positive))
+    rod_mass: float = field(metadata=param("rod mass [kg]", positive))
+    slider_mass: float = field(metadata=param("slider mass [kg]", positive))
+    crank_inertia: float = field(metadata=param("crank inertia about its centre of mass [kg m^2]", positive))
+    rod_inertia: float = field(metadata=param("rod inertia about its centre of mass [kg m^2]", positive))
+    crank_speed: float = field(metadata=param(
+        "crank speed [rad/s]", nonzero("positive counter-clockwise, negative clockwise"), cli=False))  # --rpm
+    revolutions: float = field(metadata=param("crank revolutions", positive))
+    gravity: float = field(metadata=param("gravity along -Y [m/s^2]", nonnegative))
+    bearing_radius: float = field(metadata=param("bearing radius R_B [m]", positive))
+    clearance: float = field(metadata=param("radial clearance [m]", positive))
+    bearing_length: float = field(metadata=param("bearing length [m]", option="length"))
+    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
+    cr: float = field(metadata=param("coefficient of restitution", cli=False))
+    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
+    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
+    friction: str = field(metadata=param("none | coulomb:MU | paper"))
+    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    ideal: bool = field(default=False, metadata=param("ideal revolute joints everywhere (the baseline)", boolean))
+    formulation: str = field(default="minimal", metadata=param(
+        "redundant, minimal or spatial", one_of(FORMULATIONS), cli=False))  # its own option: implied by others
+    clearance_joints: tuple[str, ...] = field(default=("B",), metadata=param(
+        "joints with clearance", cli=False))  # given as letters, --clearance-joints OAB
+    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
+        "the joint's kernel: compiled (C++) or python", one_of(sorted(BACKENDS)), choices=BACKENDS))
+    max_penetration: float | None = field(default=None, metadata=param(
+        "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
+        "journal radius)", optional(positive)))
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -159,20 +188,16 @@ class SliderCrankParams:
         """
         base = cls(crank_length=0.05, rod_length=0.30, crank_mass=0.194, rod_mass=1.062, slider_mass=0.281,
                    crank_inertia=0.194 * 0.05**2 / 12.0, rod_inertia=0.034, crank_speed=PAPER_CRANK_SPEED,
-                   revolutions=2.0, gravity=9.81, bearing_radius=10e-3, clearance=0.1e-3, bearing_length=15e-3,
+                   revolutions=2.0, gravity=9.81, bearing_radius=10e-3, clearance=PAPER_CLEARANCE,
+                   bearing_length=15e-3,
                    law="wang-liu", cr=0.9, journal_material="steel", bearing_material="steel", friction="none")
         return replace(base, **changes)
 
     def __post_init__(self) -> None:
-        check = exuclear._checks
-        for name in ("crank_length", "rod_length", "crank_mass", "rod_mass", "slider_mass", "crank_inertia",
-                     "rod_inertia", "revolutions"):
-            check.check_positive(name, getattr(self, name))
-        if check.check_real("crank_speed", self.crank_speed) == 0.0:
-            raise ValueError("`crank_speed` must be non-zero (positive counter-clockwise, negative clockwise), got 0")
-        check.check_nonnegative("gravity", self.gravity)
+        check_fields(self)
         if abs(self.crank_speed) > CRANK_SPEED_WARN:
-            check.warn_unit(f"crank speed {self.crank_speed:.3g} rad/s is above 1e5 rpm; `crank_speed` is in rad/s")
+            warnings.warn(f"crank speed {self.crank_speed:.3g} rad/s is above 1e5 rpm; `crank_speed` is in rad/s",
+                          exuclear.UnitWarning, stacklevel=3)  # at the caller of the class (or of replace())
         if self.rod_length <= self.crank_length:
             raise ValueError(f"`rod_length` must exceed `crank_length` for a full-turning crank, "
                              f"got l = {self.rod_length}, r = {self.crank_length}")
@@ -180,17 +205,9 @@ class SliderCrankParams:
             raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
         if len(set(self.clearance_joints)) != len(self.clearance_joints):
             raise ValueError(f"`clearance_joints` must name each joint once, got {self.clearance_joints!r}")
-        if self.max_penetration is not None:
-            check.check_positive("max_penetration", self.max_penetration)
-        check.check_choice("backend", self.backend, exuclear.BACKENDS)
-        if self.formulation not in FORMULATIONS:
-            raise ValueError(f"unknown `formulation` {self.formulation!r}; known: {', '.join(FORMULATIONS)}")
-        if check.check_positive("clearance", self.clearance) >= check.check_positive("bearing_radius",
-                                                                                   self.bearing_radius):
+        if self.clearance >= self.bearing_radius:
             raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
                              f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
-        if not isinstance(self.ideal, bool):
-            raise ValueError(f"`ideal` must be True or False, got {self.ideal!r}")
         joint = exuclear.make_joint(
             journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
             length=self.bearing_length,
@@ -206,22 +223,6 @@ class SliderCrankParams:
     @property
     def end_time(self) -> float:
         return 2.0 * math.pi * self.revolutions / abs(self.crank_speed)
-
-
-@dataclass
-class SliderCrankModel:
-    """An assembled slider-crank: the system and what is needed to read its results."""
-
-    params: SliderCrankParams
-    mbs: exu.MainSystem
-    joints: dict[str, exuclear.ClearanceJointHandle]  # clearance joints by name ("O", "A", "B")
-    sensors: dict[str, int]
-    build_time: float
-
-    @property
-    def joint(self) -> exuclear.ClearanceJointHandle | None:
-        """The clearance joint at B (the paper's), or None."""
-        return self.joints.get("B")
 
 
 def _initial_velocities(p: SliderCrankParams) -> tuple[float, float]:
@@ -426,7 +427,7 @@ def _build_spatial(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
     nodes = {"crank": crank["nodeNumber"], "rod": rod["nodeNumber"], "slider": slider["nodeNumber"]}
     coordinates = exu.OutputVariableType.Coordinates
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=coordinates, **store))
-               for key, node in nodes.items()}  # the crank's last column is rz, its angle (see _columns)
+               for key, node in nodes.items()}  # the crank's last column is rz, its angle (see columns)
     for key, kind in (("slider_x", exu.OutputVariableType.Position), ("slider_v", exu.OutputVariableType.Velocity),
                       ("slider_a", exu.OutputVariableType.Acceleration)):
         sensors[key] = mbs.AddSensor(SensorNode(nodeNumber=nodes["slider"], outputVariableType=kind, **store))
@@ -435,7 +436,7 @@ def _build_spatial(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
     return joints, sensors
 
 
-def out_of_plane(model: SliderCrankModel) -> dict[str, float]:
+def out_of_plane(model: Scene) -> dict[str, float]:
     """Largest out-of-plane motion of a spatial run, per body: ``{body}_z``, the largest
     ``|z|`` of its centre of mass [m], and ``{body}_tilt``, the largest ``|rx|``,
     ``|ry|`` of its Rxyz angles [rad], for ``body`` in crank, rod, slider."""
@@ -449,8 +450,9 @@ def out_of_plane(model: SliderCrankModel) -> dict[str, float]:
     return found
 
 
-def build(params: SliderCrankParams) -> SliderCrankModel:
-    """Assemble the slider-crank in Exudyn.
+def build(params: SliderCrankParams) -> Scene:
+    """Assemble the slider-crank in Exudyn: its clearance joints by name (``"O"``, ``"A"``,
+    ``"B"``; ``Scene.joint`` is B, the paper's, or None) and its sensors.
 
     Crank speed: in the redundant formulation a velocity-level coordinate constraint
     holds it exactly and its multiplier is the driving moment.  Exudyn's explicit
@@ -473,7 +475,7 @@ def build(params: SliderCrankParams) -> SliderCrankModel:
     builder = {"minimal": _build_minimal, "redundant": _build_redundant, "spatial": _build_spatial}[params.formulation]
     joints, sensors = builder(params, mbs)
     mbs.Assemble()
-    return SliderCrankModel(params, mbs, joints, sensors, time.perf_counter() - start)
+    return Scene(params, mbs, joints, sensors, build_time=time.perf_counter() - start, main_joint="B")
 
 
 #: Default settings, chosen by ``validation/work_precision.py`` as the cheapest of each
@@ -505,7 +507,7 @@ def default_settings(params: SliderCrankParams) -> SolverSettings:
 def _scaled_defaults(params: SliderCrankParams, base: dict) -> dict:
     theta = np.linspace(0.0, 2.0 * math.pi, 361)
     force = float(np.max(np.hypot(*ideal_joint_force(params, theta))))  # the load at B of the ideal mechanism
-    mass = exuclear.timescales.reduced_mass(params.rod_mass, params.slider_mass)
+    mass = reduced_mass(params.rod_mass, params.slider_mass)
     return _defaults.scaled(base, params.crank_speed, params.clearance, params.joint, mass, force)
 
 
@@ -576,7 +578,8 @@ def ideal_joint_force(params: SliderCrankParams, theta: np.ndarray) -> tuple[np.
     return fx, fy
 
 
-def _columns(model: SliderCrankModel) -> dict[str, np.ndarray]:
+def columns(model: Scene) -> dict[str, np.ndarray]:
+    """The recorded :data:`COLUMNS` of a finished run (SI units, angles in degrees)."""
     p, mbs, s = model.params, model.mbs, model.sensors
 
     def data(key: str) -> np.ndarray:
@@ -622,10 +625,10 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
         settings = default_settings(params)
         notes = tuple(accuracy_notes(params, settings))
         for note in notes:
-            warnings.warn(note, exuclear.AccuracyWarning, stacklevel=2)
+            warnings.warn(note, AccuracyWarning, stacklevel=2)
     sim = exuclear.simulate(model.mbs, settings)
     onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])  # joint B
-    return SliderCrankResult(_columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
+    return SliderCrankResult(columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
                              sim.steps, sim.rejected, onsets, notes + sim.notes)
 
 
@@ -638,31 +641,44 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", n
     _write_columns(path, columns, COLUMNS, incomplete, notes)
 
 
+#: The columns :func:`record` hands to :func:`exuclear.check_convergence` as named
+#: signals (the time histories a user of the scene reads: slider motion and the driving moment).
+SIGNALS = ("slider_x", "slider_v", "crank_moment")
+
+
+def record(params: SliderCrankParams, settings: SolverSettings) -> _convergence.RunRecord:
+    """Build and run the slider-crank and return what :func:`exuclear.check_convergence`
+    compares: every clearance joint by its name (O, A, B) and :data:`SIGNALS`."""
+    model = build(params)
+    sim = exuclear.simulate(model.mbs, settings)
+    cols = columns(model)
+    return _convergence.RunRecord.from_handles(sim, model.joints, {k: (cols["time"], cols[k]) for k in SIGNALS})
+
+
+def check_convergence(params: SliderCrankParams, settings: SolverSettings | None = None,
+                      **options: object) -> _convergence.ConvergenceResult:
+    """:func:`exuclear.check_convergence` of this scene at ``settings`` (default
+    :func:`default_settings`); ``options`` go to it (``factor``, ``bound``, ...)."""
+    return _convergence.check_convergence(lambda s: record(params, s), settings or default_settings(params), **options)
+
+
 def _parser() -> argparse.ArgumentParser:
+    """The command line: one option per :class:`SliderCrankParams` field
+    (:func:`~exuclear.models._params.add_param_options`); defaults :meth:`SliderCrankParams.paper`."""
     p = SliderCrankParams.paper()
     ap = OneLineParser(prog="python -m exuclear.models.slider_crank", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
-    materials = ", ".join(exuclear.MATERIALS)
-    ap.add_argument("--journal", default=p.journal_material, help=f"journal material: {materials} (default %(default)s)")
-    ap.add_argument("--bearing", default=p.bearing_material, help="bearing material (default %(default)s)")
-    ap.add_argument("--friction", default=p.friction, help="none | coulomb:MU | paper (default %(default)s)")
-    ap.add_argument("--clearance", type=float, default=p.clearance, help="radial clearance [m] (default %(default)s)")
-    ap.add_argument("--length", type=float, default=p.bearing_length, help="bearing length [m] (default %(default)s)")
+    add_param_options(ap, p)
     ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
                     help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
-    ap.add_argument("--revolutions", type=float, default=p.revolutions, help="crank revolutions (default %(default)s)")
-    ap.add_argument("--gravity", type=float, default=p.gravity, help="gravity along -Y [m/s^2] (default %(default)s)")
     ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
                     help="minimal (kinematic tree, DOPRI5; default), redundant (2D bodies and joints, implicit "
                          "solver; the default for --ideal and for clearance at O or A, said so in the output) or "
                          "spatial (3D bodies and joints made by Exudyn's Create functions, implicit solver)")
-    ap.add_argument("--ideal", action="store_true", help="ideal revolute joints everywhere (the baseline)")
     ap.add_argument("--clearance-joints", default="B",
                     help="joints with clearance, letters of OAB (crank-ground, crank-rod, rod-slider); "
                          "more than B needs --formulation redundant or spatial (default %(default)s)")
-    ap.add_argument("--backend", choices=list(exuclear.BACKENDS), default=p.backend,
-                    help="the joint's kernel: compiled (C++) or python (default %(default)s)")
-    ap.add_argument("--method", choices=list(exuclear.METHODS),
+    ap.add_argument("--method", choices=list(METHODS),
                     help="solver (default: per formulation); an implicit method gets the implicit default steps "
                          f"({REDUNDANT_DEFAULTS['step']:g} s, {REDUNDANT_DEFAULTS['impact_step']:g} s from each "
                          "contact onset) in either formulation unless --step is given")
@@ -675,9 +691,6 @@ def _parser() -> argparse.ArgumentParser:
                          "Impacts are counted at every accepted step whatever the interval, but the printed peak "
                          "force, the CSV and the plots see only the outputs: above 1e-5 s an impact (~40 us) is "
                          "sampled coarsely or missed (default %(default)s)")
-    ap.add_argument("--max-penetration", type=float, metavar="M",
-                    help="penetration [m] beyond which the run stops (default: the larger of half the clearance "
-                         "and 0.1 %% of the journal radius)")
     ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
     ap.add_argument("--plot", metavar="DIR", help="write the plots, with the ideal mechanism as baseline, to DIR")
     ap.add_argument("--verbose", action="store_true", help="Exudyn's progress output during the run")
@@ -692,13 +705,13 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
     # the defaults of the method's family, whatever the formulation: an implicit method at
     # the explicit default's 1e-4 s fixed step overshoots the impacts (peak force 2.4e7 N
     # on the paper's case instead of 2.1e3 N)
-    family = MINIMAL_DEFAULTS if exuclear.METHODS[method][1] else (
+    family = MINIMAL_DEFAULTS if METHODS[method][1] else (
         SPATIAL_DEFAULTS if params.formulation == "spatial" else REDUNDANT_DEFAULTS)
     base = SolverSettings(end_time=params.end_time, **_scaled_defaults(params, {**family, "method": method}))
     changes = {k: v for k, v in (("step", args.step), ("rtol", args.rtol), ("atol", args.atol)) if v is not None}
     if base.impact_step is not None and args.step is not None and args.step <= base.impact_step:
         changes["impact_step"] = None  # a step at or below the impact step: plain fixed steps
-    return replace(base, output_step=exuclear._checks.check_positive("--dt-out", args.dt_out),
+    return replace(base, output_step=positive("--dt-out", args.dt_out),
                    verbose=int(args.verbose), **changes)
 
 
@@ -720,15 +733,10 @@ def main(argv: list[str] | None = None) -> int:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
         formulation, chosen = _formulation(args)
-        if exuclear._checks.check_real("rpm", args.rpm) == 0.0:
-            raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
+        rpm = RPM_RULE("rpm", args.rpm)
         params = SliderCrankParams.paper(
-            law=law, cr=cr, journal_material=args.journal, bearing_material=args.bearing,
-            friction=args.friction, clearance=args.clearance, bearing_length=args.length,
-            crank_speed=args.rpm * math.pi / 30.0,
-            revolutions=args.revolutions, gravity=args.gravity, formulation=formulation, ideal=args.ideal,
-            clearance_joints=tuple(args.clearance_joints), backend=args.backend,
-            max_penetration=args.max_penetration)
+            **changes_from_args(args, SliderCrankParams), law=law, cr=cr, crank_speed=rpm * math.pi / 30.0,
+            formulation=formulation, clearance_joints=tuple(args.clearance_joints))
         settings = _settings(args, params)
         if args.csv is not None:
             check_output_file("--csv", args.csv)
@@ -738,7 +746,7 @@ def main(argv: list[str] | None = None) -> int:
         defaults = args.step is None and args.rtol is None and args.atol is None
         notes = tuple(accuracy_notes(params, settings)) if defaults else ()
         for note in notes:  # after the run: a model that cannot be built is refused without them
-            warnings.warn(note, exuclear.AccuracyWarning, stacklevel=1)
+            warnings.warn(note, AccuracyWarning, stacklevel=1)
     except ValueError as err:
         return bad_input(err)
     kind = "ideal joint at B" if params.ideal else (
@@ -761,9 +769,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
     if args.check_convergence:
-        from ._convergence import check_slider_crank
-
-        print(check_slider_crank(params, settings).report())
+        print(check_convergence(params, settings).report())
     if args.csv is not None:
         write_csv(args.csv, result.columns, incomplete="" if result.success else result.message, notes=notes + result.notes)
         print(f"wrote {args.csv}")
@@ -790,11 +796,15 @@ def main(argv: list[str] | None = None) -> int:
 #: with the crank speed in rpm, ``startup`` revolutions left out of the steady metrics and
 #: ``revolutions`` measured after them.  Every name but ``rpm`` and ``startup`` is a
 #: :class:`SliderCrankParams` field.
-STUDY_PARAMETERS = {
-    "cr": 0.9, "clearance": 1e-4, "rpm": 500.0, "startup": 1.0, "revolutions": 2.0, "law": "wang-liu",
-    "journal_material": "steel", "bearing_material": "steel", "friction": "none", "bearing_length": 15e-3,
-    "gravity": 9.81, "v_min": exuclear.V_MIN_DEFAULT, "formulation": "minimal", "backend": exuclear.DEFAULT_BACKEND,
-}
+def _study_defaults() -> dict:
+    paper = SliderCrankParams.paper()
+    fields = ("law", "journal_material", "bearing_material", "friction", "bearing_length", "gravity", "v_min",
+              "formulation", "backend")
+    return {"cr": paper.cr, "clearance": paper.clearance, "rpm": PAPER_RPM, "startup": 1.0,
+            "revolutions": paper.revolutions, **{name: getattr(paper, name) for name in fields}}
+
+
+STUDY_PARAMETERS = _study_defaults()
 
 #: Output interval of a study run [s]: below any step, so that every accepted step is
 #: recorded and the energy audit's trapezoid rule and the peak force see each impact.
@@ -808,11 +818,9 @@ def study_params(values: dict) -> SliderCrankParams:
     unknown = sorted(set(v) - set(STUDY_PARAMETERS))
     if unknown:
         raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
-    check = exuclear._checks
-    if check.check_real("rpm", v["rpm"]) == 0.0:
-        raise ValueError("`rpm` must be non-zero (negative for a clockwise crank), got 0")
-    check.check_nonnegative("startup", v["startup"])
-    check.check_positive("revolutions", v["revolutions"])
+    RPM_RULE("rpm", v["rpm"])
+    nonnegative("startup", v["startup"])
+    positive("revolutions", v["revolutions"])
     fields = {k: v[k] for k in STUDY_PARAMETERS if k not in ("rpm", "startup", "revolutions")}
     return SliderCrankParams.paper(**fields, crank_speed=v["rpm"] * math.pi / 30.0,
                                    revolutions=v["startup"] + v["revolutions"])
@@ -843,7 +851,7 @@ def _elastic_energy(law: exuclear.ContactLaw, delta: float) -> float:
     return 0.0 if delta <= 0.0 else quad(law.elastic_force, 0.0, delta, epsabs=0.0, epsrel=1e-12)[0]
 
 
-def mechanical_energy(model: SliderCrankModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mechanical_energy(model: Scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Kinetic plus potential energy of crank (its own inertia, not the flywheel's), rod
     and slider of a minimal-formulation run [J], from the recorded tree coordinates (crank
     angle, rod angle relative to the crank, slider x); returns ``(time, energy, crank
@@ -864,7 +872,7 @@ def mechanical_energy(model: SliderCrankModel) -> tuple[np.ndarray, np.ndarray, 
     return q[:, 0], kinetic + potential, thd
 
 
-def _energy_audit(model: SliderCrankModel) -> dict[str, float]:
+def _energy_audit(model: Scene) -> dict[str, float]:
     """Energy balance of a minimal-formulation run with outputs at every step [J].
 
     Drive work (what the flywheel gave up, ``-J_fly (w_end^2 - w_0^2) / 2``) = change of
@@ -911,7 +919,7 @@ def study(values: dict) -> dict:
     model = build(p)
     settings = replace(default_settings(p), output_step=STUDY_EVERY_STEP)
     sim = exuclear.simulate(model.mbs, settings)
-    cols = _columns(model)
+    cols = columns(model)
     t = cols["time"]
     startup = float({**STUDY_PARAMETERS, **values}["startup"])
     t_start = 2.0 * math.pi * startup / abs(p.crank_speed)

@@ -56,7 +56,7 @@ def test_ideal_joint_force_is_the_reaction_exudyn_computes():
                                         outputVariableType=sc.exu.OutputVariableType.Force))
     mbs.Assemble()
     assert exuclear.simulate(mbs, sc.default_settings(params)).success
-    cols = sc._columns(model)
+    cols = sc.columns(model)
     reaction = np.asarray(mbs.GetSensorStoredData(sensor))
     exudyn_force = np.hypot(reaction[:, 1], reaction[:, 2])
     settled = cols["time"] > 1e-3  # generalized-alpha's accelerations settle within a few steps

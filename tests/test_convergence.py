@@ -12,7 +12,7 @@ import pytest
 import exuclear
 from exuclear import ImpactRecord, JointRecord, RunRecord, SolverSettings, check_convergence, refined_settings
 from exuclear.models import four_bar
-from exuclear.models.journal_bearing import JournalBearingParams, build, settings_for
+from exuclear.models.journal_bearing import JournalBearingParams, build, default_settings
 
 C = 1e-4  # clearance of the synthetic records [m]
 
@@ -138,10 +138,10 @@ def test_journal_bearing_impact_agrees_over_the_whole_run():
     params = JournalBearingParams.paper()
 
     def model(settings):
-        mbs, handle, _ = build(params)
-        return RunRecord.from_handles(exuclear.simulate(mbs, settings), {"journal": handle})
+        scene = build(params)
+        return RunRecord.from_handles(exuclear.simulate(scene.mbs, settings), {"journal": scene.joint})
 
-    result = check_convergence(model, settings_for(params))
+    result = check_convergence(model, default_settings(params))
     j = result.joints["journal"]
     assert result.complete and result.path_agrees and j.horizon == result.end == pytest.approx(params.end_time)
     a, b = result.run.joints["journal"], result.reference.joints["journal"]

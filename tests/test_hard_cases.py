@@ -104,7 +104,7 @@ def test_every_law_but_the_elastic_one_takes_low_restitution():
 @pytest.mark.parametrize("law", LOW_CR_LAWS)
 def test_low_restitution_no_negative_force_no_nan(law):
     params = JournalBearingParams.paper(law=law, cr=0.05)
-    settings = replace(jb_model.settings_for(params), step=hc.LOW_CR_STEP, output_step=hc.LOW_CR_STEP / 10)
+    settings = replace(jb_model.default_settings(params), step=hc.LOW_CR_STEP, output_step=hc.LOW_CR_STEP / 10)
     x = hc.compare_impact(params, settings)
     assert x.library.success, x.library.message
     assert all(np.all(np.isfinite(v)) for v in x.out.values())

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import exuclear
-from exuclear.models.slider_crank import COLUMNS, SliderCrankParams, _columns, build, default_settings, mechanical_energy, run
+from exuclear.models.slider_crank import COLUMNS, SliderCrankParams, build, columns, default_settings, mechanical_energy, run
 
 PAPER = SliderCrankParams.paper()
 R, L = PAPER.crank_length, PAPER.rod_length
@@ -110,7 +110,7 @@ def _energy_terms(params: SliderCrankParams, settings: exuclear.SolverSettings) 
     model = build(params)
     result = exuclear.simulate(model.mbs, settings)
     assert result.success
-    cols, out = _columns(model), model.joint.outputs()
+    cols, out = columns(model), model.joint.outputs()
     t, energy, thd = mechanical_energy(model)
     work = np.trapezoid(cols["crank_moment"] * thd, t)
     absorbed = np.trapezoid(out["normal_force"] * out["penetration_rate"]
@@ -209,7 +209,7 @@ def test_impact_aware_steps_hold_one_percent_of_the_clearance():
     assert settings.impact_step == 1e-6
     sim = exuclear.simulate(model.mbs, settings)
     assert sim.success and minimal.success
-    red = _columns(model)
+    red = columns(model)
     t = minimal.columns["time"]
     dx = np.interp(t, red["time"], red["ecc_x"]) - minimal.columns["ecc_x"]
     dy = np.interp(t, red["time"], red["ecc_y"]) - minimal.columns["ecc_y"]

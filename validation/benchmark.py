@@ -63,11 +63,10 @@ def impact_row(repeats: int) -> tuple[str, str, str]:
     params = jb_model.JournalBearingParams.paper()
     walls = {}
     for backend in ("python", exuclear.DEFAULT_BACKEND):
-        settings = replace(jb_model.settings_for(params), step=1e-7, output_step=1e-6)
+        settings = replace(jb_model.default_settings(params), step=1e-7, output_step=1e-6)
 
         def run(backend=backend, settings=settings):
-            mbs, handle, node = jb_model.build(replace(params, backend=backend))
-            return exuclear.simulate(mbs, settings).wall_time
+            return exuclear.simulate(jb_model.build(replace(params, backend=backend)).mbs, settings).wall_time
 
         walls[backend] = _median(run, repeats)
     ratio = walls["python"] / walls[exuclear.DEFAULT_BACKEND]

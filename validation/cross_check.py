@@ -941,7 +941,7 @@ def write_report(path: str, x: CrossCheck) -> str:
         "integration, output sampling excluded.\n",
         "## Pass/fail criteria\n", criteria_md() + "\n",
         "Library settings of the journal-bearing runs: DOPRI5, steps <= 1e-7 s, rtol 1e-9, atol 1e-13 "
-        "(`exuclear.models.journal_bearing.settings_for`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
+        "(`exuclear.models.journal_bearing.default_settings`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
         "penetration and the release. Slider-crank reference: "
         f"{REF_METHOD} at rtol {REF_RTOL:g}, atol {REF_ATOL:g}, outputs every {GRID_STEP:g} s from its dense "
         f"output; the library records every accepted step (output_step {EXUDYN_OUTPUT_STEP:g} s; Exudyn records at "

@@ -230,11 +230,12 @@ def impact_point(scene: str, config: Config, point: object, params: JournalBeari
                      statistics.median(walls), walls, 0.0, r["n_rhs"], 1, r["max_force"] / f_ref - 1.0, r["success"],
                      r["message"])
     p = replace(params, backend=config.backend)
-    settings = replace(jb_model.settings_for(p), output_step=IMPACT_OUTPUT_STEP, **point)
+    settings = replace(jb_model.default_settings(p), output_step=IMPACT_OUTPUT_STEP, **point)
 
     def run_exuclear():
         start = time.perf_counter()
-        mbs, handle, node = jb_model.build(p)
+        scene = jb_model.build(p)
+        mbs, handle, node = scene.mbs, scene.joint, scene.nodes["journal"]
         build = time.perf_counter() - start
         sim = exuclear.simulate(mbs, settings)
         return sim.wall_time, (sim, mbs, handle, node, build)

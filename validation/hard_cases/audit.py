@@ -13,6 +13,7 @@ from scipy.optimize import brentq
 
 import exuclear
 from exuclear.models import slider_crank as sc_model
+from exuclear.models.scene import Scene
 from exuclear.models.journal_bearing import JournalBearingParams
 from exuclear.models.slider_crank import FLYWHEEL_INERTIA
 from validation.hard_cases.common import AUDIT_LIMIT
@@ -132,7 +133,7 @@ def flywheel_roundoff(omega: float, steps: int) -> float:
     return 4.0 * FLYWHEEL_INERTIA * abs(omega) * float(np.spacing(abs(omega))) / 2.0 * math.sqrt(steps)
 
 
-def audit_minimal(model: sc_model.SliderCrankModel, steps: int) -> Audit:
+def audit_minimal(model: Scene, steps: int) -> Audit:
     """Energy audit of a minimal-coordinate slider-crank run (outputs at every step).
 
     Kinetic and potential energy of crank (its own inertia), rod and slider from
@@ -148,7 +149,7 @@ def audit_minimal(model: sc_model.SliderCrankModel, steps: int) -> Audit:
                   floor=flywheel_roundoff(p.crank_speed, steps))
 
 
-def _add_body_sensors(model: sc_model.SliderCrankModel) -> dict[str, tuple[int, int]]:
+def _add_body_sensors(model: Scene) -> dict[str, tuple[int, int]]:
     """Position and velocity sensors (x, y, phi) of crank, rod and slider of a redundant model.
 
     Crank and slider nodes are those of the model's own sensors; the rod's node is the
@@ -169,7 +170,7 @@ def _add_body_sensors(model: sc_model.SliderCrankModel) -> dict[str, tuple[int, 
     return sensors
 
 
-def audit_redundant(model: sc_model.SliderCrankModel, sensors: dict[str, tuple[int, int]]) -> Audit:
+def audit_redundant(model: Scene, sensors: dict[str, tuple[int, int]]) -> Audit:
     """Energy audit of a redundant-coordinate slider-crank run (outputs at every step).
 
     Bodies' energies from their node sensors (:func:`_add_body_sensors`): the nodes sit

@@ -42,7 +42,7 @@ LOW_CRS = (0.05, 0.1)
 #: Largest step of the low-restitution impacts [s].  The library reads its peak force
 #: at accepted steps; at low cr the pulse is sharper than the sine-like one behind the
 #: cross-check's 1e-4 bound (Flores at cr 0.05, D = 30: 2e-4 low at the 1e-7 s steps of
-#: :func:`exuclear.models.journal_bearing.settings_for`), so the steps are 5 times shorter here,
+#: :func:`exuclear.models.journal_bearing.default_settings`), so the steps are 5 times shorter here,
 #: which cuts the sampling error 25-fold.
 LOW_CR_STEP = 2e-8
 #: Polymer journal of the soft-material case (the issue): E = 3 GPa, nu = 0.4.

@@ -12,6 +12,7 @@ import numpy as np
 
 import exuclear
 from exuclear.models import slider_crank as sc_model
+from exuclear.models.scene import Scene
 from exuclear.models.slider_crank import SliderCrankParams
 from validation import cross_check as cc
 from validation.hard_cases.audit import Audit, _add_body_sensors, _audit_text, _finite, audit_minimal, audit_redundant
@@ -41,7 +42,7 @@ def _with_horizon(params: SliderCrankParams, seconds: float) -> SliderCrankParam
 class CrankRun(NamedTuple):
     """A slider-crank run at the library's default settings, outputs at every step."""
 
-    model: sc_model.SliderCrankModel
+    model: Scene
     sim: exuclear.SimulationResult
     audit: Audit
     wall: float

@@ -65,7 +65,8 @@ def resting_params(start_gap: float = 0.0, v_min: float = exuclear.V_MIN_DEFAULT
 def run_journal(params: JournalBearingParams) -> JournalRun:
     """Build and integrate the journal under gravity; outputs at every step."""
     start = time.perf_counter()
-    mbs, handle, _ = jb_model.build(params)
+    scene = jb_model.build(params)
+    mbs, handle = scene.mbs, scene.joint
     settings = exuclear.SolverSettings(end_time=params.end_time, method="dopri5", step=RESTING_STEP, rtol=RESTING_RTOL,
                                        atol=RESTING_ATOL, output_step=EVERY_STEP)
     sim = exuclear.simulate(mbs, settings)
@@ -184,7 +185,7 @@ def case_slow_impact(quick: bool) -> Outcome:
 def low_restitution_case(law: str, cr: float) -> Callable[[bool], Outcome]:
     def run(quick: bool) -> Outcome:
         params = JournalBearingParams.paper(law=law, cr=cr)
-        settings = replace(jb_model.settings_for(params), step=LOW_CR_STEP, output_step=LOW_CR_STEP / 10)
+        settings = replace(jb_model.default_settings(params), step=LOW_CR_STEP, output_step=LOW_CR_STEP / 10)
         x = compare_impact(params, settings)
         passed, problems = _impact_checks(x, tuple(c.key for c in cc.JB_CRITERIA))
         worst = max(abs(v) for v in x.errors.values())
