@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 import warnings
@@ -74,6 +75,13 @@ def write_csv(path: str, columns: Mapping[str, np.ndarray], names: Sequence[str]
     comments += [f"# NOTE: {' '.join(note.split())}" for note in notes]
     header = "\n".join([*comments, ",".join(names)])
     np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
+
+
+def add_rpm_option(ap: argparse.ArgumentParser, crank_speed: float) -> None:
+    """``--rpm``: the crank speed of a scene in rpm, defaulting to its ``crank_speed`` [rad/s]
+    (:func:`exuclear.models._params.crank_speed_from_rpm` reads it back)."""
+    ap.add_argument("--rpm", type=float, default=crank_speed * 30.0 / math.pi,
+                    help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
 
 
 def add_law_options(ap: argparse.ArgumentParser, law: str, cr: float) -> None:

@@ -61,6 +61,12 @@ def nonzero(rule: str) -> Check:
     return check
 
 
+def crank_speed_from_rpm(name: str, rpm: object) -> float:
+    """A crank speed given in rpm (command lines, studies) in rad/s; ``ValueError`` naming
+    ``name`` unless it is a real number other than 0 (negative: a clockwise crank)."""
+    return nonzero("negative for a clockwise crank")(name, rpm) * math.pi / 30.0
+
+
 def optional(rule: Check) -> Check:
     """None, or a value that obeys ``rule``."""
 

@@ -58,12 +58,13 @@ from exuclear.engine import BACKENDS, DEFAULT_BACKEND
 from exuclear.materials import MATERIALS
 from exuclear.settings import METHODS
 
-from ._cli import OneLineParser, add_law_options, bad_input, check_output_file, one_line_warnings
+from ._cli import OneLineParser, add_law_options, add_rpm_option, bad_input, check_output_file, one_line_warnings
 from ._cli import write_csv as _write_columns
 from ._params import (
     add_param_options,
     changes_from_args,
     check_fields,
+    crank_speed_from_rpm,
     nonnegative,
     nonzero,
     one_of,
@@ -368,8 +369,7 @@ def _parser() -> argparse.ArgumentParser:
     ap = OneLineParser(prog="python -m exuclear.models.four_bar", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
     add_param_options(ap, p)
-    ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
-                    help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
+    add_rpm_option(ap, p.crank_speed)
     ap.add_argument("--method", choices=[m for m, (_, explicit, _) in METHODS.items() if not explicit],
                     default=DEFAULT_SETTINGS["method"],
                     help="implicit solver (the joints are constraints) (default %(default)s)")
@@ -392,9 +392,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
-        rpm = nonzero("negative for a clockwise crank")("rpm", args.rpm)
         params = FourBarParams.crank_rocker(**changes_from_args(args, FourBarParams), law=law, cr=cr,
-                                            crank_speed=rpm * math.pi / 30.0)
+                                            crank_speed=crank_speed_from_rpm("rpm", args.rpm))
         impact_step = nonnegative("--impact-step", args.impact_step) or None
         settings = SolverSettings(end_time=params.end_time, method=args.method, step=args.step,
                                   impact_step=impact_step, output_step=args.dt_out, verbose=int(args.verbose))

@@ -70,7 +70,15 @@ from exuclear.settings import METHODS
 from exuclear.timescales import reduced_mass
 
 from . import _defaults
-from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings
+from ._cli import (
+    OneLineParser,
+    add_law_options,
+    add_rpm_option,
+    bad_input,
+    check_output_dir,
+    check_output_file,
+    one_line_warnings,
+)
 from ._cli import write_csv as _write_columns
 from ._defaults import PAPER_CLEARANCE, PAPER_CRANK_SPEED, PAPER_RPM
 from ._params import (
@@ -78,6 +86,7 @@ from ._params import (
     boolean,
     changes_from_args,
     check_fields,
+    crank_speed_from_rpm,
     nonnegative,
     nonzero,
     one_of,
@@ -101,10 +110,6 @@ COLUMNS = ("time", "crank_angle", "slider_x", "slider_v", "slider_a", "contact_f
 #: Crank speeds above this [rad/s] (1e5 rpm) are legal but far beyond any slider-crank:
 #: a warning asks whether rpm were given where rad/s are expected, or the like.
 CRANK_SPEED_WARN = 1e5 * 2.0 * math.pi / 60.0
-
-
-#: The crank speed in rpm (command line, studies): non-zero, its sign the direction.
-RPM_RULE = nonzero("negative for a clockwise crank")
 
 
 @dataclass(frozen=True)
@@ -669,8 +674,7 @@ def _parser() -> argparse.ArgumentParser:
     ap = OneLineParser(prog="python -m exuclear.models.slider_crank", description=__doc__.split("\n")[0])
     add_law_options(ap, p.law, p.cr)
     add_param_options(ap, p)
-    ap.add_argument("--rpm", type=float, default=p.crank_speed * 30.0 / math.pi,
-                    help="crank speed [rpm], negative for a clockwise crank (default %(default).0f)")
+    add_rpm_option(ap, p.crank_speed)
     ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
                     help="minimal (kinematic tree, DOPRI5; default), redundant (2D bodies and joints, implicit "
                          "solver; the default for --ideal and for clearance at O or A, said so in the output) or "
@@ -733,9 +737,8 @@ def main(argv: list[str] | None = None) -> int:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
         formulation, chosen = _formulation(args)
-        rpm = RPM_RULE("rpm", args.rpm)
         params = SliderCrankParams.paper(
-            **changes_from_args(args, SliderCrankParams), law=law, cr=cr, crank_speed=rpm * math.pi / 30.0,
+            **changes_from_args(args, SliderCrankParams), law=law, cr=cr, crank_speed=crank_speed_from_rpm("rpm", args.rpm),
             formulation=formulation, clearance_joints=tuple(args.clearance_joints))
         settings = _settings(args, params)
         if args.csv is not None:
@@ -818,11 +821,11 @@ def study_params(values: dict) -> SliderCrankParams:
     unknown = sorted(set(v) - set(STUDY_PARAMETERS))
     if unknown:
         raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
-    RPM_RULE("rpm", v["rpm"])
+    crank_speed = crank_speed_from_rpm("rpm", v["rpm"])
     nonnegative("startup", v["startup"])
     positive("revolutions", v["revolutions"])
     fields = {k: v[k] for k in STUDY_PARAMETERS if k not in ("rpm", "startup", "revolutions")}
-    return SliderCrankParams.paper(**fields, crank_speed=v["rpm"] * math.pi / 30.0,
+    return SliderCrankParams.paper(**fields, crank_speed=crank_speed,
                                    revolutions=v["startup"] + v["revolutions"])
 
 

@@ -52,11 +52,11 @@ from typing import NamedTuple
 import numpy as np
 
 import exuclear
-from exuclear.study import run_id, run_study
 from exuclear.models import journal_bearing as jb_model
 from exuclear.models import slider_crank as sc_model
 from exuclear.models.journal_bearing import JournalBearingParams
 from exuclear.models.slider_crank import SliderCrankParams
+from exuclear.study import run_id, run_study
 from validation._cli import add_workers_option
 from validation._tables import markdown_table, write_csv
 from validation.reference import journal_bearing as jb_reference

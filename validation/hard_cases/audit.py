@@ -13,8 +13,8 @@ from scipy.optimize import brentq
 
 import exuclear
 from exuclear.models import slider_crank as sc_model
-from exuclear.models.scene import Scene
 from exuclear.models.journal_bearing import JournalBearingParams
+from exuclear.models.scene import Scene
 from exuclear.models.slider_crank import FLYWHEEL_INERTIA
 from validation.hard_cases.common import AUDIT_LIMIT
 
@@ -137,7 +137,8 @@ def audit_minimal(model: Scene, steps: int) -> Audit:
     """Energy audit of a minimal-coordinate slider-crank run (outputs at every step).
 
     Kinetic and potential energy of crank (its own inertia), rod and slider from
-    :func:`exuclear.models.slider_crank.mechanical_energy`.  The drive work is what the flywheel gave up, ``-J_fly (omega_end^2 - omega_0^2) / 2``:
+    :func:`exuclear.models.slider_crank.mechanical_energy`.  The drive work is what the flywheel gave up,
+    ``-J_fly (omega_end^2 - omega_0^2) / 2``:
     exact, but only to the round-off of :func:`flywheel_roundoff` (some 1e-5 J at 500
     rpm).  (The trapezoid rule on the recorded crank moment misses by 4 to 30 %: the
     moment varies by its own size within one step at an impact.)

@@ -143,7 +143,7 @@ def write_report(path: str, study: Study, figures: Sequence[str]) -> str:
         f"{' (quick run: shorter runs)' if study.quick else ''}; total runtime {study.runtime:.0f} s. Wall times are "
         "single runs on a shared 2-core machine: indicative only.\n",
         "Defaults unless a case says otherwise: Wang-Liu law, steel on steel, no friction, the paper's dimensions; "
-        f"slider-crank in minimal coordinates at `exuclear.models.slider_crank.default_settings` ({_describe_defaults()}), outputs at every "
+        f"slider-crank in minimal coordinates at `slider_crank.default_settings` ({_describe_defaults()}), outputs at every "
         "accepted step; energy audit as in the module docstring (drive work from the flywheel, elastic energy "
         "exact, dissipation by the trapezoid rule over the steps).\n",
         "Static penetration of the resting journal: K_eff(delta_s) delta_s^1.5 = m g with K_eff(delta) = "

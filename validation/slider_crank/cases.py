@@ -9,8 +9,8 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 import exuclear
-from exuclear.study import run_id, run_study
 from exuclear.models.slider_crank import SliderCrankParams, SliderCrankResult, build, default_settings, run
+from exuclear.study import run_id, run_study
 
 DEFAULT_OUT = os.path.join("results", "slider_crank")
 

@@ -8,8 +8,8 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from exuclear.plotting import hann_spectrum, uniform_spectrum
 from exuclear.models.slider_crank import SliderCrankParams, SliderCrankResult, ideal_joint_force
+from exuclear.plotting import hann_spectrum, uniform_spectrum
 from validation.slider_crank.cases import (
     BAND,
     DEAD_WINDOW,
