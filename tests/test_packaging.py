@@ -122,3 +122,23 @@ def test_the_paper_values_live_in_one_place():
     assert slider_crank.PAPER_CRANK_SPEED is _defaults.PAPER_CRANK_SPEED
     assert slider_crank.SliderCrankParams.paper().crank_speed == _defaults.PAPER_CRANK_SPEED
     assert slider_crank.STUDY_PARAMETERS["rpm"] == _defaults.PAPER_RPM
+
+
+@pytest.mark.parametrize(("module", "argv", "expected"), [
+    (journal_bearing, ["--journal", "aluminium", "--bearing", "copper", "--length", "0.02", "--velocity", "0.5"],
+     {"journal_material": "aluminium", "bearing_material": "copper", "length": 0.02, "impact_velocity": 0.5}),
+    (slider_crank, ["--journal", "aluminium", "--length", "0.02", "--crank-length", "0.06", "--ideal"],
+     {"journal_material": "aluminium", "bearing_length": 0.02, "crank_length": 0.06, "ideal": True}),
+    (four_bar, ["--bearing", "aluminium", "--length", "0.02", "--crank-angle0", "0.5"],
+     {"bearing_material": "aluminium", "bearing_length": 0.02, "crank_angle0": 0.5}),
+    (misaligned_shaft, ["--slices", "8", "--misalignment", "2e-4"], {"slices": 8, "misalignment": 2e-4}),
+], ids=lambda v: v.__name__.rsplit(".", 1)[-1] if hasattr(v, "__name__") else "")
+def test_options_set_the_fields_by_their_names_and_today_s_short_names(module, argv, expected):
+    from exuclear.models._params import changes_from_args
+
+    params = type(SCENES[module])
+    changes = changes_from_args(module._parser().parse_args(argv), params)
+    assert {name: changes[name] for name in expected} == expected
+    defaults = {f.name: getattr(SCENES[module], f.name) for f in dataclasses.fields(params) if f.name not in expected}
+    assert {name: changes[name] for name in changes if name in defaults} == {
+        name: value for name, value in defaults.items() if name in changes}  # the others keep the named constructor's
