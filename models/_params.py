@@ -162,8 +162,12 @@ def add_param_options(ap: argparse.ArgumentParser, defaults: object) -> None:
         default = getattr(defaults, f.name)
         flags = [option_name(f.name)] + ([option_name(f.metadata["option"])] if f.metadata["option"] else [])
         kind = _option_type(hints[f.name])
-        if kind is bool:
-            ap.add_argument(*flags, dest=f.name, action="store_true", default=default, help=f.metadata["help"])
+        if kind not in (bool, *METAVARS):
+            raise TypeError(f"field `{f.name}` of type {kind} has no generated option: give it cli=False and an "
+                            "option of the scene's own")
+        if kind is bool:  # a flag; --no-NAME as well where it defaults to True
+            action = argparse.BooleanOptionalAction if default else "store_true"
+            ap.add_argument(*flags, dest=f.name, action=action, default=default, help=f.metadata["help"])
         else:
             shown = "" if default is None else " (default %(default)s)"
             ap.add_argument(*flags, dest=f.name, type=kind, default=default, choices=f.metadata["choices"],
