@@ -873,7 +873,7 @@ def _default_explanations(rows: Sequence[CrankRow]) -> list[str]:
     missed = {k for r in rows for k in r.failed}
     text = []
     if rows:
-        text.append("Rows at default settings use the defaults of `exuclear.models.slider_crank.default_settings`, chosen "
+        text.append("Rows at default settings use the defaults of `models.slider_crank.default_settings`, chosen "
                     "for an eccentricity error below 1 % of c at the least work (validation/work_precision.py): they "
                     "are not converged, and their converged rows show where the differences go.")
     if "ecc" in missed:
@@ -941,7 +941,7 @@ def write_report(path: str, x: CrossCheck) -> str:
         "integration, output sampling excluded.\n",
         "## Pass/fail criteria\n", criteria_md() + "\n",
         "Library settings of the journal-bearing runs: DOPRI5, steps <= 1e-7 s, rtol 1e-9, atol 1e-13 "
-        "(`exuclear.models.journal_bearing.default_settings`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
+        "(`models.journal_bearing.settings_for`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
         "penetration and the release. Slider-crank reference: "
         f"{REF_METHOD} at rtol {REF_RTOL:g}, atol {REF_ATOL:g}, outputs every {GRID_STEP:g} s from its dense "
         f"output; the library records every accepted step (output_step {EXUDYN_OUTPUT_STEP:g} s; Exudyn records at "
