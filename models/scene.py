@@ -14,6 +14,9 @@ if TYPE_CHECKING:
 class Scene:
     """An assembled scene (``mbs.Assemble()`` done), ready for :func:`exuclear.simulate`.
 
+    Every scene's ``build(params)`` returns one.  Its solver settings are not part of it:
+    they are the scene's ``default_settings(params)``, and a run may use others.
+
     Attributes
     ----------
     params : dataclass
