@@ -35,7 +35,7 @@ from exudyn.itemInterface import (
 
 import exuclear
 
-from ._common import ZooModel, example_settings, joint_parameters, register, scaled_end, solver_settings_like
+from ._common import PROBE_BOUND_CARRIED, ZooModel, example_settings, joint_parameters, register, scaled_end, solver_settings_like
 
 EXAMPLE = "main/pythonDev/Examples/doublePendulum2D.py"
 BODIES = "ObjectRigidBody2D, NodeRigidBody2D"
@@ -49,15 +49,16 @@ BEARING_RADIUS, CLEARANCE, BEARING_LENGTH = 10e-3, 50e-6, 10e-3
 
 
 def _energy(nodes: list[int]) -> Any:
-    """Total mechanical energy [J] of the links (kinetic + gravity potential, y = 0 at rest)."""
-    def energy(mbs: exu.MainSystem) -> float:
-        e = 0.0
+    """Kinetic and gravity potential energy [J] of the links (potential 0 at y = 0)."""
+    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
+        kinetic = potential = 0.0
         for n in nodes:
             v = mbs.GetNodeOutput(n, exu.OutputVariableType.Velocity)
             w = mbs.GetNodeOutput(n, exu.OutputVariableType.AngularVelocity)[2]
             y = mbs.GetNodeOutput(n, exu.OutputVariableType.Position)[1]
-            e += 0.5 * MASS * (v[0] ** 2 + v[1] ** 2) + 0.5 * INERTIA * w ** 2 + MASS * GRAVITY * y
-        return e
+            kinetic += 0.5 * MASS * (v[0] ** 2 + v[1] ** 2) + 0.5 * INERTIA * w ** 2
+            potential += MASS * GRAVITY * y
+        return kinetic, potential
     return energy
 
 
@@ -96,7 +97,7 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
                                                 localPosition=[half, 0, 0]))[:2]
 
     return ZooModel("double_pendulum_2d", mbs, ss, solver, joint, CLEARANCE if clearance else None, probe,
-                    solver_settings_like(ss, solver), energy=_energy(nodes))
+                    solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED, energy=_energy(nodes))
 
 
 register(build, name="double_pendulum_2d_friction", friction="paper")

@@ -29,7 +29,7 @@ import numpy as np
 
 import exuclear
 
-from ._common import JOINT_DEFAULTS, ZooModel, example_settings, register, scaled_end, solver_settings_like
+from ._common import PROBE_BOUND_CARRIED, JOINT_DEFAULTS, ZooModel, example_settings, register, scaled_end, solver_settings_like
 
 EXAMPLE = "exuclear issue 20 (3D double pendulum of two steel bars)"
 BODIES = "mbs.CreateRigidBody (NodeRigidBodyEP / Rxyz / RotVecLG), mbs.CreateRevoluteJoint"
@@ -47,16 +47,17 @@ NODE_TYPES = {"ep": exu.NodeType.RotationEulerParameters, "rxyz": exu.NodeType.R
 
 
 def _energy(bodies: list[Any], inertia: Any) -> Any:
-    """Total mechanical energy [J] of the bars (kinetic + gravity potential, y = 0 at rest)."""
-    def energy(mbs: exu.MainSystem) -> float:
-        e = 0.0
+    """Kinetic and gravity potential energy [J] of the bars (potential 0 at y = 0)."""
+    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
+        kinetic = potential = 0.0
         for b in bodies:
             v = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.Velocity, [0, 0, 0]))
             w = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.AngularVelocityLocal, [0, 0, 0]))
             y = mbs.GetObjectOutputBody(b, exu.OutputVariableType.Position, [0, 0, 0])[1]
             j = np.asarray(inertia.InertiaCOM())  # the body's reference point is its centre of mass
-            e += 0.5 * inertia.mass * v @ v + 0.5 * w @ j @ w + inertia.mass * GRAVITY * y
-        return e
+            kinetic += 0.5 * inertia.mass * v @ v + 0.5 * w @ j @ w
+            potential += inertia.mass * GRAVITY * y
+        return kinetic, potential
     return energy
 
 
@@ -91,7 +92,7 @@ def build(clearance: bool, end_time: float | None = None, node_type: str = "ep",
 
     return ZooModel(f"double_pendulum_3d_{node_type}", mbs, ss, solver, joint,
                     BEARING_RADIUS - JOURNAL_RADIUS if clearance else None, probe, solver_settings_like(ss, solver),
-                    energy=_energy(bars, inertia))
+                    probe_bound=PROBE_BOUND_CARRIED, energy=_energy(bars, inertia))
 
 
 for _name in NODE_TYPES:  # one registered model per node type
