@@ -231,14 +231,21 @@ def solver_settings_like(settings: exu.SimulationSettings, solver_type: exu.Dyna
 
 def joint_peaks(joint: Any) -> tuple[float, float]:
     """Largest penetration [m] and largest contact force [N] of the last run, from the
-    per-step impact records (every accepted step, whatever the output interval) and the
-    contact still open at the end."""
+    per-step impact records (every accepted step, whatever the output interval), the
+    contact still open at the end, and the penetration of the step that stopped a run at
+    the joint's limit (that step is never accepted, so no record holds it)."""
     pen, force = 0.0, 0.0
     for r in joint.impacts():
         pen, force = max(pen, r.max_penetration), max(force, r.peak_force)
     s = joint.state()
     if s.in_contact:
         pen, force = max(pen, s.max_penetration), max(force, s.peak_force)
+    reason = joint.failure()[0]
+    if reason.startswith("penetration "):  # "penetration 4.787e-05 m exceeds the limit ..."
+        try:
+            pen = max(pen, float(reason.split()[1]))
+        except (IndexError, ValueError):
+            pass  # another wording: the records' value stands
     return pen, force
 
 
@@ -459,10 +466,11 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
 
         model = entry(True, end_time)
         sim, result = _solve_simulate(model, limit)
-        spen = joint_peaks(model.joint)[0] if result is not None else math.nan
+        spen, sforce = joint_peaks(model.joint) if result is not None else (math.nan, math.nan)
         row.update(sim_reached=sim.reached, sim_time=sim.time_reached, sim_message=sim.message, sim_wall=sim.wall,
                    sim_steps=sim.steps, sim_step=getattr(result, "step", math.nan), sim_pen_c=spen / c,
-                   sim_warnings=" | ".join(sim.warnings))
+                   sim_force=sforce, sim_warnings=" | ".join(sim.warnings),
+                   sim_verdict=verdict(sim, spen / c, None, model.joint))
         if sim.reached and probe_ideal is not None:
             row["sim_probe_diff"] = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))
         row["sim_ratio"] = sim.wall / ideal_run.wall if ideal_run.reached and sim.reached else math.nan
@@ -483,7 +491,7 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
 #: Columns of the printed table (all columns go to zoo.csv).
 TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_wall", "own_steps", "own_pen_c",
                  "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
-                 "sim_ratio", "verdict", "convergence"]
+                 "sim_ratio", "verdict", "sim_verdict", "convergence"]
 
 
 def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
