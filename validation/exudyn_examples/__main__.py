@@ -16,8 +16,11 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--out", type=Path, default=Path("results/exudyn_examples"), help="output folder")
     args = ap.parse_args(argv)
     names = [n.strip() for n in args.models.split(",") if n.strip()]
-    table = run_zoo(names, quick=args.quick, convergence=not args.no_convergence, end_time=args.end_time,
-                    out=args.out)
+    try:
+        table = run_zoo(names, quick=args.quick, convergence=not args.no_convergence, end_time=args.end_time,
+                        out=args.out)
+    except ValueError as err:  # an unknown model name
+        ap.error(str(err))
     print(show(table))
     print(f"written: {args.out / 'zoo.csv'}, {args.out / 'report.md'}")
 

@@ -489,7 +489,7 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
 
 
 #: Columns of the printed table (all columns go to zoo.csv).
-TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_wall", "own_steps", "own_pen_c",
+TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_pen_c",
                  "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
                  "sim_ratio", "verdict", "sim_verdict", "convergence"]
 
@@ -543,7 +543,9 @@ def report(table: Any, quick: bool, end_time: float | None) -> str:
             value = r.get(key)
             if isinstance(value, str) and value:
                 messages.append(f"- `{r['model']}` {key}: {value}")
-    models = "\n".join(f"- `{e.name}`: {e.example} ({e.bodies}); replaced: {e.replaced}" for e in REGISTRY.values())
+    models = "\n".join(f"- `{e.name}`: {e.example} ({e.bodies}); replaced: {e.replaced}"
+                       + (f"; with {', '.join(f'{k}={v!r}' for k, v in e.fixed.items())}" if e.fixed else "")
+                       for e in REGISTRY.values())
     return template.format(
         mode="quick (one run per timing, no convergence check)" if quick else "full (median of 3 timings)",
         end_time="the examples' own" if end_time is None else f"{end_time:g} s for every model",
