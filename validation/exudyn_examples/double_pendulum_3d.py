@@ -14,7 +14,8 @@ default generalized-alpha (spectral radius 0.9), 1 s, at the issue's fixed step 
 Known (issue 20): at 1e-4 s the plain path gives a penetration of 0.35 c and 6.6 kN
 silently; at 2e-4 s it stops with "check your Python code!"; at 2.5e-5 s it is right.
 The node type of both bars is a parameter: the zoo registers one model per rotation
-parametrisation (Euler parameters, Rxyz, rotation vector).
+parametrisation (Euler parameters, Rxyz, rotation vector), and the Euler-parameter model
+once more with ``friction="paper"`` (the paper's modified Coulomb law).
 
     ground o========= bar 1 =========o========= bar 2 =========
            shoulder (0, 0, 0)     elbow (0.3, 0, 0), clearance joint
@@ -97,3 +98,4 @@ def build(clearance: bool, end_time: float | None = None, node_type: str = "ep",
 
 for _name in NODE_TYPES:  # one registered model per node type
     register(build, name=f"double_pendulum_3d_{_name}", node_type=_name)
+register(build, name="double_pendulum_3d_ep_friction", node_type="ep", friction="paper")

@@ -18,7 +18,8 @@ as the links are wide (L = w = 0.1 m), 40 um radial clearance.  ``constrainAxial
 the clearance joint acts only in the plane normal to x, and nothing else in the model
 holds link 1 along x or against tilt about y and z, which the replaced joint did; link 0
 turns about z, so link 1 is swung outwards along x (centrifugal) and tilted, and without
-the constraint it would slide off the pin.
+the constraint it would slide off the pin.  ``friction="paper"`` (the paper's modified
+Coulomb law) gives the registered variant ``rigid_body_tutorial3_friction``.
 
                    y
     ground o-------|-------- link 0 ---------o (1, 0, 0) clearance joint, axis x
@@ -98,3 +99,6 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
 
     return ZooModel("rigid_body_tutorial3", mbs, ss, solver, joint, CLEARANCE if clearance else None, probe,
                     solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED, energy=_energy([link0, link1], [inertia0, inertia1]))
+
+
+register(build, name="rigid_body_tutorial3_friction", friction="paper")
