@@ -1,7 +1,7 @@
 """3D rigid-body tutorial, after Exudyn's example main/pythonDev/Examples/rigidBodyTutorial3.py
 (jgerstmayr/EXUDYN).
 
-The example: two steel-like cuboids (density 5000 kg/m^3, 50 kg each) on Euler-parameter
+The example: two cuboids (density 5000 kg/m^3, 50 kg each) on Euler-parameter
 nodes under gravity -9.81 m/s^2 in y.  Link 0 (1 m x 0.1 m x 0.1 m, reference point at
 (0.5, 0, 0), centre of mass shifted by -0.25 m along its length) turns about the global z
 axis at the origin; link 1 (0.1 m x 0.1 m x 1 m, centre at (1, 0, 0.5)) hangs from link 0's
@@ -10,15 +10,16 @@ TrapezoidalIndex2, step 1e-3 s, 4 s.
 
 Kept: bodies, inertias, joint positions and axes, solver, step and end time.  Changed:
 the example's ``AddRigidBody`` / ``AddRevoluteJoint`` utilities are written with their
-successors ``mbs.CreateRigidBody`` / ``mbs.CreateRevoluteJoint`` (same items); no graphics,
+successors ``mbs.CreateRigidBody`` / ``mbs.CreateRevoluteJoint`` (the same kinds of items); no graphics,
 no renderer, no solution file.  Replaced: the second revolute joint (link 0 to link 1 at
 (1, 0, 0), axis x; both bodies move): the bearing on link 0, the journal on link 1, a pin
 of R_B = 20 mm (the example draws the joint axis with radius 0.2 w) in a bearing as long
 as the links are wide (L = w = 0.1 m), 40 um radial clearance.  ``constrainAxial=True``:
 the clearance joint acts only in the plane normal to x, and nothing else in the model
 holds link 1 along x or against tilt about y and z, which the replaced joint did; link 0
-turns about z, so link 1 is swung outwards along x (centrifugal) and tilted, and without
-the constraint it would slide off the pin.  ``friction="paper"`` (the paper's modified
+turns about z, which swings link 1 outwards along x and tilts it.  Without the
+constraint (``constrainAxial=False``), ``exuclear.simulate`` stops at t = 0.134 s at the
+joint's penetration limit.  ``friction="paper"`` (the paper's modified
 Coulomb law) gives the registered variant ``rigid_body_tutorial3_friction``.
 
                    y
@@ -81,9 +82,10 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
     joint = None
     if clearance:
         joint = exuclear.CreateClearanceJoint(mbs, name="link0-link1", itemNumbers=[link0, link1], position=position,
-                                              axis=axis, constrainAxial=True,
-                                              **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
-                                                                 **joint_options))
+                                              axis=axis,
+                                              **{"constrainAxial": True,  # the docstring says why
+                                                 **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
+                                                                    **joint_options)})
     else:
         mbs.CreateRevoluteJoint(itemNumbers=[link0, link1], position=position, axis=axis)
     mbs.Assemble()
