@@ -16,6 +16,7 @@ import functools
 import importlib
 import math
 import pkgutil
+import re
 import statistics
 import time
 import traceback
@@ -379,8 +380,9 @@ def _median_wall(build: Callable[[], ZooModel], repeats: int, time_limit: float)
     return run, model
 
 
-#: Words of advice: a message that names the joint and contains one of these says what to do.
-ADVICE_WORDS = ("try", "use ", "reduce", "smaller", "raise", "lower", "increase", "check e ")
+#: Words of advice (whole words): a message that names the joint and contains one of
+#: these says what to do.
+ADVICE = re.compile(r"\b(try|use|give|reduce|smaller|larger|raise|lower|increase|loosen)\b")
 
 
 def _told(message: str, ws: tuple[str, ...], joint: Any) -> bool:
@@ -393,7 +395,7 @@ def _told(message: str, ws: tuple[str, ...], joint: Any) -> bool:
         names += [joint.name]
     for text in (message, *ws):
         low = text.lower()
-        if any(n.lower() in low for n in names) and any(w in low for w in ADVICE_WORDS):
+        if any(n.lower() in low for n in names) and ADVICE.search(low):
             return True
     return False
 
