@@ -1,0 +1,149 @@
+"""Flexible pendulum of geometrically exact 2D beams, after Exudyn's example
+main/pythonDev/Examples/pendulumGeomExactBeam2D.py (jgerstmayr/EXUDYN).
+
+::
+
+      ground pivot (ObjectJointRevolute2D: ground - node 0; here the clearance joint)
+        o===|===|===|===|===|===|===|===|===|===   10 ObjectBeamGeometricallyExact2D
+        node 0                                     on NodeRigidBody2D nodes, 0.5 m,
+        |  g                                       released horizontally
+        v
+
+The example: a very soft (E = 1e8 Pa) strip, 0.5 m x 10 mm x 2 mm, of ten
+``ObjectBeamGeometricallyExact2D`` elements (Timoshenko-Reissner) on ``NodeRigidBody2D``
+nodes, pinned at node 0 to the ground by an ``ObjectJointRevolute2D`` and released from
+the horizontal under gravity; generalized-alpha (Exudyn's default spectral radius), step
+2.5 ms, 5 s, modified Newton, sparse solver.  Kept: all of it (the parameters are now
+given by the element's current names, ``length`` etc., as ``physicsLength`` etc. are
+deprecated in Exudyn 1.13), except that no solution file is written.  Changed with
+``clearance=True``: the pivot becomes a clearance joint, bearing on the ground, journal
+on node 0.  Pin: the strip is 2 mm thick and 10 mm wide, so R_B = 1 mm, L = 10 mm,
+c = 20 um (a 0.01 kg pendulum on a 2 mm steel pin).
+
+Route (exuclear 1.x on Exudyn 1.13.6; the failures are the library's, found here):
+
+- ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first element], ...)``
+  raises "ObjectBeamGeometricallyExact2D (a body) has no OutputVariableType
+  'RotationMatrix'" (connector.py ``_reference_pose`` asks the body for it).
+- ``exuclear.AddClearanceJoint`` with a ``MarkerBodyRigid`` on the first element
+  (localPosition [0, 0, 0]) builds, but ``mbs.SolveDynamic`` fails: "illegal call to
+  CObjectBody::GetAngularVelocityLocal" (the element gives no local angular velocity to
+  the connector).
+- Used here: ``exuclear.AddClearanceJoint`` with ``MarkerBodyRigid`` on the ground and
+  ``MarkerNodeRigid`` on node 0, which is what the README's "any body with a rigid
+  marker" suggests.  ``mbs.SolveDynamic`` runs it.  ``exuclear.simulate`` raises in
+  ``_diagnostics.check_model`` -> ``body_mass`` -> ``_body_of``: a node marker has no
+  ``bodyNumber``/``objectNumber``, so ``mbs.GetObject(None)`` fails with "failed to
+  convert to ObjectIndex, but received None"; ``step="auto"`` would need the same
+  lookup (``joint_contact_period``), and a beam element's mass is ``massPerLength``,
+  which ``body_mass`` does not read (NaN: ``step="auto"`` refused).
+
+Short runs (exuclear at commit a50d2fe, two shared cores): ideal, the example's
+settings, 0.5 s: reached, 0.01 s wall.  Clearance, the example's settings: stops at
+t = 0.0175 s, "exuclear: penetration 1.379e-05 m exceeds the limit 1e-05 m" (0.69 c;
+the journal sits on node 0, a fraction of a gram, whose contact period is microseconds
+against the 2.5 ms step).  ``exuclear.simulate``: the ``_diagnostics`` error above,
+before the first step, whatever the step.  Plain ``SolveDynamic`` at a 2e-6 s step:
+reaches 0.5 s in 9.9 s wall, largest penetration 0.0021 c, tip within 5e-5 m of the
+ideal pendulum.
+"""
+from __future__ import annotations
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import (
+    LoadMassProportional,
+    MarkerBodyMass,
+    MarkerBodyPosition,
+    MarkerBodyRigid,
+    MarkerNodePosition,
+    MarkerNodeRigid,
+    NodeRigidBody2D,
+    ObjectBeamGeometricallyExact2D,
+    ObjectGround,
+    ObjectJointRevolute2D,
+)
+
+import exuclear
+
+from ._common import PROBE_BOUND_CARRIED, ZooModel, example_settings, joint_parameters, register, solver_settings_like
+
+EXAMPLE = "main/pythonDev/Examples/pendulumGeomExactBeam2D.py"
+BODIES = "ObjectBeamGeometricallyExact2D on NodeRigidBody2D nodes"
+REPLACED = "ground pivot at node 0 (ObjectJointRevolute2D)"
+
+# -- the example's model ---------------------------------------------------------------
+N_ELEMENTS = 10
+LENGTH = 0.5              # pendulum length [m]
+E_MODULUS = 1e8           # very soft elastomer [Pa]
+DENSITY = 1000.0          # [kg/m^3]
+HEIGHT = 0.002            # cross-section height [m]
+WIDTH = 0.01              # cross-section width [m]
+POISSON = 0.3
+GRAVITY = (0.0, -9.81, 0.0)
+
+# -- the example's solver settings -----------------------------------------------------
+END_TIME = 5.0            # [s]
+STEP = 0.0025             # [s]
+WRITE_PERIOD = 0.005      # the example's solution write period [s], used for sensors
+
+# -- the clearance joint: a steel pin sized to the strip -------------------------------
+CLEARANCE = 20e-6         # radial clearance c [m]
+BEARING_RADIUS = 1e-3     # R_B [m]: half the strip's 2 mm thickness
+BEARING_LENGTH = WIDTH    # L [m]: the strip's width
+
+
+def _element() -> dict:
+    """The element parameters of the example (a Timoshenko-Reissner strip)."""
+    area, second_moment = WIDTH * HEIGHT, WIDTH * HEIGHT ** 3 / 12
+    shear_correction = 10 * (1 + POISSON) / (12 + 11 * POISSON)
+    shear_modulus = E_MODULUS / (2 * (1 + POISSON))
+    return dict(length=LENGTH / N_ELEMENTS, massPerLength=DENSITY * area, crossSectionInertia=DENSITY * second_moment,
+                bendingStiffness=E_MODULUS * second_moment, axialStiffness=E_MODULUS * area,
+                shearStiffness=shear_correction * shear_modulus * area)
+
+
+@register
+def build(clearance: bool, end_time: float | None = None, **joint_options) -> ZooModel:
+    """The example's pendulum; ``clearance=True`` puts a clearance joint at the pivot."""
+    mbs = exu.SystemContainer().AddSystem()
+    element = _element()
+    nodes = [mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[k * element["length"], 0.0, 0.0]))
+             for k in range(N_ELEMENTS + 1)]
+    beams = [mbs.AddObject(ObjectBeamGeometricallyExact2D(nodeNumbers=[nodes[k], nodes[k + 1]], **element))
+             for k in range(N_ELEMENTS)]
+    ground = mbs.AddObject(ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
+
+    joint = None
+    if clearance:
+        markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),
+                   mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[0]))]
+        joint = exuclear.AddClearanceJoint(mbs, markers, axis=[0.0, 0.0, 1.0], name="pivot",
+                                           **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
+                                                              **joint_options))
+    else:
+        mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[
+            mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),
+            mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[0]))]))
+    for beam in beams:
+        mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=beam)),
+                                         loadVector=list(GRAVITY)))
+    mbs.Assemble()
+
+    t_end = END_TIME if end_time is None else float(end_time)
+    ss = example_settings(t_end, t_end / STEP)
+    ss.timeIntegration.newton.useModifiedNewton = True
+    ss.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    ss.solution.sensors.writePeriod = WRITE_PERIOD
+
+    tip = nodes[-1]
+
+    def probe(system: exu.MainSystem) -> np.ndarray:
+        """Tip position x, y [m] and the pivot node's position x, y [m]."""
+        return np.concatenate([system.GetNodeOutput(tip, exu.OutputVariableType.Position)[:2],
+                               system.GetNodeOutput(nodes[0], exu.OutputVariableType.Position)[:2]])
+
+    solver = exu.DynamicSolverType.GeneralizedAlpha
+    return ZooModel(name="beam_pendulum_2d", mbs=mbs, simulation_settings=ss, solver_type=solver, joint=joint,
+                    clearance=CLEARANCE if clearance else None, probe=probe,
+                    solver_settings=solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED)
