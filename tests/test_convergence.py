@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 
 import exuclear
-from exuclear import ImpactRecord, JointRecord, RunRecord, SolverSettings, check_convergence, refined_settings
+from exuclear import RunRecord, SolverSettings, check_convergence
+from exuclear.convergence import JointRecord, refined_settings
+from exuclear.history import ImpactRecord
 from models import four_bar
 from models.journal_bearing import JournalBearingParams, build, settings_for
 

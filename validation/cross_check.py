@@ -10,7 +10,7 @@ The library (:mod:`models.journal_bearing`, :mod:`models.slider_crank`, through 
 Exudyn element) and the reference (:mod:`validation.reference`, which shares only the
 contact and friction laws) run the same cases:
 
-- journal-bearing: every law of :data:`exuclear.CONTACT_LAWS` over cr = 0.3, 0.5, 0.7,
+- journal-bearing: every law of :data:`exuclear.contact.CONTACT_LAWS` over cr = 0.3, 0.5, 0.7,
   0.9, 1.0 (a law that rejects a cr, such as the elastic Hertz law below 1, is skipped
   and listed); departure velocity, peak force, peak penetration, contact duration;
 - slider-crank, two crank revolutions: cr 0.3 and 0.9, steel and aluminium journals in a
@@ -435,7 +435,7 @@ def recorded_onsets(cols: dict[str, np.ndarray]) -> Crossings:
     """The :class:`Crossings` of ``cols["penetration"]`` on ``cols["time"]``.
 
     With a record at every accepted step this is the onset rule of
-    :class:`exuclear.ContactState`, on the recorded times.
+    :class:`exuclear.history.ContactState`, on the recorded times.
     """
     t, d = cols["time"], cols["penetration"]
     k = np.flatnonzero((d[:-1] <= 0.0) & (d[1:] > 0.0))
@@ -714,7 +714,7 @@ def cross_check(quick: bool = False, progress: Progress = _print, workers: int |
     cores; 1: in this process); the comparisons follow here, in the order of the report.
     """
     start = time.perf_counter()
-    laws = QUICK_LAWS if quick else tuple(exuclear.CONTACT_LAWS)
+    laws = QUICK_LAWS if quick else tuple(exuclear.contact.CONTACT_LAWS)
     cases = crank_cases(quick)
     horizon = QUICK_HORIZON if quick else None
     jb_cases, skipped = impact_cases(laws)
@@ -972,7 +972,7 @@ def write_report(path: str, x: CrossCheck) -> str:
         cranks_md(x.cranks) + "\n",
         "## Onset bookkeeping of the library\n",
         "`SliderCrankResult.onset_times` against the upward zero crossings of the same run's recorded penetration "
-        "(recorded at every accepted step, interpolated linearly as `exuclear.ContactState` does).\n",
+        "(recorded at every accepted step, interpolated linearly as `exuclear.history.ContactState` does).\n",
         bookkeeping_md(x.cranks) + "\n", bookkeeping_sentence(x.cranks),
         "## Failing cases\n", failing_md(x),
     ]
