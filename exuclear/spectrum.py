@@ -28,9 +28,9 @@ def amplitude_spectrum(t: np.ndarray, y: np.ndarray, dt: float, *, window: str =
         a run: keeps the leakage of the jump between the record's ends out of the
         spectrum).
     segments : int
-        1: the whole record at once.  More: the record is cut into this many segments
-        (each ``len // segments`` samples, overlapping by half) whose power spectra are
-        averaged (Welch), for a smoother spectrum at a coarser resolution.
+        1: the whole record at once.  More: segments of ``len // segments`` samples,
+        overlapping by half (so about ``2 segments - 1`` of them), whose power spectra
+        are averaged (Welch), for a smoother spectrum at a coarser resolution.
     grid : array, optional
         The uniform sample times, step ``dt``; default ``np.arange(t[0], t[-1], dt)``.
 
