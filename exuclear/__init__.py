@@ -27,8 +27,9 @@ glue (:mod:`exuclear.engine`: ``DATA_COLUMNS``, ``simulation_settings``,
 :mod:`~exuclear.friction`, :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`,
 :mod:`~exuclear.joint`; see ``docs/physics.md`` for the equations.
 
-``import exuclear`` imports numpy and exudyn only; matplotlib, pandas, tqdm, scipy and
-dask are imported where a function needs them.
+Of the third-party packages, ``import exuclear`` imports numpy and exudyn only;
+matplotlib, pandas, tqdm, scipy and dask are imported where a function needs them
+(``tests/test_api.py``).
 """
 from ._checks import UnitWarning
 from .contact import V_MIN_DEFAULT, ContactLaw, ValidityWarning, contact_law
