@@ -800,8 +800,9 @@ def damping_for_restitution(cr: float) -> float:
     (:func:`scipy.optimize.brentq`) to round-off (:data:`RESTITUTION_RTOL`).  ``h`` is
     negative on ``(0, root)``, positive beyond, and tends to ``+inf`` at ``D = 1/cr``;
     ``D = 0`` is a trivial root, which the bracket leaves out by starting at
-    ``3 (1 - cr) / 4``, half of the root's limit ``3 (1 - cr) / 2`` as ``cr -> 1`` (and
-    below the root for every cr: the root grows faster as cr falls).  ``h`` is written
+    ``3 (1 - cr) / 4``, half of the root's limit ``3 (1 - cr) / 2`` as ``cr -> 1`` (below
+    the root on a grid of 1000 values of cr in (0, 1); a bracket without the root would
+    raise ``ValueError``, never return a wrong one).  ``h`` is written
     with :func:`_x_minus_log1p`, so that ``h ~ -(1 - cr^2) D^2 / 2`` keeps its digits up
     to ``cr = 1 - 1e-16``.  For small cr (below about 0.03) the root lies within an ulp of
     ``1/cr``, where ``h`` cannot be told from 0 in floating point; that neighbour of
