@@ -35,18 +35,12 @@ def write_csv(path: str, records: Sequence[dict[str, object]]) -> str:
     return path
 
 
-def render_template(path: str, **fields: object) -> str:
-    """The Markdown template at ``path`` with its ``$name`` fields filled in
-    (:class:`string.Template`; a missing field raises ``KeyError``)."""
-    with open(path, encoding="utf-8") as f:
-        return string.Template(f.read()).substitute(fields)
-
-
 def template_blocks(path: str) -> Mapping[str, string.Template]:
-    """The named blocks of a template file: each begins with a line ``<!-- block: NAME -->``
-    and runs to the next such line (the text before the first block is ignored), with
-    the surrounding blank lines stripped.  For report sentences that a script picks by
-    its results."""
+    """The named blocks of a template file, as :class:`string.Template` (``$name`` fields;
+    ``substitute`` raises ``KeyError`` for a missing one): each begins with a line
+    ``<!-- block: NAME -->`` and runs to the next such line (the text before the first
+    block is ignored), with the surrounding blank lines stripped.  A report is one block
+    and the sentences that a script picks by its results are others."""
     blocks: dict[str, list[str]] = {}
     current: list[str] | None = None
     with open(path, encoding="utf-8") as f:
