@@ -1,79 +1,76 @@
 """exuclear: revolute clearance joints for the Exudyn multibody engine.
 
-Physics (pure Python, no exudyn): :mod:`~exuclear.contact`, :mod:`~exuclear.friction`,
-:mod:`~exuclear.materials`, :mod:`~exuclear.geometry`, :mod:`~exuclear.joint`.
-Engine glue: :mod:`~exuclear.engine`.  See ``docs/physics.md`` for the
-equations.
+The public API is the names of ``__all__`` below, by role:
+
+- **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (Exudyn items; they
+  return a :class:`ClearanceJointHandle`), and the physics of one joint,
+  :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
+- **contact laws**: :func:`contact_law` is the one way to build a :class:`ContactLaw`,
+  by the name of a named law (``"wang-liu"``) or of a stiffness model and a damping
+  model (``"pereira+gonthier"``); ``V_MIN_DEFAULT`` is the laws' velocity floor;
+- **friction**: :func:`friction_law` (``"none"``, ``"coulomb:MU"``, ``"paper"``);
+- **materials**: :class:`Material`, :data:`MATERIALS`, :func:`composite_modulus`;
+- **settings and runs**: :class:`SolverSettings` (``METHODS``), the kernel backends
+  (``BACKENDS``, ``DEFAULT_BACKEND``), :func:`simulate` and its
+  :class:`SimulationResult`, the joint outputs ``OUTPUT_COLUMNS``;
+- **convergence check**: :func:`check_convergence`, :class:`RunRecord`,
+  :class:`ConvergenceResult`;
+- **studies**: :class:`Study`, :func:`grid`, :func:`sample`, :func:`run_study`;
+- **warnings**: :class:`UnitWarning`, :class:`ValidityWarning`, :class:`AccuracyWarning`.
+
+Everything else stays importable from its module: the models behind the laws
+(:mod:`exuclear.contact`: ``WangLiu``, ``STIFFNESS_MODELS``, ``DAMPING_MODELS``, ...),
+the friction classes (:mod:`exuclear.friction`), the contact kinematics
+(:mod:`exuclear.geometry`), the contact history (:mod:`exuclear.history`) and the engine
+glue (:mod:`exuclear.engine`: ``DATA_COLUMNS``, ``simulation_settings``,
+``KernelWarning``, ...).  Physics without exudyn: :mod:`~exuclear.contact`,
+:mod:`~exuclear.friction`, :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`,
+:mod:`~exuclear.joint`; see ``docs/physics.md`` for the equations.
+
+Of the third-party packages, ``import exuclear`` imports numpy and exudyn only;
+matplotlib, pandas, tqdm, scipy and dask are imported where a function needs them
+(``tests/test_api.py``).
 """
 from ._checks import UnitWarning
-from .contact import (
-    ALIASES,
-    CONTACT_LAWS,
-    DAMPING_MODELS,
-    DEFAULT_LAW,
-    STIFFNESS_MODELS,
-    V_MIN_DEFAULT,
-    ContactLaw,
-    Flores,
-    Hertz,
-    HuntCrossley,
-    LankaraniNikravesh,
-    ValidityWarning,
-    WangLiu,
-    compose_law,
-    contact_law,
-    damping_model,
-    restitution_of_damping,
-    stiffness_model,
-)
-from .convergence import ConvergenceResult, JointRecord, RunRecord, check_convergence, refined_settings
+from .contact import V_MIN_DEFAULT, ContactLaw, ValidityWarning, contact_law
+from .convergence import ConvergenceResult, RunRecord, check_convergence
 from .engine import (
     BACKENDS,
-    DATA_COLUMNS,
     DEFAULT_BACKEND,
     OUTPUT_COLUMNS,
     AccuracyWarning,
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
-    KernelWarning,
     SimulationResult,
-    add_clearance_joint,
+    add_clearance_joint,  # noqa: F401 - exuclear 0.1's planar form, kept importable while it is deprecated
     simulate,
-    simulation_settings,
 )
-from .friction import (
-    FRICTION_NAMES,
-    NO_FRICTION,
-    Coulomb,
-    FrictionLaw,
-    ModifiedCoulomb,
-    NoFriction,
-    friction_law,
-    smooth_step,
-)
-from .geometry import BearingGeometry, ContactKinematics, JointLoads, contact_kinematics, joint_loads
-from .history import ContactState, ImpactRecord
-from .joint import ClearanceJoint, JointResponse, make_joint
-from .materials import MATERIALS, Material, composite_modulus, material
+from .friction import friction_law
+from .geometry import BearingGeometry
+from .joint import ClearanceJoint, make_joint
+from .materials import MATERIALS, Material, composite_modulus
 from .settings import METHODS, SolverSettings
 from .study import Study, grid, run_study, sample
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "ALIASES", "DAMPING_MODELS", "STIFFNESS_MODELS", "ValidityWarning", "compose_law", "damping_model",
-    "restitution_of_damping", "stiffness_model",
-    "CONTACT_LAWS", "DEFAULT_LAW", "V_MIN_DEFAULT", "ContactLaw", "Flores", "Hertz", "HuntCrossley",
-    "LankaraniNikravesh", "WangLiu", "contact_law",
-    "BACKENDS", "DATA_COLUMNS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
-    "KernelWarning", "AccuracyWarning", "SimulationResult", "add_clearance_joint", "simulate", "simulation_settings",
-    "ContactState", "ImpactRecord",
-    "FRICTION_NAMES", "NO_FRICTION", "Coulomb", "FrictionLaw", "ModifiedCoulomb", "NoFriction",
-    "friction_law", "smooth_step",
-    "BearingGeometry", "ContactKinematics", "JointLoads", "contact_kinematics", "joint_loads",
-    "ClearanceJoint", "JointResponse", "make_joint",
-    "MATERIALS", "Material", "composite_modulus", "material",
-    "METHODS", "SolverSettings", "Study", "grid", "run_study", "sample", "UnitWarning",
-    "ConvergenceResult", "JointRecord", "RunRecord", "check_convergence", "refined_settings",
+    # joints
+    "CreateClearanceJoint", "AddClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
+    "make_joint",
+    # contact laws
+    "contact_law", "ContactLaw", "V_MIN_DEFAULT",
+    # friction
+    "friction_law",
+    # materials
+    "Material", "MATERIALS", "composite_modulus",
+    # settings and runs
+    "SolverSettings", "METHODS", "BACKENDS", "DEFAULT_BACKEND", "simulate", "SimulationResult", "OUTPUT_COLUMNS",
+    # convergence check
+    "check_convergence", "RunRecord", "ConvergenceResult",
+    # studies
+    "Study", "grid", "sample", "run_study",
+    # warnings
+    "UnitWarning", "ValidityWarning", "AccuracyWarning",
 ]

@@ -34,6 +34,7 @@ Units: SI.  Sign convention: ``delta > 0`` is penetration, ``delta_dot > 0`` is 
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
@@ -55,6 +56,16 @@ IMPLICIT_RTOL = 1e-13
 #: Iteration limit of that solve: plain bisection alone would reach round-off in about 60
 #: steps, safeguarded Newton needs 4 to 6 on the paper's cases.
 IMPLICIT_MAX_ITER = 100
+
+#: Relative tolerance of the restitution relation's roots (:func:`restitution_of_damping`,
+#: :func:`damping_for_restitution`): the smallest :func:`scipy.optimize.brentq` accepts,
+#: 4 machine epsilons, i.e. round-off (the former bisection stopped at 4 ulp too).
+RESTITUTION_RTOL = 4.0 * sys.float_info.epsilon
+#: Absolute tolerance of those roots: none beyond the relative one (brentq needs one > 0).
+_ROOT_XTOL = 1e-300
+#: Iteration limit of those roots: at worst brentq bisects, and from the bracket's end
+#: ``1/cr`` down to ``D = 1.5e-16`` (cr = 1 - 1e-16) to round-off takes ~110 halvings.
+_ROOT_MAX_ITER = 200
 
 #: Unit conversions of Pereira et al.'s fit, which is written in mm, MPa and N.
 _MM = 1e3
@@ -650,7 +661,7 @@ class CarvalhoMartinsDamping(DampingModel):
     For ``m x'' = -F_e(x) (1 + D x' / v0)`` the first integral
     ``m v dv / (1 + D v / v0) = -F_e(x) dx`` closes over an impact for any ``F_e`` and
     gives the departure speed ``e v0`` through ``(1 + D) / (1 - D e) = exp(D (1 + e))``.
-    This model takes the root ``D > 0`` of that relation at ``e = cr`` (bisection to
+    This model takes the root ``D > 0`` of that relation at ``e = cr`` (:func:`damping_for_restitution`, to
     round-off, once, at construction; ``D -> 3 (1 - cr) / 2`` as ``cr -> 1``, Hunt and
     Crossley's value).  Source: A. S. Carvalho, J. M. Martins, "Exact restitution and
     generalizations for the Hunt-Crossley contact model", Mech. Mach. Theory 139 (2019)
@@ -727,45 +738,90 @@ def damping_model(name: str, cr: float = 1.0) -> DampingModel:
     return DAMPING_MODELS[check_choice("damping", name, DAMPING_MODELS)](cr)
 
 
+#: Below this ``|x|``, :func:`_x_minus_log1p` sums its series: ``x - ln(1 + x)`` ~ ``x^2 / 2``
+#: is then far smaller than ``x``, and the direct difference would keep only the
+#: round-off of ``x``; at 0.1 the series needs 15 terms for round-off.
+_SERIES_BELOW = 0.1
+
+
+def _x_minus_log1p(x: float) -> float:
+    """``x - ln(1 + x)`` (>= 0) for ``x > -1``, to round-off also where it is tiny against ``x``.
+
+    The two sides of the restitution relation (:func:`restitution_of_damping`) agree to
+    first order in ``D``; written with this function their difference keeps its digits.
+    """
+    if abs(x) >= _SERIES_BELOW:
+        return x - math.log1p(x)
+    total, term, k = 0.0, -x, 1  # sum over k >= 2 of (-x)^k / k
+    while True:
+        k += 1
+        term *= -x
+        step = term / k
+        if total + step == total:
+            return total
+        total += step
+
+
 def restitution_of_damping(D: float) -> float:
     """Effective restitution ``e`` of one impact under ``F_e(delta) (1 + D delta_dot / v0)``.
 
     Exact for a free mass and any elastic force ``F_e``: the root ``0 < e <= 1`` of
     ``D (1 + e) = ln(1 + D) - ln(1 - D e)`` (see :class:`CarvalhoMartinsDamping`), found by
-    bisection to round-off.  ``D = 0`` gives 1.  The relation's slope in ``e`` is about
-    ``-D^2``, so for small ``D`` the root carries an absolute error of about
-    ``2e-16 / D`` (2e-14 at ``D = 0.01``, i.e. cr = 0.99).
+    Brent's method (:func:`scipy.optimize.brentq`) to round-off (:data:`RESTITUTION_RTOL`).
+    ``D = 0`` gives 1.  Both sides agree to first order in ``D`` (the relation's slope in
+    ``e`` is about ``-D^2``); their difference is written with :func:`_x_minus_log1p`, so
+    that it keeps its digits and the root is exact to round-off for small ``D`` too (the
+    difference taken directly left an error of about ``2e-16 / D``).
     """
+    from scipy.optimize import brentq
+
     D = check_real("D", D)
     if D < 0.0:
         raise ValueError(f"`D` must be non-negative, got {D}")
     if D == 0.0:
         return 1.0
-    lo, hi = 0.0, min(1.0, 1.0 / D)  # r(lo) > 0 > r(hi); r decreases in e
-    while hi - lo > 4.0 * math.ulp(hi):
-        e = 0.5 * (lo + hi)
-        if D * (1.0 + e) - math.log1p(D) + math.log1p(-D * e) > 0.0:
-            lo = e
-        else:
-            hi = e
-    return 0.5 * (lo + hi)
+
+    def r(e: float) -> float:  # D (1 + e) - ln(1 + D) + ln(1 - D e); decreases in e, r(0) > 0
+        return _x_minus_log1p(D) - _x_minus_log1p(-D * e)
+
+    # r(1) < 0, and r -> -inf at e = 1/D (the log's pole): end the bracket just before it
+    hi = min(1.0, math.nextafter(1.0 / D, 0.0))
+    if not r(hi) < 0.0:  # no sign change that floating point can see
+        if D < 1.0:  # r(1) ~ -2 D^3 / 3 underflows (D below ~1e-100): e = 1 - 2 D / 3 to round-off
+            return 1.0 - 2.0 * D / 3.0
+        return hi  # large D: 1 - D e = (1 + D) exp(-D (1 + e)) is below round-off, e is 1/D to an ulp
+    return brentq(r, 0.0, hi, xtol=_ROOT_XTOL, rtol=RESTITUTION_RTOL, maxiter=_ROOT_MAX_ITER)
 
 
 def damping_for_restitution(cr: float) -> float:
-    """The ``D > 0`` whose exact effective restitution is ``cr`` (inverse of :func:`restitution_of_damping`)."""
+    """The ``D > 0`` whose exact effective restitution is ``cr`` (inverse of :func:`restitution_of_damping`).
+
+    The root of ``h(D) = ln(1 + D) - ln(1 - cr D) - D (1 + cr)`` by Brent's method
+    (:func:`scipy.optimize.brentq`) to round-off (:data:`RESTITUTION_RTOL`).  ``h`` is
+    negative on ``(0, root)``, positive beyond, and tends to ``+inf`` at ``D = 1/cr``;
+    ``D = 0`` is a trivial root, which the bracket leaves out by starting at
+    ``3 (1 - cr) / 4``, half of the root's limit ``3 (1 - cr) / 2`` as ``cr -> 1`` (below
+    the root on a grid of 1000 values of cr in (0, 1); a bracket without the root would
+    raise ``ValueError``, never return a wrong one).  ``h`` is written
+    with :func:`_x_minus_log1p`, so that ``h ~ -(1 - cr^2) D^2 / 2`` keeps its digits up
+    to ``cr = 1 - 1e-16``.  For small cr (below about 0.03) the root lies within an ulp of
+    ``1/cr``, where ``h`` cannot be told from 0 in floating point; that neighbour of
+    ``1/cr`` is returned.
+    """
+    from scipy.optimize import brentq
+
     cr = check_open_closed("cr", cr, 0.0, 1.0)
     if cr == 1.0:
         return 0.0
-    # h(D) = ln(1 + D) - ln(1 - cr D) - D (1 + cr) is negative on (0, root), positive beyond,
-    # and tends to +inf at D = 1/cr; D = 0 is the trivial root the bisection never visits
-    lo, hi = 0.0, 1.0 / cr
-    while hi - lo > 4.0 * math.ulp(hi):
-        d = 0.5 * (lo + hi)
-        if math.log1p(d) - math.log1p(-cr * d) - d * (1.0 + cr) < 0.0:
-            lo = d
-        else:
-            hi = d
-    return 0.5 * (lo + hi)
+
+    def h(d: float) -> float:  # ln(1 + d) - ln(1 - cr d) - d (1 + cr)
+        return _x_minus_log1p(-cr * d) - _x_minus_log1p(d)
+
+    lo = 0.75 * (1.0 - cr)  # half of Hunt and Crossley's factor, the root's limit as cr -> 1
+    hi = math.nextafter(1.0 / cr, 0.0)  # h(hi) is finite
+    if not h(hi) > 0.0:
+        return hi  # small cr: 1 - cr D = (1 + D) exp(-D (1 + cr)) is below round-off, D is 1/cr to an ulp
+    return brentq(h, lo, hi, xtol=_ROOT_XTOL, rtol=RESTITUTION_RTOL, maxiter=_ROOT_MAX_ITER)
 
 
 # ======================================================================================

@@ -41,6 +41,7 @@ from ._checks import check_positive
 from .contact import V_MIN_DEFAULT
 from .history import ImpactRecord
 from .settings import SolverSettings
+from .spectrum import amplitude_spectrum
 
 #: Default refinement factor: steps (and tolerances of adaptive methods) divided by 4.  A
 #: second-order method's error then drops 16-fold, so the difference to the tighter run
@@ -81,8 +82,8 @@ KS_ALPHA = 0.05
 #: Fewer impacts than this in either run: no distribution is compared (the test has no power).
 KS_MIN_SAMPLES = 5
 
-#: Spectra agree when the relative L2 distance of the amplitude spectral densities
-#: (square roots of Welch's PSD) is below this and the dominant lines coincide within one
+#: Spectra agree when the relative L2 distance of the amplitude spectra (Welch,
+#: :func:`exuclear.spectrum.amplitude_spectrum`) is below this and the dominant lines coincide within one
 #: frequency bin: a tenth of the spectrum is the level at which a spectral plot visibly differs.
 SPECTRUM_TOL = 0.1
 
@@ -324,8 +325,6 @@ def _span(t: np.ndarray, end: float) -> np.ndarray:
 def _spectrum(name: str, t: np.ndarray, y: np.ndarray, t_ref: np.ndarray, y_ref: np.ndarray,
               end: float) -> Statistic:
     """Welch amplitude spectra of both signals, resampled on the reference's median output step."""
-    from scipy.signal import welch
-
     rule = f"relative L2 distance < {SPECTRUM_TOL:g} and dominant lines within one bin"
     inside = _span(t_ref, end)
     steps = np.diff(t_ref[inside])
@@ -334,11 +333,8 @@ def _spectrum(name: str, t: np.ndarray, y: np.ndarray, t_ref: np.ndarray, y_ref:
     if n < 4 * WELCH_SEGMENTS:
         return Statistic(f"spectrum of {name}", math.nan, math.nan, False, "too few samples for a spectrum")
     grid = np.arange(n) * dt
-    a, b = np.interp(grid, t, y), np.interp(grid, t_ref, y_ref)
-    nperseg = n // WELCH_SEGMENTS
-    f, pa = welch(a - a.mean(), fs=1.0 / dt, nperseg=nperseg)
-    _, pb = welch(b - b.mean(), fs=1.0 / dt, nperseg=nperseg)
-    sa, sb = np.sqrt(pa), np.sqrt(pb)
+    f, sa = amplitude_spectrum(t, y, dt, window="hann", segments=WELCH_SEGMENTS, grid=grid)
+    _, sb = amplitude_spectrum(t_ref, y_ref, dt, window="hann", segments=WELCH_SEGMENTS, grid=grid)
     norm = float(np.linalg.norm(sb))
     distance = float(np.linalg.norm(sa - sb)) / norm if norm > 0.0 else (0.0 if not sa.any() else math.inf)
     fa, fb = float(f[1:][np.argmax(sa[1:])]), float(f[1:][np.argmax(sb[1:])])

@@ -27,6 +27,9 @@ class JointResponse(NamedTuple):
 
 _NO_LOADS = JointLoads(0.0, 0.0, 0.0, 0.0)
 
+#: Journal and bearing material where none is given (the paper's).
+DEFAULT_MATERIAL = "steel"
+
 
 @dataclass(frozen=True)
 class ClearanceJoint:
@@ -71,11 +74,11 @@ def make_joint(
     length: float,
     law: str | ContactLaw | None = None,
     cr: float | None = None,
-    journal_material: str | Material = "steel",
-    bearing_material: str | Material = "steel",
+    journal_material: str | Material | None = None,
+    bearing_material: str | Material | None = None,
     E_star: float | None = None,
     friction: str | FrictionLaw = "none",
-    v_min: float = V_MIN_DEFAULT,
+    v_min: float | None = None,
     stiffness: str | None = None,
     damping: str | None = None,
 ) -> ClearanceJoint:
@@ -86,21 +89,23 @@ def make_joint(
     journal_radius, bearing_radius, length : float
         ``R_J < R_B`` and the bearing length ``L`` [m].
     law : str or ContactLaw, optional
-        A name of :data:`exuclear.CONTACT_LAWS` (default ``"wang-liu"``), a pair
-        ``"STIFFNESS+DAMPING"`` (:mod:`exuclear.contact`), or a ready law (then ``cr``,
-        materials, ``E_star`` and ``v_min`` must not be given and the law's own geometry
-        must match the radii and length).
+        A law's name as :func:`exuclear.contact_law` takes it: a named law of
+        :data:`exuclear.contact.CONTACT_LAWS` (default ``"wang-liu"``) or a pair
+        ``"STIFFNESS+DAMPING"``; or a law built by :func:`exuclear.contact_law` (then
+        ``cr``, the materials, ``E_star`` and ``v_min`` are the law's own: giving any of
+        them raises ``ValueError``, and the law's geometry must match the radii and length).
     cr : float
         Coefficient of restitution in (0, 1]; required for every law with damping, 1 (the
         default there) for the elastic ones (``"hertz"``, damping ``"none"``).
-    journal_material, bearing_material : str or Material
-        Names of :data:`exuclear.MATERIALS` or :class:`Material` objects.
+    journal_material, bearing_material : str or Material, optional
+        Names of :data:`exuclear.MATERIALS` or :class:`Material` objects; default steel.
     E_star : float, optional
         Composite modulus [Pa]; overrides the materials when given.
     friction : str or FrictionLaw
         ``"none"``, ``"coulomb:MU"``, ``"paper"`` or a :class:`FrictionLaw`.
-    v_min : float
-        Floor of the onset velocity in the damping term [m/s].
+    v_min : float, optional
+        Floor of the onset velocity in the damping term [m/s]; default
+        :data:`exuclear.V_MIN_DEFAULT`.
     stiffness, damping : str, optional
         The law as a pair instead of ``law``: a name of
         :data:`exuclear.contact.STIFFNESS_MODELS` and one of
@@ -111,6 +116,12 @@ def make_joint(
     if isinstance(law, ContactLaw):
         if stiffness is not None or damping is not None:
             raise ValueError("give either `law` or `stiffness`/`damping`, not both")
+        given = [name for name, value in (("cr", cr), ("journal_material", journal_material),
+                                          ("bearing_material", bearing_material), ("E_star", E_star),
+                                          ("v_min", v_min)) if value is not None]
+        if given:
+            raise ValueError(f"a ready `law` carries its own cr, materials (E_star) and v_min; leave out "
+                             f"{', '.join(f'`{name}`' for name in given)} or give the law by name")
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
         return ClearanceJoint(law, friction_law(friction))
@@ -126,5 +137,7 @@ def make_joint(
             raise ValueError(f"`cr` (coefficient of restitution in (0, 1]) is required for the {law!r} law")
         cr = 1.0
     if E_star is None:
-        E_star = composite_modulus(journal_material, bearing_material)
-    return ClearanceJoint(contact_law(law, geometry, E_star, cr, v_min), friction_law(friction))
+        E_star = composite_modulus(DEFAULT_MATERIAL if journal_material is None else journal_material,
+                                   DEFAULT_MATERIAL if bearing_material is None else bearing_material)
+    return ClearanceJoint(contact_law(law, geometry, E_star, cr, V_MIN_DEFAULT if v_min is None else v_min),
+                          friction_law(friction))

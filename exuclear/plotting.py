@@ -1,4 +1,10 @@
-"""Opt-in plotting helpers (matplotlib is imported here only, and only on use)."""
+"""Opt-in plotting helpers (matplotlib is imported here only, and only on use).
+
+The figures are written to files and never shown: each is a
+:class:`matplotlib.figure.Figure` made outside pyplot, which ``savefig`` renders with
+matplotlib's Agg canvas, so no backend is chosen or switched and a user's pyplot session
+is left alone.
+"""
 from __future__ import annotations
 
 import os
@@ -7,17 +13,18 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from .spectrum import amplitude_spectrum
+
 #: Titles longer than this many characters are wrapped so that they fit the figure.
 _TITLE_WIDTH = 55
 
 
-def _pyplot():
-    import matplotlib
+def _subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], **kwargs):
+    """``(figure, axes)`` as ``pyplot.subplots`` returns them, for a figure outside pyplot."""
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")  # files only; there may be no display
-    import matplotlib.pyplot as plt
-
-    return plt
+    fig = Figure(figsize=figsize)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
 def impact_curves(results: Sequence[tuple[str, dict[str, np.ndarray]]], directory: str, stem: str,
@@ -28,12 +35,11 @@ def impact_curves(results: Sequence[tuple[str, dict[str, np.ndarray]]], director
     :meth:`exuclear.ClearanceJointHandle.outputs`.  Penetration in micrometres, force in
     newtons, rate in m/s.  Returns the written file paths.
     """
-    plt = _pyplot()
     os.makedirs(directory, exist_ok=True)
     paths = []
     for key, ylabel, scale, name in (("normal_force", "contact force [N]", 1.0, "force"),
                                      ("penetration_rate", "penetration rate [m/s]", 1.0, "rate")):
-        fig, ax = plt.subplots(figsize=(5.5, 4.0))
+        fig, ax = _subplots(figsize=(5.5, 4.0))
         for label, out in results:
             mask = out["penetration"] > 0.0
             ax.plot(out["penetration"][mask] * 1e6, out[key][mask] * scale, label=label)
@@ -46,7 +52,6 @@ def impact_curves(results: Sequence[tuple[str, dict[str, np.ndarray]]], director
         fig.tight_layout()
         path = os.path.join(directory, f"{stem}_{name}.png")
         fig.savefig(path, dpi=130)
-        plt.close(fig)
         paths.append(path)
     return paths
 
@@ -59,18 +64,6 @@ _CRANK_ANGLE_PLOTS = (
     ("contact_force", "contact force at B [N]", 1.0),
     ("crank_moment", "crank driving moment [N m]", 1.0),
 )
-
-
-def uniform_spectrum(t: np.ndarray, y: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """One-sided amplitude spectrum of ``y(t)`` resampled on a uniform grid of step ``dt``.
-
-    Returns frequencies [Hz] and amplitudes (units of ``y``); the mean is removed.
-    """
-    grid = np.arange(t[0], t[-1], dt)
-    samples = np.interp(grid, t, y)
-    samples = samples - samples.mean()
-    amplitude = 2.0 * np.abs(np.fft.rfft(samples)) / len(samples)
-    return np.fft.rfftfreq(len(samples), dt), amplitude
 
 
 def _log_frequency_axis(ax, spectra: Sequence[np.ndarray]) -> None:
@@ -99,7 +92,6 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
     acceleration up to ``max_frequency`` on a log frequency axis.  Returns the written
     paths.
     """
-    plt = _pyplot()
     os.makedirs(directory, exist_ok=True)
     paths = []
 
@@ -109,11 +101,10 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
         fig.tight_layout()
         path = os.path.join(directory, f"{stem}_{name}.png")
         fig.savefig(path, dpi=130)
-        plt.close(fig)
         paths.append(path)
 
     for key, label, scale in _CRANK_ANGLE_PLOTS:
-        fig, ax = plt.subplots(figsize=(7.0, 3.6))
+        fig, ax = _subplots(figsize=(7.0, 3.6))
         for name, cols in cases:
             ax.plot(cols["crank_angle"], cols[key] * scale, lw=0.8, label=name)
         if baseline is not None:
@@ -125,7 +116,7 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
         save(fig, key)
 
     if cases:  # an ideal joint has no orbit: the figure would hold the circle alone
-        fig, ax = plt.subplots(figsize=(4.8, 4.8))
+        fig, ax = _subplots(figsize=(4.8, 4.8))
         circle = np.linspace(0.0, 2.0 * np.pi, 361)
         ax.plot(clearance * 1e6 * np.cos(circle), clearance * 1e6 * np.sin(circle), "k-", lw=1.0,
                 label="clearance circle")
@@ -137,15 +128,15 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
         ax.legend(fontsize=7, loc="upper right")
         save(fig, "orbit")
 
-    fig, ax = plt.subplots(figsize=(7.0, 3.6))
+    fig, ax = _subplots(figsize=(7.0, 3.6))
     drawn = []
     for name, cols in cases:
-        f, a = uniform_spectrum(cols["time"], cols["slider_a"], spectrum_step)
+        f, a = amplitude_spectrum(cols["time"], cols["slider_a"], spectrum_step)
         keep = (f > 0.0) & (f <= max_frequency)  # the mean (0 Hz) is removed
         ax.plot(f[keep], a[keep], lw=0.8, label=name)
         drawn.append(f[keep])
     if baseline is not None:
-        f, a = uniform_spectrum(baseline["time"], baseline["slider_a"], spectrum_step)
+        f, a = amplitude_spectrum(baseline["time"], baseline["slider_a"], spectrum_step)
         keep = (f > 0.0) & (f <= max_frequency)
         ax.plot(f[keep], a[keep], "k--", lw=1.0, label="ideal joint")
         drawn.append(f[keep])
@@ -156,22 +147,6 @@ def slider_crank_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]], bas
     ax.legend(fontsize=7)
     save(fig, "spectrum")
     return paths
-
-
-def hann_spectrum(t: np.ndarray, y: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """One-sided amplitude spectrum of ``y(t)`` on a uniform grid of step ``dt``, Hann-windowed.
-
-    For records that are not periodic (a part of a run): the window keeps the leakage
-    of the jump between the record's ends out of the spectrum.  The amplitudes are
-    corrected for the window's mean (a sinusoid of amplitude A shows a peak of A).
-    Returns frequencies [Hz] and amplitudes (units of ``y``); the mean is removed.
-    """
-    grid = np.arange(t[0], t[-1], dt)
-    samples = np.interp(grid, t, y)
-    window = np.hanning(len(samples))
-    samples = (samples - samples.mean()) * window
-    amplitude = 2.0 * np.abs(np.fft.rfft(samples)) / window.sum()
-    return np.fft.rfftfreq(len(samples), dt), amplitude
 
 
 #: Sweep figures: quantities drawn as one panel per case, (column, axis label).
@@ -216,10 +191,10 @@ def _on_baseline(cols: dict[str, np.ndarray], baseline: dict[str, np.ndarray], k
     return cols[key] - np.interp(cols["time"], baseline["time"], baseline[key])
 
 
-def _stacked_figure(plt, cases, baseline, key: str, label: str, dead_points: Sequence[float],
+def _stacked_figure(cases, baseline, key: str, label: str, dead_points: Sequence[float],
                     zoom_after: float | None):
     n = len(cases)
-    fig, axes = plt.subplots(n, 1, figsize=(7.5, _PANEL_HEIGHT * n + 0.9), sharex=True, sharey=True, squeeze=False)
+    fig, axes = _subplots(n, 1, figsize=(7.5, _PANEL_HEIGHT * n + 0.9), sharex=True, sharey=True, squeeze=False)
     limits = _zoom_limits(cases, baseline, key, zoom_after) if zoom_after is not None else None
     for k, (ax, (name, cols)) in enumerate(zip(axes[:, 0], cases, strict=True)):
         ax.plot(cols["crank_angle"], cols[key], lw=0.6, color=f"C{k}", label=name)
@@ -240,9 +215,9 @@ def _stacked_figure(plt, cases, baseline, key: str, label: str, dead_points: Seq
     return fig
 
 
-def _overlay_figure(plt, cases, baseline, key: str, label: str, dev_label: str, dev_scale: float,
+def _overlay_figure(cases, baseline, key: str, label: str, dev_label: str, dev_scale: float,
                     dead_points: Sequence[float]):
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.2), sharex=True, gridspec_kw={"height_ratios": [2, 1.3]})
+    fig, (top, bottom) = _subplots(2, 1, figsize=(7.5, 5.2), sharex=True, gridspec_kw={"height_ratios": [2, 1.3]})
     for k, (name, cols) in enumerate(cases):
         top.plot(cols["crank_angle"], cols[key], lw=0.8, color=f"C{k}", label=name)
         if baseline is not None:
@@ -259,9 +234,9 @@ def _overlay_figure(plt, cases, baseline, key: str, label: str, dev_label: str, 
     return fig
 
 
-def _orbit_figure(plt, cases, clearance: float):
+def _orbit_figure(cases, clearance: float):
     n = len(cases)
-    fig, axes = plt.subplots(1, n, figsize=(2.9 * n, 3.4), sharex=True, sharey=True, squeeze=False)
+    fig, axes = _subplots(1, n, figsize=(2.9 * n, 3.4), sharex=True, sharey=True, squeeze=False)
     circle = np.linspace(0.0, 2.0 * np.pi, 361)
     c_um = clearance * 1e6
     for k, (ax, (name, cols)) in enumerate(zip(axes[0], cases, strict=True)):
@@ -274,9 +249,9 @@ def _orbit_figure(plt, cases, clearance: float):
     return fig
 
 
-def _spectrum_figure(plt, spectra, baseline_spectrum, band: tuple[float, float] | None, ylabel: str, log: bool):
+def _spectrum_figure(spectra, baseline_spectrum, band: tuple[float, float] | None, ylabel: str, log: bool):
     n = len(spectra)
-    fig, axes = plt.subplots(n, 1, figsize=(7.5, _PANEL_HEIGHT * n + 0.9), sharex=True, sharey=True, squeeze=False)
+    fig, axes = _subplots(n, 1, figsize=(7.5, _PANEL_HEIGHT * n + 0.9), sharex=True, sharey=True, squeeze=False)
     top = max(float(a.max()) for _, _, a in spectra)
     for k, (ax, (name, f, a)) in enumerate(zip(axes[:, 0], spectra, strict=True)):
         ax.plot(f, a, lw=0.7, color=f"C{k}", label=name)
@@ -344,7 +319,6 @@ def slider_crank_sweep_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]
     list of str
         The written paths.
     """
-    plt = _pyplot()
     os.makedirs(directory, exist_ok=True)
     paths = []
 
@@ -354,7 +328,6 @@ def slider_crank_sweep_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]
         fig.tight_layout()
         path = os.path.join(directory, f"{stem}_{name}.png")
         fig.savefig(path, dpi=130)
-        plt.close(fig)
         paths.append(path)
 
     def wanted(name):
@@ -362,30 +335,30 @@ def slider_crank_sweep_figures(cases: Sequence[tuple[str, dict[str, np.ndarray]]
 
     for key, label, dev_label, dev_scale in _OVERLAY_PLOTS:
         if wanted(key):
-            save(_overlay_figure(plt, cases, baseline, key, label, dev_label, dev_scale, dead_points), key)
+            save(_overlay_figure(cases, baseline, key, label, dev_label, dev_scale, dead_points), key)
     for key, label in _STACKED_PLOTS:
         if wanted(key):
-            save(_stacked_figure(plt, cases, baseline, key, label, dead_points, zoom_after), key)
+            save(_stacked_figure(cases, baseline, key, label, dead_points, zoom_after), key)
     if wanted("orbit"):
-        save(_orbit_figure(plt, cases, clearance), "orbit")
+        save(_orbit_figure(cases, clearance), "orbit")
 
     def clipped(f, a):
         keep = (f > 0.0) & (f <= max_frequency)
         return f[keep], a[keep]
 
     if wanted("spectrum"):
-        spectra = [(name, *clipped(*uniform_spectrum(cols["time"], cols["slider_a"], spectrum_step)))
+        spectra = [(name, *clipped(*amplitude_spectrum(cols["time"], cols["slider_a"], spectrum_step)))
                    for name, cols in cases]
-        ideal = None if baseline is None else clipped(*uniform_spectrum(baseline["time"], baseline["slider_a"],
+        ideal = None if baseline is None else clipped(*amplitude_spectrum(baseline["time"], baseline["slider_a"],
                                                                         spectrum_step))
-        save(_spectrum_figure(plt, spectra, ideal, band, "slider acceleration amplitude [m/s²]", log=True), "spectrum")
+        save(_spectrum_figure(spectra, ideal, band, "slider acceleration amplitude [m/s²]", log=True), "spectrum")
     if deviation_after is not None and baseline is not None and wanted("deviation_spectrum"):
         spectra = []
         for name, cols in cases:
             keep = cols["crank_angle"] >= deviation_after
-            spectra.append((name, *clipped(*hann_spectrum(cols["time"][keep], _on_baseline(cols, baseline, "slider_a")[keep],
-                                                          spectrum_step))))
-        save(_spectrum_figure(plt, spectra, None, band, f"amplitude of (acceleration − ideal) after {deviation_after:g}° "
+            spectra.append((name, *clipped(*amplitude_spectrum(cols["time"][keep], _on_baseline(cols, baseline, "slider_a")[keep],
+                                                               spectrum_step, window="hann"))))
+        save(_spectrum_figure(spectra, None, band, f"amplitude of (acceleration − ideal) after {deviation_after:g}° "
                               "[m/s²]", log=False), "deviation_spectrum")
     return paths
 
@@ -413,9 +386,8 @@ def crank_angle_panels(panels: Sequence[tuple[str, Sequence[tuple[str, np.ndarra
     str
         ``path``.
     """
-    plt = _pyplot()
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    fig, axes = plt.subplots(len(panels), 1, figsize=(7.5, 2.1 * len(panels) + 0.8), sharex=True, squeeze=False)
+    fig, axes = _subplots(len(panels), 1, figsize=(7.5, 2.1 * len(panels) + 0.8), sharex=True, squeeze=False)
     for k, (ax, (ylabel, curves)) in enumerate(zip(axes[:, 0], panels, strict=True)):
         for label, x, y, fmt in curves:
             ax.plot(x, y, fmt, lw=0.7, label=label)
@@ -430,5 +402,4 @@ def crank_angle_panels(panels: Sequence[tuple[str, Sequence[tuple[str, np.ndarra
         fig.suptitle(textwrap.fill(title, 2 * _TITLE_WIDTH), fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
-    plt.close(fig)
     return path

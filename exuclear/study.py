@@ -447,15 +447,21 @@ class _Table:
                 row = dict(zip(self.columns, fields))
                 self.rows[row["run_id"]] = row
 
+    def _write(self, target: Any, rows: Iterable[Mapping[str, str]], *, header: bool, mode: str = "w") -> None:
+        """``rows`` (text) as CSV lines in the order of :attr:`columns`, through pandas
+        (strings as they are, quoted where they hold a comma, quote or line break; CRLF
+        line ends, the CSV standard's)."""
+        import pandas as pd
+
+        lines = pd.DataFrame([[row.get(c, "") for c in self.columns] for row in rows], columns=self.columns,
+                             dtype=object)
+        lines.to_csv(target, mode=mode, header=header, index=False, lineterminator="\r\n")
+
     def _rewrite(self) -> None:
         if self.path is None:
             return
         tmp = self.path.with_name(self.path.name + ".tmp")
-        with open(tmp, "w", newline="") as f:
-            writer = csv.writer(f)
-            writer.writerow(self.columns)
-            for row in self.rows.values():
-                writer.writerow([row.get(c, "") for c in self.columns])
+        self._write(tmp, self.rows.values(), header=True)
         os.replace(tmp, self.path)
 
     def add(self, row: Mapping[str, Any]) -> None:
@@ -476,8 +482,7 @@ class _Table:
                 self.columns = [c for c in self.columns if c not in STATUS_COLUMNS] + new + status
             self._rewrite()
         elif self.path is not None:
-            with open(self.path, "a", newline="") as f:
-                csv.writer(f).writerow([text.get(c, "") for c in self.columns])
+            self._write(self.path, [text], header=False, mode="a")
 
     def frame(self, order: Sequence[str] | None = None):
         """The rows as a DataFrame (all, or those of ``order``'s run ids in that order)."""
@@ -489,7 +494,7 @@ class _Table:
         # the rows go through CSV text even in memory, so that the returned table and the
         # table read back from disk are parsed by the same code and equal value by value
         buffer = io.StringIO(newline="")
-        csv.writer(buffer).writerows([self.columns] + [[self.rows[k].get(c, "") for c in self.columns] for k in keys])
+        self._write(buffer, [self.rows[k] for k in keys], header=True)
         buffer.seek(0)
         # floats must read back exactly: pandas 3 does by default, pandas 2 when asked
         exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}

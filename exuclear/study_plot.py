@@ -1,5 +1,9 @@
 """Plots of study tables (opt-in: imports matplotlib; the library itself never does).
 
+No backend is chosen or switched here: a figure only saved to a file is a
+:class:`matplotlib.figure.Figure` outside pyplot (rendered by ``savefig`` with the Agg
+canvas); a figure returned to draw on further is made by pyplot, in the caller's backend.
+
 :func:`plot_metric` draws a metric of a :func:`exuclear.study.run_study` table over one
 parameter (lines, or points for a bifurcation-style diagram; one set per value of
 ``by``) or over two (a heat map).  Failed runs are left out and counted in the title.
@@ -51,16 +55,12 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
         Markers only, no lines (bifurcation-style: several values of the metric at one x,
         as from a metric that is an array per run).
     ax : matplotlib Axes, optional
-        Draw into it; otherwise a new figure.
+        Draw into it; otherwise a new figure (outside pyplot when ``path`` is given, else
+        a pyplot figure in the caller's backend).
     path : path, optional
-        Save the figure there and close it; returns the path.  Without it, returns the Axes.
+        Save the figure there and close it (if pyplot holds it); returns the path.
+        Without it, returns the Axes.
     """
-    import matplotlib
-
-    if path is not None and ax is None:
-        matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     if y is not None and by is not None:
         raise ValueError("give `y` (a heat map) or `by` (one line per value), not both")
     names = [n for n in (x, y, by) if n is not None]
@@ -70,7 +70,7 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     if rows.empty:
         raise ValueError(f"no successful run to plot ({failed} failed)")
     if ax is None:
-        _, ax = plt.subplots(figsize=(7.0, 4.5))
+        ax = _new_axes(figsize=(7.0, 4.5), for_pyplot=path is None)
     if y is not None:
         cells = rows.pivot_table(index=y, columns=x, values=metric, aggfunc="mean")
         xs, ys = cells.columns.to_numpy(float), cells.index.to_numpy(float)
@@ -101,8 +101,29 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
         return ax
     ax.figure.tight_layout()
     ax.figure.savefig(path, dpi=150)
-    plt.close(ax.figure)
+    _close(ax.figure)
     return path
+
+
+def _new_axes(figsize: tuple[float, float], for_pyplot: bool):
+    """Axes of a new figure: a pyplot one to be shown or drawn on further, or one outside
+    pyplot (no backend chosen) to be saved only."""
+    if for_pyplot:
+        import matplotlib.pyplot as plt
+
+        return plt.subplots(figsize=figsize)[1]
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize).subplots()
+
+
+def _close(figure) -> None:
+    """Close ``figure`` if pyplot holds it (a figure outside pyplot needs no closing)."""
+    import sys
+
+    plt = sys.modules.get("matplotlib.pyplot")  # not imported: it holds no figure
+    if plt is not None:
+        plt.close(figure)  # a no-op for a figure outside pyplot
 
 
 def _edges(centres: np.ndarray, log: bool) -> np.ndarray:

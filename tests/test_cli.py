@@ -76,23 +76,38 @@ def test_ideal_csv_writes_the_joint_force(tmp_path):
     assert "joint force at B 9.1 to 45.2 N" in out
 
 
+class _SavedFigures:
+    """The figures saved during a test, numbered from 1 as pyplot numbers its own (the
+    plotting helpers make their figures outside pyplot, so pyplot does not list them)."""
+
+    def __init__(self) -> None:
+        self.figures: list = []
+
+    def get_fignums(self) -> list[int]:
+        return list(range(1, len(self.figures) + 1))
+
+    def figure(self, number: int):
+        return self.figures[number - 1]
+
+
 @pytest.fixture
 def kept_figures(monkeypatch):
-    """Figures the plotting helpers would close, kept open for inspection."""
-    import matplotlib
+    """Figures the plotting helpers save, kept for inspection."""
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    saved = _SavedFigures()
+    savefig = Figure.savefig
 
-    plt.close("all")
-    monkeypatch.setattr(plt, "close", lambda fig=None: None)
-    yield plt
-    monkeypatch.undo()
-    plt.close("all")
+    def keep(figure, *args, **kwargs):
+        saved.figures.append(figure)
+        return savefig(figure, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", keep)
+    return saved
 
 
-def _spectrum_axes(plt):
-    return [ax for n in plt.get_fignums() for ax in plt.figure(n).axes if ax.get_xlabel() == "frequency [Hz]"]
+def _spectrum_axes(figures):
+    return [ax for n in figures.get_fignums() for ax in figures.figure(n).axes if ax.get_xlabel() == "frequency [Hz]"]
 
 
 def test_ideal_plot_draws_the_force_and_no_empty_orbit(tmp_path, kept_figures):

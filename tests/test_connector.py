@@ -219,7 +219,7 @@ def test_the_kernels_layout_constants_agree():
     assert kernel.COMPILED.N_DATA == len(DATA_COLUMNS)
     assert set(range(kernel.COMPILED.STIFFNESS_CODES)) == KERNEL_STIFFNESS_CODES
     assert {law.kernel_code for law in (exuclear.contact_law(name + "+none", _GEOMETRY, 1e11)
-                                        for name in exuclear.STIFFNESS_MODELS)} == KERNEL_STIFFNESS_CODES
+                                        for name in exuclear.contact.STIFFNESS_MODELS)} == KERNEL_STIFFNESS_CODES
 
 
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)

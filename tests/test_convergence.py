@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 
 import exuclear
-from exuclear import ImpactRecord, JointRecord, RunRecord, SolverSettings, check_convergence, refined_settings
+from exuclear import RunRecord, SolverSettings, check_convergence
+from exuclear.convergence import JointRecord, refined_settings
+from exuclear.history import ImpactRecord
 from exuclear.models import four_bar
 from exuclear.models.journal_bearing import JournalBearingParams, build, default_settings
 

@@ -16,7 +16,7 @@ import pytest
 import exuclear
 from validation import cross_check as cc
 
-JB_CASES, JB_SKIPPED = cc.impact_cases(tuple(exuclear.CONTACT_LAWS))
+JB_CASES, JB_SKIPPED = cc.impact_cases(tuple(exuclear.contact.CONTACT_LAWS))
 CONVERGED = [v for v in cc.VARIANTS if v.kind == "converged"]
 SC_CASES = [cc.CrankCase(*c) for c in cc.QUICK_SC_CASES]
 
@@ -30,7 +30,7 @@ def _silent(line: str) -> None:
 # --------------------------------------------------------------------------------------
 def test_every_law_is_run_over_the_sweep():
     # the sweep of the paper's Figs. 4-5; only the elastic Hertz law rejects cr < 1
-    assert len(JB_CASES) == 5 * (len(exuclear.CONTACT_LAWS) - 1) + 1
+    assert len(JB_CASES) == 5 * (len(exuclear.contact.CONTACT_LAWS) - 1) + 1
     assert ("hertz", 1.0) in JB_CASES
     assert all(note.startswith("hertz") for note in JB_SKIPPED)
 

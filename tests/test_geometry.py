@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from exuclear import contact_kinematics, joint_loads
+from exuclear.geometry import contact_kinematics, joint_loads
 
 
 def test_kinematics_of_a_journal_pressed_along_x(geometry):

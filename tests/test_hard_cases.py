@@ -98,7 +98,7 @@ LOW_CR_LAWS, _ = hc.low_restitution_laws()
 
 def test_every_law_but_the_elastic_one_takes_low_restitution():
     # Hertz is elastic (cr = 1 only, docs/physics.md section 7); every other law must accept cr = 0.05
-    assert sorted(LOW_CR_LAWS) == sorted(set(exuclear.CONTACT_LAWS) - {"hertz"})
+    assert sorted(LOW_CR_LAWS) == sorted(set(exuclear.contact.CONTACT_LAWS) - {"hertz"})
 
 
 @pytest.mark.parametrize("law", LOW_CR_LAWS)
@@ -158,7 +158,7 @@ def test_stick_slip_reverses_the_slip_with_the_modified_coulomb_law():
     assert run.sim.success, run.sim.message
     out = run.model.joint.outputs()
     law = run.model.joint.joint.friction
-    assert isinstance(law, exuclear.ModifiedCoulomb) and (law.mu_s, law.mu_d) == (0.3, 0.25)
+    assert isinstance(law, exuclear.friction.ModifiedCoulomb) and (law.mu_s, law.mu_d) == (0.3, 0.25)
     reversals, stick, mu = hc.slip_statistics(out, law.v_s)
     assert reversals >= 2
     assert 0.0 < stick < 1.0  # it passes through the stiction band, and slides too

@@ -5,7 +5,9 @@ the penetration, and for the crossing time of a penetration linear in time).
 """
 import pytest
 
-from exuclear import ContactKinematics, ContactState, ImpactRecord, make_joint
+from exuclear import make_joint
+from exuclear.geometry import ContactKinematics
+from exuclear.history import ContactState, ImpactRecord
 
 JOINT = make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, law="wang-liu", cr=0.9)
 

@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 
 import exuclear
-from exuclear import CONTACT_LAWS, ModifiedCoulomb, contact_law, smooth_step
+from exuclear import contact_law
+from exuclear.contact import CONTACT_LAWS
+from exuclear.friction import ModifiedCoulomb, smooth_step
 
 DAMPED = [name for name in CONTACT_LAWS if name != "hertz"]
 
@@ -120,24 +122,24 @@ def test_paper_friction_value_and_slope_continuous_at_transitions(v):
 
 def test_friction_never_drives_the_slip():
     # F_T v_T = mu(v_T) v_T F_N >= 0: friction dissipates for every slip velocity
-    for law in (ModifiedCoulomb.paper(), exuclear.Coulomb(0.1), exuclear.NO_FRICTION):
+    for law in (ModifiedCoulomb.paper(), exuclear.friction.Coulomb(0.1), exuclear.friction.NO_FRICTION):
         for v in np.linspace(-0.05, 0.05, 401):
             assert law(v) * v >= 0.0
 
 
 def test_friction_names():
-    assert exuclear.friction_law("none") is exuclear.NO_FRICTION
-    assert exuclear.friction_law("coulomb:0.01") == exuclear.Coulomb(0.01)
+    assert exuclear.friction_law("none") is exuclear.friction.NO_FRICTION
+    assert exuclear.friction_law("coulomb:0.01") == exuclear.friction.Coulomb(0.01)
     assert exuclear.friction_law("paper") == ModifiedCoulomb.paper()
 
 
 
-@pytest.mark.parametrize("law", [ModifiedCoulomb.paper(), exuclear.Coulomb(0.1, v_eps=2e-4)], ids=["paper", "coulomb"])
+@pytest.mark.parametrize("law", [ModifiedCoulomb.paper(), exuclear.friction.Coulomb(0.1, v_eps=2e-4)], ids=["paper", "coulomb"])
 def test_friction_expression_matches_the_branch_formula(law):
     # eq. (11) of the paper written with branches, as docs/physics.md eq. (22) states it; the
     # laws evaluate one branch-free expression (shared with the compiled element)
     def by_branches(v):
-        if isinstance(law, exuclear.Coulomb):
+        if isinstance(law, exuclear.friction.Coulomb):
             return math.copysign(smooth_step(abs(v), -law.v_eps, -law.mu, law.v_eps, law.mu), v)
         speed = abs(v)
         if speed >= law.v_d:

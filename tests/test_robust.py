@@ -53,7 +53,7 @@ def test_exudyn_newton_tolerances_still_fail_and_the_message_names_them():
 
 
 def test_newton_tolerances_are_mapped_and_refused_for_explicit_methods():
-    ss = exuclear.simulation_settings(exuclear.SolverSettings(end_time=1, method="trapezoidal", newton_rtol=1e-5,
+    ss = exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1, method="trapezoidal", newton_rtol=1e-5,
                                                               newton_atol=1e-4))
     assert (ss.timeIntegration.newton.relativeTolerance, ss.timeIntegration.newton.absoluteTolerance) == (1e-5, 1e-4)
     with pytest.raises(ValueError, match="newton_rtol"):
@@ -167,7 +167,7 @@ def test_automatic_step_bad_values():
     with pytest.raises(ValueError, match="`step` must be a positive number .* or 'auto'"):
         exuclear.SolverSettings(end_time=1.0, step=None)
     with pytest.raises(ValueError, match="chosen from the model"):  # the mapping alone does not know the model
-        exuclear.simulation_settings(exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto"))
+        exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto"))
     mbs, _ = pendulum()
     settings = exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto", impact_step=1e-3)
     with pytest.raises(ValueError, match="`impact_step` must not exceed the step, but `step` 'auto' chose 3.51e-05 s"):

@@ -178,7 +178,10 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", "exuclear.make_joint(journal_radius=10e-3, bearing_radius=10e-3, "
                                           "length=15e-3, cr=0.9)", "ValueError"),
     BadInput("API", "inconsistent input", 'exuclear.make_joint(**PAPER, law="hertz", cr=0.5)', "ValueError"),
-    BadInput("API", "inconsistent input", "exuclear.ModifiedCoulomb(mu_s=0.3, mu_d=0.25, v_s=1e-2, v_d=1e-4)",
+    BadInput("API", "inconsistent input", 'exuclear.make_joint(**PAPER, law=exuclear.contact_law("wang-liu", '
+                                          'exuclear.BearingGeometry(**PAPER), 2.27e11, 0.9), cr=0.5)', "ValueError",
+             says="`cr`"),
+    BadInput("API", "inconsistent input", "exuclear.friction.ModifiedCoulomb(mu_s=0.3, mu_d=0.25, v_s=1e-2, v_d=1e-4)",
              "ValueError"),
     BadInput("API", "inconsistent input", "exuclear.SolverSettings(end_time=0.1, step=1.0)", "ValueError"),
     BadInput("API", "inconsistent input", "exuclear.SolverSettings(end_time=0.1, step=1e-5, min_step=1e-4)",
@@ -186,7 +189,7 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'exuclear.simulate(system()[0], exuclear.SolverSettings(end_time=0.1, '
                                           'method="generalized-alpha", step="auto", impact_step=1e-3))', "ValueError",
              says="`impact_step`"),
-    BadInput("API", "inconsistent input", 'exuclear.simulation_settings(exuclear.SolverSettings(end_time=0.1, '
+    BadInput("API", "inconsistent input", 'exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=0.1, '
                                           'method="generalized-alpha", step="auto"))', "ValueError",
              says="chosen from the model"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)',

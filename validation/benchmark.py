@@ -86,7 +86,7 @@ def floor_rows(repeats: int) -> list[tuple[str, str, str]]:
     steps = 9000
     settings = exuclear.SolverSettings(end_time=params.end_time, method="rk44", step=params.end_time / steps,
                                        output_step=params.end_time)
-    ss = exuclear.simulation_settings(settings)
+    ss = exuclear.engine.simulation_settings(settings)
     model = sc_model.build(params)
 
     def solve() -> float:

@@ -10,7 +10,7 @@ The library (:mod:`exuclear.models.journal_bearing`, :mod:`exuclear.models.slide
 Exudyn element) and the reference (:mod:`validation.reference`, which shares only the
 contact and friction laws) run the same cases:
 
-- journal-bearing: every law of :data:`exuclear.CONTACT_LAWS` over cr = 0.3, 0.5, 0.7,
+- journal-bearing: every law of :data:`exuclear.contact.CONTACT_LAWS` over cr = 0.3, 0.5, 0.7,
   0.9, 1.0 (a law that rejects a cr, such as the elastic Hertz law below 1, is skipped
   and listed); departure velocity, peak force, peak penetration, contact duration;
 - slider-crank, two crank revolutions: cr 0.3 and 0.9, steel and aluminium journals in a
@@ -40,9 +40,12 @@ onset bookkeeping passed, 1 otherwise; the rows at default settings are reported
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import os
+import re
+import string
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -58,7 +61,7 @@ from exuclear.models.journal_bearing import JournalBearingParams
 from exuclear.models.slider_crank import SliderCrankParams
 from exuclear.study import run_id, run_study
 from validation._cli import add_workers_option
-from validation._tables import markdown_table, write_csv
+from validation._tables import markdown_table, template_blocks, template_path, write_csv
 from validation.reference import journal_bearing as jb_reference
 from validation.reference import slider_crank as sc_reference
 
@@ -179,14 +182,7 @@ SC_CRITERIA = (
 )
 
 #: Not a pass/fail criterion, reported only: the relative RMS of the slider-acceleration
-#: difference.  Why not: during an impact the slider's acceleration is a pulse of
-#: F / m_slider (~40 times the ideal amplitude) lasting ~40 us, so a shift s of an onset
-#: changes it pointwise by ~pi s / 40 us of its amplitude: the 1e-5 s onset bound alone
-#: allows differences of the order of the pulses themselves.
-ACC_NOTE = ("RMS(delta slider_a) / RMS(ideal slider_a) is reported, not judged: during an impact the slider's "
-            "acceleration is a pulse of F / m_slider (~40 times the ideal amplitude) lasting ~40 us, so an onset "
-            "shift s changes it pointwise by ~pi s / 40 us of the pulse; the onset bound alone allows differences "
-            "of the order of the pulses. It ranks the settings; eccentricity, peak force and onsets judge them.")
+#: difference (why: the report's ``acc_note``, :data:`REPORT_TEMPLATE`).
 
 #: Onset bookkeeping: :attr:`SliderCrankResult.onset_times` must agree with the zero
 #: crossings of the recorded penetration, which interpolate between the same accepted
@@ -435,7 +431,7 @@ def recorded_onsets(cols: dict[str, np.ndarray]) -> Crossings:
     """The :class:`Crossings` of ``cols["penetration"]`` on ``cols["time"]``.
 
     With a record at every accepted step this is the onset rule of
-    :class:`exuclear.ContactState`, on the recorded times.
+    :class:`exuclear.history.ContactState`, on the recorded times.
     """
     t, d = cols["time"], cols["penetration"]
     k = np.flatnonzero((d[:-1] <= 0.0) & (d[1:] > 0.0))
@@ -714,7 +710,7 @@ def cross_check(quick: bool = False, progress: Progress = _print, workers: int |
     cores; 1: in this process); the comparisons follow here, in the order of the report.
     """
     start = time.perf_counter()
-    laws = QUICK_LAWS if quick else tuple(exuclear.CONTACT_LAWS)
+    laws = QUICK_LAWS if quick else tuple(exuclear.contact.CONTACT_LAWS)
     cases = crank_cases(quick)
     horizon = QUICK_HORIZON if quick else None
     jb_cases, skipped = impact_cases(laws)
@@ -766,6 +762,16 @@ def cross_check(quick: bool = False, progress: Progress = _print, workers: int |
 
 
 
+#: The report's prose: a Markdown template next to this script, with the sentences the
+#: results pick (:func:`validation._tables.template_blocks`).
+REPORT_TEMPLATE = template_path(__file__, "cross_check_report.md")
+
+
+@functools.cache
+def _blocks() -> dict[str, string.Template]:
+    return dict(template_blocks(REPORT_TEMPLATE))
+
+
 def criteria_md() -> str:
     """The pass/fail criteria with their reasons."""
     rows = [("journal-bearing", c.label, f"{c.limit:g}", c.reason) for c in JB_CRITERIA]
@@ -781,7 +787,8 @@ def criteria_md() -> str:
     rows.append(("reference", "sensitivity: max abs(delta e) / c after a 1e-9 m perturbation", f"{SENSITIVITY_LIMIT:g}",
                  "1/10 of the eccentricity bound: beyond it the reference itself is uncertain at the scale of the "
                  "bound, and point-by-point comparison stops there"))
-    return markdown_table(("scene", "criterion", "bound", "reason"), rows) + "\n\n" + ACC_NOTE
+    table = markdown_table(("scene", "criterion", "bound", "reason"), rows)
+    return table + "\n\n" + _blocks()["acc_note"].substitute()
 
 
 def _status(passed: bool, failed: Sequence[str]) -> str:
@@ -842,13 +849,15 @@ def sensitivity_md(refs: Sequence[ReferenceCase]) -> str:
 
 def convergence_md(conv: Convergence | None) -> str:
     """Sentence on the reference's convergence."""
+    blocks = _blocks()
     if conv is None:
-        return "The convergence case is not part of this run.\n"
-    return (f"Case {conv.case.label}, {conv.end_time:.4g} s: DOP853 at rtol {REF_RTOL:g} / atol {REF_ATOL:g} against "
-            f"rtol {REF_TIGHT_RTOL:g} / atol {REF_TIGHT_ATOL:g}: max abs(de)/c = **{conv.ecc:.2e}**, impacts "
-            f"{conv.impacts[0]} / {conv.impacts[1]}, largest onset shift {_fmt_shift(conv.onset_shift)} us "
-            f"(wall {conv.walls[0]:.1f} s / {conv.walls[1]:.1f} s). Bound {REF_CONVERGENCE_LIMIT:g}: "
-            f"{'pass' if conv.passed else '**FAILING**'}.\n")
+        return blocks["no_convergence"].substitute()
+    return blocks["convergence"].substitute(
+        case=conv.case.label, end_time=f"{conv.end_time:.4g}", ref_rtol=f"{REF_RTOL:g}", ref_atol=f"{REF_ATOL:g}",
+        tight_rtol=f"{REF_TIGHT_RTOL:g}", tight_atol=f"{REF_TIGHT_ATOL:g}", ecc=f"{conv.ecc:.2e}",
+        impacts=f"{conv.impacts[0]} / {conv.impacts[1]}", onset_shift=_fmt_shift(conv.onset_shift),
+        walls=f"{conv.walls[0]:.1f} s / {conv.walls[1]:.1f} s", limit=f"{REF_CONVERGENCE_LIMIT:g}",
+        status="pass" if conv.passed else "**FAILING**")
 
 
 def _sensitivity_sentence(refs: Sequence[ReferenceCase]) -> str:
@@ -856,10 +865,8 @@ def _sensitivity_sentence(refs: Sequence[ReferenceCase]) -> str:
     if not sens:
         return ""
     if any(s.sensitive for s in sens):
-        return ("Some cases are sensitive: their point-by-point metrics (eccentricity, acceleration, onsets) cover "
-                "only the horizon in the table; peak force and impact count are compared over the whole run.")
-    return ("No case is sensitive over its horizon: every perturbed run stays within "
-            f"{SENSITIVITY_LIMIT:g} c of its base run, so the point-by-point comparison covers the whole run.")
+        return _blocks()["sensitive"].substitute()
+    return _blocks()["not_sensitive"].substitute(limit=f"{SENSITIVITY_LIMIT:g}")
 
 
 def _converged_step() -> str:
@@ -868,28 +875,17 @@ def _converged_step() -> str:
     return "; ".join(f"{name} {value:g}" for variant in rows for name, value in variant.changes if value is not None)
 
 
+#: Missed criteria of rows at default settings, in the order the report explains them.
+_DEFAULT_MISSES = ("ecc", "peak_force", "onset_shift", "impacts")
+
+
 def _default_explanations(rows: Sequence[CrankRow]) -> list[str]:
     """What the failures of rows at default settings mean, one paragraph per missed criterion."""
+    blocks = _blocks()
     missed = {k for r in rows for k in r.failed}
-    text = []
-    if rows:
-        text.append("Rows at default settings use the defaults of `models.slider_crank.default_settings`, chosen "
-                    "for an eccentricity error below 1 % of c at the least work (validation/work_precision.py): they "
-                    "are not converged, and their converged rows show where the differences go.")
-    if "ecc" in missed:
-        text.append("Eccentricity: the error of the default settings exceeds 1 % of c here; generalized-alpha's "
-                    f"error shrinks as h^2 (converged row: {_converged_step()} s).")
-    if "peak_force" in missed:
-        text.append("Peak force: the library's peak is its largest value at its accepted steps; a sine-like pulse "
-                    "of duration T sampled h off its top is low by (pi h / T)^2 / 2, i.e. 2 % for h = 2.5 us on "
-                    "T = 40 us, and larger steps also shift the impact itself.")
-    if "onset_shift" in missed:
-        text.append("Onsets: along a sequence of bounces the approach speed falls to mm/s, where a path error of "
-                    "nanometres moves an onset by microseconds; the shifts grow along the sequence.")
-    if "impacts" in missed:
-        text.append("Impact count: a short separation between contacts (one more or one less) that the default "
-                    "steps resolve differently from the reference, whose events locate every zero crossing of the "
-                    "penetration.")
+    text = [blocks["defaults"].substitute()] if rows else []
+    text += [blocks[f"default_{key}"].substitute(converged_step=_converged_step())
+             for key in _DEFAULT_MISSES if key in missed]
     return text
 
 
@@ -897,7 +893,7 @@ def failing_md(x: CrossCheck) -> str:
     """The failing rows and what they mean."""
     bad = [r for r in x.cranks if not r.passed] + [r for r in x.impacts if not r.passed]
     if not bad:
-        return "No case fails.\n"
+        return _blocks()["no_failures"].substitute()
     lines = []
     for r in bad:
         if isinstance(r, ImpactRow):
@@ -910,74 +906,45 @@ def failing_md(x: CrossCheck) -> str:
     explain = _default_explanations([r for r in bad if isinstance(r, CrankRow) and r.variant.kind == "default"])
     if any(isinstance(r, CrankRow) and r.variant.kind == "converged" for r in bad) or \
             any(isinstance(r, ImpactRow) for r in bad):
-        explain.append("A failing journal-bearing row or converged slider-crank row is a disagreement of the "
-                       "library with the reference that this run does not explain.")
-    return "\n".join(lines) + "\n\n" + "\n\n".join(explain) + "\n"
+        explain.append(_blocks()["unexplained"].substitute())
+    return "\n".join(lines) + "\n\n" + "\n\n".join(explain)
 
 
 def bookkeeping_sentence(rows: Sequence[CrankRow]) -> str:
     """What the bookkeeping table shows."""
     late = [r for r in rows if not r.bookkeeping.passed]
     if not late:
-        return "The reported onsets agree with the recorded crossings in every row.\n"
-    return (f"**FAILING** in {len(late)} of {len(rows)} rows: the library's `onset_times` differ from the crossings "
-            "of its own recorded penetration, so its contact history misplaces the onsets (a lag of one whole "
-            "step points at the time stamp of the accepted state).\n")
+        return _blocks()["bookkeeping_pass"].substitute()
+    return _blocks()["bookkeeping_fail"].substitute(late=len(late), rows=len(rows))
+
+
+def skipped_md(skipped: Sequence[str]) -> str:
+    """The journal-bearing cases a law rejected, as a list ("" if none)."""
+    if not skipped:
+        return ""
+    return _blocks()["skipped"].substitute(items="\n".join(f"- {s}" for s in skipped))
+
+
+def report_md(x: CrossCheck) -> str:
+    """The Markdown report: :data:`REPORT_TEMPLATE` filled in with the results of ``x``."""
+    text = _blocks()["report"].substitute(
+        quick_option=" --quick" if x.quick else "", quick_label="quick run: " if x.quick else "",
+        horizon=f"the first {QUICK_HORIZON:g} s" if x.quick else f"{REVOLUTIONS:g} crank revolutions",
+        runtime=f"{x.runtime:.0f}", cores=os.cpu_count() or "?", criteria=criteria_md(),
+        ref_method=REF_METHOD, ref_rtol=f"{REF_RTOL:g}", ref_atol=f"{REF_ATOL:g}", grid_step=f"{GRID_STEP:g}",
+        output_step=f"{EXUDYN_OUTPUT_STEP:g}", peak_step=f"{PEAK_STEP:g}", convergence=convergence_md(x.convergence),
+        perturbation=f"{PERTURBATION:g}", perturbation_c=f"{PERTURBATION / 1e-4:g}",
+        sensitivity_limit=f"{SENSITIVITY_LIMIT:g}", sensitivity_table=sensitivity_md(x.references),
+        sensitivity_sentence=_sensitivity_sentence(x.references), impacts_table=impacts_md(x.impacts),
+        skipped=skipped_md(x.skipped), cranks_table=cranks_md(x.cranks), bookkeeping_table=bookkeeping_md(x.cranks),
+        bookkeeping_sentence=bookkeeping_sentence(x.cranks), failing=failing_md(x))
+    return re.sub(r"\n{3,}", "\n\n", text).strip("\n") + "\n"  # an empty field leaves one blank line
 
 
 def write_report(path: str, x: CrossCheck) -> str:
-    """Write the Markdown report; returns ``path``."""
-    horizon = f"the first {QUICK_HORIZON:g} s" if x.quick else f"{REVOLUTIONS:g} crank revolutions"
-    parts = [
-        "# Cross-check: exuclear (Exudyn) against the independent SciPy reference\n",
-        "Source problems: examples 1 and 2 of Wang, Liu, Ma, Tong, J. Mech. Sci. Technol. 31(2) (2017) 587-597 "
-        "(docs/physics.md sections 6.1 and 6.2). The reference (`validation/reference`) shares only the contact and friction laws "
-        "with the library; kinematics, equations of motion and integration are its own. Command: "
-        f"`python -m validation.cross_check{' --quick' if x.quick else ''}` ({'quick run: ' if x.quick else ''}"
-        f"slider-crank over {horizon}; total runtime {x.runtime:.0f} s).\n",
-        "Wall times are single runs on a 2-core machine with other processes running: they are noisy and only "
-        "indicative (the README numbers will be re-measured on a quiet machine). The library's time is its solver "
-        "call, with the Python contact callback and outputs recorded at every accepted step; the reference's is its "
-        "integration, output sampling excluded.\n",
-        "## Pass/fail criteria\n", criteria_md() + "\n",
-        "Library settings of the journal-bearing runs: DOPRI5, steps <= 1e-7 s, rtol 1e-9, atol 1e-13 "
-        "(`models.journal_bearing.settings_for`); reference: DOP853, rtol 1e-11, atol 1e-16, events at the deepest "
-        "penetration and the release. Slider-crank reference: "
-        f"{REF_METHOD} at rtol {REF_RTOL:g}, atol {REF_ATOL:g}, outputs every {GRID_STEP:g} s from its dense "
-        f"output; the library records every accepted step (output_step {EXUDYN_OUTPUT_STEP:g} s; Exudyn records at "
-        "the first accepted step at or after each output instant); eccentricities are compared at those steps, "
-        "with the reference interpolated linearly onto them (the slider acceleration on the reference's grid). "
-        "Peak forces: library at its accepted steps; reference every "
-        f"{PEAK_STEP:g} s of its dense output.\n",
-        "## The reference: convergence\n", convergence_md(x.convergence),
-        "## The reference: sensitivity to initial conditions\n",
-        f"Each case is run again with the clearance enlarged by {PERTURBATION:g} m ({PERTURBATION / 1e-4:g} c; the "
-        "journal's distance to every wall at the start). Point-by-point comparison ends where the two references "
-        f"part by more than {SENSITIVITY_LIMIT:g} c.\n",
-        sensitivity_md(x.references) + "\n", _sensitivity_sentence(x.references) + "\n",
-        "## Journal-bearing impact (docs/physics.md section 6.1)\n",
-        "Relative differences (library - reference) / reference.\n",
-        impacts_md(x.impacts) + "\n",
-    ]
-    if x.skipped:
-        parts.append("Not run (the law rejects the cr):\n\n" + "\n".join(f"- {s}" for s in x.skipped) + "\n")
-    parts += [
-        "## Slider-crank (docs/physics.md section 6.2)\n",
-        "Wang-Liu law, steel bearing. Per row: max abs(de)/c, the largest distance between the library's and the "
-        "reference's journal-centre paths relative to c; peak force, (library - reference) / reference; impact "
-        "counts over the run (library: its `onset_times`; reference: its events); the largest shift of an onset, "
-        "paired in order (same sources); the "
-        "RMS of the slider-acceleration difference over the RMS of the ideal mechanism's acceleration (closed "
-        "form), reported only.\n",
-        cranks_md(x.cranks) + "\n",
-        "## Onset bookkeeping of the library\n",
-        "`SliderCrankResult.onset_times` against the upward zero crossings of the same run's recorded penetration "
-        "(recorded at every accepted step, interpolated linearly as `exuclear.ContactState` does).\n",
-        bookkeeping_md(x.cranks) + "\n", bookkeeping_sentence(x.cranks),
-        "## Failing cases\n", failing_md(x),
-    ]
+    """Write the Markdown report (:func:`report_md`); returns ``path``."""
     with open(path, "w", encoding="utf-8") as f:
-        f.write("\n".join(parts))
+        f.write(report_md(x))
     return path
 
 

@@ -14,7 +14,7 @@ and writes the tables:
 - Fig. 6: bearing length sweep at cr = 0.9 (Wang-Liu);
 - Fig. 7: steel-steel against a copper journal in a steel bearing (Wang-Liu, cr = 0.9);
 - the effective restitution (departure / impact speed) of every law in
-  :data:`exuclear.CONTACT_LAWS` for cr = 0.1, 0.2, ..., 1.0.
+  :data:`exuclear.contact.CONTACT_LAWS` for cr = 0.1, 0.2, ..., 1.0.
 
 Run from the repository root::
 
@@ -276,15 +276,15 @@ def restitution_row(runner: ImpactRunner, law: str) -> RestitutionRow:
 
 def restitution_params() -> list[JournalBearingParams]:
     """The runs of the restitution table: every law at every cr of the grid it accepts."""
-    grid = [JournalBearingParams.paper(law=law, cr=cr) for law in exuclear.CONTACT_LAWS for cr in CR_GRID]
+    grid = [JournalBearingParams.paper(law=law, cr=cr) for law in exuclear.contact.CONTACT_LAWS for cr in CR_GRID]
     return [params for params in grid if not _rejection(params)]
 
 
 def restitution_sweep(runner: ImpactRunner) -> list[RestitutionRow]:
-    """:func:`restitution_row` for every law of :data:`exuclear.CONTACT_LAWS`."""
+    """:func:`restitution_row` for every law of :data:`exuclear.contact.CONTACT_LAWS`."""
     rows = []
-    for k, law in enumerate(exuclear.CONTACT_LAWS, start=1):
-        print(f"restitution {k}/{len(exuclear.CONTACT_LAWS)}: {law}, cr = {CR_GRID[0]:g} ... {CR_GRID[-1]:g}",
+    for k, law in enumerate(exuclear.contact.CONTACT_LAWS, start=1):
+        print(f"restitution {k}/{len(exuclear.contact.CONTACT_LAWS)}: {law}, cr = {CR_GRID[0]:g} ... {CR_GRID[-1]:g}",
               flush=True)
         rows.append(restitution_row(runner, law))
     return rows

@@ -371,11 +371,11 @@ def records(points: Sequence[Point]) -> list[dict[str, object]]:
 
 
 def figure(points: Sequence[Point], path: str) -> str:
-    from exuclear.plotting import _pyplot
+    from matplotlib.figure import Figure  # a file only: no pyplot, no backend chosen
 
-    plt = _pyplot()
     scenes = list(dict.fromkeys(p.scene for p in points))
-    fig, axes = plt.subplots(1, len(scenes), figsize=(6.2 * len(scenes), 5.6), squeeze=False)
+    fig = Figure(figsize=(6.2 * len(scenes), 5.6))
+    axes = fig.subplots(1, len(scenes), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
         labels = list(dict.fromkeys(p.config.label for p in points if p.scene == scene))
         for k, label in enumerate(labels):
@@ -395,7 +395,6 @@ def figure(points: Sequence[Point], path: str) -> str:
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
-    plt.close(fig)
     return path
 
 

@@ -35,7 +35,7 @@ import numpy as np
 
 import exuclear
 
-from ._common import PROBE_BOUND_CARRIED, JOINT_DEFAULTS, ZooModel, example_settings, register, scaled_end, solver_settings_like
+from ._common import JOINT_DEFAULTS, PROBE_BOUND_CARRIED, ZooModel, example_settings, register, scaled_end, solver_settings_like
 
 EXAMPLE = "exuclear issue 20 (3D double pendulum of two steel bars)"
 BODIES = "mbs.CreateRigidBody (NodeRigidBodyEP / Rxyz / RotVecLG), mbs.CreateRevoluteJoint"

@@ -71,7 +71,7 @@ PERTURBATION = 1e-5
 #: (rtol 1e-9, atol 1e-12), with the largest step scaled to the crank speed: 1e-5 s at the
 #: paper's 500 rpm (0.03 degrees of crank angle), 1e-6 s at 5000 rpm.  The contact-onset
 #: velocity is interpolated within the step where contact begins, with an error of
-#: order step^2 * acceleration (exuclear.ContactState), and accelerations grow as the
+#: order step^2 * acceleration (exuclear.history.ContactState), and accelerations grow as the
 #: speed squared.  (Measured at 5000 rpm over 20 ms with a fixed 1e-5 s bound: max |de|
 #: = 2.7 % of c; with 1e-6 s: 0.06 %.)
 CONVERGED = (("rtol", 1e-9), ("atol", 1e-12))

@@ -201,7 +201,7 @@ def low_restitution_case(law: str, cr: float) -> Callable[[bool], Outcome]:
 def low_restitution_laws() -> tuple[list[str], list[str]]:
     """Laws that accept every cr of :data:`LOW_CRS`, and notes on the others."""
     laws, notes = [], []
-    for law in exuclear.CONTACT_LAWS:
+    for law in exuclear.contact.CONTACT_LAWS:
         try:
             for cr in LOW_CRS:
                 JournalBearingParams.paper(law=law, cr=cr).joint()

@@ -47,7 +47,6 @@ energy audit of :attr:`Result.energy`).
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import sys
 import time
@@ -598,10 +597,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _write_csv(path: str, columns: dict[str, np.ndarray]) -> None:
-    with open(path, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(COLUMNS)
-        writer.writerows(np.column_stack([columns[k] for k in COLUMNS]).tolist())
+    """:data:`COLUMNS` as CSV (every value a float, written as Python writes it; CRLF line ends)."""
+    import pandas as pd
+
+    table = pd.DataFrame({k: np.asarray(columns[k], dtype=float) for k in COLUMNS})
+    table.to_csv(path, index=False, na_rep="nan", lineterminator="\r\n")
 
 
 def main(argv: list[str] | None = None) -> int:

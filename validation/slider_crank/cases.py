@@ -64,7 +64,7 @@ FROZEN_FIGURES = ("slider_a", "contact_force", "orbit", "deviation_spectrum")
 #: Crank angles [deg] where the rod's angular velocity -r w cos(theta) / (l cos(phi)) vanishes.
 ROD_TURNING = (90.0, 270.0)
 #: Slip speed [m/s] below which the paper's friction law is in its stiction branch (v_s).
-STICTION_SPEED = exuclear.ModifiedCoulomb.paper().v_s
+STICTION_SPEED = exuclear.friction.ModifiedCoulomb.paper().v_s
 
 
 # -- cases ----------------------------------------------------------------------------

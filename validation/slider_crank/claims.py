@@ -147,7 +147,7 @@ def claim_dead_points_md(done: Sequence[tuple[Sweep, SweepRows]], diag: Diagnost
         "eccentricity follows the ideal force direction: mean angle between them "
         f"{_span([h.angle_offset for h in hist], '+.1f')}° (with friction the resultant of normal and tangential "
         "force follows it, so the normal may turn by up to "
-        f"atan(μ_d) = {math.degrees(math.atan(exuclear.ModifiedCoulomb.paper().mu_d)):.0f}°); the swings about it, "
+        f"atan(μ_d) = {math.degrees(math.atan(exuclear.friction.ModifiedCoulomb.paper().mu_d)):.0f}°); the swings about it, "
         f"up to {max(h.max_angle_offset for h in hist):.0f}°, are the sliding oscillation described below.",
         f"- *Contact is not lost at the dead points:* the normal force within the dead-point windows stays above "
         f"{min(h.dead_min_force for h in hist):.1f} N (the smallest after the start-up, "

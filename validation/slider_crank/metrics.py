@@ -9,7 +9,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from exuclear.models.slider_crank import SliderCrankParams, SliderCrankResult, ideal_joint_force
-from exuclear.plotting import hann_spectrum, uniform_spectrum
+from exuclear.spectrum import amplitude_spectrum
 from validation.slider_crank.cases import (
     BAND,
     DEAD_WINDOW,
@@ -168,12 +168,12 @@ def case_metrics(params: SliderCrankParams, cols: dict[str, np.ndarray], ideal: 
     points = dead_points(float(theta[-1]))
     near = _near_dead_points(theta, points)
     dead, other = near & late, ~near & late
-    f, a = uniform_spectrum(t, cols["slider_a"], SPECTRUM_STEP)
+    f, a = amplitude_spectrum(t, cols["slider_a"], SPECTRUM_STEP)
     a_ideal = cols["slider_a"] - da
-    _, a_late = uniform_spectrum(t, np.where(late, cols["slider_a"], a_ideal), SPECTRUM_STEP)
-    _, a_startup = uniform_spectrum(t, np.where(late, a_ideal, cols["slider_a"]), SPECTRUM_STEP)
-    fi, ai = uniform_spectrum(ideal["time"], ideal["slider_a"], SPECTRUM_STEP)
-    fd, ad = hann_spectrum(t[late], da[late], SPECTRUM_STEP)
+    _, a_late = amplitude_spectrum(t, np.where(late, cols["slider_a"], a_ideal), SPECTRUM_STEP)
+    _, a_startup = amplitude_spectrum(t, np.where(late, a_ideal, cols["slider_a"]), SPECTRUM_STEP)
+    fi, ai = amplitude_spectrum(ideal["time"], ideal["slider_a"], SPECTRUM_STEP)
+    fd, ad = amplitude_spectrum(t[late], da[late], SPECTRUM_STEP, window="hann")
     search = (fd >= MODE_SEARCH[0]) & (fd <= MODE_SEARCH[1])
     in_contact = cols["in_contact"] > 0.5
     onsets = _onsets(in_contact)
