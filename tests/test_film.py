@@ -120,15 +120,18 @@ def test_finite_model_against_butenschoens_table(width_ratio, eps, so_table, bet
     assert beta == pytest.approx(beta_table, abs=FIT_BETA_TOL)
 
 
-def test_finite_model_squeeze_is_the_short_half_film_times_the_fit():
-    # So_V / (2 (B/D)^2 K) = a8 (1 - eps) / (-a9 - eps), K = the short model's half-film
-    # squeeze integral: the same bracket as the short model's pure squeeze
-    width_ratio, eps, rate = 0.5, 0.6, 1.0
+@pytest.mark.parametrize("rate", [1.0, -1.0])
+def test_finite_model_squeeze_is_the_short_half_film_times_the_fit(rate):
+    # eq. (66): So_V is the short model's half-film squeeze (the Guembel arc around the
+    # smallest gap when approaching, around the largest when leaving: eps -> -eps) times
+    # a8 (1 - x) / (-a9 - x), x = eps sign(eps_dot)
+    width_ratio, eps = 0.5, 0.6
     finite, short = law("finite", width_ratio), law("short", width_ratio)
     f_fin = finite.load(eps * C, 0.0, rate * C, 0.0).fx
     f_short = short.load(eps * C, 0.0, rate * C, 0.0).fx
     a8, a9 = finite._coefficients[7:]
-    assert f_fin / f_short == pytest.approx(a8 * (1 - eps) / (-a9 - eps), rel=1e-12)
+    x = eps * rate
+    assert f_fin / f_short == pytest.approx(a8 * (1 - x) / (-a9 - x), rel=1e-12)
 
 
 # -- properties --------------------------------------------------------------------------------
