@@ -9,10 +9,7 @@ import pytest
 
 from exuclear.film import (
     FILM_MODELS,
-    FiniteBearing,
-    LongBearing,
     Lubrication,
-    ShortBearing,
     attitude_angle,
     blend_eccentricity,
     film_kinematics,

@@ -141,3 +141,13 @@ def test_whirl_cancels_in_the_reference():
     whirling = solve(b, ex, ey, -whirl * ey, whirl * ex, OMEGA, 0.0, n_alpha=128, n_z=8)
     fixed = solve(b, ex, ey, 0.0, 0.0, OMEGA, 0.0, n_alpha=128, n_z=8)
     assert math.hypot(whirling.fx, whirling.fy) < 1e-3 * math.hypot(fixed.fx, fixed.fy)
+
+
+@pytest.mark.slow
+def test_validation_script_writes_its_figure_and_tables(tmp_path):
+    # python -m validation.film_models on a coarse mesh (the default mesh takes ~10 s)
+    from validation import film_models
+
+    assert film_models.main(["--out", str(tmp_path), "--n-alpha", "64", "--n-z", "4"]) == 0
+    for name in ("sommerfeld.png", "sommerfeld.md", "sommerfeld.csv", "convergence.md"):
+        assert (tmp_path / name).stat().st_size > 0
