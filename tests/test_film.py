@@ -257,3 +257,15 @@ def test_blended_film_is_finite_and_growing_through_the_wall(model):
     assert radial == sorted(radial)
     assert film.blended_load(0.85 * C, 0.0, 0.1 * C, 0.0, OMEGA, 0.0) == film.load(0.85 * C, 0.0, 0.1 * C, 0.0,
                                                                                     OMEGA, 0.0)
+
+
+@pytest.mark.parametrize("eps", [0.3, 0.8])
+def test_finite_model_torque_is_butenschoens_friction_coefficient(eps):
+    # Butenschoen's (and DIN 31652's) friction coefficient of the journal,
+    # mu = psi (pi / (sqrt(1 - eps^2) So) + sin(beta) eps / 2), M_J = -mu F R (omega_B = 0)
+    film = law("finite", 0.5)
+    load = film.load(eps * C, 0.0, 0.0, 0.0, OMEGA, 0.0)
+    force = math.hypot(load.fx, load.fy)
+    so, beta = film.rotation(eps)
+    mu = C / R * (math.pi / (math.sqrt(1 - eps ** 2) * so) + math.sin(beta) * eps / 2)
+    assert load.torque_journal == pytest.approx(-mu * force * R, rel=1e-12)

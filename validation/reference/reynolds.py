@@ -37,7 +37,14 @@ Cavitation, two conditions:
 
 Forces on the journal: ``F = -R integral integral p (cos(alpha), sin(alpha)) dalpha dz``
 (the trapezoidal rule in both directions, spectral in the periodic ``alpha`` for a smooth
-``p``).  :func:`converged` refines the mesh by halving both steps and extrapolates
+``p``).  Viscous moments from the shear stress of the film's velocity profile (Couette plus
+Poiseuille; the Couette part over the whole circumference, cavitated or not):
+
+    tau_J = eta R (omega_B - omega_J) / h - (h / (2 R)) dp/dalpha     on the journal,
+    tau_B = -eta R (omega_B - omega_J) / h - (h / (2 R)) dp/dalpha    on the bearing,
+    M = R^2 integral integral tau dalpha dz
+
+with ``dp/dalpha`` by central differences of the pressure after the cavitation condition.  :func:`converged` refines the mesh by halving both steps and extrapolates
 (Richardson, order 2).
 """
 from __future__ import annotations
@@ -71,7 +78,8 @@ class Solution:
 
     ``alpha`` (n_alpha,) [rad], ``z`` (n_z + 1,) [m] from 0 to ``B/2``, ``pressure``
     (n_alpha, n_z + 1) [Pa] after the cavitation condition; ``fx``, ``fy`` [N] on the
-    journal; ``iterations`` of the active-set loop (0 for Guembel).
+    journal; ``iterations`` of the active-set loop (0 for Guembel); ``torque_journal``,
+    ``torque_bearing`` [N m] about ``+z``.
     """
 
     alpha: np.ndarray
@@ -80,6 +88,8 @@ class Solution:
     fx: float
     fy: float
     iterations: int
+    torque_journal: float = math.nan
+    torque_bearing: float = math.nan
 
 
 def solve(bearing: Bearing, ex: float, ey: float, vx: float = 0.0, vy: float = 0.0, omega_journal: float = 0.0,
@@ -154,7 +164,13 @@ def solve(bearing: Bearing, ex: float, ey: float, vx: float = 0.0, vy: float = 0
     line = 2.0 * field @ wz                           # integral over z of p, (n_alpha,)
     fx = -R * da * float(np.sum(line * np.cos(alpha)))
     fy = -R * da * float(np.sum(line * np.sin(alpha)))
-    return Solution(alpha, z, field, fx, fy, iterations)
+    h = gap(alpha)
+    dp_dalpha = (np.roll(line, -1) - np.roll(line, 1)) / (2.0 * da)        # of the z-integrated pressure
+    couette = eta * R * (omega_bearing - omega_journal) / h * bearing.width   # z-integrated
+    poiseuille = -(h / (2.0 * R)) * dp_dalpha
+    torque_journal = R * R * da * float(np.sum(couette + poiseuille))
+    torque_bearing = R * R * da * float(np.sum(-couette + poiseuille))
+    return Solution(alpha, z, field, fx, fy, iterations, torque_journal, torque_bearing)
 
 
 def _complementarity(A: sp.csr_matrix, b: np.ndarray, p_full: np.ndarray) -> tuple[np.ndarray, int]:
