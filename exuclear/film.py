@@ -107,7 +107,8 @@ class FilmLoad(NamedTuple):
         The force along ``n`` and along the tangent ``t = (n_y, -n_x)`` of physics.md eq. (3)
         [N]; ``f_n < 0`` pushes the journal back towards the centre.
     eps : float
-        Eccentricity ratio the film was evaluated at.
+        The journal's eccentricity ratio (:meth:`FilmLaw.blended_load` evaluates the film at
+        the blended one of eq. (70)).
     omega_eff : float
         Effective angular velocity of the wedge, eq. (56) [rad/s].
     """
