@@ -10,6 +10,9 @@ ratio eps; its Sommerfeld number ``So = F psi^2 / (B D eta omega)`` and attitude
   :mod:`validation.reference.reynolds` with both cavitation conditions (half-Sommerfeld;
   Reynolds' condition with the film starting at the largest gap, Butenschoen's);
 - ``sommerfeld.md`` / ``.csv``: the same numbers;
+- ``squeeze.md``: pure squeeze (no spin), journal approaching and leaving the wall at
+  ``|de/dt| = 0.2 c omega``: the force of each model over the reference's (Reynolds'
+  condition, no groove; and half-Sommerfeld);
 - ``convergence.md``: the reference's mesh convergence at two points, successive meshes
   with steps halved and their Richardson extrapolations.
 
@@ -106,6 +109,28 @@ def convergence_table(n_alpha: int, n_z: int) -> str:
                           rows)
 
 
+def squeeze_table(n_alpha: int, n_z: int) -> str:
+    """Pure squeeze: each model's force over the reference's, both cavitation conditions."""
+    rows = []
+    speed = 0.2 * CLEARANCE * OMEGA
+    for width_ratio in WIDTH_RATIOS:
+        geometry = BearingGeometry(RADIUS, RADIUS + CLEARANCE, 2 * RADIUS * width_ratio)
+        bearing = reynolds.Bearing(RADIUS, CLEARANCE, geometry.length, VISCOSITY)
+        for eps in (0.3, 0.6, 0.9):
+            for direction, vx in (("in", speed), ("out", -speed)):
+                refs = [reynolds.converged(bearing, eps * CLEARANCE, 0.0, vx, n_alpha=n_alpha, n_z=n_z, levels=2,
+                                           cavitation=cavitation).fx for cavitation in ("reynolds", "gumbel")]
+                row = [f"{width_ratio:.3g}", eps, direction, f"{refs[0]:.4g}"]
+                for model in FILM_MODELS:
+                    fx = FILM_MODELS[model](VISCOSITY, geometry).load(eps * CLEARANCE, 0.0, vx, 0.0).fx
+                    row += [f"{fx / refs[0]:.3f}", f"{fx / refs[1]:.3f}"]
+                rows.append(row)
+    header = ["B/D", "eps", "squeeze", "F ref. Reynolds [N]"]
+    for model in FILM_MODELS:
+        header += [f"{model} / ref. Reynolds", f"{model} / ref. half-Sommerfeld"]
+    return markdown_table(header, rows)
+
+
 def plot(records: list[dict[str, object]], path: str) -> str:
     import matplotlib
     matplotlib.use("Agg")
@@ -158,6 +183,8 @@ def main(argv: list[str] | None = None) -> int:
     rows = [[f"{v:.4g}" if isinstance(v, float) else v for v in r.values()] for r in records]
     with open(os.path.join(args.out, "sommerfeld.md"), "w", encoding="utf-8") as f:
         f.write(markdown_table(header, rows) + "\n")
+    with open(os.path.join(args.out, "squeeze.md"), "w", encoding="utf-8") as f:
+        f.write(squeeze_table(args.n_alpha, args.n_z) + "\n")
     with open(os.path.join(args.out, "convergence.md"), "w", encoding="utf-8") as f:
         f.write(convergence_table(args.n_alpha, args.n_z) + "\n")
     print(plot(records, os.path.join(args.out, "sommerfeld.png")))
