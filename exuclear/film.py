@@ -44,14 +44,19 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-from ._checks import check_choice, check_nonnegative, check_open, check_positive
+from ._checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
 from .geometry import BearingGeometry
 
-#: Eccentricity ratio below which the film acts alone (physics.md eq. (70)).
+#: Eccentricity ratio below which the film acts alone (physics.md eq. (70)): the threshold
+#: of Flores et al. (2009), h_min = 0.1 c.
 EPS_FILM_DEFAULT = 0.9
 #: Eccentricity ratio the film's argument approaches at and beyond the wall (eq. (70)):
-#: the film force stays finite where the dry contact law takes over.
+#: h_min = 0.03 c, a few micrometres for c ~ 0.1 mm, the order of a ground surface's
+#: roughness, below which a smooth film means little; the short model's rotation load there
+#: is 11 times that at 0.9, finite.
 EPS_CAP_DEFAULT = 0.97
+#: A viscosity above this [Pa s] (honey, bitumen) is more likely one given in mPa s.
+VISCOSITY_WARN_ABOVE = 10.0
 #: A root of the pressure's sign function counts as real when its modulus is within this
 #: of 1 (roots of a degree-4 polynomial on the unit circle; round-off ~1e-15, a tangent
 #: double root splits by ~1e-8).  Spurious candidates are harmless: the sign is tested
@@ -487,7 +492,9 @@ class Lubrication:
     eps_cap: float = EPS_CAP_DEFAULT
 
     def __post_init__(self) -> None:
-        check_positive("viscosity", self.viscosity)
+        if check_positive("viscosity", self.viscosity) > VISCOSITY_WARN_ABOVE:
+            warn_unit(f"the viscosity {self.viscosity:.3g} Pa s is above {VISCOSITY_WARN_ABOVE:g} Pa s; it is in Pa s: "
+                      "was it given in mPa s (cP)?")
         check_choice("model", self.model, FILM_MODELS)
         check_open("eps_film", self.eps_film, 0.0, 1.0)
         check_open("eps_cap", self.eps_cap, self.eps_film, 1.0)

@@ -63,6 +63,13 @@ def test_bad_input_names_the_argument(kwargs, word):
         Lubrication(**kwargs)
 
 
+def test_viscosity_in_mpa_s_warns():
+    from exuclear._checks import UnitWarning
+
+    with pytest.warns(UnitWarning, match="mPa s"):
+        Lubrication(viscosity=40.0)
+
+
 @pytest.mark.parametrize("width_ratio", [0.1, 1.5])
 def test_finite_model_outside_its_range_fails(width_ratio):
     with pytest.raises(ValueError, match="B/D"):
