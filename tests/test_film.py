@@ -312,3 +312,17 @@ def test_closed_forms_match_brute_force_quadrature_of_the_positive_pressure(mode
     f_n, f_p = law(model).components(eps, eps_dot, omega_eff)
     q_n, q_p = _quadrature(model, eps, eps_dot, omega_eff)
     assert (f_n, f_p) == pytest.approx((q_n, q_p), abs=1e-6 * math.hypot(q_n, q_p))
+
+
+def test_film_module_is_pure_physics():
+    # STYLE.md: laws never import exudyn; the library never imports matplotlib
+    import ast
+    import pathlib
+
+    import exuclear.film
+
+    tree = ast.parse(pathlib.Path(exuclear.film.__file__).read_text())
+    imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
+    imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
+    assert not {name for name in imported if name.split(".")[0] in ("exudyn", "matplotlib")}
+    assert imported <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "_checks", "geometry"}
