@@ -95,8 +95,8 @@ def test_short_model_is_ocvirk(eps, so_published, half_digit):
 
 @pytest.mark.parametrize("eps", [0.1, 0.5, 0.9, 0.99])
 def test_long_model_rotation_is_half_sommerfeld(eps):
-    # the half-Sommerfeld long bearing in closed form (e.g. Hamrock et al., Fundamentals of
-    # Fluid Film Lubrication, 2004, ch. 10): F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)(1 - eps^2)),
+    # the half-Sommerfeld long bearing in closed form (textbook result, e.g. Hamrock, Schmid,
+    # Jacobson, Fundamentals of Fluid Film Lubrication, 2004): F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)(1 - eps^2)),
     # F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2))
     film = law("long", 2.0)
     load = film.load(eps * C, 0.0, 0.0, 0.0, OMEGA, 0.0)

@@ -10,7 +10,7 @@ bearing's fixed frame with the absolute angle ``alpha`` and the axial coordinate
               dh/dt = -(de_x/dt cos(alpha) + de_y/dt sin(alpha))
 
 (O. Reynolds, Phil. Trans. R. Soc. 177 (1886) 157; e.g. Hamrock, Schmid, Jacobson,
-Fundamentals of Fluid Film Lubrication, 2nd ed., 2004, eq. (7.58) with both surfaces
+Fundamentals of Fluid Film Lubrication, 2nd ed., 2004, with both surfaces
 moving tangentially).  The whirl of the line of centres is not put in by hand: it enters
 through ``dh/dt`` of the fixed frame.  ``p = 0`` at the bearing's ends ``z = +-B/2``,
 periodic in ``alpha``; the film is symmetric in ``z`` and only ``0 <= z <= B/2`` is solved
