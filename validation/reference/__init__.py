@@ -15,7 +15,10 @@ journal_bearing
 slider_crank
     The slider-crank of docs/physics.md section 6.2 (clearance joint at the rod-slider joint) and its
     ideal closed form.
+reynolds
+    A finite-difference solver of Reynolds' equation, the reference of the film laws
+    (docs/physics.md section 10.6); it shares nothing with exuclear, not even the laws.
 """
-from . import journal_bearing, slider_crank
+from . import journal_bearing, reynolds, slider_crank
 
-__all__ = ["journal_bearing", "slider_crank"]
+__all__ = ["journal_bearing", "reynolds", "slider_crank"]

@@ -1,0 +1,528 @@
+"""Film (lubrication) laws of the lubricated joint: the hydrodynamic force of an oil film.
+
+A journal of radius ``R`` turns in a bearing with radial clearance ``c`` and width
+(axial length) ``B = L``; the film between them carries a load when the surfaces drag oil
+into a converging gap (wedge) or when the journal moves towards the wall (squeeze).
+docs/physics.md section 10 states the physics; this module is its code.  Pure physics:
+no exudyn, no state.
+
+Notation (docs/physics.md section 1 and section 10): ``e`` is the eccentricity vector (journal
+centre minus bearing centre), ``eps = |e| / c``, ``n = e / |e|``, ``phi`` the angle of ``e``;
+the film thickness is ``h(theta) = c (1 + eps cos(theta))`` with ``theta`` measured, in the
+sense of positive spin (counter-clockwise about ``+z``), from the line of the largest gap
+(the direction ``-n``).  ``omega_J``, ``omega_B`` are the spins of journal and bearing
+about ``+z``; the wedge acts with the effective angular velocity
+
+    omega_eff = omega_J + omega_B - 2 dphi/dt           (physics.md eq. (56))
+
+so that a journal whirling at half the mean spin carries no wedge load.  Forces are on
+the journal [N] (the bearing gets the opposite), torques about ``+z`` [N m].  Units SI;
+viscosity in Pa s.
+
+Models (``Lubrication(model=...)``):
+
+``"short"``
+    Ocvirk's short bearing, dynamic form (Pinkus and Sternlicht 1961; as used by Flores
+    et al., Mech. Mach. Theory 41 (2006) 247), half-Sommerfeld (Guembel) cavitation:
+    the full-film pressure's positive part.  physics.md eqs. (58)-(60).
+``"long"``
+    Sommerfeld's long bearing with the same cavitation condition; the pressure level is
+    that of a bearing open to ambient pressure at its ends.  physics.md eqs. (61)-(63).
+``"finite"``
+    Butenschoen's approximation (H. J. Butenschoen, Das hydrodynamische, zylindrische
+    Gleitlager endlicher Breite unter instationaerer Belastung, Diss. Karlsruhe 1976; the
+    rotation part is the one of DIN 31652-2): fits of the Sommerfeld number and the
+    attitude angle for rotation, and of the squeeze Sommerfeld number, for
+    ``1/8 <= B/D <= 1``.  physics.md eqs. (64)-(67).
+"""
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from typing import ClassVar, NamedTuple
+
+import numpy as np
+
+from ._checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
+from .geometry import BearingGeometry
+
+#: Eccentricity ratio below which the film acts alone (physics.md eq. (70)): the threshold
+#: of Flores et al. (2009), h_min = 0.1 c.
+EPS_FILM_DEFAULT = 0.9
+#: Eccentricity ratio the film's argument approaches at and beyond the wall (eq. (70)):
+#: h_min = 0.03 c, a few micrometres for c ~ 0.1 mm, the order of a ground surface's
+#: roughness, below which a smooth film means little; the short model's rotation load there
+#: is 11 times that at 0.9, finite.
+EPS_CAP_DEFAULT = 0.97
+#: A viscosity above this [Pa s] (honey, bitumen) is more likely one given in mPa s.
+VISCOSITY_WARN_ABOVE = 10.0
+#: A root of the pressure's sign function counts as real when its modulus is within this
+#: of 1 (roots of a degree-4 polynomial on the unit circle; round-off ~1e-15, a tangent
+#: double root splits by ~1e-8).  Spurious candidates are harmless: the sign is tested
+#: at each arc's midpoint.
+_UNIT_CIRCLE_TOL = 1e-6
+
+
+# -- helper quantities ---------------------------------------------------------------------
+def eccentricity_ratio(ex: float, ey: float, clearance: float) -> float:
+    """``eps = |e| / c`` (physics.md eq. (55)); dimensionless."""
+    return math.hypot(ex, ey) / clearance
+
+
+def minimum_film_thickness(eps: float, clearance: float) -> float:
+    """``h_min = c (1 - eps)`` [m] (physics.md eq. (55))."""
+    return clearance * (1.0 - eps)
+
+
+def relative_clearance(geometry: BearingGeometry) -> float:
+    """``psi = c / R`` with ``R`` the journal radius (physics.md eq. (57))."""
+    return geometry.clearance / geometry.journal_radius
+
+
+def sommerfeld_number(force: float, geometry: BearingGeometry, viscosity: float, omega: float) -> float:
+    """``So = F psi^2 / (B D eta |omega|)`` (physics.md eq. (57)); ``D = 2 R``, ``B = L``.
+
+    ``omega`` is the angular velocity the load is carried at (``omega_eff`` of eq. (56)).
+    """
+    psi = relative_clearance(geometry)
+    return force * psi * psi / (geometry.length * 2.0 * geometry.journal_radius * viscosity * abs(omega))
+
+
+def attitude_angle(ex: float, ey: float, fx: float, fy: float) -> float:
+    """Angle ``beta`` [rad] between the load and the line of centres, in ``[0, pi]``.
+
+    The load is what the film carries, ``-F`` with ``F`` the film force on the journal;
+    ``beta`` is the angle between ``-F`` and ``e`` (physics.md eq. (57)).
+    """
+    return math.atan2(abs(ex * fy - ey * fx), -(ex * fx + ey * fy))
+
+
+# -- the loads a film puts on journal and bearing -----------------------------------------------
+class FilmLoad(NamedTuple):
+    """What a film law returns (physics.md eqs. (68)-(69)).
+
+    Attributes
+    ----------
+    fx, fy : float
+        Film force on the journal [N], bearing frame; the bearing receives ``-F``.
+    torque_journal, torque_bearing : float
+        Viscous moments about ``+z`` on journal and bearing [N m], eq. (69).
+    f_n, f_t : float
+        The force along ``n`` and along the tangent ``t = (n_y, -n_x)`` of physics.md eq. (3)
+        [N]; ``f_n < 0`` pushes the journal back towards the centre.
+    eps : float
+        The journal's eccentricity ratio (:meth:`FilmLaw.blended_load` evaluates the film at
+        the blended one of eq. (70)).
+    omega_eff : float
+        Effective angular velocity of the wedge, eq. (56) [rad/s].
+    """
+
+    fx: float
+    fy: float
+    torque_journal: float
+    torque_bearing: float
+    f_n: float
+    f_t: float
+    eps: float
+    omega_eff: float
+
+
+class FilmKinematics(NamedTuple):
+    """The journal's motion in the frame of the line of centres (physics.md eq. (56))."""
+
+    eps: float          # eccentricity ratio
+    eps_dot: float      # its rate [1/s], > 0 towards the wall
+    omega_eff: float    # omega_J + omega_B - 2 dphi/dt [rad/s]
+    nx: float           # unit normal n (bearing -> journal)
+    ny: float
+
+
+def film_kinematics(ex: float, ey: float, vx: float, vy: float, omega_journal: float, omega_bearing: float,
+                    clearance: float) -> FilmKinematics:
+    """``eps``, ``eps_dot``, ``omega_eff`` and ``n`` from ``e`` and ``de/dt`` (eqs. (55)-(56)).
+
+    At ``e = 0`` the normal is taken along ``de/dt`` (the direction the journal leaves
+    the centre in, so ``eps_dot = |de/dt| / c``), or ``(1, 0)`` at rest; ``dphi/dt = 0``.
+    """
+    ecc = math.hypot(ex, ey)
+    if ecc > 0.0:
+        nx, ny = ex / ecc, ey / ecc
+        phi_dot = (ex * vy - ey * vx) / (ecc * ecc)
+    else:
+        speed = math.hypot(vx, vy)
+        nx, ny = (vx / speed, vy / speed) if speed > 0.0 else (1.0, 0.0)
+        phi_dot = 0.0
+    eps_dot = (nx * vx + ny * vy) / clearance
+    return FilmKinematics(ecc / clearance, eps_dot, omega_journal + omega_bearing - 2.0 * phi_dot, nx, ny)
+
+
+# -- integrals over the arcs of positive pressure (short and long models) --------------------
+def _positive_arcs(a0: float, a1: float, b1: float, a2: float, b2: float) -> list[tuple[float, float]]:
+    """Arcs ``(g1, g2)``, ``g1 < g2``, of ``gamma`` where the trigonometric polynomial
+    ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` is positive.
+
+    The real zeros are the unit-modulus roots of ``z^2 g(z)`` with ``z = exp(i gamma)``.
+    """
+    coeffs = [0.5 * complex(a2, -b2), 0.5 * complex(a1, -b1), complex(a0), 0.5 * complex(a1, b1),
+              0.5 * complex(a2, b2)]
+    while coeffs and coeffs[0] == 0.0:  # np.roots would do this too; an all-zero g has no arc
+        coeffs.pop(0)
+    angles = sorted(float(np.angle(z)) % (2.0 * math.pi) for z in np.roots(coeffs)
+                    if abs(abs(z) - 1.0) < _UNIT_CIRCLE_TOL) if len(coeffs) > 1 else []
+
+    def g(x: float) -> float:
+        return a0 + a1 * math.cos(x) + b1 * math.sin(x) + a2 * math.cos(2.0 * x) + b2 * math.sin(2.0 * x)
+
+    if not angles:
+        return [(0.0, 2.0 * math.pi)] if g(0.0) > 0.0 else []
+    arcs = []
+    for k, start in enumerate(angles):
+        end = angles[k + 1] if k + 1 < len(angles) else angles[0] + 2.0 * math.pi
+        if end - start > 0.0 and g(0.5 * (start + end)) > 0.0:
+            if arcs and arcs[-1][1] == start:  # a tangent (double) root inside a positive arc
+                arcs[-1] = (arcs[-1][0], end)
+            else:
+                arcs.append((start, end))
+    return arcs
+
+
+def _between(antiderivative, arcs: list[tuple[float, float]]) -> float:
+    """Sum of ``G(g2) - G(g1)`` over the arcs."""
+    return sum(antiderivative(g2) - antiderivative(g1) for g1, g2 in arcs)
+
+
+# -- the three models -----------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FilmLaw(ABC):
+    """A film law bound to a bearing: viscosity and geometry, one call signature.
+
+    ``load(ex, ey, vx, vy, omega_journal, omega_bearing) -> FilmLoad`` for ``eps < 1``
+    (physics.md eqs. (68)-(69)); the model supplies the force in the frame of the line of
+    centres, :meth:`components`.  :meth:`blended_load` is the film as the joint applies
+    it near the wall (eq. (70)).
+
+    Parameters
+    ----------
+    viscosity : float
+        Dynamic viscosity ``eta`` [Pa s], > 0.
+    geometry : BearingGeometry
+        ``R = journal_radius``, ``c = clearance``, ``B = length``.
+    eps_film, eps_cap : float
+        Thresholds of the blend to metal contact, eq. (70); ``0 < eps_film < eps_cap < 1``.
+    """
+
+    viscosity: float
+    geometry: BearingGeometry
+    eps_film: float = EPS_FILM_DEFAULT
+    eps_cap: float = EPS_CAP_DEFAULT
+    name: ClassVar[str] = ""
+
+    def __post_init__(self) -> None:
+        check_positive("viscosity", self.viscosity)
+        if not isinstance(self.geometry, BearingGeometry):
+            raise ValueError(f"`geometry` must be a BearingGeometry, got {self.geometry!r}")
+        check_open("eps_film", self.eps_film, 0.0, 1.0)
+        check_open("eps_cap", self.eps_cap, self.eps_film, 1.0)
+
+    @property
+    def width_ratio(self) -> float:
+        """``B / D``."""
+        return self.geometry.length / (2.0 * self.geometry.journal_radius)
+
+    @abstractmethod
+    def components(self, eps: float, eps_dot: float, omega_eff: float) -> tuple[float, float]:
+        """Film force on the journal along ``n`` and along ``n`` turned +90 degrees [N].
+
+        Parameters
+        ----------
+        eps : float
+            Eccentricity ratio, ``0 <= eps < 1``.
+        eps_dot : float
+            Its rate [1/s]; positive when the journal approaches the wall.
+        omega_eff : float
+            ``omega_J + omega_B - 2 dphi/dt`` [rad/s], eq. (56).
+        """
+
+    def load(self, ex: float, ey: float, vx: float, vy: float, omega_journal: float = 0.0,
+             omega_bearing: float = 0.0) -> FilmLoad:
+        """Film force and viscous torques for the journal at ``e`` moving at ``de/dt``.
+
+        ``ValueError`` for ``eps >= 1`` (the film alone is singular at the wall; the joint
+        uses :meth:`blended_load`).
+        """
+        kin = film_kinematics(ex, ey, vx, vy, omega_journal, omega_bearing, self.geometry.clearance)
+        if not kin.eps < 1.0:
+            raise ValueError(f"the film needs eccentricity ratio `eps` < 1 (journal off the wall), got {kin.eps}; "
+                             "use `blended_load` at and beyond the wall")
+        return self._assemble(kin, kin.eps, kin.eps_dot, omega_journal, omega_bearing)
+
+    def blended_load(self, ex: float, ey: float, vx: float, vy: float, omega_journal: float = 0.0,
+                     omega_bearing: float = 0.0) -> FilmLoad:
+        """The film as the joint applies it: :meth:`load` at the blended eccentricity of
+        eq. (70), defined for every ``eps`` (finite at and beyond the wall); the joint adds
+        its dry contact law, which acts from ``eps = 1`` on (physics.md section 10.5)."""
+        kin = film_kinematics(ex, ey, vx, vy, omega_journal, omega_bearing, self.geometry.clearance)
+        eps_b, eps_dot_b = blend_eccentricity(kin.eps, kin.eps_dot, self.eps_film, self.eps_cap)
+        return self._assemble(kin, eps_b, eps_dot_b, omega_journal, omega_bearing)
+
+    def _assemble(self, kin: FilmKinematics, eps: float, eps_dot: float, omega_journal: float,
+                  omega_bearing: float) -> FilmLoad:
+        f_n, f_perp = self.components(eps, eps_dot, kin.omega_eff)
+        nx, ny = kin.nx, kin.ny
+        fx = f_n * nx - f_perp * ny      # n turned +90 degrees is (-n_y, n_x)
+        fy = f_n * ny + f_perp * nx
+        # eq. (69): Couette shear over the whole circumference, and the pressure's share
+        g = self.geometry
+        couette = (2.0 * math.pi * self.viscosity * g.journal_radius ** 3 * g.length * (omega_journal - omega_bearing)
+                   / (g.clearance * math.sqrt(1.0 - eps * eps)))
+        # (e x F)_z with the true e, so that M_J + M_B + e x F = 0 holds also where the film
+        # is evaluated at a blended eccentricity (the film carries no net moment)
+        e_cross_f = kin.eps * g.clearance * (nx * fy - ny * fx)
+        return FilmLoad(fx, fy, -couette - 0.5 * e_cross_f, couette - 0.5 * e_cross_f, f_n, -f_perp, kin.eps,
+                        kin.omega_eff)
+
+    def __call__(self, ex: float, ey: float, vx: float, vy: float, omega_journal: float = 0.0,
+                 omega_bearing: float = 0.0) -> FilmLoad:
+        return self.load(ex, ey, vx, vy, omega_journal, omega_bearing)
+
+
+@dataclass(frozen=True)
+class ShortBearing(FilmLaw):
+    """Ocvirk's short bearing, dynamic form, half-Sommerfeld (Guembel) cavitation.
+
+    Reynolds' equation without the circumferential pressure flow (``B/D -> 0``) gives the
+    full-film pressure (physics.md eq. (58); Pinkus and Sternlicht, Theory of Hydrodynamic
+    Lubrication, 1961; Flores et al., Mech. Mach. Theory 41 (2006) 247)
+
+        p = 3 eta (B^2/4 - z^2) (eps omega_eff sin(theta) - 2 eps_dot cos(theta)) / (c^2 (1 + eps cos(theta))^3)
+
+    **Cavitation**: the positive part of this pressure (Guembel); its positive region is
+    a half circle, starting where the bracket changes sign, so it turns with the squeeze
+    (for rotation alone it is ``0 < theta < pi``, the classical pi film).  The forces are
+    its integrals, in closed form with Sommerfeld's substitution (eq. (59)); for rotation
+    alone they are Ocvirk's:
+
+        F = eta omega R B^3 / (4 c^2) eps sqrt(pi^2 (1 - eps^2) + 16 eps^2) / (1 - eps^2)^2,
+        tan(beta) = pi sqrt(1 - eps^2) / (4 eps)
+    """
+
+    name: ClassVar[str] = "short"
+
+    def components(self, eps: float, eps_dot: float, omega_eff: float) -> tuple[float, float]:
+        g = self.geometry
+        s = math.sqrt(1.0 - eps * eps)
+        rot = eps * omega_eff * s
+        # sign of p in gamma: rot sin(gamma) - 2 eps_dot (cos(gamma) - eps), eq. (59)
+        arcs = _positive_arcs(2.0 * eps_dot * eps, -2.0 * eps_dot, rot, 0.0, 0.0)
+
+        def g_n(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+            return (rot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x))
+                    - 2.0 * eps_dot * ((0.5 + eps * eps) * x + 0.25 * math.sin(2.0 * x) - 2.0 * eps * math.sin(x)))
+
+        def g_t(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+            return (rot * (0.5 * x - 0.25 * math.sin(2.0 * x))
+                    - 2.0 * eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
+
+        scale = self.viscosity * g.length ** 3 * g.journal_radius / (2.0 * g.clearance ** 2)  # eq. (60)
+        return scale * _between(g_n, arcs) / s ** 5, scale * _between(g_t, arcs) / s ** 4
+
+
+@dataclass(frozen=True)
+class LongBearing(FilmLaw):
+    """Sommerfeld's long bearing, half-Sommerfeld (Guembel) cavitation.
+
+    Reynolds' equation without the axial flow (``B/D -> infinity``) gives the full-film
+    pressure (physics.md eq. (61); A. Sommerfeld, Z. Math. Phys. 50 (1904) 97 for the
+    rotation, the squeeze part integrated the same way)
+
+        p = 6 eta R^2 / c^2 [eps omega_eff sin(theta) (2 + eps cos(theta)) / ((2 + eps^2) (1 + eps cos(theta))^2)
+                             + eps_dot (3 eps - 4 cos(theta) - 2 eps cos^2(theta)) / ((2 + 3 eps^2) (1 + eps cos(theta))^2)]
+
+    The rotation part is Sommerfeld's (zero at the largest gap); the squeeze part's level
+    makes ``integral of h^3 p dtheta`` vanish, which is the limit of a finite bearing open
+    to ambient pressure at its ends (exuclear's choice, eq. (62); it keeps the long model
+    the large-``B/D`` limit of the Reynolds reference).  **Cavitation**: the positive part
+    of this pressure (Guembel), on the arcs where it is positive, found as roots of a
+    trigonometric polynomial; forces in closed form by parts and Sommerfeld's
+    substitution (eq. (63)).  For rotation alone, ``F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)
+    (1 - eps^2))`` and ``F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2))``.
+    """
+
+    name: ClassVar[str] = "long"
+
+    def components(self, eps: float, eps_dot: float, omega_eff: float) -> tuple[float, float]:
+        g = self.geometry
+        s = math.sqrt(1.0 - eps * eps)
+        rho = eps * omega_eff * s / (2.0 + eps * eps)
+        sigma = eps_dot / (2.0 + 3.0 * eps * eps)
+        # sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+        q0, q1, q2 = 7.0 * eps - 2.0 * eps ** 3, -(4.0 + 6.0 * eps * eps), 2.0 * eps + 3.0 * eps ** 3
+        arcs = _positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
+                              -0.5 * rho * eps)
+        two_eps_dot = 2.0 * eps_dot
+
+        def g_n(x: float) -> float:  # antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+            return (rho * (-0.5 * math.cos(2.0 * x) - eps * math.cos(x))
+                    + two_eps_dot * (0.5 * x - 0.25 * math.sin(2.0 * x)))
+
+        def g_t(x: float) -> float:  # antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+            return (rho * (s * s * x + 0.5 * math.sin(2.0 * x) - eps * math.sin(x))
+                    + two_eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
+
+        scale = 6.0 * self.viscosity * g.journal_radius ** 3 * g.length / g.clearance ** 2  # eq. (63)
+        return -scale * _between(g_n, arcs) / s ** 3, scale * _between(g_t, arcs) / s ** 4
+
+
+def _polynomial(coefficients: tuple[float, ...], x: float) -> float:
+    return sum(a * x ** k for k, a in enumerate(coefficients))
+
+
+#: Butenschoen's fits (1976), polynomials in B/D, lowest power first (physics.md eqs. (64)-(66)).
+_A1 = (1.1642, -1.9456, 7.1161, -10.1073, 5.0141)
+_A2 = (-1.000026, -0.023634, -0.4215, -0.038817, -0.090551)
+_A3 = (1.152624, -0.104565)
+_A4 = (-2.5905, 0.798745)
+_A5 = (8.73393, -2.3291)
+_A6 = (-13.3414, 3.424337)
+_A7 = (6.6294, -1.591732)
+_A8 = (0.70038, 3.2415, -12.2486, 18.895, -9.3561)
+_A9 = (-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928)
+#: The range of B/D the fits were made for (Butenschoen 1976; DIN 31652-2).
+FINITE_WIDTH_RANGE = (1.0 / 8.0, 1.0)
+
+
+@dataclass(frozen=True)
+class FiniteBearing(FilmLaw):
+    """Butenschoen's finite-width bearing, ``1/8 <= B/D <= 1`` (physics.md eqs. (64)-(67)).
+
+    Rotation (Butenschoen 1976, as DIN 31652-2 gives it): Ocvirk's Sommerfeld number times a
+    fitted correction, and a fitted attitude angle,
+
+        So_D = (B/D)^2 eps sqrt(pi^2 (1 - eps^2) + 16 eps^2) / (2 (1 - eps^2)^2) * a1 (eps - 1) / (a2 + eps)
+        beta = arctan(pi sqrt(1 - eps^2) / (2 eps)) (a3 + a4 eps + a5 eps^2 + a6 eps^3 + a7 eps^4)
+
+    Squeeze (Butenschoen 1976): the short bearing's half-film squeeze number times a fit,
+
+        So_V = 4 (B/D)^2 / (1 - eps^2)^(5/2) [(pi/2 - arccos(eps)/2) (1 + 2 eps^2) + 3/2 eps sqrt(1 - eps^2)]
+               * a8 (1 - eps) / (-a9 - eps)
+
+    with ``eps`` replaced by ``-eps`` when the journal moves away from the wall (the film
+    then forms on the wide side).  ``a1 ... a9`` are polynomials in ``B/D`` (module
+    constants ``_A1`` ... ``_A9``).  The force is the sum ``|F_D| = So_D B D eta |omega_eff| /
+    psi^2`` at ``beta`` from the line of centres, behind it in the sense of ``omega_eff``,
+    plus ``|F_V| = So_V B D eta |eps_dot| / psi^2`` against the squeeze.  **Cavitation**:
+    that of Butenschoen's Reynolds solutions, which the fits reproduce (a film from the
+    largest gap that ends with zero pressure and pressure gradient: Reynolds' condition;
+    physics.md section 10.3).  Superposing rotation and squeeze is Butenschoen's
+    approximation.
+    """
+
+    name: ClassVar[str] = "finite"
+    _coefficients: tuple[float, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        bd = self.width_ratio
+        low, high = FINITE_WIDTH_RANGE
+        if not low <= bd <= high:
+            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs 1/8 <= B/D <= 1, got B/D = {bd:.4g}; "
+                             "use model='short' for narrower and 'long' for wider bearings")
+        object.__setattr__(self, "_coefficients", tuple(_polynomial(a, bd) for a in
+                                                        (_A1, _A2, _A3, _A4, _A5, _A6, _A7, _A8, _A9)))
+
+    def rotation(self, eps: float) -> tuple[float, float]:
+        """``(So_D, beta)`` for rotation alone, eqs. (64)-(65); ``beta`` in rad."""
+        a1, a2, a3, a4, a5, a6, a7 = self._coefficients[:7]
+        bd = self.width_ratio
+        one_m = 1.0 - eps * eps
+        so = (bd * bd * eps / (2.0 * one_m * one_m) * math.sqrt(math.pi ** 2 * one_m + 16.0 * eps * eps)
+              * a1 * (eps - 1.0) / (a2 + eps))
+        base = math.atan2(math.pi * math.sqrt(one_m), 2.0 * eps)  # pi/2 at eps = 0
+        beta = base * (a3 + a4 * eps + a5 * eps ** 2 + a6 * eps ** 3 + a7 * eps ** 4)
+        return so, beta
+
+    def squeeze(self, eps_signed: float) -> float:
+        """``So_V``, eq. (66); ``eps_signed = eps`` approaching the wall, ``-eps`` leaving it."""
+        a8, a9 = self._coefficients[7:]
+        bd = self.width_ratio
+        x = eps_signed
+        one_m = 1.0 - x * x
+        return (4.0 * bd * bd * one_m ** -2.5
+                * ((0.5 * math.pi - 0.5 * math.acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * math.sqrt(one_m))
+                * a8 * (1.0 - x) / (-a9 - x))
+
+    def components(self, eps: float, eps_dot: float, omega_eff: float) -> tuple[float, float]:
+        g = self.geometry
+        psi = relative_clearance(g)
+        unit = g.length * 2.0 * g.journal_radius * self.viscosity / (psi * psi)  # B D eta / psi^2, eq. (67)
+        so_d, beta = self.rotation(eps)
+        f_d = so_d * unit * abs(omega_eff)
+        # the load -F_D lies beta from n, behind it in the sense of omega_eff: F_D on the journal
+        # has components (-cos(beta), sin(beta) sign(omega_eff)) along (n, n turned +90 degrees)
+        sign = 1.0 if omega_eff >= 0.0 else -1.0
+        f_v = self.squeeze(eps if eps_dot >= 0.0 else -eps) * unit * eps_dot  # signed: against the squeeze
+        return -f_d * math.cos(beta) - f_v, sign * f_d * math.sin(beta)
+
+
+#: Model name -> film law class.
+FILM_MODELS: dict[str, type[FilmLaw]] = {cls.name: cls for cls in (ShortBearing, LongBearing, FiniteBearing)}
+
+
+@dataclass(frozen=True)
+class Lubrication:
+    """The lubricant of a joint: what a user gives, before the joint's geometry is known.
+
+    Parameters
+    ----------
+    viscosity : float
+        Dynamic viscosity ``eta`` [Pa s], > 0 (an SAE 30 oil near 40 degC: ~0.1 Pa s).
+    model : str
+        ``"short"``, ``"long"`` or ``"finite"`` (:data:`FILM_MODELS`).
+    eps_film : float
+        Below this eccentricity ratio the film acts alone (eq. (70)), default 0.9.
+    eps_cap : float
+        The film's eccentricity ratio tends to this at and beyond the wall (eq. (70)),
+        ``eps_film < eps_cap < 1``, default 0.97.
+    """
+
+    viscosity: float
+    model: str = "short"
+    eps_film: float = EPS_FILM_DEFAULT
+    eps_cap: float = EPS_CAP_DEFAULT
+
+    def __post_init__(self) -> None:
+        if check_positive("viscosity", self.viscosity) > VISCOSITY_WARN_ABOVE:
+            warn_unit(f"the viscosity {self.viscosity:.3g} Pa s is above {VISCOSITY_WARN_ABOVE:g} Pa s; it is in Pa s: "
+                      "was it given in mPa s (cP)?")
+        check_choice("model", self.model, FILM_MODELS)
+        check_open("eps_film", self.eps_film, 0.0, 1.0)
+        check_open("eps_cap", self.eps_cap, self.eps_film, 1.0)
+
+    def law(self, geometry: BearingGeometry) -> FilmLaw:
+        """The film law of this lubricant in a bearing of ``geometry``."""
+        return FILM_MODELS[self.model](self.viscosity, geometry, self.eps_film, self.eps_cap)
+
+
+# -- the transition to metal contact ----------------------------------------------------------------
+def blend_eccentricity(eps: float, eps_dot: float, eps_film: float = EPS_FILM_DEFAULT,
+                       eps_cap: float = EPS_CAP_DEFAULT) -> tuple[float, float]:
+    """The eccentricity ratio (and its rate) the film is evaluated at, physics.md eq. (70).
+
+    ``eps_b = eps`` for ``eps <= eps_film``; beyond,
+
+        eps_b = eps_film + (eps_cap - eps_film) tanh((eps - eps_film) / (eps_cap - eps_film)),
+        eps_dot_b = eps_dot / cosh^2((eps - eps_film) / (eps_cap - eps_film)),
+
+    continuous with its first two derivatives at ``eps_film`` and below ``eps_cap < 1``
+    for every ``eps``: the film force grows monotonically and stays finite at and beyond the
+    wall, where the dry contact law (which the joint adds unchanged) takes over; the
+    squeeze damping fades as ``eps_dot_b -> 0`` while the contact law's own damping
+    acts.  ``eps_dot_b`` is the exact rate of ``eps_b``.
+    """
+    check_nonnegative("eps", eps)
+    if eps <= eps_film:
+        return eps, eps_dot
+    width = eps_cap - eps_film
+    x = (eps - eps_film) / width
+    return eps_film + width * math.tanh(x), eps_dot / math.cosh(x) ** 2
