@@ -213,9 +213,14 @@ def test_every_body_type_gives_the_paper_departure_velocity(kind, backend):
 
 @COMPILED
 def test_the_kernels_layout_constants_agree():
-    # the compiled kernel's data-node width and stiffness codes are those layout.py writes
-    from exuclear.engine.layout import DATA_COLUMNS, KERNEL_STIFFNESS_CODES
+    # the compiled kernel's data-node width, stiffness codes and parameter layout (field by
+    # field: name, row, column, size) are those layout.py writes
+    from exuclear.engine.layout import DATA_COLUMNS, KERNEL_STIFFNESS_CODES, LAYOUT, MATRIX_SIZE
 
+    assert [tuple(f) for f in kernel.COMPILED.LAYOUT] == [(f.name, f.row, f.column, f.size) for f in LAYOUT]
+    cells = [(f.row, f.column + i) for f in LAYOUT for i in range(f.size)]
+    assert len(set(cells)) == len(cells)  # no two fields share an entry
+    assert all(0 <= r < MATRIX_SIZE and 0 <= c < MATRIX_SIZE for r, c in cells)
     assert kernel.COMPILED.N_DATA == len(DATA_COLUMNS)
     assert set(range(kernel.COMPILED.STIFFNESS_CODES)) == KERNEL_STIFFNESS_CODES
     assert {law.kernel_code for law in (exuclear.contact_law(name + "+none", _GEOMETRY, 1e11)
@@ -223,3 +228,4 @@ def test_the_kernels_layout_constants_agree():
 
 
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)
+
