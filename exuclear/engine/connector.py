@@ -368,11 +368,17 @@ def add_clearance_joint(
 ) -> ClearanceJointHandle:
     """A planar clearance joint from body-frame points (the form of exuclear 0.1).
 
+    .. deprecated::
+        Use :func:`CreateClearanceJoint` (bearing body first, ``maxPenetration``), or
+        :func:`AddClearanceJoint` with rigid markers; the warning names the call to write.
+
     The journal's centre is ``journal_point`` (x, y) in ``journal_body``'s frame, the
     bearing's ``bearing_point`` in ``bearing_body``'s; an ``ObjectKinematicTree`` body
     needs the link index (``journal_link`` / ``bearing_link``).  The axis is z.  Builds
     the rigid markers and calls :func:`AddClearanceJoint`.
     """
+    warnings.warn(_replacement(journal_body, bearing_body, journal_point, bearing_point, journal_link, bearing_link,
+                               max_penetration, bearing_rotates), DeprecationWarning, stacklevel=2)
     check_system(mbs)
     if max_penetration is not None:
         check_positive("max_penetration", max_penetration)
@@ -384,6 +390,24 @@ def add_clearance_joint(
         raise ValueError("`journal_body` and `bearing_body` are the same body")
     return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=max_penetration,
                              bearingRotates=bearing_rotates, record=record, **joint_parameters)
+
+
+def _replacement(journal_body: Any, bearing_body: Any, journal_point: Any, bearing_point: Any, journal_link: Any,
+                 bearing_link: Any, max_penetration: Any, bearing_rotates: Any) -> str:
+    """The deprecation message of :func:`add_clearance_joint`: the call to write instead."""
+    options = "".join(f", {k}={v!r}" for k, v in (("maxPenetration", max_penetration),
+                                                    ("bearingRotates", bearing_rotates)) if v is not None)
+    markers = (f"exuclear.AddClearanceJoint(mbs, markerNumbers=[bearing_marker, journal_marker]{options}, ...) with "
+               f"rigid markers at bearing_point {tuple(bearing_point)!r} and journal_point {tuple(journal_point)!r} "
+               "(MarkerBodyRigid, or MarkerKinematicTreeRigid on a kinematic-tree link)")
+    if journal_link is not None or bearing_link is not None:
+        return f"exuclear.add_clearance_joint is deprecated; write {markers}"
+    position = [*(float(v) for v in bearing_point), 0.0]
+    return ("exuclear.add_clearance_joint(mbs, journal_body, bearing_body, ...) is deprecated; write "
+            f"exuclear.CreateClearanceJoint(mbs, itemNumbers=[{bearing_body!r}, {journal_body!r}], "
+            f"position={position!r}, useGlobalFrame=False{options}, ...the same joint parameters) (the bearing "
+            "body first; journal and bearing centred at `position`, in the bearing body's frame), or, where the "
+            f"two points differ in the reference configuration, {markers}")
 
 
 def _point_marker(mbs: exu.MainSystem, body: Any, point: Sequence[float], link: int | None, role: str) -> Any:
