@@ -17,13 +17,15 @@ def drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Vis
     """Graphics function of the joint ``handle``: the journal as a cylinder of radius R_J and
     the bearing as a ring from R_B, both of the bearing length, along the bearing axis, at
     the markers' current poses.  Exudyn calls it only to render."""
-    geometry = handle.joint.geometry
+    # what it draws, read now: the function is kept by the system, and must not keep the
+    # handle (which keeps the system: a cycle through Exudyn's C++ that is never freed)
+    geometry, axis_local = handle.joint.geometry, handle._axis_local
+    m_bearing, m_journal = handle.markerNumbers
 
     def draw(mbs: exu.MainSystem, item: int) -> list:
-        m_bearing, m_journal = handle.markerNumbers
         rot = np.asarray(mbs.GetMarkerOutput(m_bearing, exu.OutputVariableType.RotationMatrix,
                                              configuration=configuration)).reshape(3, 3)
-        axis = rot @ handle._axis_local
+        axis = rot @ axis_local
         shift = 0.5 * geometry.length * axis
         out = []
         for marker, radius, inner, color in ((m_journal, geometry.journal_radius, None, JOURNAL_COLOR),

@@ -5,6 +5,7 @@ its item numbers, its physics (replaceable between runs), and what its last run 
 from __future__ import annotations
 
 import itertools
+import weakref
 from dataclasses import dataclass
 from typing import Any
 
@@ -42,11 +43,20 @@ class ClearanceJointHandle:
         (``show=True``), else None.
     """
 
+    # The system keeps its joints (mbs.variables, for exuclear.simulate), and a handle refers to
+    # its system: with strong references both ways that is a cycle through Exudyn's C++, which
+    # Python's garbage collector cannot see, so no model would ever be freed.  The system keeps
+    # a view instead: the same handle (one shared attribute dict) without the strong reference
+    # (slot ``_system``), reaching its system through a weak reference.
+    __slots__ = ("__dict__", "_system")
+
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, backend: str,
                  max_penetration: float, slices: int = 0,
                  axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
                  shoulders: ShoulderGeometry | None = None) -> None:
-        self.mbs, self.name, self.backend, self.max_penetration = mbs, name, backend, max_penetration
+        self._system = mbs  # the user's handle keeps its system alive; the system's view of it does not
+        self._mbs = weakref.ref(mbs)
+        self.name, self.backend, self.max_penetration = name, backend, max_penetration
         self._joint = joint
         self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
         self._backend = make_backend(backend, joint, slices, axis_journal, shoulders)
@@ -62,6 +72,29 @@ class ClearanceJointHandle:
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
+
+    @property
+    def mbs(self) -> exu.MainSystem:
+        """The joint's system."""
+        try:
+            return self._system
+        except AttributeError:  # the system's view of the handle
+            mbs = self._mbs()
+            if mbs is None:
+                raise RuntimeError(f"the system of joint {self.name!r} no longer exists") from None
+            return mbs
+
+    def _system_view(self) -> ClearanceJointHandle:
+        """This handle as its system keeps it: the same attributes, no strong reference to the system."""
+        view = object.__new__(ClearanceJointHandle)
+        view.__dict__ = self.__dict__
+        return view
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ClearanceJointHandle) and other.__dict__ is self.__dict__
+
+    def __hash__(self) -> int:
+        return id(self.__dict__)
 
     def user_functions(self) -> dict[str, Any]:
         """The user functions of the joint's connector, probe and torque connector."""
@@ -233,8 +266,9 @@ class JointHistory:
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
-    """Keep ``handle`` with its system (:func:`joints_of`)."""
-    mbs.variables.setdefault(REGISTRY_KEY, []).append(handle)
+    """Keep ``handle`` with its system (:func:`joints_of`); the joints of an earlier build,
+    before ``mbs.Reset()``, are let go (their kernel state is released with their handle)."""
+    mbs.variables[REGISTRY_KEY] = [*joints_of(mbs), handle._system_view()]
 
 
 def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
