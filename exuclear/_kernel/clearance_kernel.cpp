@@ -170,24 +170,42 @@ struct Kinematics {
     double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
 };
 
-// spatial.py slice_kinematics (eqs. (35)-(40)).  Planar: the planar joint's slice, whose
-// inputs are projected on the plane normal to the axis (joint_kinematics: z = 0, p_z = 0,
-// u = e_z, dv_z = 0, dw and w_j along e_z).  The terms that are then exactly zero are left
-// out, so the planar joint gets the same values with the operations of eqs. (1)-(8) only.
-template <bool Planar>
+// geometry.py contact_kinematics, eqs. (1)-(8): the planar joint's one slice.  The spatial
+// slice's eqs. (35)-(40) reduce to these for the motion projected on the plane normal to the
+// axis (s = 0, m = n, w_j x p normal to n); they are evaluated in this reduced form, in both
+// kernels, so that the planar joint keeps its results bit for bit (some scenes, e.g. a 3D
+// double pendulum at a coarse fixed step, change course on a last-bit change of the force).
+// (ex, ey) the eccentricity, (dvx, dvy) the relative velocity, omega_i, omega_j the journal's and
+// the bearing's spin about the axis.
+Kinematics contact_kinematics(double r_j, double r_b, double ex, double ey, double dvx, double dvy, double omega_i,
+                              double omega_j) {
+    Kinematics k{};
+    k.side = 0;
+    k.ex = ex;
+    k.ey = ey;
+    k.ecc = std::sqrt(ex * ex + ey * ey);
+    if (k.ecc > 0.0) {
+        k.nx = ex / k.ecc;
+        k.ny = ey / k.ecc;
+    } else {  // centred journal: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * r_j + omega_j * r_b;                   // eq. (8)
+    k.delta = k.ecc - (r_b - r_j);                                                     // eq. (4)
+    k.speed = std::fabs(k.v_t);
+    return k;
+}
+
+// spatial.py slice_kinematics, eqs. (35)-(40)
 Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv, const V3& dw,
                             const V3& w_j) {
     Kinematics k;
     k.side = 0;
-    if constexpr (Planar) {
-        k.s = 0.0;
-        k.ex = p[0];
-        k.ey = p[1];
-    } else {
-        k.s = (z - p[2]) / u[2];                                        // eq. (35)
-        k.ex = p[0] + k.s * u[0];
-        k.ey = p[1] + k.s * u[1];
-    }
+    k.s = (z - p[2]) / u[2];                                            // eq. (35)
+    k.ex = p[0] + k.s * u[0];
+    k.ey = p[1] + k.s * u[1];
     k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
     if (k.ecc > 0.0) {
         k.nx = k.ex / k.ecc;
@@ -197,34 +215,20 @@ Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const
         k.ny = 0.0;
     }
     k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
-    if constexpr (Planar) {
-        double wz = w_j[2], dwz = dw[2];
-        k.a = 0.0;
-        double w0 = dv[0] + wz * p[1], w1 = dv[1] - wz * p[0];          // dv - w_j x p
-        k.delta_dot = k.nx * w0 + k.ny * w1;                            // eq. (38) = eq. (7)
-        double r0 = r_j * k.nx, r1 = r_j * k.ny;                         // Q_J - P_J
-        double l0 = k.delta * k.nx - p[0], l1 = k.delta * k.ny - p[1];   // Q_J - Q_B - p
-        double v0 = dv[0] + -(dwz * r1) + -(wz * l1);
-        double v1 = dv[1] + dwz * r0 + wz * l0;
-        k.v_t = v0 * k.ny - v1 * k.nx;                                   // eq. (40) = eq. (8)
-        k.v_a = 0.0;
-        k.speed = std::fabs(k.v_t);
-    } else {
-        k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                       // eq. (37)
-        V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
-        V3 wp = cross(w_j, p);
-        V3 ws = cross(dw, su);
-        V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
-        k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];           // eq. (38)
-        V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};            // Q_J - P_J, eq. (39)
-        V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};  // Q_J - Q_B - p
-        V3 wr = cross(dw, r);
-        V3 wl = cross(w_j, lever);
-        V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
-        k.v_t = v[0] * k.ny - v[1] * k.nx;                               // eq. (40)
-        k.v_a = v[2];
-        k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
-    }
+    k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
+    k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];               // eq. (38)
+    V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};                // Q_J - P_J, eq. (39)
+    V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};      // Q_J - Q_B - p
+    V3 wr = cross(dw, r);
+    V3 wl = cross(w_j, lever);
+    V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
+    k.v_t = v[0] * k.ny - v[1] * k.nx;                                   // eq. (40)
+    k.v_a = v[2];
+    k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
     return k;
 }
 
@@ -441,20 +445,23 @@ History accept(const History& h, const Params& a, ContactKind kind, const Kinema
 }
 
 // ---- loads: spatial.py (eqs. (41)-(45), (54); the planar joint's eqs. (24)-(26)) -------------
-// loads = [force (3), torque (3), correction (3)].  Planar: as in slice_kinematics, the
-// terms that are zero for the planar joint's slice (s = 0, m = n, no axial friction) are left
-// out: the force in the plane and the torque and correction about the axis remain.
-template <bool Planar>
+// geometry.py joint_loads, eqs. (24)-(26), as the planar slice's share of loads = [force (3),
+// torque (3), correction (3)]: F = -F_i, T = -M_i, and the bearing's moment beyond T, m_j + m_i
+// (the whole of it: the driver adds no p x F for the planar joint, see joint_force)
+void joint_loads(double* loads, double r_j, double r_b, const Kinematics& k, double f_n, double f_t) {
+    double fx = -f_n * k.nx - f_t * k.ny;                                // eq. (24)
+    double fy = -f_n * k.ny + f_t * k.nx;
+    double m_i = r_j * f_t;                                              // eq. (25)
+    double m_j = -r_b * f_t;                                             // eq. (26)
+    loads[0] += -fx;
+    loads[1] += -fy;
+    loads[5] += -m_i;
+    loads[8] += m_j + m_i;
+}
+
+// spatial.py add_slice_loads: a slice's share of loads = [force (3), torque (3), correction (3)]
 void add_slice_loads(double* loads, double r_j, const V3& u, const Kinematics& k, double f_n, double f_t,
                      double f_a) {
-    if constexpr (Planar) {
-        double t0 = f_t * k.ny, t1 = -f_t * k.nx;                       // friction on the bearing at Q_B, eq. (42)
-        loads[0] += f_n * k.nx + t0;                                    // eq. (43) = -F_i of eq. (24)
-        loads[1] += f_n * k.ny + t1;
-        loads[5] += r_j * k.nx * t1 - r_j * k.ny * t0;                  // eq. (44): -M_i of eq. (25)
-        loads[8] -= k.delta * k.nx * t1 - k.delta * k.ny * t0;          // eq. (45), p x F added at the end
-        return;
-    }
     V3 n_force{f_n * k.nx, f_n * k.ny, -f_n * k.a};                     // F_N m, on the bearing at c, eq. (41)
     V3 t_force{f_t * k.ny, -f_t * k.nx, f_a};                             // friction on the bearing at Q_B, eq. (42)
     V3 total{n_force[0] + t_force[0], n_force[1] + t_force[1], n_force[2] + t_force[2]};
@@ -483,8 +490,8 @@ void add_face_loads(double* loads, double r_e, const V3& u, const Kinematics& k,
 // Contact.add_loads: a contact's loads from its response
 void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, const Kinematics& k, const Response& r) {
     switch (kind) {
-        case PLANAR_SLICE:  // friction along the tangent only (eq. (20))
-            add_slice_loads<true>(loads, a.r_j, u, k, r.f_n, r.f_t, 0.0);
+        case PLANAR_SLICE:  // eqs. (24)-(26)
+            joint_loads(loads, a.r_j, a.r_b, k, r.f_n, r.f_t);
             break;
         case SLICE: {  // spatial.py friction_components: along the slip of the contact points, eq. (42)
             double f_t = 0.0, f_a = 0.0;
@@ -492,7 +499,7 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
                 f_t = r.f_t * (k.v_t / k.speed);
                 f_a = r.f_t * (k.v_a / k.speed);
             }
-            add_slice_loads<false>(loads, a.r_j, u, k, r.f_n, f_t, f_a);
+            add_slice_loads(loads, a.r_j, u, k, r.f_n, f_t, f_a);
             break;
         }
         case FACE:
@@ -565,12 +572,12 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
         dw = angularVelocity;
         w_j = s.omega_bearing;
     }
-    if (a.slices == 0) {
-        s.kins[0] = slice_kinematics<true>(a.r_j, a.r_b, 0.0, q.p, q.u, dv, dw, w_j);
+    if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
+        s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
     } else {
         for (int k = 0; k < n_slices; ++k) {
             s.kins[static_cast<size_t>(k)] =
-                slice_kinematics<false>(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+                slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
         }
     }
     if (a.play > 0.0) {
@@ -631,9 +638,13 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
         ContactKind kind = contact_kind(a, i);
         add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
     }
-    V3 force{loads[0], loads[1], loads[2]};
-    V3 pf = cross(q.p, force);                                          // eq. (45)
-    s.torque_correction = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
+    if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
+        s.torque_correction = V3{loads[6], loads[7], loads[8]};
+    } else {
+        V3 force{loads[0], loads[1], loads[2]};
+        V3 pf = cross(q.p, force);                                      // eq. (45)
+        s.torque_correction = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
+    }
     return V6{loads[0], loads[1], loads[2], loads[3], loads[4], loads[5]};
 }
 

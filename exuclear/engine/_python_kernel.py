@@ -34,6 +34,7 @@ from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from ..friction import FrictionLaw
+from ..geometry import ContactKinematics, contact_kinematics, joint_loads
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint, ContactResponse, contact_response
 from ..spatial import (
@@ -61,7 +62,7 @@ REDO_STEP_ERROR = 1e3
 STEP_SLACK = 1e-9
 _DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
 
-Kinematics = SliceKinematics | FaceKinematics
+Kinematics = ContactKinematics | SliceKinematics | FaceKinematics
 
 
 class KernelFailure(RuntimeError):
@@ -109,23 +110,33 @@ class Contact:
 
 class PlanarSlice(Contact):
     """The planar joint's one slice: the whole law, friction along the tangent (eq. (20))
-    against the signed slip ``v_T``; the loads of eqs. (24)-(26) as those of a slice."""
+    against the signed slip ``v_T``.  Its kinematics and loads are those of a spatial slice
+    for the motion projected on the plane normal to the axis, evaluated in the reduced form
+    they take there, eqs. (1)-(8) and (24)-(26) (:func:`exuclear.geometry.contact_kinematics`,
+    :func:`exuclear.geometry.joint_loads`): the planar joint keeps its results bit for bit
+    (some scenes change course on a last-bit change of the force)."""
 
     def __init__(self, joint: ClearanceJoint) -> None:
         super().__init__(joint.law.normal_force, joint.friction)
-        self.r_j = joint.geometry.journal_radius
+        self.geometry = joint.geometry
 
-    def add_loads(self, loads: list[float], u: V3, kin: SliceKinematics, r: ContactResponse) -> None:
-        add_slice_loads(loads, self.r_j, u, kin, r.f_n, r.f_t, 0.0)
+    def add_loads(self, loads: list[float], u: V3, kin: ContactKinematics, r: ContactResponse) -> None:
+        """``F = -F_i``, ``T = -M_i`` and the bearing's moment beyond ``T``, ``m_j + m_i``
+        (the whole of it: no ``p x F`` is added for the planar joint)."""
+        fx, fy, m_i, m_j = joint_loads(self.geometry, kin, r.f_n, r.f_t)
+        loads[0] += -fx
+        loads[1] += -fy
+        loads[5] += -m_i
+        loads[8] += m_j + m_i
 
 
-class Slice(PlanarSlice):
+class Slice(Contact):
     """A slice of the spatial joint: its share ``w / L`` of the law (eq. (41)), friction
     against the slip speed ``|v_s|``, along the slip (eq. (42))."""
 
     def __init__(self, joint: ClearanceJoint, share: float) -> None:
-        super().__init__(joint)
-        self.share = share
+        super().__init__(joint.law.normal_force, joint.friction, share)
+        self.r_j = joint.geometry.journal_radius
 
     def slip(self, kin: SliceKinematics) -> float:
         """The slip speed ``|v_s|`` of the contact points (eq. (42))."""
@@ -210,20 +221,20 @@ class JointKernel:
     # -- bookkeeping -------------------------------------------------------------------
     def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
                     ) -> tuple[V3, V3, list[Kinematics]]:
-        """The journal's centre and axis, and the kinematics of each contact: the slices,
-        then the end faces (eqs. (48)-(51)) where there is an axial clearance."""
-        if self.planar:  # the motion projected on the plane normal to the axis
-            p = (displacement[0], displacement[1], 0.0)
-            u = (0.0, 0.0, 1.0)
-            dv = (velocity[0], velocity[1], 0.0)
-            dw = (0.0, 0.0, angular_velocity[2])
-            w_j = (0.0, 0.0, self.omega_bearing[2])
-        else:
-            p = (displacement[0], displacement[1], displacement[2])
-            u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)  # eq. (34)
-            dv = (velocity[0], velocity[1], velocity[2])
-            dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
-            w_j = self.omega_bearing
+        """The journal's centre and axis, and the kinematics of each contact: the slices
+        (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
+        end faces (eqs. (48)-(51)) where there is an axial clearance."""
+        if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
+            omega_j = self.omega_bearing[2]
+            omega_i = angular_velocity[2] + omega_j  # the journal's own spin
+            kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
+                                     omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), [kin]
+        p = (displacement[0], displacement[1], displacement[2])
+        u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)      # eq. (34)
+        dv = (velocity[0], velocity[1], velocity[2])
+        dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
+        w_j = self.omega_bearing
         kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
         if self.shoulders is not None:
             g, play = self._joint.geometry, self.shoulders.axial_clearance
@@ -272,6 +283,9 @@ class JointKernel:
             if kin.delta <= 0.0:
                 continue
             c.add_loads(loads, u, kin, c.response(c.accepted(kin), h))
+        if self.planar:  # the planar slice's loads hold the bearing's whole moment (eq. (26))
+            self.torque_correction = (loads[6], loads[7], loads[8])
+            return loads[:6]
         total = finish_loads(loads, p)
         self.torque_correction = total.correction  # the bearing's moment beyond T (eq. (45))
         return [*total.force, *total.torque]
