@@ -16,9 +16,9 @@
 from .checks import default_penetration_limit
 from .connector import BACKENDS, DEFAULT_BACKEND, AddClearanceJoint, CreateClearanceJoint, add_clearance_joint
 from .handle import ClearanceJointHandle
-from .outputs import OUTPUT_COLUMNS
 from .kernel import KernelWarning
 from .layout import DATA_COLUMNS
+from .outputs import OUTPUT_COLUMNS
 from .solver import AccuracyWarning, SimulationResult, simulate, simulation_settings
 
 __all__ = ["BACKENDS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "DATA_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle",
