@@ -825,6 +825,23 @@ def damping_for_restitution(cr: float) -> float:
 
 
 # ======================================================================================
+# eq. (9): the normal force from an elastic force and a damping factor
+# ======================================================================================
+def damped_normal_force(elastic_force: float, damping_factor: float, v_min: float, delta_dot: float,
+                        v0: float) -> float:
+    """``F_N = max(0, F_e (1 + D delta_dot / max(v0, v_min)))`` [N], docs/physics.md eq. (9),
+    for a penetration ``delta > 0`` whose elastic force is ``elastic_force`` [N].
+
+    The one statement of eq. (9): :meth:`ContactLaw.normal_force` gives it the law's
+    ``F_e(delta)``, an end face of the spatial joint ``K_f delta`` (eq. (53)).  No adhesion;
+    a NaN stays NaN, to be caught.
+    """
+    v0_eff = v0 if v0 > v_min else v_min
+    f = elastic_force * (1.0 + damping_factor * delta_dot / v0_eff)
+    return 0.0 if f < 0.0 else f
+
+
+# ======================================================================================
 # a contact law: one stiffness model and one damping model
 # ======================================================================================
 @dataclass(frozen=True)
@@ -916,9 +933,7 @@ class ContactLaw:
         """
         if delta <= 0.0:
             return 0.0
-        v0_eff = v0 if v0 > self.v_min else self.v_min
-        f = self.stiffness_model.elastic_force(delta) * (1.0 + self._D * delta_dot / v0_eff)
-        return 0.0 if f < 0.0 else f  # no adhesion (docs/physics.md eq. (9)); a NaN stays NaN, to be caught
+        return damped_normal_force(self.stiffness_model.elastic_force(delta), self._D, self.v_min, delta_dot, v0)
 
 
     def __call__(self, delta: float, delta_dot: float, v0: float) -> float:

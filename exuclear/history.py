@@ -2,10 +2,11 @@
 
 Pure Python (no exudyn).  A :class:`ContactState` is immutable: :meth:`ContactState.accept`
 returns the state after the next accepted step, and the record of a contact that ended
-in it.  The engine keeps two of them per joint (at the start and at the end of the last
-step) so that a step that is computed again starts from the right history; the compiled
-kernel (``exuclear/_kernel/clearance_kernel.cpp``, ``History`` and ``accept``) does the
-same, line by line.
+in it.  The engine keeps two of them per contact (at the start and at the end of the last
+step) so that a step that is computed again starts from the right history.  The compiled
+kernel (``exuclear/_kernel/clearance_kernel.cpp``) states the same rules in its
+``History``, ``onset_velocity`` and ``accept``, in the same order, with mutable C++ structs
+instead of immutable states; ``tests/test_connector.py`` keeps the two equal to round-off.
 
 Onset velocity (docs/physics.md, section 2.3, eqs. (18)-(19)): ``v0`` is the penetration rate at the
 instant ``delta`` crossed zero.  In the step where contact begins, ``delta`` goes from

@@ -6,6 +6,7 @@ on the contact kinematics Exudyn's connector provides, with the contact history 
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -14,6 +15,33 @@ from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .history import ContactState
 from .materials import Material, composite_modulus
+
+
+class ContactResponse(NamedTuple):
+    """One contact's force magnitudes at one instant: ``f_n`` the normal force [N], ``f_t``
+    the friction force ``mu(slip) f_n`` [N], ``v0`` the onset velocity [m/s] it used."""
+
+    f_n: float
+    f_t: float
+    v0: float
+
+
+def contact_response(normal_force: Callable[[float, float, float], float], friction: FrictionLaw, delta: float,
+                     delta_dot: float, slip: float, history: ContactState, share: float = 1.0) -> ContactResponse:
+    """Onset velocity, normal force and friction of one contact (docs/physics.md eqs. (9),
+    (17)-(20)), for the planar joint, a slice of the spatial joint (``share`` = its part
+    ``w / L`` of the law, eq. (41)) and an end face (``normal_force`` of eq. (53)) alike.
+
+    ``normal_force(delta, delta_dot, v0)`` is the contact's law, ``friction`` its friction
+    law evaluated at ``slip`` [m/s]; ``history`` the last accepted state of this contact.
+    No force without penetration.  The compiled kernel's ``response``.
+    """
+    if delta <= 0.0:
+        return ContactResponse(0.0, 0.0, history.v0 if history.in_contact else 0.0)
+    v0 = history.onset_velocity(delta, delta_dot)
+    f_n = share * normal_force(delta, delta_dot, v0)
+    f_t = friction.coefficient(slip) * f_n if friction.active else 0.0
+    return ContactResponse(f_n, f_t, v0)
 
 
 class JointResponse(NamedTuple):
@@ -59,12 +87,10 @@ class ClearanceJoint:
     def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:
         """Forces for the contact state ``kin`` given the last accepted ``history``
         (docs/physics.md eqs. (9), (20), (24)-(26))."""
-        if kin.delta <= 0.0:
-            return JointResponse(0.0, 0.0, history.v0 if history.in_contact else 0.0, _NO_LOADS)
-        v0 = history.onset_velocity(kin.delta, kin.delta_dot)
-        f_n = self.law.normal_force(kin.delta, kin.delta_dot, v0)
-        f_t = self.friction.coefficient(kin.v_t) * f_n if self.friction.active else 0.0
-        return JointResponse(f_n, f_t, v0, joint_loads(self.law.geometry, kin, f_n, f_t))
+        f_n, f_t, v0 = contact_response(self.law.normal_force, self.friction, kin.delta, kin.delta_dot, kin.v_t,
+                                        history)
+        loads = joint_loads(self.law.geometry, kin, f_n, f_t) if kin.delta > 0.0 else _NO_LOADS
+        return JointResponse(f_n, f_t, v0, loads)
 
 
 def make_joint(

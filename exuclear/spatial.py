@@ -2,7 +2,8 @@
 
 Pure Python, no exudyn, plain float arithmetic on 3-tuples (it runs inside the force
 callback; the compiled kernel ``exuclear/_kernel/clearance_kernel.cpp`` writes the same
-formulas in the same order, functions ``spatial_*``).
+formulas in the same order, with the same names).  The planar joint is the case of one
+slice with the motion projected on the plane normal to the axis (``u = e_z``, ``p_z = 0``).
 
 Everything is expressed in the bearing's joint frame J0: origin at the bearing centre
 ``P_B`` (mid-length), z along the bearing axis.  The journal is given by its centre
@@ -15,7 +16,7 @@ slice ``k`` is the plane ``z = z_k`` through its centre, eq. (33).
 Sign conventions follow the planar joint (section 1): ``n`` from the bearing axis to the
 journal axis, ``t = (n_y, -n_x, 0)``, penetration ``delta = e - c`` (> 0: contact).
 
-With an axial clearance (section 9.6, eqs. (48)-(54); compiled ``face_*``) the journal's
+With an axial clearance (section 9.6, eqs. (48)-(54)) the journal's
 shoulders meet the bearing's end faces: each face is one more contact, after the slices.
 """
 from __future__ import annotations
@@ -23,6 +24,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
+
+from .contact import damped_normal_force
 
 V3 = tuple[float, float, float]
 
@@ -115,10 +118,15 @@ def slice_kinematics(r_j: float, r_b: float, z: float, p: V3, u: V3, dv: V3, dw:
 def slice_friction(mu: float, f_n: float, kin: SliceKinematics) -> tuple[float, float]:
     """Circumferential and axial friction forces ``(F_T, F_A)`` [N] on the bearing at its
     contact point (eq. (42)): ``mu(|v_s|) F_N`` along the slip ``(v_t, v_a)``."""
+    return friction_components(mu * f_n, kin)
+
+
+def friction_components(f_t: float, kin: SliceKinematics) -> tuple[float, float]:
+    """The friction force of magnitude ``f_t = mu(|v_s|) F_N`` [N] split along the slip
+    ``(v_t, v_a)`` of the contact points (eq. (42)): ``(F_T, F_A)``."""
     if not kin.speed > 0.0:
         return 0.0, 0.0
-    g = mu * f_n
-    return g * (kin.v_t / kin.speed), g * (kin.v_a / kin.speed)
+    return f_t * (kin.v_t / kin.speed), f_t * (kin.v_a / kin.speed)
 
 
 class SpatialLoads(NamedTuple):
@@ -227,9 +235,7 @@ def face_normal_force(k_face: float, damping_factor: float, v_min: float, delta:
     ``v_min``; 0 without penetration, no adhesion."""
     if delta <= 0.0:
         return 0.0
-    v0_eff = v0 if v0 > v_min else v_min
-    f = k_face * delta * (1.0 + damping_factor * delta_dot / v0_eff)
-    return 0.0 if f < 0.0 else f  # a NaN stays NaN, to be caught
+    return damped_normal_force(k_face * delta, damping_factor, v_min, delta_dot, v0)
 
 
 def add_face_loads(loads: list[float], r_e: float, u: V3, kin: FaceKinematics, f_n: float, f_t: float) -> None:

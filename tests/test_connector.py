@@ -213,9 +213,14 @@ def test_every_body_type_gives_the_paper_departure_velocity(kind, backend):
 
 @COMPILED
 def test_the_kernels_layout_constants_agree():
-    # the compiled kernel's data-node width and stiffness codes are those layout.py writes
-    from exuclear.engine.layout import DATA_COLUMNS, KERNEL_STIFFNESS_CODES
+    # the compiled kernel's data-node width, stiffness codes and parameter layout (field by
+    # field: name, row, column, size) are those layout.py writes
+    from exuclear.engine.layout import DATA_COLUMNS, KERNEL_STIFFNESS_CODES, LAYOUT, MATRIX_SIZE
 
+    assert [tuple(f) for f in kernel.COMPILED.LAYOUT] == [(f.name, f.row, f.column, f.size) for f in LAYOUT]
+    cells = [(f.row, f.column + i) for f in LAYOUT for i in range(f.size)]
+    assert len(set(cells)) == len(cells)  # no two fields share an entry
+    assert all(0 <= r < MATRIX_SIZE and 0 <= c < MATRIX_SIZE for r, c in cells)
     assert kernel.COMPILED.N_DATA == len(DATA_COLUMNS)
     assert set(range(kernel.COMPILED.STIFFNESS_CODES)) == KERNEL_STIFFNESS_CODES
     assert {law.kernel_code for law in (exuclear.contact_law(name + "+none", _GEOMETRY, 1e11)
@@ -223,3 +228,17 @@ def test_the_kernels_layout_constants_agree():
 
 
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)
+
+
+def test_add_clearance_joint_is_deprecated_and_names_the_call_to_write():
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
+    with pytest.warns(DeprecationWarning) as caught:
+        exuclear.add_clearance_joint(mbs, body, ground, journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9,
+                                     max_penetration=1e-5)
+    message = str(caught[0].message)
+    # the bearing first, and the new name of the penetration limit
+    assert f"CreateClearanceJoint(mbs, itemNumbers=[{ground!r}, {body!r}]" in message
+    assert "maxPenetration=1e-05" in message and "AddClearanceJoint(mbs, markerNumbers=" in message

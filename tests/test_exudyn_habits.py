@@ -225,3 +225,55 @@ def test_a_run_continued_from_where_it_stopped_keeps_the_contact_history():
     (single, v_single), (split, v_split) = runs
     assert len(single) == len(split) == 1
     assert np.allclose(single[0], split[0], rtol=1e-12, atol=0.0) and v_split == pytest.approx(v_single, rel=1e-12)
+
+
+def _rss_kb() -> int:
+    with open("/proc/self/status") as status:
+        return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=pytest.mark.skipif(
+    exuclear.engine.kernel.STATUS != "direct", reason="compiled kernel not available"))])
+def test_memory_stays_bounded_over_hundreds_of_models(backend):
+    # a study builds and runs many models in one process: each model's system, handle and
+    # kernel state must be freed with it (before: ~51 kB kept per model, and one more entry
+    # of the compiled kernel's table each time), also when one system is reset and rebuilt
+    import gc
+    import tracemalloc
+
+    from exuclear.engine import kernel
+
+    def one_model():
+        mbs = exu.SystemContainer().AddSystem()
+        _impact_scene(mbs, backend=backend)
+        mbs.Assemble()
+        assert exuclear.simulate(mbs, exuclear.SolverSettings(end_time=2e-5)).success
+
+    for _ in range(20):  # warm-up: caches, Exudyn's first-use allocations
+        one_model()
+    gc.collect()
+    in_use = kernel.COMPILED.joints_in_use() if kernel.COMPILED is not None else 0
+    tracemalloc.start()
+    try:
+        before, rss = tracemalloc.get_traced_memory()[0], _rss_kb()
+        n = 300 if backend == "compiled" else 100  # the Python kernel is slow under tracemalloc
+        for _ in range(n):
+            one_model()
+        gc.collect()
+        grown, rss_grown = tracemalloc.get_traced_memory()[0] - before, _rss_kb() - rss
+    finally:
+        tracemalloc.stop()
+    assert grown < 200 * n  # bytes: < 0.2 kB per model of Python memory (a leak was ~50 kB)
+    assert rss_grown < 10 * n  # kB: < 10 kB per model of process memory, C++ included (it was ~70 kB)
+    if kernel.COMPILED is not None:
+        assert kernel.COMPILED.joints_in_use() <= in_use  # every model's kernel entry was released
+
+    mbs = exu.SystemContainer().AddSystem()  # one system, reset and rebuilt
+    for _ in range(50):
+        mbs.Reset()
+        _impact_scene(mbs, backend=backend)
+        mbs.Assemble()
+    assert len(exuclear.engine.connector.joints_of(mbs)) == 1
+    gc.collect()
+    if kernel.COMPILED is not None:
+        assert kernel.COMPILED.joints_in_use() <= in_use + 1  # only the live joint keeps its entry

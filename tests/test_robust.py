@@ -27,8 +27,10 @@ def pendulum(theta0=0.5, mass=MASS, y_offset=0.0, velocity=0.0):
     bar = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=mass * LENGTH**2 / 12))
     mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=bar)),
                                      loadVector=[0, -9.81, 0]))
-    handle = exuclear.add_clearance_joint(mbs, bar, ground, journal_point=(0, LENGTH / 2), journal_radius=10e-3 - CLEARANCE,
-                                          bearing_radius=10e-3, length=15e-3, cr=0.9, name="pin")
+    with pytest.warns(DeprecationWarning, match="CreateClearanceJoint"):
+        handle = exuclear.add_clearance_joint(mbs, bar, ground, journal_point=(0, LENGTH / 2),
+                                              journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3, length=15e-3,
+                                              cr=0.9, name="pin")
     mbs.Assemble()
     return mbs, handle
 

@@ -2,15 +2,18 @@
 //
 // The same formulas as the Python statement of the physics, in the same order and with
 // the same names, so that the two can be read side by side and agree to round-off:
-//   contact kinematics  exuclear/geometry.py   (docs/physics.md eqs. (1)-(8))
-//   normal force        exuclear/contact.py    (eqs. (9)-(17))
+//   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
+//                                               planar joint's eqs. (1)-(8) as one slice)
+//   normal force        exuclear/contact.py    (eq. (9) once, damped_normal_force; eqs. (10)-(17))
 //   friction            exuclear/friction.py   (eqs. (20)-(23))
-//   loads               exuclear/geometry.py   (eqs. (24)-(26))
+//   one contact         exuclear/engine/_python_kernel.py Contact (response: onset velocity,
+//                       normal force, friction; the same for slices and end faces)
+//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
 //   contact history     exuclear/history.py    (onset velocity, records)
-//   step bookkeeping    exuclear/engine/_python_kernel.py (which history an evaluation uses)
-//   spatial joint       exuclear/spatial.py and SpatialJointKernel in _python_kernel.py
-//                       (eqs. (33)-(45)): the same names, the drivers spatial_*; its axial clearance
-//                       (eqs. (48)-(54)): functions face_*
+//   the joint           exuclear/engine/_python_kernel.py JointKernel (which history an
+//                       evaluation uses; force and post-Newton drivers over the contacts)
+// The planar joint is the spatial joint with one slice and no end faces, whose motion is
+// projected on the plane normal to the bearing axis.
 //
 // Exudyn calls these functions through raw function pointers, without Python, when they
 // are bound by pybind11, capture nothing and have exactly Exudyn's signature
@@ -66,62 +69,118 @@ namespace {
 
 const double INF = std::numeric_limits<double>::infinity();
 
-// ---- parameters (layout: exuclear/engine/layout.py) -------------------------------------
+// ---- parameters: the named layout (exuclear/engine/layout.py LAYOUT) ----------------------
 enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
+
+// The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
+// test compares this table (exported as the module's LAYOUT) with layout.py's.
+enum Field {
+    JOINT_ID, ROLE, TOKEN, JOURNAL_RADIUS, BEARING_RADIUS, MAX_PENETRATION,
+    IMPACT_STEP, STIFFNESS_CODE, DAMPING_FACTOR, V_MIN, FRICTION_CODE,
+    STIFFNESS_CONSTANTS, FRICTION_CONSTANTS,
+    SLICES, LENGTH, AXIS_JOURNAL,
+    AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
+    N_FIELDS
+};
+
+struct FieldPosition {
+    const char* name;
+    int row, column, size;
+};
+
+constexpr FieldPosition LAYOUT[N_FIELDS] = {
+    {"joint_id", 0, 0, 1},        {"role", 0, 1, 1},           {"token", 0, 2, 1},
+    {"journal_radius", 0, 3, 1},  {"bearing_radius", 0, 4, 1}, {"max_penetration", 0, 5, 1},
+    {"impact_step", 1, 0, 1},     {"stiffness_code", 1, 1, 1}, {"damping_factor", 1, 2, 1},
+    {"v_min", 1, 3, 1},           {"friction_code", 1, 4, 1},
+    {"stiffness_constants", 2, 0, 6},
+    {"friction_constants", 3, 0, 4},
+    {"slices", 4, 0, 1},          {"length", 4, 1, 1},         {"axis_journal", 4, 2, 3},
+    {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
+};
+
+double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
 
 struct Params {
     long id;
     int role;
     double r_j, r_b, max_penetration, impact_step;
     int stiffness_code;
-    double exponent, damping_factor, v_min, clearance;
-    double kp[6];
+    double damping_factor, v_min;
     int friction_code;
+    double kp[6];
     double fp[4];
-    int slices;  // 0: the planar joint; N > 0: the spatial joint of N slices
+    int slices;  // 0: the planar joint (one slice, the motion projected on the plane normal to the axis)
     double length;
     V3 axis_journal;
-    // the spatial joint's axial clearance (section 9.6): total play (0: none), shoulder,
-    // friction radius R_e, face stiffness K_f
-    double play, shoulder_radius, friction_radius, face_stiffness;
+    // the spatial joint's axial clearance (section 9.6): total play (0: none), friction radius
+    // R_e, face stiffness K_f
+    double play, friction_radius, face_stiffness;
 };
 
-Params decode(const M6& p) {
+Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
     Params a;
-    a.id = static_cast<long>(p[0][0]);
-    a.role = static_cast<int>(p[0][1]);
-    a.r_j = p[0][2];
-    a.r_b = p[0][3];
-    a.max_penetration = p[0][4];
-    a.impact_step = p[0][5];
-    a.stiffness_code = static_cast<int>(p[1][0]);
-    a.exponent = p[1][2];
-    a.damping_factor = p[1][3];
-    a.v_min = p[1][4];
-    a.clearance = p[1][5];
-    for (int i = 0; i < 6; ++i) a.kp[i] = p[2][i];
-    a.friction_code = static_cast<int>(p[3][0]);
-    for (int i = 0; i < 4; ++i) a.fp[i] = p[3][i + 1];
-    a.slices = static_cast<int>(p[5][0]);
-    a.length = p[5][1];
-    a.axis_journal = V3{p[5][2], p[5][3], p[5][4]};
-    a.play = p[4][1];
-    a.shoulder_radius = p[4][2];
-    a.friction_radius = p[4][3];
-    a.face_stiffness = p[4][4];
+    a.id = static_cast<long>(field(p, JOINT_ID));
+    a.role = static_cast<int>(field(p, ROLE));
+    a.r_j = field(p, JOURNAL_RADIUS);
+    a.r_b = field(p, BEARING_RADIUS);
+    a.max_penetration = field(p, MAX_PENETRATION);
+    a.impact_step = field(p, IMPACT_STEP);
+    a.stiffness_code = static_cast<int>(field(p, STIFFNESS_CODE));
+    a.damping_factor = field(p, DAMPING_FACTOR);
+    a.v_min = field(p, V_MIN);
+    a.friction_code = static_cast<int>(field(p, FRICTION_CODE));
+    for (int i = 0; i < LAYOUT[STIFFNESS_CONSTANTS].size; ++i) a.kp[i] = field(p, STIFFNESS_CONSTANTS, i);
+    for (int i = 0; i < LAYOUT[FRICTION_CONSTANTS].size; ++i) a.fp[i] = field(p, FRICTION_CONSTANTS, i);
+    a.slices = static_cast<int>(field(p, SLICES));
+    a.length = field(p, LENGTH);
+    a.axis_journal = V3{field(p, AXIS_JOURNAL, 0), field(p, AXIS_JOURNAL, 1), field(p, AXIS_JOURNAL, 2)};
+    a.play = field(p, AXIAL_CLEARANCE);
+    a.friction_radius = field(p, FRICTION_RADIUS);
+    a.face_stiffness = field(p, FACE_STIFFNESS);
     return a;
 }
 
-// ---- physics: geometry.py ------------------------------------------------------------------
+// ---- physics: geometry.py and spatial.py (docs/physics.md eqs. (1)-(8), (33)-(40), (48)-(51)) --
+V3 cross(const V3& a, const V3& b) {
+    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+double slice_centre(double length, int slices, int k) {  // eq. (33): the centre of slice k
+    double width = length / slices;
+    return -0.5 * length + (k + 0.5) * width;
+}
+
+V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) Ry(b) Rz(c) a_J
+    double ca = std::cos(angles[0]), sa = std::sin(angles[0]);
+    double cb = std::cos(angles[1]), sb = std::sin(angles[1]);
+    double cc = std::cos(angles[2]), sc = std::sin(angles[2]);
+    V3 r0{cb * cc, -cb * sc, sb};
+    V3 r1{ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb};
+    V3 r2{sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb};
+    return V3{dot(r0, axis_journal), dot(r1, axis_journal), dot(r2, axis_journal)};
+}
+
+// One contact's kinematics: spatial.py's SliceKinematics (side 0) or FaceKinematics (side -1, +1).
 struct Kinematics {
-    double ex, ey, ecc, nx, ny, delta, delta_dot, v_t;
+    int side;
+    double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
 };
 
-// contact_kinematics + kinematics_along (eqs. (1)-(8)), in the joint frame J0 of the bearing
-Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx, double dvy, double omega_i,
+// geometry.py contact_kinematics, eqs. (1)-(8): the planar joint's one slice.  The spatial
+// slice's eqs. (35)-(40) reduce to these for the motion projected on the plane normal to the
+// axis (s = 0, m = n, w_j x p normal to n); they are evaluated in this reduced form, in both
+// kernels, so that the planar joint keeps its results bit for bit (some scenes, e.g. a 3D
+// double pendulum at a coarse fixed step, change course on a last-bit change of the force).
+// (ex, ey) the eccentricity, (dvx, dvy) the relative velocity, omega_i, omega_j the journal's and
+// the bearing's spin about the axis.
+Kinematics contact_kinematics(double r_j, double r_b, double ex, double ey, double dvx, double dvy, double omega_i,
                               double omega_j) {
-    Kinematics k;
+    Kinematics k{};
+    k.side = 0;
     k.ex = ex;
     k.ey = ey;
     k.ecc = std::sqrt(ex * ex + ey * ey);
@@ -133,9 +192,67 @@ Kinematics contact_kinematics(const Params& a, double ex, double ey, double dvx,
         k.ny = 0.0;
     }
     k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
-    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * a.r_j + omega_j * a.r_b;               // eq. (8)
-    k.delta = k.ecc - (a.r_b - a.r_j);                                                 // eq. (4)
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * r_j + omega_j * r_b;                   // eq. (8)
+    k.delta = k.ecc - (r_b - r_j);                                                     // eq. (4)
+    k.speed = std::fabs(k.v_t);
     return k;
+}
+
+// spatial.py slice_kinematics, eqs. (35)-(40)
+Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv, const V3& dw,
+                            const V3& w_j) {
+    Kinematics k;
+    k.side = 0;
+    k.s = (z - p[2]) / u[2];                                            // eq. (35)
+    k.ex = p[0] + k.s * u[0];
+    k.ey = p[1] + k.s * u[1];
+    k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
+    if (k.ecc > 0.0) {
+        k.nx = k.ex / k.ecc;
+        k.ny = k.ey / k.ecc;
+    } else {  // journal axis on the bearing axis: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
+    k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
+    k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];               // eq. (38)
+    V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};                // Q_J - P_J, eq. (39)
+    V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};      // Q_J - Q_B - p
+    V3 wr = cross(dw, r);
+    V3 wl = cross(w_j, lever);
+    V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
+    k.v_t = v[0] * k.ny - v[1] * k.nx;                                   // eq. (40)
+    k.v_a = v[2];
+    k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
+    return k;
+}
+
+const int FACE_SIDES[2] = {-1, 1};  // face 0 at z = -L/2, face 1 at z = +L/2
+
+Kinematics face_kinematics(double length, double play, double r_e, int side, const V3& p, const V3& u, const V3& dv,
+                           const V3& dw, const V3& w_j) {
+    Kinematics k{};
+    k.side = side;
+    k.s = side * 0.5 * (length + play);                                 // eq. (48)
+    double cz = p[2] + k.s * u[2];
+    k.delta = 0.5 * length - side * cz;                                 // eq. (49)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    k.delta_dot = -side * (dv[2] - wp[2] + ws[2]);                      // eq. (50)
+    k.v_t = r_e * dot(dw, u);                                           // eq. (51)
+    k.ex = p[0] + su[0];
+    k.ey = p[1] + su[1];
+    return k;
+}
+
+bool finite(const Kinematics& k) {
+    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
 }
 
 // ---- physics: contact.py -------------------------------------------------------------------
@@ -179,20 +296,12 @@ double elastic_force(const Params& a, double delta) {  // F_e(delta) for delta >
     }
 }
 
-double normal_force(const Params& a, double delta, double delta_dot, double v0) {  // eq. (9)
-    if (delta <= 0.0) return 0.0;
-    double v0_eff = v0 > a.v_min ? v0 : a.v_min;
-    double f = elastic_force(a, delta) * (1.0 + a.damping_factor * delta_dot / v0_eff);
-    return f < 0.0 ? 0.0 : f;  // no adhesion; a NaN stays NaN, to be caught
-}
-
-// spatial.py face_normal_force, eq. (53): eq. (9) with F_e = K_f delta, the law's D and v_min
-double face_normal_force(double k_face, double damping_factor, double v_min, double delta, double delta_dot,
-                         double v0) {
-    if (delta <= 0.0) return 0.0;
+// contact.py damped_normal_force, eq. (9) for delta > 0: the elastic force f_e with the
+// hysteresis factor D and the onset velocity floored at v_min
+double damped_normal_force(double f_e, double damping_factor, double v_min, double delta_dot, double v0) {
     double v0_eff = v0 > v_min ? v0 : v_min;
-    double f = k_face * delta * (1.0 + damping_factor * delta_dot / v0_eff);
-    return f < 0.0 ? 0.0 : f;  // a NaN stays NaN, to be caught
+    double f = f_e * (1.0 + damping_factor * delta_dot / v0_eff);
+    return f < 0.0 ? 0.0 : f;  // no adhesion; a NaN stays NaN, to be caught
 }
 
 // ---- physics: friction.py ------------------------------------------------------------------
@@ -249,12 +358,51 @@ double onset_velocity(const History& h, double delta, double delta_dot) {
     return h.delta_dot + (delta_dot - h.delta_dot) * d0 / (d0 - delta);
 }
 
+// ---- one contact: _python_kernel.py's Contact classes ----------------------------------------
+// A joint's contacts are its slices (one for the planar joint), then its two end faces where
+// it has an axial clearance.  The kind decides the stiffness, the slip friction acts against
+// and where the loads go; response() is the same for all.
+enum ContactKind {
+    PLANAR_SLICE,  // the planar joint's one slice: the joint's law, slip v_T (eqs. (9), (20))
+    SLICE,         // a spatial slice: its share w / L of the law, slip |v_s| (eqs. (41), (42))
+    FACE           // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
+};
+
+int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
+
+size_t contact_count(const Params& a) { return static_cast<size_t>(slice_count(a)) + (a.play > 0.0 ? 2u : 0u); }
+
+ContactKind contact_kind(const Params& a, size_t i) {
+    if (i >= static_cast<size_t>(slice_count(a))) return FACE;
+    return a.slices > 0 ? SLICE : PLANAR_SLICE;
+}
+
+double law_share(const Params& a, ContactKind kind) {  // eq. (41): w / L; all of it for the planar slice, a face
+    return kind == SLICE ? 1.0 / a.slices : 1.0;
+}
+
+double slip(ContactKind kind, const Kinematics& k) {  // the speed friction's coefficient takes
+    return kind == SLICE ? k.speed : k.v_t;
+}
+
+struct Response {
+    double f_n, f_t, v0;
+};
+
+// Contact.response: onset velocity -> normal force -> friction, for every kind of contact
+Response response(const Params& a, ContactKind kind, const History& h, const Kinematics& k) {
+    if (k.delta <= 0.0) return Response{0.0, 0.0, h.in_contact ? h.v0 : 0.0};
+    double v0 = onset_velocity(h, k.delta, k.delta_dot);                                    // eqs. (17)-(19)
+    double f_e = kind == FACE ? a.face_stiffness * k.delta : elastic_force(a, k.delta);       // eq. (52) or the law's
+    double f_n = law_share(a, kind) * damped_normal_force(f_e, a.damping_factor, a.v_min, k.delta_dot, v0);  // eq. (9)
+    double f_t = a.friction_code != FRICTION_NONE ? friction_coefficient(a, slip(kind, k)) * f_n : 0.0;       // eq. (20)
+    return Response{f_n, f_t, v0};
+}
+
 // ContactState.accept (exuclear/history.py): the history after an accepted state (kinematics k, time t);
-// a contact that ends appends its record.  law_share: a spatial slice's share w / L of the
-// law (eq. (41)); 1 for the planar joint (x * 1.0 == x, so the planar joint is unchanged).
-// face: an end face of the axial clearance, whose force is eq. (53) (_FaceJoint).
-History accept(const History& h, const Params& a, const Kinematics& k, double time, std::vector<Record>& records,
-               double law_share = 1.0, bool face = false) {
+// a contact that ends appends its record.
+History accept(const History& h, const Params& a, ContactKind kind, const Kinematics& k, double time,
+               std::vector<Record>& records) {
     History n = h;
     double delta = k.delta, delta_dot = k.delta_dot;
     if (delta > 0.0) {
@@ -282,175 +430,37 @@ History accept(const History& h, const Params& a, const Kinematics& k, double ti
     n.time = time;
     n.ex = k.ex;
     n.ey = k.ey;
-    n.v_t = k.v_t;
-    n.f_n = !n.in_contact ? 0.0
-            : face      ? face_normal_force(a.face_stiffness, a.damping_factor, a.v_min, delta, delta_dot, n.v0)
-                        : law_share * normal_force(a, delta, delta_dot, n.v0);
-    n.f_t = n.in_contact && a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * n.f_n : 0.0;
-    if (n.in_contact) {
+    n.v_t = slip(kind, k);
+    if (delta > 0.0) {
+        Response r = response(a, kind, h, k);  // at an onset, v0 is the same interpolation as n.v0
+        n.f_n = r.f_n;
+        n.f_t = r.f_t;
         n.peak_force = n.f_n > n.peak_force ? n.f_n : n.peak_force;
         n.max_penetration = delta > n.max_penetration ? delta : n.max_penetration;
+    } else {
+        n.f_n = 0.0;
+        n.f_t = 0.0;
     }
     return n;
 }
 
-// ---- the per-joint table -------------------------------------------------------------------
-struct JointState {
-    bool started = false;  // an accepted (initial) state exists in this run
-    History prev, cur;     // history at the start and at the end of the last post-processed step
-    History initial;       // the run's initial accepted state
-    std::vector<Record> records;
-    double omega_bearing = 0.0;    // bearing's angular velocity about the axis, from the probe
-    double torque_correction = 0.0;  // m_i + m_j, for the torque connector
-    // the spatial joint (one History per slice, then per end face with an axial clearance)
-    std::vector<History> sprev, scur, sinitial;
-    std::vector<std::vector<Record>> srecords;
-    V3 omega_bearing3{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
-    V3 torque_correction3{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
-    V3 initial_axis{0.0, 0.0, 1.0};
-    double initial_axial = 0.0;
-    long force_calls = 0, post_newton_calls = 0;
-    std::string failure;
-    double failure_time = 0.0;
-};
-
-std::vector<JointState> g_joints;
-
-JointState& state(long id) {
-    if (id < 0 || id >= static_cast<long>(g_joints.size())) {
-        throw std::runtime_error("exuclear kernel: unknown joint id " + std::to_string(id));
-    }
-    return g_joints[static_cast<size_t>(id)];
-}
-
-// Record why the run cannot go on, and stop it (an exception ends Exudyn's solve; mirrors
-// _python_kernel's _fail).
-[[noreturn]] void fail(JointState& s, double t, const std::string& message) {
-    s.failure = message;
-    s.failure_time = t;
-    throw std::runtime_error("exuclear: " + message);
-}
-
-// Which history an evaluation at time t uses (mirrors _python_kernel.PythonJointKernel.history_for).
-// A time before the last step's start means a new run: forget everything and take this
-// evaluation's state as the run's initial accepted state.
-const History& history_for(JointState& s, const Params& a, const Kinematics& k, double t) {
-    if (!s.started || t < s.prev.time) {
-        s.records.clear();
-        s.failure.clear();
-        History fresh;
-        fresh.time = t;
-        s.cur = accept(fresh, a, k, t, s.records);
-        s.prev = s.cur;
-        s.initial = s.cur;
-        s.started = true;
-        if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
-            fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
-        }
-    }
-    return t <= s.cur.time ? s.prev : s.cur;
-}
-
-V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
-
-// ---- the connector's force (eqs. (24)-(26)) ---------------------------------------------------------
-// Returns [F; T] in J0 coordinates: the bearing (marker 0) receives +F, +T, the journal
-// (marker 1) -F, -T.  F = -F_i and T = -M_i; the bearing's own moment M_j differs from
-// -M_i by (R_J - R_B) F_T, which the torque connector adds.
-V6 main_force(const Params& a, double t, const V3& displacement, const V3& velocity, const V3& angularVelocity) {
-    JointState& s = state(a.id);
-    s.force_calls++;
-    double omega_j = s.omega_bearing;
-    double omega_i = angularVelocity[2] + omega_j;
-    Kinematics k = contact_kinematics(a, displacement[0], displacement[1], velocity[0], velocity[1], omega_i, omega_j);
-    const History& h = history_for(s, a, k, t);
-    if (k.delta <= 0.0) {
-        s.torque_correction = 0.0;
-        return zeros6();
-    }
-    double v0 = onset_velocity(h, k.delta, k.delta_dot);
-    double f_n = normal_force(a, k.delta, k.delta_dot, v0);
-    double f_t = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * f_n : 0.0;
-    // joint_loads
-    double fx = -f_n * k.nx - f_t * k.ny;
+// ---- loads: spatial.py (eqs. (41)-(45), (54); the planar joint's eqs. (24)-(26)) -------------
+// geometry.py joint_loads, eqs. (24)-(26), as the planar slice's share of loads = [force (3),
+// torque (3), correction (3)]: F = -F_i, T = -M_i, and the bearing's moment beyond T, m_j + m_i
+// (the whole of it: the driver adds no p x F for the planar joint, see joint_force)
+void joint_loads(double* loads, double r_j, double r_b, const Kinematics& k, double f_n, double f_t) {
+    double fx = -f_n * k.nx - f_t * k.ny;                                // eq. (24)
     double fy = -f_n * k.ny + f_t * k.nx;
-    double m_i = a.r_j * f_t;
-    double m_j = -a.r_b * f_t;
-    s.torque_correction = m_j + m_i;
-    return V6{-fx, -fy, 0.0, 0.0, 0.0, -m_i};
+    double m_i = r_j * f_t;                                              // eq. (25)
+    double m_j = -r_b * f_t;                                             // eq. (26)
+    loads[0] += -fx;
+    loads[1] += -fy;
+    loads[5] += -m_i;
+    loads[8] += m_j + m_i;
 }
 
-// ---- the spatial joint: spatial.py (docs/physics.md section 9, eqs. (33)-(45)) --------------
-V3 cross(const V3& a, const V3& b) {
-    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-double slice_centre(double length, int slices, int k) {  // eq. (33): the centre of slice k
-    double width = length / slices;
-    return -0.5 * length + (k + 0.5) * width;
-}
-
-V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) Ry(b) Rz(c) a_J
-    double ca = std::cos(angles[0]), sa = std::sin(angles[0]);
-    double cb = std::cos(angles[1]), sb = std::sin(angles[1]);
-    double cc = std::cos(angles[2]), sc = std::sin(angles[2]);
-    V3 r0{cb * cc, -cb * sc, sb};
-    V3 r1{ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb};
-    V3 r2{sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb};
-    return V3{dot(r0, axis_journal), dot(r1, axis_journal), dot(r2, axis_journal)};
-}
-
-struct SliceKinematics {
-    double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
-};
-
-SliceKinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv,
-                                 const V3& dw, const V3& w_j) {
-    SliceKinematics k;
-    k.s = (z - p[2]) / u[2];                                            // eq. (35)
-    k.ex = p[0] + k.s * u[0];
-    k.ey = p[1] + k.s * u[1];
-    k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
-    if (k.ecc > 0.0) {
-        k.nx = k.ex / k.ecc;
-        k.ny = k.ey / k.ecc;
-    } else {  // journal axis on the bearing axis: no contact, any normal keeps the values finite
-        k.nx = 1.0;
-        k.ny = 0.0;
-    }
-    k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
-    k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
-    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
-    V3 wp = cross(w_j, p);
-    V3 ws = cross(dw, su);
-    V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
-    k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];               // eq. (38)
-    V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};                // Q_J - P_J, eq. (39)
-    V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};      // Q_J - Q_B - p
-    V3 wr = cross(dw, r);
-    V3 wl = cross(w_j, lever);
-    V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
-    k.v_t = v[0] * k.ny - v[1] * k.nx;                                   // eq. (40)
-    k.v_a = v[2];
-    k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
-    return k;
-}
-
-void slice_friction(double mu, double f_n, const SliceKinematics& k, double& f_t, double& f_a) {  // eq. (42)
-    if (!(k.speed > 0.0)) {
-        f_t = 0.0;
-        f_a = 0.0;
-        return;
-    }
-    double g = mu * f_n;
-    f_t = g * (k.v_t / k.speed);
-    f_a = g * (k.v_a / k.speed);
-}
-
-// loads = [force (3), torque (3), correction (3)], eqs. (43)-(45)
-void add_slice_loads(double* loads, double r_j, const V3& u, const SliceKinematics& k, double f_n, double f_t,
+// spatial.py add_slice_loads: a slice's share of loads = [force (3), torque (3), correction (3)]
+void add_slice_loads(double* loads, double r_j, const V3& u, const Kinematics& k, double f_n, double f_t,
                      double f_a) {
     V3 n_force{f_n * k.nx, f_n * k.ny, -f_n * k.a};                     // F_N m, on the bearing at c, eq. (41)
     V3 t_force{f_t * k.ny, -f_t * k.nx, f_a};                             // friction on the bearing at Q_B, eq. (42)
@@ -466,33 +476,7 @@ void add_slice_loads(double* loads, double r_j, const V3& u, const SliceKinemati
     }
 }
 
-// ---- axial clearance: spatial.py face_* (docs/physics.md section 9.6, eqs. (48)-(54)) ----------
-const int FACE_SIDES[2] = {-1, 1};  // face 0 at z = -L/2, face 1 at z = +L/2
-
-struct FaceKinematics {
-    int side;
-    double s, ex, ey, delta, delta_dot, v_t;
-};
-
-FaceKinematics face_kinematics(double length, double play, double r_e, int side, const V3& p, const V3& u,
-                               const V3& dv, const V3& dw, const V3& w_j) {
-    FaceKinematics k;
-    k.side = side;
-    k.s = side * 0.5 * (length + play);                                 // eq. (48)
-    double cz = p[2] + k.s * u[2];
-    k.delta = 0.5 * length - side * cz;                                 // eq. (49)
-    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
-    V3 wp = cross(w_j, p);
-    V3 ws = cross(dw, su);
-    k.delta_dot = -side * (dv[2] - wp[2] + ws[2]);                      // eq. (50)
-    k.v_t = r_e * dot(dw, u);                                           // eq. (51)
-    k.ex = p[0] + su[0];
-    k.ey = p[1] + su[1];
-    return k;
-}
-
-// loads = [force (3), torque (3), correction (3)]; eq. (54)
-void add_face_loads(double* loads, double r_e, const V3& u, const FaceKinematics& k, double f_n, double f_t) {
+void add_face_loads(double* loads, double r_e, const V3& u, const Kinematics& k, double f_n, double f_t) {
     V3 total{0.0, 0.0, -k.side * f_n};                                  // on the bearing, at c_f
     V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
     V3 arm = cross(su, total);
@@ -503,150 +487,184 @@ void add_face_loads(double* loads, double r_e, const V3& u, const FaceKinematics
     }
 }
 
-Kinematics face_accepted(const FaceKinematics& k) {  // _accepted: an end face records its signed slip
-    Kinematics a;
-    a.ex = k.ex;
-    a.ey = k.ey;
-    a.ecc = 0.0;
-    a.nx = 1.0;
-    a.ny = 0.0;
-    a.delta = k.delta;
-    a.delta_dot = k.delta_dot;
-    a.v_t = k.v_t;
-    return a;
+// Contact.add_loads: a contact's loads from its response
+void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, const Kinematics& k, const Response& r) {
+    switch (kind) {
+        case PLANAR_SLICE:  // eqs. (24)-(26)
+            joint_loads(loads, a.r_j, a.r_b, k, r.f_n, r.f_t);
+            break;
+        case SLICE: {  // spatial.py friction_components: along the slip of the contact points, eq. (42)
+            double f_t = 0.0, f_a = 0.0;
+            if (k.speed > 0.0) {
+                f_t = r.f_t * (k.v_t / k.speed);
+                f_a = r.f_t * (k.v_a / k.speed);
+            }
+            add_slice_loads(loads, a.r_j, u, k, r.f_n, f_t, f_a);
+            break;
+        }
+        case FACE:
+            add_face_loads(loads, a.friction_radius, u, k, r.f_n, r.f_t);
+            break;
+    }
 }
 
-bool face_finite(const FaceKinematics& k) {
-    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
-}
-
-Kinematics slice_accepted(const SliceKinematics& k) {  // _accepted: what accept reads; v_t the slip speed
-    Kinematics a;
-    a.ex = k.ex;
-    a.ey = k.ey;
-    a.ecc = k.ecc;
-    a.nx = k.nx;
-    a.ny = k.ny;
-    a.delta = k.delta;
-    a.delta_dot = k.delta_dot;
-    a.v_t = k.speed;
-    return a;
-}
-
-bool slice_finite(const SliceKinematics& k) {
-    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
-}
-
-struct SpatialInput {
-    V3 p, u;
-    std::vector<SliceKinematics> kins;
-    std::vector<FaceKinematics> faces;  // empty without an axial clearance
+// ---- the per-joint table -------------------------------------------------------------------
+// One joint's state (_python_kernel.py JointKernel): per contact, its history at the start
+// (prev) and at the end (cur) of the last post-processed step and its records.
+struct JointState {
+    bool in_use = true;    // false: released (its handle is gone), the slot is free for a new joint
+    bool started = false;  // an accepted (initial) state exists in this run
+    std::vector<Kinematics> kins;            // the last evaluation's, one per contact (storage reused)
+    std::vector<History> prev, cur, initial;
+    std::vector<History> next;               // scratch of the post-Newton update (storage reused)
+    std::vector<std::vector<Record>> records;
+    V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
+    V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
+    V3 initial_axis{0.0, 0.0, 1.0};
+    double initial_axial = 0.0;
+    long force_calls = 0, post_newton_calls = 0;
+    std::string failure;
+    double failure_time = 0.0;
 };
 
-SpatialInput spatial_kinematics(const Params& a, const JointState& s, const V3& displacement, const V3& rotation,
-                                const V3& velocity, const V3& angularVelocity) {
-    SpatialInput in;
-    in.p = displacement;
-    in.u = journal_axis(rotation, a.axis_journal);                     // eq. (34)
-    in.kins.reserve(static_cast<size_t>(a.slices));
-    for (int k = 0; k < a.slices; ++k) {  // no per-evaluation allocation of the centres
-        in.kins.push_back(slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, a.slices, k), in.p, in.u, velocity,
-                                           angularVelocity, s.omega_bearing3));
+std::vector<JointState> g_joints;
+std::vector<long> g_free;  // released slots of g_joints, reused by new_joint
+
+JointState& state(long id) {
+    if (id < 0 || id >= static_cast<long>(g_joints.size()) || !g_joints[static_cast<size_t>(id)].in_use) {
+        throw std::runtime_error("exuclear kernel: unknown joint id " + std::to_string(id));
+    }
+    return g_joints[static_cast<size_t>(id)];
+}
+
+// Record why the run cannot go on, and stop it (an exception ends Exudyn's solve; mirrors
+// _python_kernel's _fail).
+[[noreturn]] void fail(JointState& s, double t, const std::string& message) {
+    s.failure = message;
+    s.failure_time = t;
+    throw std::runtime_error("exuclear: " + message);
+}
+
+const char* const DIVERGED = "the state became non-finite (NaN or inf); the integration diverged";
+
+struct Pose {  // the journal's centre p and axis u in J0
+    V3 p, u;
+};
+
+// JointKernel._kinematics: every contact's kinematics into s.kins
+Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, const V3& rotation, const V3& velocity,
+                      const V3& angularVelocity) {
+    int n_slices = slice_count(a);
+    size_t n = contact_count(a);
+    if (s.kins.size() != n) s.kins.resize(n);  // once per joint: no allocation per evaluation
+    Pose q;
+    V3 dv, dw, w_j;
+    if (a.slices == 0) {  // the planar joint: the motion projected on the plane normal to the axis
+        q.p = V3{displacement[0], displacement[1], 0.0};
+        q.u = V3{0.0, 0.0, 1.0};
+        dv = V3{velocity[0], velocity[1], 0.0};
+        dw = V3{0.0, 0.0, angularVelocity[2]};
+        w_j = V3{0.0, 0.0, s.omega_bearing[2]};
+    } else {
+        q.p = displacement;
+        q.u = journal_axis(rotation, a.axis_journal);                   // eq. (34)
+        dv = velocity;
+        dw = angularVelocity;
+        w_j = s.omega_bearing;
+    }
+    if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
+        s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+    } else {
+        for (int k = 0; k < n_slices; ++k) {
+            s.kins[static_cast<size_t>(k)] =
+                slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+        }
     }
     if (a.play > 0.0) {
-        for (int side : FACE_SIDES) {
-            in.faces.push_back(face_kinematics(a.length, a.play, a.friction_radius, side, in.p, in.u, velocity,
-                                               angularVelocity, s.omega_bearing3));
+        for (int f = 0; f < 2; ++f) {
+            s.kins[static_cast<size_t>(n_slices + f)] =
+                face_kinematics(a.length, a.play, a.friction_radius, FACE_SIDES[f], q.p, q.u, dv, dw, w_j);
         }
     }
-    return in;
+    return q;
 }
 
-// SpatialJointKernel.history_for: the slices' history an evaluation at time t uses
-const std::vector<History>& spatial_history_for(JointState& s, const Params& a, const SpatialInput& in, double t) {
-    if (!s.started || t < s.sprev[0].time) {
-        s.initial_axis = in.u;
-        s.initial_axial = in.p[2];
-        s.srecords.assign(in.kins.size() + in.faces.size(), std::vector<Record>());
+bool all_finite(const JointState& s) {
+    for (const Kinematics& k : s.kins) {
+        if (!finite(k)) return false;
+    }
+    return true;
+}
+
+// JointKernel.history_for: the contacts' history an evaluation at time t uses.  A time
+// before the last step's start means a new run: forget everything and take this
+// evaluation's state (s.kins) as the run's initial accepted state.
+const std::vector<History>& history_for(JointState& s, const Params& a, const Pose& q, double t) {
+    if (!s.started || t < s.prev[0].time) {
+        size_t n = s.kins.size();
+        s.initial_axis = q.u;
+        s.initial_axial = q.p[2];
+        s.records.assign(n, std::vector<Record>());
         s.failure.clear();
-        double share = 1.0 / a.slices;
-        s.scur.clear();
-        for (size_t k = 0; k < in.kins.size(); ++k) {
+        s.cur.resize(n);
+        for (size_t i = 0; i < n; ++i) {
             History fresh;
             fresh.time = t;
-            s.scur.push_back(accept(fresh, a, slice_accepted(in.kins[k]), t, s.srecords[k], share));
+            s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         }
-        for (size_t k = 0; k < in.faces.size(); ++k) {
-            History fresh;
-            fresh.time = t;
-            s.scur.push_back(accept(fresh, a, face_accepted(in.faces[k]), t, s.srecords[in.kins.size() + k], 1.0,
-                                    true));
-        }
-        s.sprev = s.scur;
-        s.sinitial = s.scur;
+        s.prev = s.cur;
+        s.initial = s.cur;
         s.started = true;
-        bool finite = true;
-        for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
-        for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
-        if (!finite) {
-            fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
-        }
+        if (!all_finite(s)) fail(s, t, DIVERGED);
     }
-    return t <= s.scur[0].time ? s.sprev : s.scur;
+    return t <= s.cur[0].time ? s.prev : s.cur;
 }
 
-V6 spatial_force(const Params& a, double t, const V3& displacement, const V3& rotation, const V3& velocity,
-                 const V3& angularVelocity) {
+V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
+
+// JointKernel.force_torque: [F; T] in J0, F the force on the bearing (marker 0), T minus the
+// journal's moment about its marker point (Exudyn applies +F, +T to the bearing, -F, -T to
+// the journal); the bearing's own moment beyond T goes to the torque connector (eq. (45)).
+V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rotation, const V3& velocity,
+               const V3& angularVelocity) {
     JointState& s = state(a.id);
     s.force_calls++;
-    SpatialInput in = spatial_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
-    const std::vector<History>& history = spatial_history_for(s, a, in, t);
-    double share = 1.0 / a.slices;
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    const std::vector<History>& history = history_for(s, a, q, t);
     double loads[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    for (size_t i = 0; i < in.kins.size(); ++i) {
-        const SliceKinematics& k = in.kins[i];
+    for (size_t i = 0; i < s.kins.size(); ++i) {
+        const Kinematics& k = s.kins[i];
         if (k.delta <= 0.0) continue;
-        double v0 = onset_velocity(history[i], k.delta, k.delta_dot);
-        double f_n = share * normal_force(a, k.delta, k.delta_dot, v0);                      // eq. (41)
-        double mu = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.speed) : 0.0;
-        double f_t, f_a;
-        slice_friction(mu, f_n, k, f_t, f_a);                                                // eq. (42)
-        add_slice_loads(loads, a.r_j, in.u, k, f_n, f_t, f_a);
+        ContactKind kind = contact_kind(a, i);
+        add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
     }
-    for (size_t i = 0; i < in.faces.size(); ++i) {  // the end faces, section 9.6
-        const FaceKinematics& k = in.faces[i];
-        if (k.delta <= 0.0) continue;
-        double v0 = onset_velocity(history[in.kins.size() + i], k.delta, k.delta_dot);
-        double f_n = face_normal_force(a.face_stiffness, a.damping_factor, a.v_min, k.delta, k.delta_dot, v0);  // eq. (53)
-        double f_t = a.friction_code != FRICTION_NONE ? friction_coefficient(a, k.v_t) * f_n : 0.0;          // eq. (53)
-        add_face_loads(loads, a.friction_radius, in.u, k, f_n, f_t);                                        // eq. (54)
+    if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
+        s.torque_correction = V3{loads[6], loads[7], loads[8]};
+    } else {
+        V3 force{loads[0], loads[1], loads[2]};
+        V3 pf = cross(q.p, force);                                      // eq. (45)
+        s.torque_correction = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
     }
-    V3 force{loads[0], loads[1], loads[2]};
-    V3 pf = cross(in.p, force);                                                              // eq. (45)
-    s.torque_correction3 = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
     return V6{loads[0], loads[1], loads[2], loads[3], loads[4], loads[5]};
+}
+
+void record_bearing_spin(const Params& a, const V3& angularVelocity) {  // the probe: marker 1 is the ground
+    state(a.id).omega_bearing = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
 }
 
 V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, V3 velocity, V3 angularVelocity,
                 M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
     switch (a.role) {
-        case PROBE: {  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
-            JointState& s = state(a.id);
-            s.omega_bearing = -angularVelocity[2];
-            s.omega_bearing3 = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
+        case PROBE:  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
+            record_bearing_spin(a, angularVelocity);
             return zeros6();
-        }
         case TORQUE: {
-            const JointState& s = state(a.id);
-            if (a.slices > 0) {
-                return V6{0.0, 0.0, 0.0, s.torque_correction3[0], s.torque_correction3[1], s.torque_correction3[2]};
-            }
-            return V6{0.0, 0.0, 0.0, 0.0, 0.0, s.torque_correction};
+            const V3& c = state(a.id).torque_correction;
+            return V6{0.0, 0.0, 0.0, c[0], c[1], c[2]};
         }
         default:
-            if (a.slices > 0) return spatial_force(a, t, displacement, rotation, velocity, angularVelocity);
-            return main_force(a, t, displacement, velocity, angularVelocity);
+            return joint_force(a, t, displacement, rotation, velocity, angularVelocity);
     }
 }
 
@@ -673,32 +691,27 @@ std::string fmt(double x) {
     return o.str();
 }
 
-// SpatialJointKernel.post_newton: the slices' history update, once per accepted step
-StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, const V3& displacement,
-                              const V3& rotation, const V3& velocity, const V3& angularVelocity) {
+// JointKernel.post_newton: the contacts' history update, once per accepted step.
+// Returns [error, recommended step, data...].
+StdVector joint_post_newton(const Params& a, double t, const StdVector& data, const V3& displacement,
+                            const V3& rotation, const V3& velocity, const V3& angularVelocity) {
     StdVector out{0.0, -1.0};
     JointState& s = state(a.id);
     s.post_newton_calls++;
-    SpatialInput in = spatial_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
-    spatial_history_for(s, a, in, t);  // starts a run if needed
-    bool advance = t > s.scur[0].time;
-    const std::vector<History>& base = advance ? s.scur : s.sprev;  // a repeated step starts again from its start
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    history_for(s, a, q, t);  // starts a run if needed
+    bool advance = t > s.cur[0].time;
+    const std::vector<History>& base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
+    if (!all_finite(s)) fail(s, t, DIVERGED);
     double deepest = -INF;
-    bool finite = true;
-    for (const SliceKinematics& k : in.kins) finite = finite && slice_finite(k);
-    for (const FaceKinematics& k : in.faces) finite = finite && face_finite(k);
-    if (!finite) {
-        fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
-    }
-    for (const SliceKinematics& k : in.kins) deepest = k.delta > deepest ? k.delta : deepest;
-    for (const FaceKinematics& k : in.faces) deepest = k.delta > deepest ? k.delta : deepest;
+    for (const Kinematics& k : s.kins) deepest = k.delta > deepest ? k.delta : deepest;
     if (deepest > a.max_penetration) {
         fail(s, t, "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m");
     }
+    size_t n = s.kins.size();
     if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
-        for (size_t i = 0; i < in.kins.size() + in.faces.size(); ++i) {
-            double delta = i < in.kins.size() ? in.kins[i].delta : in.faces[i - in.kins.size()].delta;
-            if (!base[i].in_contact && delta > 0.0) {
+        for (size_t i = 0; i < n; ++i) {
+            if (!base[i].in_contact && s.kins[i].delta > 0.0) {
                 out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
                 out[1] = a.impact_step;
                 out.insert(out.end(), data.begin(), data.end());
@@ -706,75 +719,38 @@ StdVector spatial_post_newton(const Params& a, double t, const StdVector& data, 
             }
         }
     }
-    double share = 1.0 / a.slices;
-    std::vector<History> next;
-    size_t n_slices = in.kins.size();
-    next.reserve(n_slices + in.faces.size());
-    for (size_t i = 0; i < n_slices + in.faces.size(); ++i) {
-        s.srecords[i].resize(static_cast<size_t>(base[i].closed));
-        History h = i < n_slices ? accept(base[i], a, slice_accepted(in.kins[i]), t, s.srecords[i], share)
-                                 : accept(base[i], a, face_accepted(in.faces[i - n_slices]), t, s.srecords[i], 1.0,
-                                          true);
-        if (!std::isfinite(h.f_n)) {
-            fail(s, t, "the contact force became non-finite (NaN or inf)");
-        }
-        next.push_back(h);
+    s.next.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        s.records[i].resize(static_cast<size_t>(base[i].closed));
+        s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
+        if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
-    if (advance) s.sprev = s.scur;  // base is not read after this
-    s.scur = std::move(next);
-    out.push_back(t);  // spatial_data_values
-    out.push_back(in.u[0]);
-    out.push_back(in.u[1]);
-    out.push_back(in.p[2]);
-    out.reserve(out.size() + s.scur.size() * (N_DATA - 1));
-    for (const History& h : s.scur) write_data(h, out, 1);  // each contact's entries without its time
+    if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
+    s.cur.swap(s.next);
+    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS
+        out.reserve(2 + N_DATA);
+        write_data(s.cur[0], out);
+        return out;
+    }
+    out.reserve(2 + 4 + n * (N_DATA - 1));  // layout.spatial_data_columns
+    out.push_back(t);
+    out.push_back(q.u[0]);
+    out.push_back(q.u[1]);
+    out.push_back(q.p[2]);
+    for (const History& h : s.cur) write_data(h, out, 1);  // each contact's entries without its time
     return out;
 }
 
-// Post-Newton function: once per accepted step, the history update (mirrors
-// _python_kernel.PythonJointKernel.post_newton).  Returns [error, recommended step, data...].
 StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3 rotation, V3 velocity,
                       V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
-    StdVector out{0.0, -1.0};
     if (a.role == PROBE) {
-        JointState& s = state(a.id);
-        s.omega_bearing = -angularVelocity[2];
-        s.omega_bearing3 = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
+        record_bearing_spin(a, angularVelocity);
+        StdVector out{0.0, -1.0};
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
-    if (a.slices > 0) return spatial_post_newton(a, t, data, displacement, rotation, velocity, angularVelocity);
-    JointState& s = state(a.id);
-    s.post_newton_calls++;
-    double omega_j = s.omega_bearing;
-    double omega_i = angularVelocity[2] + omega_j;
-    Kinematics k = contact_kinematics(a, displacement[0], displacement[1], velocity[0], velocity[1], omega_i, omega_j);
-    history_for(s, a, k, t);  // starts a run if needed
-    bool advance = t > s.cur.time;
-    const History base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
-    if (!(std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t))) {
-        fail(s, t, "the state became non-finite (NaN or inf); the integration diverged");
-    }
-    if (k.delta > a.max_penetration) {
-        fail(s, t, "penetration " + fmt(k.delta) + " m exceeds the limit " + fmt(a.max_penetration) + " m");
-    }
-    if (a.impact_step > 0.0 && !base.in_contact && k.delta > 0.0 &&
-        t - base.time > a.impact_step * (1.0 + STEP_SLACK)) {
-        out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
-        out[1] = a.impact_step;
-        out.insert(out.end(), data.begin(), data.end());
-        return out;
-    }
-    s.records.resize(static_cast<size_t>(base.closed));
-    History next = accept(base, a, k, t, s.records);
-    if (!std::isfinite(next.f_n)) {
-        fail(s, t, "the contact force became non-finite (NaN or inf)");
-    }
-    if (advance) s.prev = s.cur;
-    s.cur = next;
-    write_data(next, out);
-    return out;
+    return joint_post_newton(a, t, data, displacement, rotation, velocity, angularVelocity);
 }
 
 // ---- dispatch counter for the self-test -----------------------------------------------------
@@ -803,6 +779,12 @@ py::dict history_dict(const History& h) {
     return d;
 }
 
+py::list history_list(const std::vector<History>& hs) {
+    py::list l;
+    for (const History& h : hs) l.append(history_dict(h));
+    return l;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_ckernel, m) {
@@ -812,49 +794,40 @@ PYBIND11_MODULE(_ckernel, m) {
     m.def("post_newton", &post_newton, py::call_guard<DispatchCounter>(),
           "postNewtonStepUserFunction of the clearance-joint connectors");
     m.def("new_joint", []() {
+        if (!g_free.empty()) {  // reuse a released slot
+            long id = g_free.back();
+            g_free.pop_back();
+            g_joints[static_cast<size_t>(id)] = JointState();
+            return id;
+        }
         g_joints.emplace_back();
         return static_cast<long>(g_joints.size() - 1);
-    });
+    }, "a new joint's id in the kernel's table");
+    m.def("release", [](long id) {
+        state(id) = JointState();
+        g_joints[static_cast<size_t>(id)].in_use = false;
+        g_free.push_back(id);
+    }, "free a joint's state (its handle is gone); new_joint reuses the slot");
+    m.def("joints_in_use", []() { return static_cast<long>(g_joints.size() - g_free.size()); });
     m.def("reset", [](long id) { state(id) = JointState(); });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
     m.def("calls", [](long id) {
         JointState& s = state(id);
         return py::make_tuple(s.force_calls, s.post_newton_calls);
     });
-    m.def("history", [](long id) {
+    m.def("history", [](long id) {  // per contact: slices (one for the planar joint), then end faces
         JointState& s = state(id);
         py::dict d;
         d["started"] = s.started;
-        d["current"] = history_dict(s.cur);
-        d["previous"] = history_dict(s.prev);
-        d["initial"] = history_dict(s.initial);
+        d["current"] = history_list(s.cur);
+        d["previous"] = history_list(s.prev);
+        d["initial"] = history_list(s.initial);
         return d;
     });
-    m.def("records", [](long id) {
+    m.def("records", [](long id) {  // per contact
         JointState& s = state(id);
         py::list out;
-        for (const Record& r : s.records) {
-            out.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
-        }
-        return out;
-    });
-    m.def("slice_history", [](long id) {
-        JointState& s = state(id);
-        py::dict d;
-        for (const char* which : {"current", "previous", "initial"}) {
-            const std::vector<History>& hs = std::string(which) == "current"    ? s.scur
-                                             : std::string(which) == "previous" ? s.sprev
-                                                                                : s.sinitial;
-            py::list l;
-            for (const History& h : hs) l.append(history_dict(h));
-            d[which] = l;
-        }
-        return d;
-    });
-    m.def("slice_records", [](long id) {
-        JointState& s = state(id);
-        py::list out;
-        for (const std::vector<Record>& rs : s.srecords) {
+        for (const std::vector<Record>& rs : s.records) {
             py::list l;
             for (const Record& r : rs) {
                 l.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
@@ -872,6 +845,9 @@ PYBIND11_MODULE(_ckernel, m) {
         JointState& s = state(id);
         return py::make_tuple(s.failure, s.failure_time);
     });
+    py::list layout;
+    for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
+    m.attr("LAYOUT") = layout;
     m.attr("N_DATA") = N_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
 }

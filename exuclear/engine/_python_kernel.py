@@ -1,31 +1,42 @@
 """The Python kernel: the clearance joint's Exudyn user functions, written in Python.
 
 This is the readable statement of what the compiled kernel
-(``exuclear/_kernel/clearance_kernel.cpp``) computes: the physics comes from
-:mod:`exuclear.geometry`, :mod:`exuclear.contact`, :mod:`exuclear.friction` and
-:mod:`exuclear.history`, and this module adds only the bookkeeping that Exudyn's calling
-pattern needs.  It is also the path for laws written in Python.
+(``exuclear/_kernel/clearance_kernel.cpp``) computes, with the same names and in the same
+order.  The physics of one contact comes from :mod:`exuclear.spatial` (kinematics and
+loads), :mod:`exuclear.contact`, :mod:`exuclear.friction` and
+:func:`exuclear.joint.contact_response` (normal and friction force), and
+:mod:`exuclear.history` (the contact history).  This module assembles a joint from its
+contacts and keeps their histories the way Exudyn's calling pattern needs:
 
-Which history an evaluation uses.  Exudyn evaluates forces many times per step (Runge-
-Kutta stages, Newton iterations, Jacobian perturbations, rejected attempts) and calls the
-post-Newton function once the step's state is final.  A joint keeps the history at the
-start (``previous``) and at the end (``current``) of the last step it post-processed:
+- **Contacts.**  A joint is a sequence of contacts (:class:`Contact`): its slices (the
+  planar joint has one, whose motion is projected on the plane normal to the bearing
+  axis), then its two end faces where it has an axial clearance.  One
+  :meth:`Contact.response` (onset velocity, normal force, friction) serves them all; the
+  kind of contact decides the stiffness (the law's share, or the face's flat punch), the
+  slip that friction acts against and where the loads go.
+- **Which history an evaluation uses.**  Exudyn evaluates forces many times per step
+  (Runge-Kutta stages, Newton iterations, Jacobian perturbations, rejected attempts) and
+  calls the post-Newton function once the step's state is final.  A joint keeps, per
+  contact, the history at the start (``previous``) and at the end (``current``) of the
+  last step it post-processed:
 
-- an evaluation at a time after ``current.time`` belongs to a new step: ``current``;
-- one at or before ``current.time`` belongs to a step computed again (a discontinuous
-  iteration, a step redone with a smaller size): ``previous``;
-- one before ``previous.time`` starts a new run (``mbs.SolveDynamic`` from the initial
-  state): the history is forgotten and this evaluation's state, the run's initial state,
-  is accepted.  Exudyn's first evaluation of a run is at the initial state.
+  - an evaluation at a time after ``current.time`` belongs to a new step: ``current``;
+  - one at or before ``current.time`` belongs to a step computed again (a discontinuous
+    iteration, a step redone with a smaller size): ``previous``;
+  - one before ``previous.time`` starts a new run (``mbs.SolveDynamic`` from the initial
+    state): the history is forgotten and this evaluation's state, the run's initial
+    state, is accepted.  Exudyn's first evaluation of a run is at the initial state.
 """
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any, NamedTuple
 
-from ..geometry import ContactKinematics, contact_kinematics
+from ..friction import FrictionLaw
+from ..geometry import ContactKinematics, contact_kinematics, joint_loads
 from ..history import ContactState, ImpactRecord
-from ..joint import ClearanceJoint
+from ..joint import ClearanceJoint, ContactResponse, contact_response
 from ..spatial import (
     FACE_SIDES,
     V3,
@@ -37,179 +48,30 @@ from ..spatial import (
     face_kinematics,
     face_normal_force,
     finish_loads,
+    friction_components,
     journal_axis,
     slice_centres,
-    slice_friction,
     slice_kinematics,
 )
+from .layout import read
 
 #: Error a post-Newton function returns to make Exudyn redo a step: anything above
 #: Exudyn's ``discontinuous.iterationTolerance`` (default 1).
 REDO_STEP_ERROR = 1e3
 #: Relative slack on a step length compared with the impact step (Exudyn's steps carry round-off).
 STEP_SLACK = 1e-9
+_DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
+
+Kinematics = ContactKinematics | SliceKinematics | FaceKinematics
 
 
 class KernelFailure(RuntimeError):
     """A joint's state cannot go on (non-finite, penetration beyond the limit)."""
 
 
-class _Failing:
-    """What both kernels do when a run cannot go on: record why and when, and raise
-    (the compiled kernel's ``fail``)."""
-
-    failure: str
-    failure_time: float
-
-    def _fail(self, message: str, t: float) -> None:
-        self.failure, self.failure_time = message, t
-        raise KernelFailure(f"exuclear: {message}")
-
-    def _check_force(self, state: ContactState, t: float) -> None:
-        if not math.isfinite(state.normal_force):
-            self._fail("the contact force became non-finite (NaN or inf)", t)
-
-
-class PythonJointKernel(_Failing):
-    """One joint's user functions and table entry; the compiled kernel's ``JointState``."""
-
-    def __init__(self, joint: ClearanceJoint) -> None:
-        self.joint = joint
-        self.reset()
-
-    def reset(self) -> None:
-        self.started = False
-        self.previous = self.current = self.initial = ContactState()
-        self.records: list[ImpactRecord] = []
-        self.omega_bearing = 0.0
-        self.torque_correction = 0.0
-        self.failure, self.failure_time = "", 0.0
-
-    # -- bookkeeping -------------------------------------------------------------------
-    def _kinematics(self, displacement: Any, velocity: Any, angular_velocity: Any) -> ContactKinematics:
-        omega_j = self.omega_bearing
-        omega_i = angular_velocity[2] + omega_j
-        return contact_kinematics(self.joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
-                                  omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
-
-    def history_for(self, kin: ContactKinematics, t: float) -> ContactState:
-        """The history an evaluation at time ``t`` uses (module docstring)."""
-        if not self.started or t < self.previous.time:
-            self.records = []
-            self.failure = ""
-            self.current, _ = ContactState(time=t).accept(kin, self.joint, t)
-            self.previous = self.initial = self.current
-            self.started = True
-            if not _finite(kin):
-                self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
-        return self.previous if t <= self.current.time else self.current
-
-    # -- Exudyn user functions ---------------------------------------------------------
-    def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
-                     angular_velocity: Any, stiffness: Any, damping: Any, rot0: Any, rot1: Any, offset: Any) -> list:
-        """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in the
-        bearing's joint frame, F = -F_i and T = -M_i (docs/physics.md eqs. (24)-(26))."""
-        kin = self._kinematics(displacement, velocity, angular_velocity)
-        history = self.history_for(kin, t)
-        if kin.delta <= 0.0:
-            self.torque_correction = 0.0
-            return [0.0] * 6
-        loads = self.joint.response(kin, history).loads
-        self.torque_correction = loads.m_j + loads.m_i  # the bearing's moment beyond -M_i
-        return [-loads.fx, -loads.fy, 0.0, 0.0, 0.0, -loads.m_i]
-
-    def probe(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
-              angular_velocity: Any, *parameters: Any) -> list:
-        """The bearing-spin probe (marker 0 the bearing, marker 1 the ground): records the
-        bearing's angular velocity about the axis; applies nothing."""
-        self.omega_bearing = -angular_velocity[2]
-        return [0.0] * 6
-
-    def torque(self, mbs: Any, t: float, item: int, *arguments: Any) -> list:
-        """The bearing-torque connector: the bearing's moment beyond what the joint applies."""
-        return [0.0, 0.0, 0.0, 0.0, 0.0, self.torque_correction]
-
-    def probe_post_newton(self, mbs: Any, t: float, item: int, data: Any, displacement: Any, rotation: Any,
-                          velocity: Any, angular_velocity: Any, *parameters: Any) -> list:
-        self.omega_bearing = -angular_velocity[2]
-        return [0.0, -1.0, *data]
-
-    def post_newton(self, mbs: Any, t: float, item: int, data: Any, displacement: Any, rotation: Any, velocity: Any,
-                    angular_velocity: Any, stiffness: Any, *parameters: Any) -> list:
-        """``postNewtonStepUserFunction``: the history update, once per accepted step.
-        Returns ``[error, recommended step, data...]``."""
-        max_penetration, impact_step = stiffness[0][4], stiffness[0][5]
-        kin = self._kinematics(displacement, velocity, angular_velocity)
-        self.history_for(kin, t)
-        advance = t > self.current.time
-        base = self.current if advance else self.previous  # a repeated step starts again from its start
-        if not _finite(kin):
-            self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
-        if kin.delta > max_penetration:
-            self._fail(f"penetration {kin.delta:.4g} m exceeds the limit {max_penetration:.4g} m", t)
-        if (impact_step > 0.0 and not base.in_contact and kin.delta > 0.0
-                and t - base.time > impact_step * (1.0 + STEP_SLACK)):
-            return [REDO_STEP_ERROR, impact_step, *data]  # a contact begins in a long step: redo it
-        del self.records[base.closed:]
-        state, record = base.accept(kin, self.joint, t)
-        if record is not None:
-            self.records.append(record)
-        self._check_force(state, t)
-        if advance:
-            self.previous = self.current
-        self.current = state
-        return [0.0, -1.0, *data_values(state)]
-
-
-
-def _finite(kin: ContactKinematics | SliceKinematics) -> bool:
-    return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))
-
-
-def data_values(s: ContactState) -> list[float]:
-    """The data node's entries (layout.DATA_COLUMNS) for a state."""
-    return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
-            s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
-            s.peak_force, s.max_penetration]
-
-
-# -- the spatial joint (docs/physics.md section 9) -------------------------------------------
-class _ScaledLaw:
-    """A slice's share ``w / L`` of the joint's contact law (eq. (41))."""
-
-    def __init__(self, law: Any, share: float) -> None:
-        self.law, self.share = law, share
-
-    def normal_force(self, delta: float, delta_dot: float, v0: float) -> float:
-        return self.share * self.law.normal_force(delta, delta_dot, v0)
-
-
-class _SliceResponse(NamedTuple):
-    f_n: float
-    f_t: float
-    v0: float
-
-
-class _SliceJoint:
-    """What :meth:`ContactState.accept` reads of a joint, for one slice: its share of the
-    law, and the joint's friction law (applied to the slip speed, eq. (42)); ``response``
-    gives the slice's force magnitudes as :meth:`ClearanceJoint.response` does a joint's."""
-
-    def __init__(self, joint: ClearanceJoint, share: float) -> None:
-        self.law, self.friction = _ScaledLaw(joint.law, share), joint.friction
-
-    def response(self, kin: Any, history: ContactState) -> _SliceResponse:
-        if kin.delta <= 0.0:
-            return _SliceResponse(0.0, 0.0, history.v0 if history.in_contact else 0.0)
-        v0 = history.onset_velocity(kin.delta, kin.delta_dot)
-        f_n = self.law.normal_force(kin.delta, kin.delta_dot, v0)
-        f_t = self.friction.coefficient(kin.v_t) * f_n if self.friction.active else 0.0
-        return _SliceResponse(f_n, f_t, v0)
-
-
-class _SliceAccepted(NamedTuple):
-    """A slice's kinematics as :meth:`ContactState.accept` reads them; ``v_t`` is the slip
-    speed ``|v_s|`` (the slice records friction magnitudes)."""
+class _Accepted(NamedTuple):
+    """A contact's kinematics as :meth:`ContactState.accept` reads them; ``v_t`` is the slip
+    the contact's friction acts against (and its output ``slip_velocity``)."""
 
     delta: float
     delta_dot: float
@@ -218,45 +80,111 @@ class _SliceAccepted(NamedTuple):
     v_t: float
 
 
-def _accepted(kin: SliceKinematics | FaceKinematics) -> _SliceAccepted:
-    if isinstance(kin, FaceKinematics):  # an end face records its signed circumferential slip
-        return _SliceAccepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, kin.v_t)
-    return _SliceAccepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, kin.speed)
+# -- one contact ------------------------------------------------------------------------------
+class Contact:
+    """One contact of a joint: its normal law ``normal_force(delta, delta_dot, v0)``, its
+    share of it, and the joint's friction law.  Subclasses say which slip friction acts
+    against and where the loads go (the compiled kernel's ``ContactKind``)."""
+
+    def __init__(self, normal_force: Callable[[float, float, float], float], friction: FrictionLaw,
+                 share: float = 1.0) -> None:
+        self.normal_force, self.friction, self.share = normal_force, friction, share
+
+    def slip(self, kin: Kinematics) -> float:
+        """The slip [m/s] friction acts against: the signed circumferential ``v_t``."""
+        return kin.v_t
+
+    def accepted(self, kin: Kinematics) -> _Accepted:
+        """What :meth:`response` and :meth:`ContactState.accept` read of this contact's kinematics."""
+        return _Accepted(kin.delta, kin.delta_dot, kin.ex, kin.ey, self.slip(kin))
+
+    def response(self, kin: _Accepted, history: ContactState) -> ContactResponse:
+        """Forces of the contact state ``kin`` given its last accepted ``history``
+        (:func:`exuclear.joint.contact_response`)."""
+        return contact_response(self.normal_force, self.friction, kin.delta, kin.delta_dot, kin.v_t, history,
+                                self.share)
+
+    def add_loads(self, loads: list[float], u: V3, kin: Any, r: ContactResponse) -> None:
+        raise NotImplementedError
 
 
-class _FaceLaw:
-    """An end face's contact law, eq. (53): ``K_f delta`` with the joint law's ``D`` and ``v_min``."""
+class PlanarSlice(Contact):
+    """The planar joint's one slice: the whole law, friction along the tangent (eq. (20))
+    against the signed slip ``v_T``.  Its kinematics and loads are those of a spatial slice
+    for the motion projected on the plane normal to the axis, evaluated in the reduced form
+    they take there, eqs. (1)-(8) and (24)-(26) (:func:`exuclear.geometry.contact_kinematics`,
+    :func:`exuclear.geometry.joint_loads`): the planar joint keeps its results bit for bit
+    (some scenes change course on a last-bit change of the force)."""
 
-    def __init__(self, law: Any, k_face: float) -> None:
-        self.k_face, self.damping_factor, self.v_min = k_face, law.damping_factor, law.v_min
+    def __init__(self, joint: ClearanceJoint) -> None:
+        super().__init__(joint.law.normal_force, joint.friction)
+        self.geometry = joint.geometry
 
-    def normal_force(self, delta: float, delta_dot: float, v0: float) -> float:
+    def add_loads(self, loads: list[float], u: V3, kin: ContactKinematics, r: ContactResponse) -> None:
+        """``F = -F_i``, ``T = -M_i`` and the bearing's moment beyond ``T``, ``m_j + m_i``
+        (the whole of it: no ``p x F`` is added for the planar joint)."""
+        fx, fy, m_i, m_j = joint_loads(self.geometry, kin, r.f_n, r.f_t)
+        loads[0] += -fx
+        loads[1] += -fy
+        loads[5] += -m_i
+        loads[8] += m_j + m_i
+
+
+class Slice(Contact):
+    """A slice of the spatial joint: its share ``w / L`` of the law (eq. (41)), friction
+    against the slip speed ``|v_s|``, along the slip (eq. (42))."""
+
+    def __init__(self, joint: ClearanceJoint, share: float) -> None:
+        super().__init__(joint.law.normal_force, joint.friction, share)
+        self.r_j = joint.geometry.journal_radius
+
+    def slip(self, kin: SliceKinematics) -> float:
+        """The slip speed ``|v_s|`` of the contact points (eq. (42))."""
+        return kin.speed
+
+    def add_loads(self, loads: list[float], u: V3, kin: SliceKinematics, r: ContactResponse) -> None:
+        f_t, f_a = friction_components(r.f_t, kin)                                        # eq. (42)
+        add_slice_loads(loads, self.r_j, u, kin, r.f_n, f_t, f_a)
+
+
+class Face(Contact):
+    """An end face (docs/physics.md section 9.6): eq. (9) with the flat-punch stiffness
+    ``K_f delta`` and the law's ``D`` and ``v_min`` (eq. (53)), friction against the
+    circumferential slip at the friction radius, loads of eq. (54)."""
+
+    def __init__(self, joint: ClearanceJoint, shoulders: ShoulderGeometry) -> None:
+        law = joint.law
+        self.k_face = shoulders.face_stiffness(law.E_star)                              # eq. (52)
+        self.damping_factor, self.v_min = law.damping_factor, law.v_min
+        self.friction_radius = shoulders.friction_radius                                # eq. (51)
+        super().__init__(self._normal_force, joint.friction)
+
+    def _normal_force(self, delta: float, delta_dot: float, v0: float) -> float:
         return face_normal_force(self.k_face, self.damping_factor, self.v_min, delta, delta_dot, v0)
 
-
-class _FaceJoint(_SliceJoint):
-    """What :meth:`ContactState.accept` reads of a joint, for one end face: the face law
-    and the joint's friction law applied to the circumferential slip (eq. (53))."""
-
-    def __init__(self, joint: ClearanceJoint, k_face: float) -> None:
-        self.law, self.friction = _FaceLaw(joint.law, k_face), joint.friction
+    def add_loads(self, loads: list[float], u: V3, kin: FaceKinematics, r: ContactResponse) -> None:
+        add_face_loads(loads, self.friction_radius, u, kin, r.f_n, r.f_t)                # eq. (54)
 
 
-class SpatialJointKernel(_Failing):
-    """The spatial joint's user functions: one :class:`ContactState` per slice, with the
-    planar joint's history rules (module docstring) applied to all slices at once.
+# -- one joint --------------------------------------------------------------------------------
+class JointKernel:
+    """One joint's user functions and state (the compiled kernel's ``JointState``): per
+    contact a :class:`ContactState` at the start and at the end of the last step, and its
+    records (module docstring).
 
-    ``slices`` N, ``axis_journal`` the journal axis in the journal marker's frame;
-    ``shoulders`` the axial clearance (section 9.6) or None.  With shoulders, the two end
-    faces follow the slices in every per-contact sequence (states, records, data).
+    ``slices`` 0 for the planar joint, else the spatial joint's number of slices N;
+    ``axis_journal`` the journal axis in the journal marker's frame; ``shoulders`` the
+    axial clearance (section 9.6) or None.  The end faces follow the slices in every
+    per-contact sequence (states, records, data).
     """
 
-    def __init__(self, joint: ClearanceJoint, slices: int, axis_journal: Any,
+    def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
                  shoulders: ShoulderGeometry | None = None) -> None:
-        self.slices = slices
+        self.planar = slices == 0
+        self.slices = 1 if self.planar else slices
         self.axis_journal = tuple(float(v) for v in axis_journal)
         self.shoulders = shoulders
-        self.contacts = slices + (len(FACE_SIDES) if shoulders is not None else 0)
+        self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
         self.joint = joint
         self.reset()
 
@@ -268,90 +196,104 @@ class SpatialJointKernel(_Failing):
     def joint(self, joint: ClearanceJoint) -> None:
         g = joint.geometry
         self._joint = joint
-        self.centres = slice_centres(g.length, self.slices)
-        self.share = 1.0 / self.slices  # w / L, eq. (41)
-        self.slice_joint = _SliceJoint(joint, self.share)
-        self.contact_joints = [self.slice_joint] * self.slices
+        self.r_j, self.r_b = g.journal_radius, g.bearing_radius
+        self.centres = slice_centres(g.length, self.slices)                               # eq. (33)
+        slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
+        self.contacts: list[Contact] = [slice_contact] * self.slices
         if self.shoulders is not None:
-            self.friction_radius = self.shoulders.friction_radius                              # eq. (51)
-            self.face_law = _FaceLaw(joint.law, self.shoulders.face_stiffness(joint.law.E_star))  # eq. (52)
-            self.contact_joints += [_FaceJoint(joint, self.face_law.k_face)] * len(FACE_SIDES)
+            self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
 
     def reset(self) -> None:
         self.started = False
-        empty = tuple(ContactState() for _ in range(self.contacts))
+        empty = tuple(ContactState() for _ in range(self.n_contacts))
         self.previous = self.current = self.initial = empty
-        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.contacts)]
+        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.n_contacts)]
         self.omega_bearing = (0.0, 0.0, 0.0)
         self.torque_correction = (0.0, 0.0, 0.0)
         self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
         self.failure, self.failure_time = "", 0.0
 
+    def _fail(self, message: str, t: float) -> None:
+        """Record why and when the run cannot go on, and raise (the compiled kernel's ``fail``)."""
+        self.failure, self.failure_time = message, t
+        raise KernelFailure(f"exuclear: {message}")
+
     # -- bookkeeping -------------------------------------------------------------------
     def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
-                    ) -> tuple[V3, V3, list[SliceKinematics | FaceKinematics]]:
-        """The journal's centre and axis, and the kinematics of each contact: the slices,
-        then the end faces (eqs. (48)-(51)) where there is an axial clearance."""
-        g = self._joint.geometry
+                    ) -> tuple[V3, V3, list[Kinematics]]:
+        """The journal's centre and axis, and the kinematics of each contact: the slices
+        (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
+        end faces (eqs. (48)-(51)) where there is an axial clearance."""
+        if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
+            omega_j = self.omega_bearing[2]
+            omega_i = angular_velocity[2] + omega_j  # the journal's own spin
+            kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
+                                     omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), [kin]
         p = (displacement[0], displacement[1], displacement[2])
-        u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)     # eq. (34)
+        u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)      # eq. (34)
         dv = (velocity[0], velocity[1], velocity[2])
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
-        kins: list[SliceKinematics | FaceKinematics] = [
-            slice_kinematics(g.journal_radius, g.bearing_radius, z, p, u, dv, dw, self.omega_bearing)
-            for z in self.centres]
+        w_j = self.omega_bearing
+        kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
         if self.shoulders is not None:
-            play = self.shoulders.axial_clearance
-            kins += [face_kinematics(g.length, play, self.friction_radius, side, p, u, dv, dw, self.omega_bearing)
-                     for side in FACE_SIDES]
+            g, play = self._joint.geometry, self.shoulders.axial_clearance
+            r_e = self.shoulders.friction_radius
+            kins += [face_kinematics(g.length, play, r_e, side, p, u, dv, dw, w_j) for side in FACE_SIDES]
         return p, u, kins
 
-    def history_for(self, kins: list[SliceKinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
-        """The slices' history an evaluation at time ``t`` uses (the planar rules); ``u``,
+    def _accept_all(self, base: tuple[ContactState, ...], kins: list[Kinematics], t: float
+                    ) -> tuple[ContactState, ...]:
+        states = []
+        for k, (kin, b, c) in enumerate(zip(kins, base, self.contacts)):
+            del self.records[k][b.closed:]
+            state, record = b.accept(c.accepted(kin), c, t)
+            if record is not None:
+                self.records[k].append(record)
+            if not math.isfinite(state.normal_force):
+                self._fail("the contact force became non-finite (NaN or inf)", t)
+            states.append(state)
+        return tuple(states)
+
+    def history_for(self, kins: list[Kinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
+        """The contacts' history an evaluation at time ``t`` uses (module docstring); ``u``,
         ``axial``: the journal's axis and axial displacement, kept for the initial outputs."""
         if not self.started or t < self.previous[0].time:
             self.initial_axis, self.initial_axial = u, axial
-            self.records = [[] for _ in range(self.contacts)]
+            self.records = [[] for _ in range(self.n_contacts)]
             self.failure = ""
-            self.current = tuple(ContactState(time=t).accept(_accepted(k), j, t)[0]
-                                 for k, j in zip(kins, self.contact_joints))
+            self.current = tuple(ContactState(time=t).accept(c.accepted(k), c, t)[0]
+                                 for k, c in zip(kins, self.contacts))
             self.previous = self.initial = self.current
             self.started = True
             if not all(_finite(k) for k in kins):
-                self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
+                self._fail(_DIVERGED, t)
         return self.previous if t <= self.current[0].time else self.current
 
     # -- Exudyn user functions ---------------------------------------------------------
     def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
                      angular_velocity: Any, stiffness: Any, damping: Any, rot0: Any, rot1: Any, offset: Any) -> list:
-        """``[F; T]`` in J0: F the force on the bearing, T minus the journal's moment about
-        its marker point (docs/physics.md eqs. (41)-(45))."""
+        """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in J0, F the
+        force on the bearing, T minus the journal's moment about its marker point
+        (docs/physics.md eqs. (41)-(45), (54); the planar eqs. (24)-(26))."""
         p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
         history = self.history_for(kins, t, u, p[2])
-        joint, r_j = self._joint, self._joint.geometry.journal_radius
         loads = [0.0] * 9
-        for kin, h in zip(kins[:self.slices], history):
+        for kin, h, c in zip(kins, history, self.contacts):
             if kin.delta <= 0.0:
                 continue
-            v0 = h.onset_velocity(kin.delta, kin.delta_dot)
-            f_n = self.share * joint.law.normal_force(kin.delta, kin.delta_dot, v0)                  # eq. (41)
-            mu = joint.friction.coefficient(kin.speed) if joint.friction.active else 0.0
-            f_t, f_a = slice_friction(mu, f_n, kin)                                                  # eq. (42)
-            add_slice_loads(loads, r_j, u, kin, f_n, f_t, f_a)
-        for kin, h in zip(kins[self.slices:], history[self.slices:]):  # the end faces, section 9.6
-            if kin.delta <= 0.0:
-                continue
-            v0 = h.onset_velocity(kin.delta, kin.delta_dot)
-            f_n = self.face_law.normal_force(kin.delta, kin.delta_dot, v0)                           # eq. (53)
-            f_t = joint.friction.coefficient(kin.v_t) * f_n if joint.friction.active else 0.0        # eq. (53)
-            add_face_loads(loads, self.friction_radius, u, kin, f_n, f_t)                            # eq. (54)
+            c.add_loads(loads, u, kin, c.response(c.accepted(kin), h))
+        if self.planar:  # the planar slice's loads hold the bearing's whole moment (eq. (26))
+            self.torque_correction = (loads[6], loads[7], loads[8])
+            return loads[:6]
         total = finish_loads(loads, p)
-        self.torque_correction = total.correction
+        self.torque_correction = total.correction  # the bearing's moment beyond T (eq. (45))
         return [*total.force, *total.torque]
 
     def probe(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
               angular_velocity: Any, *parameters: Any) -> list:
-        """The bearing-spin probe: records the bearing's angular velocity (J0); applies nothing."""
+        """The bearing-spin probe (marker 0 the bearing, marker 1 the ground): records the
+        bearing's angular velocity (J0); applies nothing."""
         self.omega_bearing = (-angular_velocity[0], -angular_velocity[1], -angular_velocity[2])
         return [0.0] * 6
 
@@ -366,33 +308,42 @@ class SpatialJointKernel(_Failing):
 
     def post_newton(self, mbs: Any, t: float, item: int, data: Any, displacement: Any, rotation: Any, velocity: Any,
                     angular_velocity: Any, stiffness: Any, *parameters: Any) -> list:
-        """The slices' history update, once per accepted step; ``[error, step, data...]``."""
-        max_penetration, impact_step = stiffness[0][4], stiffness[0][5]
+        """``postNewtonStepUserFunction``: the contacts' history update, once per accepted
+        step.  Returns ``[error, recommended step, data...]``."""
+        max_penetration, impact_step = read(stiffness, "max_penetration"), read(stiffness, "impact_step")
         p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
         self.history_for(kins, t, u, p[2])
         advance = t > self.current[0].time
-        base = self.current if advance else self.previous
+        base = self.current if advance else self.previous  # a repeated step starts again from its start
         if not all(_finite(k) for k in kins):
-            self._fail("the state became non-finite (NaN or inf); the integration diverged", t)
+            self._fail(_DIVERGED, t)
         deepest = max(k.delta for k in kins)
         if deepest > max_penetration:
             self._fail(f"penetration {deepest:.4g} m exceeds the limit {max_penetration:.4g} m", t)
         if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and any(
                 not b.in_contact and k.delta > 0.0 for k, b in zip(kins, base)):
             return [REDO_STEP_ERROR, impact_step, *data]  # a contact begins in a long step: redo it
-        states = []
-        for k, (kin, b, j) in enumerate(zip(kins, base, self.contact_joints)):
-            del self.records[k][b.closed:]
-            state, record = b.accept(_accepted(kin), j, t)
-            if record is not None:
-                self.records[k].append(record)
-            self._check_force(state, t)
-            states.append(state)
+        states = self._accept_all(base, kins, t)
         if advance:
             self.previous = self.current
-        self.current = tuple(states)
-        return [0.0, -1.0, *spatial_data_values(t, u, p[2], self.current)]
+        self.current = states
+        return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
 
+    def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
+        """The data node's entries for the contacts' ``states``: :func:`data_values` of the
+        one slice for the planar joint, :func:`spatial_data_values` for the spatial joint."""
+        return data_values(states[0]) if self.planar else spatial_data_values(t, u, axial, states)
+
+
+def _finite(kin: Kinematics) -> bool:
+    return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))
+
+
+def data_values(s: ContactState) -> list[float]:
+    """The data node's entries (layout.DATA_COLUMNS) for a state."""
+    return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
+            s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
+            s.peak_force, s.max_penetration]
 
 
 def spatial_data_values(t: float, u: Any, axial: float, states: Any) -> list[float]:

@@ -2,25 +2,12 @@
 
 Parameters.  Exudyn hands a connector's ``stiffness`` matrix (6 x 6) to its user
 functions on every call, so the joint's physics lives there, readable by the compiled
-and the Python kernel alike (``mbs.GetObject(joint.objectNumber)["stiffness"]``):
-
-====  ==========================================================================
-row   entries
-====  ==========================================================================
-0     joint id (kernel table), role (0 joint, 1 bearing-spin probe, 2 bearing
-      torque), R_J, R_B [m], penetration limit [m], impact step [s] (0: off)
-1     stiffness code (``StiffnessModel.kernel_code``), 0, exponent n, damping factor D,
-      v_min [m/s], c [m]
-2     the stiffness model's constants (``kernel_parameters()``, up to 6)
-3     friction code, then up to 4 friction constants
-4     the handle's token (which handle owns the connector); the spatial joint's axial
-      clearance (section 9.6): total play g [m] (0: none), shoulder radius R_S [m],
-      friction radius R_e [m], face stiffness K_f [N/m]
-5     spatial joint (docs/physics.md section 9): number of slices N (0: the planar
-      joint), bearing length L [m], the journal axis in the journal marker's frame (3)
-====  ==========================================================================
-
-The codes are those of ``exuclear/_kernel/clearance_kernel.cpp``.
+and the Python kernel alike (``mbs.GetObject(joint.objectNumber)["stiffness"]``).
+:data:`LAYOUT` names every field: its row, first column, number of entries and meaning.
+Both languages read it by name: Python through :func:`read` and :func:`parameters`, the
+compiled kernel through its copy of the table (``Field`` and ``LAYOUT`` in
+``exuclear/_kernel/clearance_kernel.cpp``, exported as ``exuclear._ckernel.LAYOUT``), which
+a test keeps equal to this one.
 
 Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
 quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
@@ -31,6 +18,9 @@ end face.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any, NamedTuple
+
 import numpy as np
 
 from ..contact import ContactLaw
@@ -39,6 +29,65 @@ from ..joint import ClearanceJoint
 from ..spatial import ShoulderGeometry
 
 MAIN, PROBE, TORQUE = 0, 1, 2
+#: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
+MATRIX_SIZE = 6
+
+
+class Field(NamedTuple):
+    """One field of the parameter matrix: entries ``[row][column : column + size]``."""
+
+    name: str
+    row: int
+    column: int
+    size: int
+    meaning: str
+
+
+#: The parameter matrix, field by field (the compiled kernel's ``LAYOUT`` in the same order).
+LAYOUT = (
+    Field("joint_id", 0, 0, 1, "the joint's entry in the compiled kernel's table (-1: the Python kernel)"),
+    Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque"),
+    Field("token", 0, 2, 1, "which handle owns the connector (read by the handle only: is_live)"),
+    Field("journal_radius", 0, 3, 1, "R_J [m]"),
+    Field("bearing_radius", 0, 4, 1, "R_B [m]"),
+    Field("max_penetration", 0, 5, 1, "penetration [m] beyond which a run stops"),
+    Field("impact_step", 1, 0, 1, "step [s] that redoes a step in which a contact begins (0: off)"),
+    Field("stiffness_code", 1, 1, 1, "the stiffness model's kernel_code (-1: a law for the Python kernel only)"),
+    Field("damping_factor", 1, 2, 1, "D of eq. (9) (dimensionless)"),
+    Field("v_min", 1, 3, 1, "floor of the onset velocity in eq. (9) [m/s]"),
+    Field("friction_code", 1, 4, 1, "0 none, 1 Coulomb, 2 modified Coulomb (-1: the Python kernel only)"),
+    Field("stiffness_constants", 2, 0, 6, "the stiffness model's kernel_parameters()"),
+    Field("friction_constants", 3, 0, 4, "Coulomb (mu, v_eps); modified Coulomb (mu_s, mu_d, v_s, v_d)"),
+    Field("slices", 4, 0, 1, "number of slices N of the spatial joint (0: the planar joint)"),
+    Field("length", 4, 1, 1, "bearing length L [m]"),
+    Field("axis_journal", 4, 2, 3, "the journal axis in the journal marker's frame (eq. (34))"),
+    Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
+    Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
+    Field("face_stiffness", 5, 2, 1, "K_f [N/m] of the end faces, eq. (52)"),
+)
+FIELDS = {f.name: f for f in LAYOUT}
+
+
+def read(matrix: Any, name: str) -> Any:
+    """A field of a parameter matrix: a float, or a tuple for a field of several entries."""
+    f = FIELDS[name]
+    row = matrix[f.row]
+    if f.size == 1:
+        return row[f.column]
+    return tuple(row[f.column + i] for i in range(f.size))
+
+
+def write(matrix: np.ndarray, name: str, value: float | Sequence[float]) -> None:
+    """Set a field of a parameter matrix; a field of several entries takes up to ``size`` values."""
+    f = FIELDS[name]
+    if f.size == 1:
+        matrix[f.row, f.column] = value
+        return
+    values = tuple(value)
+    if len(values) > f.size:
+        raise ValueError(f"parameter field {name!r} holds {f.size} values, got {len(values)}")
+    matrix[f.row, f.column:f.column + len(values)] = values
+
 
 #: The data node's entries, in order (the compiled kernel's ``write_data``).
 DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
@@ -56,8 +105,6 @@ def spatial_data_columns(slices: int, faces: int = 0) -> tuple[str, ...]:
     ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``."""
     return (SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
             + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS))
-
-
 
 
 #: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
@@ -88,25 +135,27 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
-               shoulders: ShoulderGeometry | None = None) -> list[list[float]]:
-    """The ``stiffness`` matrix that carries ``joint`` to the kernels (see the module docstring);
+               shoulders: ShoulderGeometry | None = None, token: int = 0) -> list[list[float]]:
+    """The ``stiffness`` matrix that carries ``joint`` to the kernels (:data:`LAYOUT`);
     ``compiled=False`` (the Python kernel) accepts laws without a compiled form; ``slices``
     > 0 makes it a spatial joint whose journal axis is ``axis_journal`` in the journal
-    marker's frame, with the axial clearance ``shoulders`` (or None)."""
+    marker's frame, with the axial clearance ``shoulders`` (or None); ``token`` marks the
+    handle that owns the connector."""
     law, g = joint.law, joint.geometry
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
-    if len(extra) > 6 or len(f_params) > 4:
-        raise ValueError("a law has more constants than the kernel's parameter layout holds")
-    p = np.zeros((6, 6))
-    p[0, :] = [joint_id, role, g.journal_radius, g.bearing_radius, max_penetration, impact_step]
-    p[1, :] = [code, 0.0, law.exponent, law.damping_factor, law.v_min, g.clearance]
-    p[2, :len(extra)] = extra
-    p[3, 0] = f_code
-    p[3, 1:1 + len(f_params)] = f_params
-    if slices:
-        p[5, :] = [slices, g.length, *axis_journal, 0.0]
+    p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
+    values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
+              "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
+              "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
+              "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
+              "slices": slices, "length": g.length, "axis_journal": axis_journal}
     if shoulders is not None:
-        p[4, 1:5] = [shoulders.axial_clearance, shoulders.shoulder_radius, shoulders.friction_radius,
-                     shoulders.face_stiffness(law.E_star)]
+        values.update(axial_clearance=shoulders.axial_clearance, friction_radius=shoulders.friction_radius,
+                      face_stiffness=shoulders.face_stiffness(law.E_star))
+    try:
+        for name, value in values.items():
+            write(p, name, value)
+    except ValueError:
+        raise ValueError("a law has more constants than the kernel's parameter layout holds") from None
     return p.tolist()

@@ -23,7 +23,8 @@ import exudyn as exu
 from ..settings import DEFAULT_STEP, METHODS, SolverSettings
 from ..timescales import step_from_contact_periods
 from ._diagnostics import chatter_note, check_model, joint_contact_period
-from .connector import ClearanceJointHandle, _check_system, joints_of
+from .checks import check_system
+from .handle import ClearanceJointHandle, joints_of
 
 
 class AccuracyWarning(UserWarning):
@@ -233,7 +234,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     ``success=False`` with a message naming the time, the joint and what to try; what the
     sensors recorded up to then is kept.  Ctrl-C raises ``KeyboardInterrupt``.
     """
-    _check_system(mbs)
+    check_system(mbs)
     if not isinstance(settings, SolverSettings):
         raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
     if not mbs.systemIsConsistent:

@@ -1,0 +1,40 @@
+"""How a clearance joint is drawn: journal and bearing by a graphics function, which only
+Exudyn's renderer calls (``show=True``)."""
+from __future__ import annotations
+
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+
+#: Colours of the drawing (RGBA).
+JOURNAL_COLOR, BEARING_COLOR = [0.3, 0.3, 0.8, 1.0], [0.7, 0.7, 0.7, 1.0]
+#: Outer radius of the drawn bearing ring, relative to the bearing radius.
+BEARING_RING = 1.4
+
+
+def drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Visualization) -> Any:
+    """Graphics function of the joint ``handle``: the journal as a cylinder of radius R_J and
+    the bearing as a ring from R_B, both of the bearing length, along the bearing axis, at
+    the markers' current poses.  Exudyn calls it only to render."""
+    # what it draws, read now: the function is kept by the system, and must not keep the
+    # handle (which keeps the system: a cycle through Exudyn's C++ that is never freed)
+    geometry, axis_local = handle.joint.geometry, handle._axis_local
+    m_bearing, m_journal = handle.markerNumbers
+
+    def draw(mbs: exu.MainSystem, item: int) -> list:
+        rot = np.asarray(mbs.GetMarkerOutput(m_bearing, exu.OutputVariableType.RotationMatrix,
+                                             configuration=configuration)).reshape(3, 3)
+        axis = rot @ axis_local
+        shift = 0.5 * geometry.length * axis
+        out = []
+        for marker, radius, inner, color in ((m_journal, geometry.journal_radius, None, JOURNAL_COLOR),
+                                             (m_bearing, BEARING_RING * geometry.bearing_radius,
+                                              geometry.bearing_radius, BEARING_COLOR)):
+            centre = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position,
+                                                    configuration=configuration))
+            out.append(exu.graphics.Cylinder(pAxis=(centre - shift).tolist(), vAxis=(2.0 * shift).tolist(),
+                                             radius=radius, radiusInner=inner, color=color))
+        return out
+
+    return draw

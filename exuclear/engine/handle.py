@@ -1,0 +1,278 @@
+"""The handle of a clearance joint in an Exudyn system (:class:`ClearanceJointHandle`):
+its item numbers, its physics (replaceable between runs), and what its last run left
+(contact states, impacts, outputs).  It talks to its kernel through a backend
+(:mod:`exuclear.engine.backends`), the same methods for the compiled and the Python one."""
+from __future__ import annotations
+
+import itertools
+import weakref
+from dataclasses import dataclass
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+
+from ..history import ContactState, ImpactRecord
+from ..joint import ClearanceJoint
+from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
+from . import outputs as _outputs
+from .backends import make_backend
+from .layout import MAIN, PROBE, TORQUE, parameters, read
+
+_TOKENS = itertools.count(1)
+#: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
+REGISTRY_KEY = "exuclear.joints"
+
+
+class ClearanceJointHandle:
+    """A clearance joint in an Exudyn system; returned by :func:`CreateClearanceJoint`.
+
+    Attributes (Exudyn indices)
+    ---------------------------
+    objectNumber : the joint's connector; ``SensorObject`` on it with ``ForceLocal`` /
+        ``TorqueLocal`` records ``-F_i`` and ``-M_i`` (the loads on the bearing from the
+        journal, in the bearing's joint frame).
+    nodeNumber : the ``NodeGenericData`` with :data:`exuclear.engine.layout.DATA_COLUMNS`
+        after every accepted step.
+    markerNumbers : [bearing marker, journal marker].
+    sensorNumber : the sensor that records the data node (None with ``record=False``).
+    probeNumber, torqueNumber : the bearing-spin probe and torque connectors (None where
+        the bearing is the ground).
+    constraintNumber : the ``ObjectJointGeneric`` of ``constrainAxial=True``, else None.
+    drawingNumber : the ground object whose graphics function draws journal and bearing
+        (``show=True``), else None.
+    """
+
+    # The system keeps its joints (mbs.variables, for exuclear.simulate), and a handle refers to
+    # its system: with strong references both ways that is a cycle through Exudyn's C++, which
+    # Python's garbage collector cannot see, so no model would ever be freed.  The system keeps
+    # a view instead: the same handle (one shared attribute dict) without the strong reference
+    # (slot ``_system``), reaching its system through a weak reference.
+    __slots__ = ("__dict__", "_system")
+
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, backend: str,
+                 max_penetration: float, slices: int = 0,
+                 axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
+                 shoulders: ShoulderGeometry | None = None) -> None:
+        self._system = mbs  # the user's handle keeps its system alive; the system's view of it does not
+        self._mbs = weakref.ref(mbs)
+        self.name, self.backend, self.max_penetration = name, backend, max_penetration
+        self._joint = joint
+        self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
+        self._backend = make_backend(backend, joint, slices, axis_journal, shoulders)
+        self.joint_id = self._backend.joint_id
+        self.objectNumber: Any = None
+        self.nodeNumber: Any = None
+        self.markerNumbers: list = []
+        self.sensorNumber: Any = None
+        self.probeNumber: Any = None
+        self.torqueNumber: Any = None
+        self.constraintNumber: Any = None
+        self.drawingNumber: Any = None
+        self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
+        self._impact_step = 0.0
+        self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
+
+    @property
+    def mbs(self) -> exu.MainSystem:
+        """The joint's system."""
+        try:
+            return self._system
+        except AttributeError:  # the system's view of the handle
+            mbs = self._mbs()
+            if mbs is None:
+                raise RuntimeError(f"the system of joint {self.name!r} no longer exists") from None
+            return mbs
+
+    def _system_view(self) -> ClearanceJointHandle:
+        """This handle as its system keeps it: the same attributes, no strong reference to the system."""
+        view = object.__new__(ClearanceJointHandle)
+        view.__dict__ = self.__dict__
+        return view
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ClearanceJointHandle) and other.__dict__ is self.__dict__
+
+    def __hash__(self) -> int:
+        return id(self.__dict__)
+
+    def user_functions(self) -> dict[str, Any]:
+        """The user functions of the joint's connector, probe and torque connector."""
+        return self._backend.user_functions()
+
+    # -- the physics, replaceable between runs ---------------------------------------------
+    @property
+    def joint(self) -> ClearanceJoint:
+        """The joint's physics (geometry, contact law, friction law)."""
+        return self._joint
+
+    @joint.setter
+    def joint(self, joint: ClearanceJoint) -> None:
+        if not isinstance(joint, ClearanceJoint):
+            raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
+        self._joint = joint
+        self._backend.set_joint(joint)
+        self._write_parameters()
+
+    def set_impact_step(self, impact_step: float) -> None:
+        """Redo a step in which a contact begins with this step [s] (implicit solvers); 0: off."""
+        self._impact_step = float(impact_step)
+        self._write_parameters()
+
+    def parameters(self, role: int = MAIN) -> list[list[float]]:
+        """The parameter matrix of the connector of ``role`` (:data:`exuclear.engine.layout.LAYOUT`)."""
+        return parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
+                          compiled=self._backend.compiled, slices=self.slices, axis_journal=self.axis_journal,
+                          shoulders=self.shoulders, token=self.token)
+
+    def _write_parameters(self) -> None:
+        for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
+            if number is not None:
+                self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
+
+    def is_live(self) -> bool:
+        """Whether the joint's connector is still in its system (not removed by ``mbs.Reset()``)."""
+        try:
+            stiffness = self.mbs.GetObjectParameter(self.objectNumber, "stiffness")
+            return read(stiffness, "token") == float(self.token)
+        except Exception:  # the index no longer exists, or is another kind of object
+            return False
+
+    # -- state ---------------------------------------------------------------------------
+    def reset(self) -> None:
+        """Forget the contact history (a run also does so when it starts from its initial time)."""
+        self._backend.reset()
+
+    def state(self) -> ContactState:
+        """The contact history after the last accepted step (a spatial joint: that of its
+        most penetrated slice or end face)."""
+        states = self._backend.states()
+        return max(states, key=lambda s: s.delta) if states else ContactState()  # before a run: no state
+
+    def slice_states(self, which: str = "current") -> list[ContactState]:
+        """A spatial joint's slice histories after the last accepted step (``which=
+        "initial"``: at the run's initial state), slice 0 at ``z = -L/2``."""
+        self._check_slices()
+        return self._backend.states(which)[:self.slices]
+
+    def face_states(self, which: str = "current") -> list[ContactState]:
+        """The end faces' contact histories (docs/physics.md section 9.6), face 0 at
+        ``z = -L/2``; ``delta`` is the axial penetration."""
+        self._check_faces()
+        return self._backend.states(which)[self.slices:]
+
+    def _check_slices(self) -> None:
+        if not self.slices:
+            raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
+
+    def _check_faces(self) -> None:
+        if self.shoulders is None:
+            raise ValueError(f"joint {self.name!r} has no axial clearance (axial_clearance=None): it has no end faces")
+
+    @property
+    def slice_positions(self) -> np.ndarray:
+        """Axial positions ``z_k`` [m] of a spatial joint's slice planes in the bearing's
+        joint frame (docs/physics.md eq. (33))."""
+        self._check_slices()
+        return np.array(slice_centres(self._joint.geometry.length, self.slices))
+
+    def slice_impacts(self) -> list[list[ImpactRecord]]:
+        """A spatial joint's ended contacts, per slice."""
+        self._check_slices()
+        return self._backend.records()[:self.slices]
+
+    def face_impacts(self) -> list[list[ImpactRecord]]:
+        """The end faces' ended contacts (axial impacts), per face (face 0 at ``z = -L/2``)."""
+        self._check_faces()
+        return self._backend.records()[self.slices:]
+
+    def impacts(self) -> list[ImpactRecord]:
+        """Records of the contacts that ended in the last run, in order; a contact still
+        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
+        slice's records, by onset time (one contact of a tilted journal may touch
+        several slices, each a record), and the end faces' with an axial clearance."""
+        return sorted((r for rs in self._backend.records() for r in rs), key=lambda r: r.onset_time)
+
+    @property
+    def nodes(self) -> list[int]:
+        """The nodes of the bearing's and the journal's bodies (where a body has one node)."""
+        found = []
+        for marker in self.markerNumbers:
+            m = self.mbs.GetMarker(marker)
+            body = m.get("bodyNumber", m.get("objectNumber"))
+            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else None
+            if node is not None and int(node) >= 0:
+                found.append(int(node))
+        return found
+
+    @property
+    def history(self) -> JointHistory:
+        """The contact history of the last run: the state after the last accepted step, the
+        records of the ended contacts, and every onset time."""
+        state, impacts = self.state(), self.impacts()
+        onset_times = [r.onset_time for r in impacts] + ([state.onset_time] if state.in_contact else [])
+        return JointHistory(state, impacts, onset_times)
+
+    def failure(self) -> tuple[str, float]:
+        """Why and when the joint stopped the last run (``""`` if it did not)."""
+        return self._backend.failure()
+
+    def outputs(self) -> dict[str, np.ndarray]:
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
+
+        Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
+        the data node, i.e. at accepted steps; the first row is the run's initial state.
+        """
+        if self.sensorNumber is None:
+            raise RuntimeError(f"joint {self.name!r} was created with record=False: nothing was recorded")
+        try:
+            data = np.asarray(self.mbs.GetSensorStoredData(self.sensorNumber), dtype=float)
+        except Exception:  # Exudyn raises when the sensor has no data yet
+            data = np.zeros((0, 0))
+        if data.ndim != 2 or data.shape[0] == 0:
+            raise RuntimeError(f"joint {self.name!r} has no outputs yet: run a simulation first")
+        if self._backend.started():
+            initial = self._backend.states("initial")
+            if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
+                data = data.copy()
+                data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose())
+        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0)
+
+
+@dataclass(frozen=True)
+class JointHistory:
+    """A joint's contact history after a run (:attr:`ClearanceJointHandle.history`)."""
+
+    state: ContactState
+    impacts: list[ImpactRecord]
+    onset_times: list[float]
+
+    @property
+    def onsets(self) -> int:
+        """Contacts begun in the run (impacts)."""
+        return len(self.onset_times)
+
+    @property
+    def in_contact(self) -> bool:
+        return self.state.in_contact
+
+    @property
+    def v0(self) -> float:
+        return self.state.v0
+
+    @property
+    def delta(self) -> float:
+        return self.state.delta
+
+
+def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
+    """Keep ``handle`` with its system (:func:`joints_of`); the joints of an earlier build,
+    before ``mbs.Reset()``, are let go (their kernel state is released with their handle)."""
+    mbs.variables[REGISTRY_KEY] = [*joints_of(mbs), handle._system_view()]
+
+
+def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
+    """The clearance joints live in ``mbs`` (those of an earlier build, before ``mbs.Reset()``, dropped)."""
+    live = [h for h in mbs.variables.get(REGISTRY_KEY, []) if h.is_live()]
+    mbs.variables[REGISTRY_KEY] = live
+    return live
