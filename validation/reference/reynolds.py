@@ -44,8 +44,8 @@ Poiseuille; the Couette part over the whole circumference, cavitated or not):
     tau_B = -eta R (omega_B - omega_J) / h - (h / (2 R)) dp/dalpha    on the bearing,
     M = R^2 integral integral tau dalpha dz
 
-with ``dp/dalpha`` by central differences of the pressure after the cavitation condition.  :func:`converged` refines the mesh by halving both steps and extrapolates
-(Richardson, order 2).
+with ``dp/dalpha`` by central differences of the pressure after the cavitation condition.
+:func:`converged` refines the mesh by halving both steps and extrapolates (Richardson, order 2).
 """
 from __future__ import annotations
 
