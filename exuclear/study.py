@@ -1018,4 +1018,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # the importable module's main, so that what travels to worker processes (functions,
+    # classes) is exuclear.study's own and not this __main__ copy's
+    from exuclear.study import main as _main
+
+    sys.exit(_main())

@@ -325,3 +325,22 @@ def test_command_line(tmp_path: Path, capsys):
     fig = tmp_path / "fig.png"
     assert st.main(["plot", str(out), "--metric", "peak_force", "--x", "cr", "--out", str(fig)]) == 0
     assert fig.stat().st_size > 0
+
+
+def test_python_m_exuclear_study_prints_no_runpy_warning(tmp_path: Path):
+    # `import exuclear` used to import exuclear.study, and runpy then warned that the module
+    # was in sys.modules before it ran it as __main__: in the parent and again in every
+    # spawned worker (3 times with 2 workers), through the progress bar
+    import subprocess
+    import sys
+
+    import exuclear
+
+    assert exuclear.run_study is st.run_study and exuclear.Study is st.Study  # still the top-level names
+    helped = subprocess.run([sys.executable, "-m", "exuclear.study", "--help"], capture_output=True, text=True)
+    assert helped.returncode == 0 and "RuntimeWarning" not in helped.stderr, helped.stderr
+    ran = subprocess.run([sys.executable, "-m", "exuclear.study", "journal-bearing", "--cr", "0.5,0.9", "--workers", "2",
+                          "--no-progress", "--out", str(tmp_path / "two.csv")], capture_output=True, text=True)
+    assert ran.returncode == 0, ran.stderr
+    assert "Warning" not in ran.stderr, ran.stderr
+    assert st.load_table(tmp_path / "two.csv")["success"].all()
