@@ -54,6 +54,7 @@ import math
 import multiprocessing
 import os
 import pickle
+import re
 import sys
 import time
 from collections import deque
@@ -899,8 +900,23 @@ def _option(name: str) -> str:
     return "--" + name.replace("_", "-")
 
 
+#: What the study's parsers take for a negative value, not an option: "-" and a digit
+#: (``-1e-4``, ``-.5``, ``-2:0:1``, ``-1,0,1``), ``-inf``, ``-nan``.  argparse's own pattern
+#: (Python < 3.13) misses the exponent and list forms, and ``--clearance -1e-4`` was
+#: "expected one argument" instead of the rule the value breaks.
+_NEGATIVE_VALUE = re.compile(r"^-(\.?\d|inf|nan)", re.IGNORECASE)
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` that reads negative numbers (:data:`_NEGATIVE_VALUE`) as values."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_VALUE  # argparse's hook for what a negative number is
+
+
 def _scene_parser(study: Study, prog: str) -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
+    ap = _Parser(
         prog=prog, description=f"Sweep the {study.name} scene: each parameter option takes one value, a list "
         "a,b,c or a range start:stop:step (stop included); with --sample N, low:high bounds to draw from.")
     for name, default in (study.parameters or {}).items():
@@ -946,7 +962,7 @@ def _runs_from_args(study: Study, args: argparse.Namespace) -> list[Params]:
 
 
 def _plot_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="python -m exuclear.study plot",
+    ap = _Parser(prog="python -m exuclear.study plot",
                                  description="Plot a metric of a study table over one parameter (lines, one per "
                                  "value of --by) or two (heat map, --y).")
     ap.add_argument("table", help="the study's CSV")

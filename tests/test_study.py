@@ -327,6 +327,16 @@ def test_command_line(tmp_path: Path, capsys):
     assert fig.stat().st_size > 0
 
 
+def test_a_negative_value_gets_the_rule_it_breaks(tmp_path: Path, capsys):
+    # argparse read "-1e-4" as an option and said "expected one argument" (issue 21)
+    out = tmp_path / "neg.csv"
+    assert st.main(["slider-crank", "--clearance", "-1e-4", "--no-progress", "--out", str(out)]) == 2
+    assert "`clearance` must be positive, got -0.0001" in capsys.readouterr().err
+    assert st.main(["slider-crank", "--gravity", "-1,0", "--no-progress", "--out", str(out)]) == 2
+    assert "`gravity` must be non-negative, got -1" in capsys.readouterr().err
+    assert not out.exists()
+
+
 def test_python_m_exuclear_study_prints_no_runpy_warning(tmp_path: Path):
     # `import exuclear` used to import exuclear.study, and runpy then warned that the module
     # was in sys.modules before it ran it as __main__: in the parent and again in every
