@@ -57,6 +57,7 @@ import pickle
 import re
 import sys
 import time
+import warnings
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures.process import BrokenProcessPool
@@ -287,9 +288,57 @@ def _error_text(err: BaseException) -> str:
     return f"{type(err).__name__}: {' '.join(str(err).split())}"
 
 
+def _carried_categories() -> tuple[type[Warning], ...]:
+    """The warnings a row carries in its message: exuclear's own, which say that a result
+    may not mean what it seems (a unit slip, a law outside its validity, an unconverged path)."""
+    from ._checks import UnitWarning
+    from .contact import ValidityWarning
+    from .engine import AccuracyWarning
+
+    return UnitWarning, ValidityWarning, AccuracyWarning
+
+
+#: Names of the warning categories a row's message carries (:func:`_carried_categories`),
+#: each written ``Name: text`` there; :func:`warned` finds them.
+CARRIED_WARNINGS = ("UnitWarning", "ValidityWarning", "AccuracyWarning")
+
+
+def warned(table) -> Any:
+    """Which rows of a study table carry a warning of the run in their ``message``
+    (a boolean Series)."""
+    pattern = r"\b(?:" + "|".join(CARRIED_WARNINGS) + r"): "
+    return table["message"].fillna("").astype(str).str.contains(pattern, regex=True)
+
+
+def _message(own: str, caught: Sequence[warnings.WarningMessage]) -> str:
+    """The row's message: the run's own, then each distinct warning of :data:`CARRIED_WARNINGS`
+    as ``Name: text``, separated by ``"; "``.  Other warnings are shown as usual."""
+    carried = _carried_categories()
+    parts = [own] if own else []
+    for w in caught:
+        if issubclass(w.category, carried):
+            text = f"{w.category.__name__}: {' '.join(str(w.message).split())}"
+            if text not in parts:
+                parts.append(text)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+    return "; ".join(parts)
+
+
 def _run_one(function: Callable[[Params], Mapping[str, Any]], params: Params, key: str) -> dict[str, Any]:
     start = time.perf_counter()
     row: dict[str, Any] = dict(params)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")  # every run says its own warnings, not only the first run of a process
+        _run_into(row, function, params)
+    row["message"] = _message(row["message"], caught)
+    row["wall_time"] = time.perf_counter() - start
+    row["run_id"] = key
+    return row
+
+
+def _run_into(row: dict[str, Any], function: Callable[[Params], Mapping[str, Any]], params: Params) -> None:
+    """One run: its metrics, ``success`` and ``message`` into ``row``."""
     try:
         summary = function(dict(params))
         if not isinstance(summary, Mapping):
@@ -305,9 +354,6 @@ def _run_one(function: Callable[[Params], Mapping[str, Any]], params: Params, ke
         row["message"] = str(summary.get("message", ""))
     except Exception as err:  # a failed run is a row; KeyboardInterrupt is not caught
         row["success"], row["message"] = False, _error_text(err)
-    row["wall_time"] = time.perf_counter() - start
-    row["run_id"] = key
-    return row
 
 
 def _run_batch(function: Any, batch: Sequence[tuple[str, Params]]) -> list[dict[str, Any]]:
@@ -678,6 +724,14 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
         returned, not through the table's text as lists; for time series a table on
         disk would not carry.
 
+    Returns
+    -------
+    DataFrame
+        One row per parameter set of ``runs``.  ``table.attrs["ran"]``: the runs made
+        by this call; ``table.attrs["resumed"]``: the rows taken from the table at ``out``
+        (a resumed study).  A row's ``message`` carries the run's own message and its
+        warnings of :data:`CARRIED_WARNINGS` (``UnitWarning: ...``; :func:`warned`).
+
     Raises
     ------
     ValueError
@@ -706,11 +760,13 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
     done = {k for k, row in table.rows.items() if not (retry_failed and row.get("success") == "False")}
     todo = deque((k, p) for k, p in prepared if k not in done)
     order = [k for k, _ in prepared]
+    ran = len(todo)
     if todo:
         _execute(study, todo, table, len(prepared), workers, scheduler, executor, batch_size, progress)
     df = table.frame(order)
     if path is not None:
         _write_parquet(df, path)
+    df.attrs.update(ran=ran, resumed=len(prepared) - ran)  # after the Parquet file, which would keep them
     return df
 
 
@@ -1000,6 +1056,17 @@ def _plot_main(argv: list[str]) -> int:
     return 0
 
 
+def _one_line_warnings() -> None:
+    """Show warnings of the parameter checks (a unit slip, before any run) as one line
+    ``warning: ...`` on stderr, as the scenes' command lines do; the runs' own warnings go
+    into their rows."""
+
+    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001 - warnings' signature
+        print(f"warning: {category.__name__}: {message}", file=sys.stderr)
+
+    warnings.showwarning = show
+
+
 def main(argv: list[str] | None = None) -> int:
     """``python -m exuclear.study SCENE [options]`` or ``python -m exuclear.study plot TABLE ...``."""
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -1012,6 +1079,13 @@ def main(argv: list[str] | None = None) -> int:
         return 0 if argv else 2
     if argv[0] == "plot":
         return _plot_main(argv[1:])
+    with warnings.catch_warnings():  # the caller's way of showing warnings comes back after it
+        _one_line_warnings()
+        return _scene_main(argv, prog)
+
+
+def _scene_main(argv: list[str], prog: str) -> int:
+    """``python -m exuclear.study SCENE [options]``."""
     try:
         study = scene(argv[0])
     except ValueError as err:
@@ -1028,9 +1102,19 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt as err:
         print(f"{err or 'interrupted'}", file=sys.stderr)
         return 130
-    failed = int((~table["success"].astype(bool)).sum())
-    print(f"{len(table)} runs, {failed} failed; table {args.out}")
+    print(_summary_line(table, args.out))
     return 0
+
+
+def _summary_line(table, out: str | os.PathLike) -> str:
+    """The command line's last line: runs made now and taken from the file, failed runs,
+    and runs with warnings (:func:`warned`)."""
+    failed = int((~table["success"].astype(bool)).sum())
+    with_warnings = int(warned(table).sum()) if len(table) else 0
+    ran, resumed = table.attrs.get("ran", len(table)), table.attrs.get("resumed", 0)
+    runs = f"{len(table)} runs ({ran} ran now, {resumed} taken from {out})" if resumed else f"{len(table)} runs"
+    warns = f", {with_warnings} with warnings (see their message)" if with_warnings else ""
+    return f"{runs}, {failed} failed{warns}; table {out}"
 
 
 if __name__ == "__main__":

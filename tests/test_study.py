@@ -3,6 +3,7 @@ interrupts and resumption, executors (serial, local processes, a real Dask Local
 giving equal rows, the scenes' study functions and the command line."""
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import signal
@@ -55,6 +56,21 @@ def crashes_at_2(p: dict) -> dict:
     if p["x"] == 2:
         os._exit(3)
     return {"y": p["x"] + 0.5}
+
+
+def warns(p: dict) -> dict:
+    """Warns as a scene does for a unit slip at x = 1 (twice: carried once), and a plain
+    UserWarning at x = 2 (not carried: shown as usual)."""
+    import warnings
+
+    import exuclear
+
+    if p["x"] == 1:
+        for _ in range(2):
+            warnings.warn("length 15 m: were they given in mm?", exuclear.UnitWarning, stacklevel=2)
+    if p["x"] == 2:
+        warnings.warn("not exuclear's", UserWarning, stacklevel=2)
+    return {"y": float(p["x"]), "message": "own note" if p["x"] == 1 else ""}
 
 
 def _values(df: pd.DataFrame) -> pd.DataFrame:
@@ -152,6 +168,35 @@ def test_own_failure_status_resume_and_retry(tmp_path: Path):
     pd.testing.assert_frame_equal(again, df, check_exact=True)
     st.run_study(reports_failure, st.grid(x=range(3)), out, workers=1, progress=False, retry_failed=True)
     assert CALLS == [1] and len(pd.read_csv(out)) == 3  # only the failed run is redone, and replaces its row
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_run_s_warnings_are_in_its_row(tmp_path: Path, workers: int):
+    # a unit slip (UnitWarning) was a successful row with an empty message (issue 21)
+    with pytest.warns(UserWarning, match="not exuclear's") if workers == 1 else contextlib.nullcontext():
+        df = st.run_study(warns, st.grid(x=range(3)), tmp_path / "w.csv", workers=workers, progress=False)
+    assert df["message"].tolist() == ["", "own note; UnitWarning: length 15 m: were they given in mm?", ""]
+    assert df["success"].all() and st.warned(df).tolist() == [False, True, False]
+    on_disk = st.load_table(tmp_path / "w.csv").sort_values("x")  # in the order the runs finished
+    assert st.warned(on_disk).tolist() == [False, True, False]
+
+
+def test_the_summary_counts_warnings_and_says_what_ran_now(tmp_path: Path, capsys):
+    # the issue's case: 15 for a length in metres is a 33 kN "success" in the slider-crank
+    out = tmp_path / "units.csv"
+    args = ["--no-progress", "--workers", "1", "--out", str(out)]
+    assert st.main(["journal-bearing", "--length", "0.015,15", *args]) == 0
+    said = capsys.readouterr()
+    assert said.out.strip() == f"2 runs, 0 failed, 1 with warnings (see their message); table {out}"
+    assert "warning: UnitWarning: the bearing radius 0.01 m or length 15 m" in said.err  # before the runs, one line
+    row = st.load_table(out).set_index("length").loc[15.0]
+    assert row["success"] and row["message"].startswith("UnitWarning: the bearing radius 0.01 m or length 15 m")
+    # resumed: a resumed study's summary counted all rows as if run now
+    assert st.main(["journal-bearing", "--length", "0.015,15,0.02", *args]) == 0
+    assert capsys.readouterr().out.strip() == (f"3 runs (1 ran now, 2 taken from {out}), 0 failed, 1 with warnings "
+                                               f"(see their message); table {out}")
+    table = st.run_study(st.scene("journal-bearing"), st.grid(length=[0.015, 0.02]), out, workers=1, progress=False)
+    assert (table.attrs["ran"], table.attrs["resumed"]) == (0, 2)
 
 
 def test_bad_input_before_any_run(tmp_path: Path):
