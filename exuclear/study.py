@@ -26,7 +26,9 @@ deterministic (the same parameter set gives the same summary), and then a row do
 depend on the executor that ran it, except for ``wall_time``.
 
 A *scene* is a module with a ``study`` function, its parameter defaults
-``STUDY_PARAMETERS`` and (optionally) its check ``check_study``; :func:`scene` makes it a
+``STUDY_PARAMETERS`` and (optionally) its check ``check_study`` and ``STUDY_COLUMNS``
+(:class:`Column` of its parameters and metrics: help, units, the option names of the
+scene's own command line); :func:`scene` makes it a
 :class:`Study`, from a dotted module path or from a short name.  The library never imports
 its scenes: short names come from the entry-point group :data:`SCENE_ENTRY_POINTS`, which
 installed distributions fill (exuclear's own scenes declare ``slider-crank`` and
@@ -93,6 +95,37 @@ SCENE_ENTRY_POINTS = "exuclear.scenes"
 Params = dict[str, Any]
 
 
+@dataclass(frozen=True)
+class Column:
+    """What a column of a study table holds: a parameter's option help and other
+    spellings, and the axis label of a plot (:mod:`exuclear.study_plot`).
+
+    Parameters
+    ----------
+    label : str
+        What the value is, without its unit (``"radial clearance"``).
+    unit : str
+        Its unit (``"m"``, ``"N"``, ``"rpm"``); empty for a number without one.
+    aliases : tuple of str
+        Other names of a parameter, as the scene's command line spells them too
+        (``("length",)`` for ``bearing_length``): accepted by :meth:`Study.complete`
+        and as options (``--length``).
+    """
+
+    label: str
+    unit: str = ""
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def axis_label(self) -> str:
+        """``"label [unit]"``, or the label alone."""
+        return f"{self.label} [{self.unit}]" if self.unit else self.label
+
+
+#: The status columns that carry a unit, as :class:`Column`.
+STATUS_LABELS = {"wall_time": Column("wall time of the run", "s")}
+
+
 # =======================================================================================
 # studies and parameter sets
 # =======================================================================================
@@ -117,17 +150,35 @@ class Study:
         would refuse; called for every set before any run starts.
     name : str
         For messages.
+    columns : mapping, optional
+        :class:`Column` of parameters and metrics by name: option help, other spellings
+        of a parameter, axis labels with units.
     """
 
     function: Callable[[Params], Mapping[str, Any]]
     parameters: Mapping[str, Any] | None = None
     check: Callable[[Params], None] | None = None
     name: str = ""
+    columns: Mapping[str, Column] | None = None
+
+    def aliases(self) -> dict[str, str]:
+        """Other spellings of the parameters: alias -> parameter name."""
+        return {alias: name for name, column in (self.columns or {}).items() for alias in column.aliases
+                if self.parameters is None or name in self.parameters}
 
     def complete(self, params: Mapping[str, Any]) -> Params:
-        """The parameter set with the defaults filled in; ``ValueError`` for unknown names."""
+        """The parameter set with the defaults filled in and other spellings
+        (:meth:`aliases`) under the parameter's name; ``ValueError`` for unknown names."""
         if not isinstance(params, Mapping):
             raise ValueError(f"a parameter set must be a dict, got {params!r}")
+        aliases = self.aliases()
+        named: dict[str, Any] = {}
+        for key, value in params.items():
+            name = aliases.get(key, key)
+            if name in named:
+                raise ValueError(f"`{name}` is given twice (as {name!r} and as its other name {key!r})")
+            named[name] = value
+        params = named
         if self.parameters is None:
             return dict(params)
         unknown = sorted(set(params) - set(self.parameters))
@@ -944,7 +995,8 @@ def scene(name: str) -> Study:
     missing = [n for n in ("study", "STUDY_PARAMETERS") if not hasattr(module, n)]
     if missing:
         raise ValueError(f"module {module_name} is not a scene: it has no {', '.join(missing)}")
-    return Study(module.study, dict(module.STUDY_PARAMETERS), getattr(module, "check_study", None), name)
+    return Study(module.study, dict(module.STUDY_PARAMETERS), getattr(module, "check_study", None), name,
+                 dict(getattr(module, "STUDY_COLUMNS", {})))
 
 
 # =======================================================================================
@@ -975,8 +1027,12 @@ def _scene_parser(study: Study, prog: str) -> argparse.ArgumentParser:
     ap = _Parser(
         prog=prog, description=f"Sweep the {study.name} scene: each parameter option takes one value, a list "
         "a,b,c or a range start:stop:step (stop included); with --sample N, low:high bounds to draw from.")
+    columns = study.columns or {}
     for name, default in (study.parameters or {}).items():
-        ap.add_argument(_option(name), dest=name, metavar="VALUES", help=f"default {default!r}")
+        column = columns.get(name)
+        flags = [_option(name)] + [_option(alias) for alias in (column.aliases if column else ())]
+        what = f"{column.axis_label}; " if column else ""
+        ap.add_argument(*flags, dest=name, metavar="VALUES", help=f"{what}default {default!r}".replace("%", "%%"))
     ap.add_argument("--sample", type=int, metavar="N", help="draw N parameter sets in the low:high bounds "
                     "instead of the grid")
     ap.add_argument("--method", choices=("lhs", "random"), default="lhs", help="sampling (default %(default)s)")

@@ -399,3 +399,28 @@ def test_python_m_exuclear_study_prints_no_runpy_warning(tmp_path: Path):
     assert ran.returncode == 0, ran.stderr
     assert "Warning" not in ran.stderr, ran.stderr
     assert st.load_table(tmp_path / "two.csv")["success"].all()
+
+
+@pytest.mark.parametrize("name, module", [("slider-crank", "slider_crank"), ("journal-bearing", "journal_bearing")])
+def test_the_study_speaks_the_scene_s_option_names(name, module):
+    # the study said --bearing-length and --journal-material where the scene's command line
+    # says --length and --journal (issue 21): every spelling of a study parameter on the
+    # scene's command line is one of the study's too
+    import importlib
+
+    scene_parser = importlib.import_module(f"exuclear.models.{module}")._parser()
+    study = st.scene(name)
+    study_parser = st._scene_parser(study, "study")
+
+    def spellings(parser, dest):
+        return {flag for action in parser._actions if action.dest == dest for flag in action.option_strings}
+
+    for parameter in study.parameters:
+        assert spellings(scene_parser, parameter) <= spellings(study_parser, parameter), parameter
+    assert {"--length", "--bearing-length", "--journal", "--journal-material"} <= set(study_parser._option_string_actions)
+    # the API takes the other spellings too, under the parameter's own name (one run id)
+    field = "bearing_length" if name == "slider-crank" else "length"
+    assert study.complete({"length": 0.02})[field] == 0.02 and study.complete({"bearing_length": 0.02})[field] == 0.02
+    assert st.run_id(study.complete({"journal": "aluminium"})) == st.run_id(study.complete({"journal_material": "aluminium"}))
+    with pytest.raises(ValueError, match="given twice"):
+        study.complete({"length": 0.02, "bearing_length": 0.03})
