@@ -1085,10 +1085,26 @@ def _plot_parser() -> argparse.ArgumentParser:
     ap.add_argument("--points", action="store_true", help="markers only (a bifurcation-style diagram)")
     ap.add_argument("--where", action="append", default=[], metavar="NAME=VALUE",
                     help="keep the rows with this parameter value (repeatable)")
+    ap.add_argument("--scene", help="the scene whose study made the table, for axis labels with units (default: the "
+                    "installed scene whose parameters are all columns of the table)")
     ap.add_argument("--logx", action="store_true")
     ap.add_argument("--logy", action="store_true")
     ap.add_argument("--out", required=True, metavar="FILE", help="figure file (png, pdf, svg)")
     return ap
+
+
+def _scene_of(table) -> Study | None:
+    """The installed scene (:func:`scene_names`) whose parameters are all columns of
+    ``table``, if exactly one is; None otherwise."""
+    found = []
+    for name in scene_names():
+        try:
+            study = scene(name)
+        except ValueError:  # a broken entry point does not stop a plot
+            continue
+        if study.parameters and set(study.parameters) <= set(table.columns):
+            found.append(study)
+    return found[0] if len(found) == 1 else None
 
 
 def _plot_main(argv: list[str]) -> int:
@@ -1103,8 +1119,9 @@ def _plot_main(argv: list[str]) -> int:
             if not sep:
                 raise ValueError(f"`--where` is NAME=VALUE, got {item!r}")
             where[name] = _number(value)
+        study = scene(args.scene) if args.scene else _scene_of(table)
         path = plot_metric(table, args.metric, args.x, y=args.y, by=args.by, where=where, points=args.points,
-                           logx=args.logx, logy=args.logy, path=args.out)
+                           logx=args.logx, logy=args.logy, path=args.out, columns=study.columns if study else None)
     except ValueError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

@@ -424,3 +424,32 @@ def test_the_study_speaks_the_scene_s_option_names(name, module):
     assert st.run_id(study.complete({"journal": "aluminium"})) == st.run_id(study.complete({"journal_material": "aluminium"}))
     with pytest.raises(ValueError, match="given twice"):
         study.complete({"length": 0.02, "bearing_length": 0.03})
+
+
+def test_plot_axes_say_what_and_in_which_unit(tmp_path: Path):
+    # the axes were labelled with raw column names, no units (issue 21)
+    pytest.importorskip("matplotlib")
+    from matplotlib.figure import Figure
+
+    from exuclear.study_plot import axis_label, plot_metric
+
+    out = tmp_path / "labels.csv"
+    assert st.main(["journal-bearing", "--cr", "0.5,0.9", "--length", "0.01,0.02", "--workers", "1", "--no-progress",
+                    "--out", str(out)]) == 0
+    table = st.load_table(out)
+    study = st._scene_of(table)  # what the command line labels by when no --scene is given
+    assert study is not None and study.name == "journal-bearing"
+    ax = plot_metric(table, "peak_force", "cr", by="length", ax=Figure().subplots(), columns=study.columns)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("coefficient of restitution", "peak contact force [N]")
+    assert ax.get_legend().get_title().get_text() == "bearing length L [m]"
+    heat = plot_metric(table, "contact_duration", "cr", y="length", ax=Figure().subplots(), columns=study.columns)
+    assert heat.get_ylabel() == "bearing length L [m]"
+    assert heat.figure.axes[-1].get_ylabel() == "contact duration [s]"  # the colour bar
+    # the labels come from the scene's own tables: the parameter field's help, the metric's entry
+    from exuclear.models.journal_bearing import STUDY_METRICS, JournalBearingParams
+
+    assert JournalBearingParams.__dataclass_fields__["length"].metadata["help"] == "bearing length L [m]"
+    assert STUDY_METRICS["peak_force"].unit == "N"
+    assert axis_label("wall_time") == "wall time of the run [s]" and axis_label("no_such_column") == "no_such_column"
+    assert st.main(["plot", str(out), "--metric", "peak_force", "--x", "cr", "--scene", "no-such-scene",
+                    "--out", str(tmp_path / "x.png")]) == 2
