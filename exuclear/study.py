@@ -1035,7 +1035,9 @@ def _scene_parser(study: Study, prog: str) -> argparse.ArgumentParser:
         ap.add_argument(*flags, dest=name, metavar="VALUES", help=f"{what}default {default!r}".replace("%", "%%"))
     ap.add_argument("--sample", type=int, metavar="N", help="draw N parameter sets in the low:high bounds "
                     "instead of the grid")
-    ap.add_argument("--method", choices=("lhs", "random"), default="lhs", help="sampling (default %(default)s)")
+    # not --method, which on the scenes' command lines is the solver
+    ap.add_argument("--sampling", choices=("lhs", "random"), default="lhs",
+                    help="how --sample draws: Latin hypercube or independent uniform (default %(default)s)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the sample (default %(default)s)")
     ap.add_argument("--workers", type=int, help="local worker processes (default: all cores; 1: serial), or the "
                     "workers of --scheduler local")
@@ -1070,7 +1072,7 @@ def _runs_from_args(study: Study, args: argparse.Namespace) -> list[Params]:
             if len(values) != 1:
                 raise ValueError(f"`{_option(name)}`: with --sample, give low:high bounds or one value, got {text!r}")
             fixed[name] = values[0]
-    return sample(bounds, args.sample, seed=args.seed, method=args.method, fixed=fixed)
+    return sample(bounds, args.sample, seed=args.seed, method=args.sampling, fixed=fixed)
 
 
 def _plot_parser() -> argparse.ArgumentParser:

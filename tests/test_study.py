@@ -418,6 +418,7 @@ def test_the_study_speaks_the_scene_s_option_names(name, module):
     for parameter in study.parameters:
         assert spellings(scene_parser, parameter) <= spellings(study_parser, parameter), parameter
     assert {"--length", "--bearing-length", "--journal", "--journal-material"} <= set(study_parser._option_string_actions)
+    assert "--method" not in study_parser._option_string_actions  # the scenes' solver; the study's draw is --sampling
     # the API takes the other spellings too, under the parameter's own name (one run id)
     field = "bearing_length" if name == "slider-crank" else "length"
     assert study.complete({"length": 0.02})[field] == 0.02 and study.complete({"bearing_length": 0.02})[field] == 0.02
