@@ -51,7 +51,26 @@ from .geometry import BearingGeometry
 from .joint import ClearanceJoint, make_joint
 from .materials import MATERIALS, Material, composite_modulus
 from .settings import METHODS, SolverSettings
-from .study import Study, grid, run_study, sample
+
+# The study names are imported on first use (PEP 562), not here: ``python -m exuclear.study``
+# imports the package first, and a study module already in ``sys.modules`` then would be
+# executed a second time as ``__main__`` (runpy's RuntimeWarning, once per worker process).
+_LAZY = {"Study": "study", "grid": "study", "sample": "study", "run_study": "study"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value  # found directly from now on
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_LAZY})
+
 
 __version__ = "0.1.0"
 

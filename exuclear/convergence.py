@@ -24,12 +24,21 @@ motion is chaotic, any tighter run parts from a coarser one at some time, and on
 statistics can be trusted after it.
 
 The model is given as a callable ``run(settings) -> RunRecord``, so that any Exudyn
-model with clearance joints can be checked (``RunRecord.from_handles`` builds the
-record from :func:`exuclear.simulate`'s result and the joints' handles).  This module
-never imports exudyn itself and never plots.
+model with clearance joints can be checked, on either path a model is run by:
+
+- :func:`exuclear.simulate` with a :class:`~exuclear.SolverSettings`:
+  ``RunRecord.from_handles(result, joints)`` builds the record from the result and the
+  joints' handles; ``step="auto"`` is refined from the step the run chose (``result.step``);
+- a plain ``mbs.SolveDynamic`` with an ``exu.SimulationSettings``: ``run`` takes one and
+  returns ``RunRecord.from_mbs(mbs, joints)``; the tighter settings are a copy with
+  ``timeIntegration.numberOfSteps`` multiplied and ``minimumStepSize`` (and, with
+  ``automaticStepSize``, the tolerances and ``initialStepSize``) divided by the factor.
+
+This module never imports exudyn itself and never plots.
 """
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
@@ -142,6 +151,10 @@ class RunRecord:
         Simulated time reached [s].
     wall_time : float
         Wall time of the solver [s] (reported, not compared).
+    step : float
+        The step the run was given [s] (the largest for adaptive methods), as
+        ``result.step`` says; NaN where unknown.  With ``SolverSettings(step="auto")``
+        the check refines this step.
     """
 
     joints: dict[str, JointRecord]
@@ -150,24 +163,43 @@ class RunRecord:
     message: str = ""
     time_reached: float = math.inf
     wall_time: float = math.nan
+    step: float = math.nan
 
     @classmethod
     def from_handles(cls, result: Any, joints: Mapping[str, Any],
                      signals: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> RunRecord:
         """The record of a finished run: ``result`` from :func:`exuclear.simulate`,
         ``joints`` the clearance-joint handles by name, ``signals`` named ``(time, values)``."""
-        if not isinstance(joints, Mapping):
-            raise ValueError(f"`joints` must map names to clearance-joint handles, got {joints!r}")
-        if not joints and not signals:
-            raise ValueError("nothing to compare: give clearance-joint handles (`joints`) or `signals`")
-        sig = {}
-        for name, pair in (signals or {}).items():
-            t, y = (np.array(v, dtype=float).reshape(-1) for v in pair)
-            if t.shape != y.shape:
-                raise ValueError(f"signal {name!r}: time and values differ in length ({t.size} and {y.size})")
-            sig[str(name)] = (t, y)
-        return cls({str(k): JointRecord.from_handle(h) for k, h in joints.items()}, sig, bool(result.success),
-                   str(result.message), float(result.time_reached), float(result.wall_time))
+        return cls(*_recorded(joints, signals), success=bool(result.success), message=str(result.message),
+                   time_reached=float(result.time_reached), wall_time=float(result.wall_time),
+                   step=float(getattr(result, "step", math.nan)))
+
+    @classmethod
+    def from_mbs(cls, mbs: Any, joints: Mapping[str, Any],
+                 signals: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None, *, success: bool = True,
+                 message: str = "") -> RunRecord:
+        """The record of a run made by a plain ``mbs.SolveDynamic``: ``joints`` the
+        clearance-joint handles by name, ``signals`` named ``(time, values)``;
+        ``success`` what ``SolveDynamic`` returned.  The time reached is the system's
+        time after the run."""
+        return cls(*_recorded(joints, signals), success=bool(success), message=str(message),
+                   time_reached=float(mbs.systemData.GetTime()))
+
+
+def _recorded(joints: Mapping[str, Any], signals: Mapping[str, tuple[np.ndarray, np.ndarray]] | None
+              ) -> tuple[dict[str, JointRecord], dict[str, tuple[np.ndarray, np.ndarray]]]:
+    """The joints' records and the signals as float arrays, checked."""
+    if not isinstance(joints, Mapping):
+        raise ValueError(f"`joints` must map names to clearance-joint handles, got {joints!r}")
+    if not joints and not signals:
+        raise ValueError("nothing to compare: give clearance-joint handles (`joints`) or `signals`")
+    sig = {}
+    for name, pair in (signals or {}).items():
+        t, y = (np.array(v, dtype=float).reshape(-1) for v in pair)
+        if t.shape != y.shape:
+            raise ValueError(f"signal {name!r}: time and values differ in length ({t.size} and {y.size})")
+        sig[str(name)] = (t, y)
+    return {str(k): JointRecord.from_handle(h) for k, h in joints.items()}, sig
 
 
 # =======================================================================================
@@ -182,11 +214,27 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     limit with it).  Explicit fixed-step (RK44): the step divided.  Implicit methods
     (generalized-alpha, trapezoidal): the step and, with impact-aware steps, the
     ``impact_step`` divided.  The output interval and everything else are kept.
+
+    ``step="auto"`` has no number to divide until the model is built: give the settings
+    with the step the run chose (``result.step``); :func:`check_convergence` does so.
+
+    An ``exu.SimulationSettings`` (for a plain ``mbs.SolveDynamic``, which is given the
+    solver type separately) is refined as a copy: ``timeIntegration.numberOfSteps``
+    times ``factor`` (the step, and the largest step of adaptive solvers, divided),
+    ``minimumStepSize`` divided, and with ``automaticStepSize`` (explicit adaptive
+    solvers; implicit ones ignore these) ``relativeTolerance``, ``absoluteTolerance`` and
+    a given ``initialStepSize`` divided.
     """
-    if not isinstance(settings, SolverSettings):
-        raise ValueError(f"`settings` must be a SolverSettings, got {type(settings).__name__}")
     if check_positive("factor", factor) <= 1.0:
         raise ValueError(f"`factor` must exceed 1 (the reference must be tighter), got {factor}")
+    if _exudyn_settings(settings):
+        return _refined_exudyn_settings(settings, factor)
+    if not isinstance(settings, SolverSettings):
+        raise ValueError(f"`settings` must be a SolverSettings or an exu.SimulationSettings, got "
+                         f"{type(settings).__name__}")
+    if settings.automatic:
+        raise ValueError("`step` is 'auto', which is chosen from the model: refine the settings with the step the "
+                         "run chose, dataclasses.replace(settings, step=result.step)")
     step = settings.step / factor
     changes: dict[str, Any] = {"step": step, "min_step": min(settings.min_step, step)}
     if settings.explicit and settings.adaptive:
@@ -196,7 +244,33 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     return replace(settings, **changes)
 
 
-def _rule(settings: SolverSettings, factor: float) -> str:
+def _exudyn_settings(settings: object) -> bool:
+    """Whether ``settings`` is an ``exu.SimulationSettings`` (told by its shape: this
+    module does not import exudyn)."""
+    return hasattr(getattr(settings, "timeIntegration", None), "numberOfSteps")
+
+
+def _refined_exudyn_settings(settings: Any, factor: float) -> Any:
+    """A copy of the ``exu.SimulationSettings`` ``settings``, refined (:func:`refined_settings`)."""
+    tighter = copy.deepcopy(settings)  # Exudyn's settings copy deeply; the user's stay as they are
+    ti = tighter.timeIntegration
+    ti.numberOfSteps = math.ceil(settings.timeIntegration.numberOfSteps * factor - 1e-9)
+    ti.minimumStepSize = settings.timeIntegration.minimumStepSize / factor
+    if ti.automaticStepSize:
+        ti.relativeTolerance = settings.timeIntegration.relativeTolerance / factor
+        ti.absoluteTolerance = settings.timeIntegration.absoluteTolerance / factor
+        ti.initialStepSize = settings.timeIntegration.initialStepSize / factor  # 0: the solver's own choice
+    return tighter
+
+
+def _end_time(settings: Any) -> float:
+    return float(settings.timeIntegration.endTime) if _exudyn_settings(settings) else settings.end_time
+
+
+def _rule(settings: Any, factor: float) -> str:
+    if _exudyn_settings(settings):
+        tolerances = "rtol, atol, " if settings.timeIntegration.automaticStepSize else ""
+        return f"{tolerances}step and minimum step / {factor:g}"
     if settings.explicit and settings.adaptive:
         return f"rtol, atol and largest step / {factor:g}"
     if settings.explicit:
@@ -204,7 +278,14 @@ def _rule(settings: SolverSettings, factor: float) -> str:
     return f"step{' and impact step' if settings.impact_step is not None else ''} / {factor:g}"
 
 
-def _describe(settings: SolverSettings) -> str:
+def _describe(settings: Any) -> str:
+    if _exudyn_settings(settings):
+        ti = settings.timeIntegration
+        s = (f"exu.SimulationSettings, {ti.numberOfSteps:.0f} steps of {(ti.endTime - ti.startTime) / ti.numberOfSteps:.3g} s, "
+             f"minimum step {ti.minimumStepSize:.3g} s")
+        if ti.automaticStepSize:
+            s += f", rtol {ti.relativeTolerance:.3g}, atol {ti.absoluteTolerance:.3g}"
+        return s
     s = f"{settings.method}, step {settings.step:.3g} s"
     if settings.explicit and settings.adaptive:
         s += f" (largest), rtol {settings.rtol:.3g}, atol {settings.atol:.3g}"
@@ -453,8 +534,9 @@ class ConvergenceResult:
 
     Attributes
     ----------
-    settings, reference_settings : SolverSettings
-        The user's settings and the tighter ones (the reference).
+    settings, reference_settings : SolverSettings or exu.SimulationSettings
+        The user's settings (with the step the run chose where they said
+        ``step="auto"``) and the tighter ones (the reference).
     factor, bound : float
         The refinement factor and the path bound (fraction of the clearance).
     run, reference : RunRecord
@@ -471,8 +553,8 @@ class ConvergenceResult:
         Every named signal stays within the bound over the whole run.
     """
 
-    settings: SolverSettings
-    reference_settings: SolverSettings
+    settings: Any
+    reference_settings: Any
     factor: float
     bound: float
     run: RunRecord
@@ -587,7 +669,7 @@ def _end(rec: RunRecord) -> float:
     return min(ends)
 
 
-def check_convergence(run: Callable[[SolverSettings], RunRecord], settings: SolverSettings, *,
+def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
                       factor: float = DEFAULT_FACTOR, bound: float = DEFAULT_BOUND,
                       baseline: RunRecord | None = None) -> ConvergenceResult:
     """Rerun a model at tighter settings and compare (module docstring).
@@ -596,11 +678,20 @@ def check_convergence(run: Callable[[SolverSettings], RunRecord], settings: Solv
     ----------
     run : callable
         ``run(settings) -> RunRecord``: builds the model, runs it with the given
-        :class:`SolverSettings` and returns its record (:meth:`RunRecord.from_handles`).
-        Called once with the tighter settings, and once with ``settings`` unless
-        ``baseline`` is given.  Joints and signals are matched by name.
-    settings : SolverSettings
-        The user's settings.
+        settings and returns its record.  Called once with ``settings`` (unless
+        ``baseline`` is given), then once with the tighter settings.  Joints and signals
+        are matched by name.  Either path:
+
+        - ``settings`` a :class:`SolverSettings`: ``run`` calls
+          ``result = exuclear.simulate(mbs, settings)`` and returns
+          ``RunRecord.from_handles(result, {"B": joint})``;
+        - ``settings`` an ``exu.SimulationSettings``: ``run`` calls
+          ``mbs.SolveDynamic(settings, solverType=...)`` and returns
+          ``RunRecord.from_mbs(mbs, {"B": joint})``.
+    settings : SolverSettings or exu.SimulationSettings
+        The user's settings (:func:`refined_settings` makes the tighter ones).  With
+        ``step="auto"`` the first run chooses the step (its record's ``step``, from
+        ``result.step``), and that step is refined.
     factor : float
         Refinement factor (> 1), see :func:`refined_settings`; default :data:`DEFAULT_FACTOR`.
     bound : float
@@ -615,19 +706,32 @@ def check_convergence(run: Callable[[SolverSettings], RunRecord], settings: Solv
     """
     if not callable(run):
         raise ValueError(f"`run` must be a callable run(settings) -> RunRecord, got {type(run).__name__}")
-    reference_settings = refined_settings(settings, factor)
+    automatic = isinstance(settings, SolverSettings) and settings.automatic
+    if not automatic:
+        refined_settings(settings, factor)  # bad settings or factor fail before any run
+    elif check_positive("factor", factor) <= 1.0:
+        raise ValueError(f"`factor` must exceed 1 (the reference must be tighter), got {factor}")
     if not 0.0 < check_positive("bound", bound) <= 1.0:
         raise ValueError(f"`bound` must lie in (0, 1] (a fraction of the clearance), got {bound}")
     first = baseline if baseline is not None else run(settings)
+    label = "baseline" if baseline is not None else "run(settings)"
+    if not isinstance(first, RunRecord):
+        raise ValueError(f"{label} must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
+                         f"{type(first).__name__}")
+    if automatic:  # the step the model chose is the one refined
+        if not math.isfinite(first.step):
+            raise ValueError(f"`step` is 'auto' but {label}'s record does not say which step the run chose: build it "
+                             "with RunRecord.from_handles(result, ...), whose result.step it is")
+        settings = replace(settings, step=first.step)
+    reference_settings = refined_settings(settings, factor)
     second = run(reference_settings)
-    for label, rec in (("baseline" if baseline is not None else "run(settings)", first),
-                       ("run(tighter settings)", second)):
-        if not isinstance(rec, RunRecord):
-            raise ValueError(f"{label} must return a RunRecord (RunRecord.from_handles), got {type(rec).__name__}")
+    if not isinstance(second, RunRecord):
+        raise ValueError(f"run(tighter settings) must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
+                         f"{type(second).__name__}")
     if set(first.joints) != set(second.joints) or set(first.signals) != set(second.signals):
         raise ValueError(f"the two runs recorded different joints or signals: {sorted(first.joints)} "
                          f"{sorted(first.signals)} and {sorted(second.joints)} {sorted(second.signals)}")
-    end = min(_end(first), _end(second), settings.end_time)
+    end = min(_end(first), _end(second), _end_time(settings))
     joints = {k: _compare_joint(first.joints[k], second.joints[k], end, bound) for k in second.joints}
     signals = {k: _compare_signal(k, first.signals[k], second.signals[k], end, bound) for k in second.signals}
     return ConvergenceResult(settings, reference_settings, float(factor), float(bound), first, second, end,

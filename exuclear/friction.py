@@ -7,11 +7,33 @@ Units: m/s for velocities.
 from __future__ import annotations
 
 import math
+import warnings
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar
 
 from ._checks import check_nonnegative, check_positive
+from .contact import ValidityWarning
+
+#: Friction coefficients above this warn (:class:`~exuclear.ValidityWarning`), they are not
+#: refused.  Source: engineering tables of static friction coefficients, here Lawrence
+#: Berkeley Laboratory's compilation (www-eng.lbl.gov/~ajdemell/coefficients_of_friction.html;
+#: P. J. Blau, Tribol. Int. 34 (2001) 585-591, on how such tables may be used): clean, dry
+#: steel on steel 0.74 to 0.78 static and 0.42 sliding, greased metals mostly 0.05 to 0.3,
+#: the paper's Table 1 0.3 / 0.25; only clean, dry soft metals (aluminium on aluminium 1.05 to
+#: 1.35, copper on copper 1.0 to 1.2, cast iron on cast iron 1.1) reach 1 or more.  A bearing
+#: above 1 is unusual enough to ask whether a percentage or a typo was meant.
+MU_WARN = 1.0
+
+
+def _check_coefficient(name: str, mu: float) -> float:
+    """``mu`` >= 0 (``ValueError`` otherwise); a :class:`ValidityWarning` above :data:`MU_WARN`."""
+    mu = check_nonnegative(name, mu)
+    if mu > MU_WARN:
+        warnings.warn(f"friction coefficient `{name}` = {mu:g} is above {MU_WARN:g}: dry steel on steel is about "
+                      "0.75 (static), greased metals 0.05 to 0.3, and only clean, dry soft metals reach 1 to 1.35; "
+                      "was a percentage or another value meant?", ValidityWarning, stacklevel=4)
+    return mu
 
 
 def _sign(x: float) -> float:
@@ -70,7 +92,8 @@ class Coulomb(FrictionLaw):
     Parameters
     ----------
     mu : float
-        Friction coefficient, >= 0.
+        Friction coefficient, >= 0; above :data:`MU_WARN` (1) it warns
+        (:class:`~exuclear.ValidityWarning`): unusual for metal bearings.
     v_eps : float
         Half-width of the smoothing band [m/s], > 0.  The default 1e-4 m/s is the
         paper's stiction velocity ``v_s`` (Table 1).
@@ -81,7 +104,7 @@ class Coulomb(FrictionLaw):
     name: ClassVar[str] = "coulomb"
 
     def __post_init__(self) -> None:
-        check_nonnegative("mu", self.mu)
+        _check_coefficient("mu", self.mu)
         check_positive("v_eps", self.v_eps)
 
     def coefficient(self, v_t: float) -> float:
@@ -100,7 +123,8 @@ class ModifiedCoulomb(FrictionLaw):
     Parameters
     ----------
     mu_s, mu_d : float
-        Static and dynamic friction coefficients, >= 0.
+        Static and dynamic friction coefficients, >= 0; above :data:`MU_WARN` (1) they
+        warn (:class:`~exuclear.ValidityWarning`).
     v_s, v_d : float
         Stiction and dynamic-transition velocities [m/s], ``0 < v_s < v_d``.
     """
@@ -112,8 +136,8 @@ class ModifiedCoulomb(FrictionLaw):
     name: ClassVar[str] = "paper"
 
     def __post_init__(self) -> None:
-        check_nonnegative("mu_s", self.mu_s)
-        check_nonnegative("mu_d", self.mu_d)
+        _check_coefficient("mu_s", self.mu_s)
+        _check_coefficient("mu_d", self.mu_d)
         v_s = check_positive("v_s", self.v_s)
         v_d = check_positive("v_d", self.v_d)
         if v_s >= v_d:

@@ -26,7 +26,9 @@ deterministic (the same parameter set gives the same summary), and then a row do
 depend on the executor that ran it, except for ``wall_time``.
 
 A *scene* is a module with a ``study`` function, its parameter defaults
-``STUDY_PARAMETERS`` and (optionally) its check ``check_study``; :func:`scene` makes it a
+``STUDY_PARAMETERS`` and (optionally) its check ``check_study`` and ``STUDY_COLUMNS``
+(:class:`Column` of its parameters and metrics: help, units, the option names of the
+scene's own command line); :func:`scene` makes it a
 :class:`Study`, from a dotted module path or from a short name.  The library never imports
 its scenes: short names come from the entry-point group :data:`SCENE_ENTRY_POINTS`, which
 installed distributions fill (exuclear's own scenes declare ``slider-crank`` and
@@ -54,8 +56,10 @@ import math
 import multiprocessing
 import os
 import pickle
+import re
 import sys
 import time
+import warnings
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures.process import BrokenProcessPool
@@ -91,6 +95,37 @@ SCENE_ENTRY_POINTS = "exuclear.scenes"
 Params = dict[str, Any]
 
 
+@dataclass(frozen=True)
+class Column:
+    """What a column of a study table holds: a parameter's option help and other
+    spellings, and the axis label of a plot (:mod:`exuclear.study_plot`).
+
+    Parameters
+    ----------
+    label : str
+        What the value is, without its unit (``"radial clearance"``).
+    unit : str
+        Its unit (``"m"``, ``"N"``, ``"rpm"``); empty for a number without one.
+    aliases : tuple of str
+        Other names of a parameter, as the scene's command line spells them too
+        (``("length",)`` for ``bearing_length``): accepted by :meth:`Study.complete`
+        and as options (``--length``).
+    """
+
+    label: str
+    unit: str = ""
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def axis_label(self) -> str:
+        """``"label [unit]"``, or the label alone."""
+        return f"{self.label} [{self.unit}]" if self.unit else self.label
+
+
+#: The status columns that carry a unit, as :class:`Column`.
+STATUS_LABELS = {"wall_time": Column("wall time of the run", "s")}
+
+
 # =======================================================================================
 # studies and parameter sets
 # =======================================================================================
@@ -115,17 +150,35 @@ class Study:
         would refuse; called for every set before any run starts.
     name : str
         For messages.
+    columns : mapping, optional
+        :class:`Column` of parameters and metrics by name: option help, other spellings
+        of a parameter, axis labels with units.
     """
 
     function: Callable[[Params], Mapping[str, Any]]
     parameters: Mapping[str, Any] | None = None
     check: Callable[[Params], None] | None = None
     name: str = ""
+    columns: Mapping[str, Column] | None = None
+
+    def aliases(self) -> dict[str, str]:
+        """Other spellings of the parameters: alias -> parameter name."""
+        return {alias: name for name, column in (self.columns or {}).items() for alias in column.aliases
+                if self.parameters is None or name in self.parameters}
 
     def complete(self, params: Mapping[str, Any]) -> Params:
-        """The parameter set with the defaults filled in; ``ValueError`` for unknown names."""
+        """The parameter set with the defaults filled in and other spellings
+        (:meth:`aliases`) under the parameter's name; ``ValueError`` for unknown names."""
         if not isinstance(params, Mapping):
             raise ValueError(f"a parameter set must be a dict, got {params!r}")
+        aliases = self.aliases()
+        named: dict[str, Any] = {}
+        for key, value in params.items():
+            name = aliases.get(key, key)
+            if name in named:
+                raise ValueError(f"`{name}` is given twice (as {name!r} and as its other name {key!r})")
+            named[name] = value
+        params = named
         if self.parameters is None:
             return dict(params)
         unknown = sorted(set(params) - set(self.parameters))
@@ -286,9 +339,57 @@ def _error_text(err: BaseException) -> str:
     return f"{type(err).__name__}: {' '.join(str(err).split())}"
 
 
+def _carried_categories() -> tuple[type[Warning], ...]:
+    """The warnings a row carries in its message: exuclear's own, which say that a result
+    may not mean what it seems (a unit slip, a law outside its validity, an unconverged path)."""
+    from ._checks import UnitWarning
+    from .contact import ValidityWarning
+    from .engine import AccuracyWarning
+
+    return UnitWarning, ValidityWarning, AccuracyWarning
+
+
+#: Names of the warning categories a row's message carries (:func:`_carried_categories`),
+#: each written ``Name: text`` there; :func:`warned` finds them.
+CARRIED_WARNINGS = ("UnitWarning", "ValidityWarning", "AccuracyWarning")
+
+
+def warned(table) -> Any:
+    """Which rows of a study table carry a warning of the run in their ``message``
+    (a boolean Series)."""
+    pattern = r"\b(?:" + "|".join(CARRIED_WARNINGS) + r"): "
+    return table["message"].fillna("").astype(str).str.contains(pattern, regex=True)
+
+
+def _message(own: str, caught: Sequence[warnings.WarningMessage]) -> str:
+    """The row's message: the run's own, then each distinct warning of :data:`CARRIED_WARNINGS`
+    as ``Name: text``, separated by ``"; "``.  Other warnings are shown as usual."""
+    carried = _carried_categories()
+    parts = [own] if own else []
+    for w in caught:
+        if issubclass(w.category, carried):
+            text = f"{w.category.__name__}: {' '.join(str(w.message).split())}"
+            if text not in parts:
+                parts.append(text)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+    return "; ".join(parts)
+
+
 def _run_one(function: Callable[[Params], Mapping[str, Any]], params: Params, key: str) -> dict[str, Any]:
     start = time.perf_counter()
     row: dict[str, Any] = dict(params)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")  # every run says its own warnings, not only the first run of a process
+        _run_into(row, function, params)
+    row["message"] = _message(row["message"], caught)
+    row["wall_time"] = time.perf_counter() - start
+    row["run_id"] = key
+    return row
+
+
+def _run_into(row: dict[str, Any], function: Callable[[Params], Mapping[str, Any]], params: Params) -> None:
+    """One run: its metrics, ``success`` and ``message`` into ``row``."""
     try:
         summary = function(dict(params))
         if not isinstance(summary, Mapping):
@@ -304,9 +405,6 @@ def _run_one(function: Callable[[Params], Mapping[str, Any]], params: Params, ke
         row["message"] = str(summary.get("message", ""))
     except Exception as err:  # a failed run is a row; KeyboardInterrupt is not caught
         row["success"], row["message"] = False, _error_text(err)
-    row["wall_time"] = time.perf_counter() - start
-    row["run_id"] = key
-    return row
 
 
 def _run_batch(function: Any, batch: Sequence[tuple[str, Params]]) -> list[dict[str, Any]]:
@@ -677,6 +775,14 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
         returned, not through the table's text as lists; for time series a table on
         disk would not carry.
 
+    Returns
+    -------
+    DataFrame
+        One row per parameter set of ``runs``.  ``table.attrs["ran"]``: the runs made
+        by this call; ``table.attrs["resumed"]``: the rows taken from the table at ``out``
+        (a resumed study).  A row's ``message`` carries the run's own message and its
+        warnings of :data:`CARRIED_WARNINGS` (``UnitWarning: ...``; :func:`warned`).
+
     Raises
     ------
     ValueError
@@ -705,11 +811,13 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
     done = {k for k, row in table.rows.items() if not (retry_failed and row.get("success") == "False")}
     todo = deque((k, p) for k, p in prepared if k not in done)
     order = [k for k, _ in prepared]
+    ran = len(todo)
     if todo:
         _execute(study, todo, table, len(prepared), workers, scheduler, executor, batch_size, progress)
     df = table.frame(order)
     if path is not None:
         _write_parquet(df, path)
+    df.attrs.update(ran=ran, resumed=len(prepared) - ran)  # after the Parquet file, which would keep them
     return df
 
 
@@ -887,7 +995,8 @@ def scene(name: str) -> Study:
     missing = [n for n in ("study", "STUDY_PARAMETERS") if not hasattr(module, n)]
     if missing:
         raise ValueError(f"module {module_name} is not a scene: it has no {', '.join(missing)}")
-    return Study(module.study, dict(module.STUDY_PARAMETERS), getattr(module, "check_study", None), name)
+    return Study(module.study, dict(module.STUDY_PARAMETERS), getattr(module, "check_study", None), name,
+                 dict(getattr(module, "STUDY_COLUMNS", {})))
 
 
 # =======================================================================================
@@ -899,15 +1008,36 @@ def _option(name: str) -> str:
     return "--" + name.replace("_", "-")
 
 
+#: What the study's parsers take for a negative value, not an option: "-" and a digit
+#: (``-1e-4``, ``-.5``, ``-2:0:1``, ``-1,0,1``), ``-inf``, ``-nan``.  argparse's own pattern
+#: (Python < 3.13) misses the exponent and list forms, and ``--clearance -1e-4`` was
+#: "expected one argument" instead of the rule the value breaks.
+_NEGATIVE_VALUE = re.compile(r"^-(\.?\d|inf|nan)", re.IGNORECASE)
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` that reads negative numbers (:data:`_NEGATIVE_VALUE`) as values."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_VALUE  # argparse's hook for what a negative number is
+
+
 def _scene_parser(study: Study, prog: str) -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
+    ap = _Parser(
         prog=prog, description=f"Sweep the {study.name} scene: each parameter option takes one value, a list "
         "a,b,c or a range start:stop:step (stop included); with --sample N, low:high bounds to draw from.")
+    columns = study.columns or {}
     for name, default in (study.parameters or {}).items():
-        ap.add_argument(_option(name), dest=name, metavar="VALUES", help=f"default {default!r}")
+        column = columns.get(name)
+        flags = [_option(name)] + [_option(alias) for alias in (column.aliases if column else ())]
+        what = f"{column.axis_label}; " if column else ""
+        ap.add_argument(*flags, dest=name, metavar="VALUES", help=f"{what}default {default!r}".replace("%", "%%"))
     ap.add_argument("--sample", type=int, metavar="N", help="draw N parameter sets in the low:high bounds "
                     "instead of the grid")
-    ap.add_argument("--method", choices=("lhs", "random"), default="lhs", help="sampling (default %(default)s)")
+    # not --method, which on the scenes' command lines is the solver
+    ap.add_argument("--sampling", choices=("lhs", "random"), default="lhs",
+                    help="how --sample draws: Latin hypercube or independent uniform (default %(default)s)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the sample (default %(default)s)")
     ap.add_argument("--workers", type=int, help="local worker processes (default: all cores; 1: serial), or the "
                     "workers of --scheduler local")
@@ -942,11 +1072,11 @@ def _runs_from_args(study: Study, args: argparse.Namespace) -> list[Params]:
             if len(values) != 1:
                 raise ValueError(f"`{_option(name)}`: with --sample, give low:high bounds or one value, got {text!r}")
             fixed[name] = values[0]
-    return sample(bounds, args.sample, seed=args.seed, method=args.method, fixed=fixed)
+    return sample(bounds, args.sample, seed=args.seed, method=args.sampling, fixed=fixed)
 
 
 def _plot_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="python -m exuclear.study plot",
+    ap = _Parser(prog="python -m exuclear.study plot",
                                  description="Plot a metric of a study table over one parameter (lines, one per "
                                  "value of --by) or two (heat map, --y).")
     ap.add_argument("table", help="the study's CSV")
@@ -957,10 +1087,26 @@ def _plot_parser() -> argparse.ArgumentParser:
     ap.add_argument("--points", action="store_true", help="markers only (a bifurcation-style diagram)")
     ap.add_argument("--where", action="append", default=[], metavar="NAME=VALUE",
                     help="keep the rows with this parameter value (repeatable)")
+    ap.add_argument("--scene", help="the scene whose study made the table, for axis labels with units (default: the "
+                    "installed scene whose parameters are all columns of the table)")
     ap.add_argument("--logx", action="store_true")
     ap.add_argument("--logy", action="store_true")
     ap.add_argument("--out", required=True, metavar="FILE", help="figure file (png, pdf, svg)")
     return ap
+
+
+def _scene_of(table) -> Study | None:
+    """The installed scene (:func:`scene_names`) whose parameters are all columns of
+    ``table``, if exactly one is; None otherwise."""
+    found = []
+    for name in scene_names():
+        try:
+            study = scene(name)
+        except ValueError:  # a broken entry point does not stop a plot
+            continue
+        if study.parameters and set(study.parameters) <= set(table.columns):
+            found.append(study)
+    return found[0] if len(found) == 1 else None
 
 
 def _plot_main(argv: list[str]) -> int:
@@ -975,13 +1121,25 @@ def _plot_main(argv: list[str]) -> int:
             if not sep:
                 raise ValueError(f"`--where` is NAME=VALUE, got {item!r}")
             where[name] = _number(value)
+        study = scene(args.scene) if args.scene else _scene_of(table)
         path = plot_metric(table, args.metric, args.x, y=args.y, by=args.by, where=where, points=args.points,
-                           logx=args.logx, logy=args.logy, path=args.out)
+                           logx=args.logx, logy=args.logy, path=args.out, columns=study.columns if study else None)
     except ValueError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2
     print(f"wrote {path}")
     return 0
+
+
+def _one_line_warnings() -> None:
+    """Show warnings of the parameter checks (a unit slip, before any run) as one line
+    ``warning: ...`` on stderr, as the scenes' command lines do; the runs' own warnings go
+    into their rows."""
+
+    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001 - warnings' signature
+        print(f"warning: {category.__name__}: {message}", file=sys.stderr)
+
+    warnings.showwarning = show
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -996,6 +1154,13 @@ def main(argv: list[str] | None = None) -> int:
         return 0 if argv else 2
     if argv[0] == "plot":
         return _plot_main(argv[1:])
+    with warnings.catch_warnings():  # the caller's way of showing warnings comes back after it
+        _one_line_warnings()
+        return _scene_main(argv, prog)
+
+
+def _scene_main(argv: list[str], prog: str) -> int:
+    """``python -m exuclear.study SCENE [options]``."""
     try:
         study = scene(argv[0])
     except ValueError as err:
@@ -1012,10 +1177,24 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt as err:
         print(f"{err or 'interrupted'}", file=sys.stderr)
         return 130
-    failed = int((~table["success"].astype(bool)).sum())
-    print(f"{len(table)} runs, {failed} failed; table {args.out}")
+    print(_summary_line(table, args.out))
     return 0
 
 
+def _summary_line(table, out: str | os.PathLike) -> str:
+    """The command line's last line: runs made now and taken from the file, failed runs,
+    and runs with warnings (:func:`warned`)."""
+    failed = int((~table["success"].astype(bool)).sum())
+    with_warnings = int(warned(table).sum()) if len(table) else 0
+    ran, resumed = table.attrs.get("ran", len(table)), table.attrs.get("resumed", 0)
+    runs = f"{len(table)} runs ({ran} ran now, {resumed} taken from {out})" if resumed else f"{len(table)} runs"
+    warns = f", {with_warnings} with warnings (see their message)" if with_warnings else ""
+    return f"{runs}, {failed} failed{warns}; table {out}"
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    # the importable module's main, so that what travels to worker processes (functions,
+    # classes) is exuclear.study's own and not this __main__ copy's
+    from exuclear.study import main as _main
+
+    sys.exit(_main())

@@ -7,6 +7,9 @@ canvas); a figure returned to draw on further is made by pyplot, in the caller's
 :func:`plot_metric` draws a metric of a :func:`exuclear.study.run_study` table over one
 parameter (lines, or points for a bifurcation-style diagram; one set per value of
 ``by``) or over two (a heat map).  Failed runs are left out and counted in the title.
+Axes are labelled with what a column holds and its unit, from the study's
+:class:`~exuclear.study.Column` table (a scene's ``STUDY_COLUMNS``), and with the bare
+column name where it has none.
 """
 from __future__ import annotations
 
@@ -33,9 +36,19 @@ def _select(table, metric: str, names: list[str], where: Mapping[str, Any]):
     return rows, failed
 
 
+def axis_label(name: str, columns: Mapping[str, Any] | None = None) -> str:
+    """``"label [unit]"`` of column ``name`` from ``columns`` (name ->
+    :class:`~exuclear.study.Column`) or the status columns' table; else ``name`` itself."""
+    from .study import STATUS_LABELS
+
+    column = (columns or {}).get(name) or STATUS_LABELS.get(name)
+    return column.axis_label if column is not None else name
+
+
 def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | None = None,
                 where: Mapping[str, Any] | None = None, points: bool = False, logx: bool = False,
-                logy: bool = False, ax: Any = None, path: str | os.PathLike | None = None, title: str | None = None):
+                logy: bool = False, ax: Any = None, path: str | os.PathLike | None = None, title: str | None = None,
+                columns: Mapping[str, Any] | None = None):
     """Plot ``metric`` over parameter ``x``.
 
     Parameters
@@ -60,6 +73,10 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     path : path, optional
         Save the figure there and close it (if pyplot holds it); returns the path.
         Without it, returns the Axes.
+    columns : mapping, optional
+        What the columns hold, name -> :class:`~exuclear.study.Column` (the study's
+        ``Study.columns``, e.g. ``scene("slider-crank").columns``): the axis labels with
+        units (:func:`axis_label`).
     """
     if y is not None and by is not None:
         raise ValueError("give `y` (a heat map) or `by` (one line per value), not both")
@@ -75,23 +92,23 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
         cells = rows.pivot_table(index=y, columns=x, values=metric, aggfunc="mean")
         xs, ys = cells.columns.to_numpy(float), cells.index.to_numpy(float)
         mesh = ax.pcolormesh(_edges(xs, logx), _edges(ys, logy), cells.to_numpy(float), shading="flat")
-        ax.figure.colorbar(mesh, ax=ax, label=metric)
-        ax.set_ylabel(y)
+        ax.figure.colorbar(mesh, ax=ax, label=axis_label(metric, columns))
+        ax.set_ylabel(axis_label(y, columns))
     else:
         groups = [(None, rows)] if by is None else list(rows.groupby(by, sort=True))
         for value, group in groups:
             group = group.sort_values(x)
-            label = None if by is None else f"{by} = {value}"
+            label = None if by is None else f"{value}"
             style = dict(linestyle="none", marker=".", markersize=4) if points else dict(marker="o", markersize=3)
             ax.plot(group[x].to_numpy(float), group[metric].to_numpy(float), label=label, **style)
         if by is not None:
-            ax.legend()
-        ax.set_ylabel(metric)
+            ax.legend(title=axis_label(by, columns))
+        ax.set_ylabel(axis_label(metric, columns))
         if logy:
             ax.set_yscale("log")
     if logx:
         ax.set_xscale("log")
-    ax.set_xlabel(x)
+    ax.set_xlabel(axis_label(x, columns))
     fixed = ", ".join(f"{k} = {v}" for k, v in (where or {}).items())
     note = f"{failed} failed run(s) left out" if failed else ""
     what = f"{metric} over {x}" + (f" and {y}" if y else "")
@@ -138,4 +155,4 @@ def _edges(centres: np.ndarray, log: bool) -> np.ndarray:
     return np.exp(e) if log else e
 
 
-__all__ = ["plot_metric"]
+__all__ = ["plot_metric", "axis_label"]

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
 import warnings
 from collections.abc import Mapping, Sequence
@@ -12,6 +13,12 @@ import numpy as np
 
 #: Exit status for bad input (as argparse uses for bad options).
 EXIT_BAD_INPUT = 2
+
+#: What argparse takes for a negative number, a value and not an option: anything that starts
+#: with "-" and a digit (``-1e-4``, ``-.5``, ``-2:0:1``) or is ``-inf``/``-nan``.  argparse's
+#: own pattern (Python < 3.13) misses the exponent form, so ``--clearance -1e-4`` was "expected
+#: one argument" instead of the rule it breaks.  No option of the scenes looks like this.
+NEGATIVE_NUMBER = re.compile(r"^-(\.?\d|inf|nan)", re.IGNORECASE)
 
 
 def one_line_warnings() -> None:
@@ -25,7 +32,14 @@ def one_line_warnings() -> None:
 
 class OneLineParser(argparse.ArgumentParser):
     """An ``ArgumentParser`` whose errors are one line ``error: ...`` (no usage block),
-    with exit status :data:`EXIT_BAD_INPUT`, like every other bad input of the command lines."""
+    with exit status :data:`EXIT_BAD_INPUT`, like every other bad input of the command lines.
+
+    A negative number (:data:`NEGATIVE_NUMBER`) is an option's value, so that a negative
+    value reaches the rule it breaks (```clearance` must be positive, got -0.0001``)."""
+
+    def __init__(self, *args: object, **kwargs: object) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER  # argparse's hook for what a negative number is
 
     def error(self, message: str) -> None:  # noqa: D102 - argparse's hook
         self.exit(EXIT_BAD_INPUT, f"error: {message} (see {self.prog} --help)\n")

@@ -14,12 +14,15 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import types
 import typing
 from collections.abc import Callable, Iterable
 from dataclasses import Field, fields
 from numbers import Real
 from typing import Any
+
+from exuclear.study import Column
 
 #: A field's rule: takes the field's name and value, returns the value (a float for the
 #: numeric rules) or raises ``ValueError`` naming the field.
@@ -178,3 +181,27 @@ def add_param_options(ap: argparse.ArgumentParser, defaults: object) -> None:
 def changes_from_args(args: argparse.Namespace, cls: type) -> dict[str, Any]:
     """The fields of ``cls`` that :func:`add_param_options` made options of, as parsed."""
     return {f.name: getattr(args, f.name) for f in _option_fields(cls)}
+
+
+#: A unit in a field's help text: ``"crank length r [m]"``.
+_UNIT = re.compile(r"\s*\[([^\]]+)\]")
+
+
+def column(f: Field, label: str | None = None) -> Column:
+    """The study :class:`~exuclear.study.Column` of a parameter field: its help text (up to
+    a colon, semicolon or parenthesis) as the label, the unit in its brackets, its short
+    option (:func:`param`'s ``option``) as the other spelling.  ``label`` replaces the
+    label where the help does not read as one."""
+    text = f.metadata["help"]
+    unit = _UNIT.search(text)
+    if label is None:
+        label = re.split(r":|;| \(", _UNIT.sub("", text, count=1), maxsplit=1)[0].strip()
+    aliases = (f.metadata["option"],) if f.metadata.get("option") else ()
+    return Column(label, unit.group(1) if unit else "", aliases)
+
+
+def study_columns(cls: type, names: Iterable[str], labels: dict[str, str] | None = None) -> dict[str, Column]:
+    """:func:`column` of each field of the dataclass ``cls`` among ``names`` (the others are
+    left out), with the labels ``labels`` where given."""
+    by_name = {f.name: f for f in fields(cls)}
+    return {name: column(by_name[name], (labels or {}).get(name)) for name in names if name in by_name}

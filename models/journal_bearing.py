@@ -40,9 +40,10 @@ from exuclear import SolverSettings
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
 from exuclear.materials import MATERIALS
+from exuclear.study import Column
 
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
-from ._params import add_param_options, changes_from_args, check_fields, nonnegative, param, positive
+from ._params import add_param_options, changes_from_args, check_fields, nonnegative, param, positive, study_columns
 from .scene import Scene
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
@@ -70,9 +71,9 @@ class JournalBearingParams:
     cr: float = field(metadata=param("coefficient of restitution", cli=False))
     journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
     bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    journal_radius: float = field(metadata=param("R_J [m]"))
-    bearing_radius: float = field(metadata=param("R_B [m]"))
-    length: float = field(metadata=param("bearing length L [m]"))
+    journal_radius: float = field(metadata=param("journal radius R_J [m]"))
+    bearing_radius: float = field(metadata=param("bearing radius R_B [m]"))
+    length: float = field(metadata=param("bearing length L [m]", option="bearing_length"))  # the slider-crank's name
     mass: float = field(metadata=param("journal mass [kg]", positive))
     impact_velocity: float = field(metadata=param("impact velocity [m/s]", nonnegative, option="velocity"))
     v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
@@ -280,6 +281,28 @@ STUDY_PARAMETERS = {name: getattr(JournalBearingParams.paper(), name) for name i
     "impact_velocity", "v_min", "backend")}
 
 
+#: The metrics of :func:`study`: what each is, its unit (axis labels of study plots).
+STUDY_METRICS = {
+    "peak_force": Column("peak contact force", "N"),
+    "max_penetration": Column("largest penetration", "m"),
+    "max_ecc_over_c": Column("largest |e| / c (1 + max penetration / c)"),
+    "departure_velocity": Column("departure velocity", "m/s"),
+    "effective_restitution": Column("effective restitution (departure / impact velocity)"),
+    "contact_duration": Column("contact duration", "s"),
+    "impacts": Column("impacts (1 when the journal left the wall)"),
+    # the energy audit: kinetic energy before minus after, against int (F_N - F_el) delta' dt
+    # (trapezoid rule over the outputs)
+    "energy_lost": Column("kinetic energy lost", "J"),
+    "contact_dissipated": Column("energy dissipated by the contact", "J"),
+    "energy_residual_rel": Column("energy residual / energy lost"),
+    "sim_wall_time": Column("solver wall time", "s"),
+}
+
+#: Parameters (from the :class:`JournalBearingParams` fields: help, unit, the command line's
+#: other spellings) and metrics of the study, for ``python -m exuclear.study`` and its plots.
+STUDY_COLUMNS = {**study_columns(JournalBearingParams, STUDY_PARAMETERS), **STUDY_METRICS}
+
+
 def study_params(values: dict) -> JournalBearingParams:
     """The :class:`JournalBearingParams` of a study's parameter set (defaults
     :data:`STUDY_PARAMETERS`); ``ValueError`` for a value the scene refuses."""
@@ -304,13 +327,8 @@ def study(values: dict) -> dict:
     Returns
     -------
     dict
-        ``peak_force`` [N], ``max_penetration`` [m], ``max_ecc_over_c`` (``1 + max
-        penetration / c``), ``departure_velocity`` [m/s], ``effective_restitution``,
-        ``contact_duration`` [s], ``impacts`` (1 when the journal left the wall), the
-        energy audit: ``energy_lost`` [J] (kinetic energy before minus after),
-        ``contact_dissipated`` [J] (``int (F_N - F_el) delta' dt``, trapezoid rule over
-        the outputs) and ``energy_residual_rel`` (their difference over ``energy_lost``);
-        ``sim_wall_time`` [s]; ``success`` and ``message`` of the run.
+        The metrics of :data:`STUDY_METRICS` (meaning and unit there); ``success`` and
+        ``message`` of the run.
     """
     params = study_params(values)
     result, out = run(params)

@@ -67,6 +67,7 @@ from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, AccuracyWarning
 from exuclear.materials import MATERIALS
 from exuclear.settings import METHODS
+from exuclear.study import Column
 from exuclear.timescales import reduced_mass
 
 from . import _defaults
@@ -93,6 +94,7 @@ from ._params import (
     optional,
     param,
     positive,
+    study_columns,
 )
 from .scene import Scene
 
@@ -809,6 +811,41 @@ def _study_defaults() -> dict:
 
 STUDY_PARAMETERS = _study_defaults()
 
+#: The metrics of :func:`study`: what each is, its unit (axis labels of study plots).
+#: "Steady": after the ``startup`` revolutions.
+STUDY_METRICS = {
+    "peak_force": Column("peak contact force, whole run", "N"),
+    "peak_force_steady": Column("peak contact force, steady", "N"),
+    "peak_force_by_rev": Column("peak contact force per steady revolution", "N"),
+    "impacts": Column("contact onsets, whole run"),
+    "impacts_per_rev": Column("contact onsets per steady revolution"),
+    "impacts_by_rev": Column("contact onsets in each steady revolution"),
+    "max_ecc_over_c": Column("largest |e| / c, steady"),
+    # RMS over the steady revolutions of the slider acceleration minus the ideal
+    # mechanism's (ideal_slider_acceleration), and that over the ideal RMS
+    "slider_acc_rms_dev": Column("RMS deviation of the slider acceleration from the ideal", "m/s^2"),
+    "slider_acc_rms_dev_rel": Column("RMS deviation of the slider acceleration / ideal RMS"),
+    # the energy audit (_energy_audit; minimal formulation, NaN in the others)
+    "drive_work": Column("drive work", "J"),
+    "contact_dissipated": Column("energy dissipated by the contact", "J"),
+    "energy_residual": Column("energy residual", "J"),
+    "energy_residual_rel": Column("energy residual / gross contact work"),
+    "steps": Column("solver steps"),
+    "sim_wall_time": Column("solver wall time", "s"),
+}
+
+#: Parameters (from the :class:`SliderCrankParams` fields: help, unit, the command line's
+#: other spellings such as ``--length``) and metrics of the study, for
+#: ``python -m exuclear.study`` and its plots.
+STUDY_COLUMNS = {
+    **study_columns(SliderCrankParams, STUDY_PARAMETERS, {
+        "friction": "friction law", "formulation": "formulation",
+        "revolutions": "crank revolutions after the start-up"}),
+    "rpm": Column("crank speed", "rpm"),
+    "startup": Column("start-up revolutions, left out of the steady metrics"),
+    **STUDY_METRICS,
+}
+
 #: Output interval of a study run [s]: below any step, so that every accepted step is
 #: recorded and the energy audit's trapezoid rule and the peak force see each impact.
 STUDY_EVERY_STEP = 1e-12
@@ -908,15 +945,8 @@ def study(values: dict) -> dict:
     Returns
     -------
     dict
-        ``peak_force`` [N] (contact force, whole run), ``peak_force_steady`` [N],
-        ``impacts`` (contact onsets, whole run), ``impacts_per_rev`` (onsets after the
-        start-up per revolution), ``max_ecc_over_c`` (largest ``|e| / c`` after the
-        start-up), ``slider_acc_rms_dev`` [m/s^2] and ``slider_acc_rms_dev_rel`` (RMS
-        over the steady revolutions of the slider acceleration minus the ideal
-        mechanism's, :func:`ideal_slider_acceleration`; and over the ideal RMS), the
-        energy audit (minimal formulation; NaN in the redundant one): ``drive_work``,
-        ``contact_dissipated``, ``energy_residual`` [J], ``energy_residual_rel``; the
-        solver's ``steps`` and ``sim_wall_time`` [s]; ``success`` and ``message`` of the run.
+        The metrics of :data:`STUDY_METRICS` (meaning and unit there); ``success`` and
+        ``message`` of the run.
     """
     p = study_params(values)
     model = build(p)

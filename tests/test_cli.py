@@ -291,6 +291,20 @@ def test_parser_errors_are_one_line(module, args):
     assert len(lines) == 1 and lines[0].startswith("error: ") and "--help" in lines[0]
 
 
+@pytest.mark.parametrize("module, args, message", [
+    (sc, ("--clearance", "-1e-4"), "`clearance` must be positive, got -0.0001"),  # the API's own text
+    (sc, ("--dt-out", "-1e-5"), "`--dt-out` must be positive, got -1e-05"),
+    (sc, ("--step", "-.5"), "`step` must be positive, got -0.5"),
+    (jb, ("--length", "-1e-4"), "`length` must be positive, got -0.0001"),
+    (jb, ("--mass", "-4E-2"), "`mass` must be positive, got -0.04"),
+    (jb, ("--velocity", "-inf"), "`impact_velocity` must be finite, got -inf"),
+])
+def test_a_negative_value_gets_the_rule_it_breaks(module, args, message):
+    # argparse read "-1e-4" as an option and said "expected one argument" (issue 21)
+    status, _, err = cli(module, *args)
+    assert status == 2 and err.strip() == f"error: {message}", err
+
+
 # -- API checks ------------------------------------------------------------------------
 def test_millimetre_dimensions_warn():
     with pytest.warns(exuclear.UnitWarning, match="were they given in mm"):

@@ -251,3 +251,80 @@ def test_signals_only_horizon_relative_to_the_range():
     assert s.horizon == pytest.approx(0.5, abs=1e-5) and not s.path_agrees and not result.signals_agree
     assert s.spectrum.agrees  # a slow drift moves no line of a 5 Hz sine
     assert "signals part: y at t = 0.5" in result.report()
+
+
+# ---------------------------------------------------------------------------------------
+# step="auto" and the plain mbs.SolveDynamic path (issue 21)
+# ---------------------------------------------------------------------------------------
+
+def _readme_journal(ss):
+    """The README's journal impact, run by a plain ``mbs.SolveDynamic`` with ``ss``."""
+    import exudyn as exu
+    from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[1e-4, 0, 0],
+                                       initialVelocities=[0.3, 0, 0]))
+    pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, pin], position=[0, 0, 0], axis=[0, 0, 1],
+                                          journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=0.9)
+    mbs.Assemble()
+    ok = mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.DOPRI5)
+    return RunRecord.from_mbs(mbs, {"J": joint}, success=ok)
+
+
+def test_a_plain_solve_dynamic_run_is_checked_with_its_own_simulation_settings():
+    # the user's main path had no way in: run(ss: exu.SimulationSettings) -> RunRecord.from_mbs
+    import exudyn as exu
+
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = 2e-4  # as in the README: Exudyn's 100 steps, DOPRI5's default tolerances
+    ss.solution.sensors.writePeriod = 1e-6
+    result = check_convergence(_readme_journal, ss)
+    tighter = result.reference_settings.timeIntegration
+    assert tighter.numberOfSteps == 400 and ss.timeIntegration.numberOfSteps == 100  # the user's copy is kept
+    assert (tighter.relativeTolerance, tighter.absoluteTolerance) == pytest.approx((2.5e-9, 2.5e-9), rel=1e-15)
+    assert tighter.endTime == 2e-4 and result.reference_settings.solution.sensors.writePeriod == 1e-6
+    # one impact, not chaotic: the whole run agrees, as the SolverSettings path's journal impact does
+    assert result.complete and result.end == pytest.approx(2e-4) and result.path_agrees
+    assert result.joints["J"].impacts == result.joints["J"].impacts_ref == 1
+    assert "exu.SimulationSettings, 100 steps of 2e-06 s" in result.report()
+
+
+@pytest.fixture(scope="module")
+def double_pendulum():
+    pytest.importorskip("validation.exudyn_examples")
+    from validation.exudyn_examples import double_pendulum_3d
+
+    return double_pendulum_3d
+
+
+def test_step_auto_refines_the_step_the_run_chose(double_pendulum):
+    # SolverSettings(step="auto") made refined_settings divide a string: TypeError
+    def run(settings):
+        model = double_pendulum.build(True, end_time=0.02)
+        return RunRecord.from_handles(exuclear.simulate(model.mbs, settings), {"elbow": model.joint})
+
+    settings = double_pendulum.build(True, end_time=0.02).solver_settings
+    assert settings.step == "auto"
+    result = check_convergence(run, settings)
+    chosen = result.run.step  # result.step of the user's run: min(T_c / 10, end_time / 1000)
+    assert 0.0 < chosen <= 0.02 / 1000 and result.settings.step == chosen
+    assert result.reference_settings.step == pytest.approx(chosen / 4, rel=1e-15) == result.reference.step
+    assert result.complete and f"step {chosen:.3g} s" in result.report()
+    with pytest.raises(ValueError, match="`step` is 'auto'"):
+        refined_settings(settings)  # no model, no number: said, not a TypeError
+
+
+def test_the_zoo_double_pendulum_checked_on_its_plain_path(double_pendulum):
+    def run(ss):
+        model = double_pendulum.build(True, end_time=0.02)
+        ok = model.mbs.SolveDynamic(ss, solverType=model.solver_type)
+        return RunRecord.from_mbs(model.mbs, {"elbow": model.joint}, success=ok)
+
+    ss = double_pendulum.build(True, end_time=0.02).simulation_settings  # the issue's 1e-4 s steps
+    result = check_convergence(run, ss, factor=2.0)
+    assert result.reference_settings.timeIntegration.numberOfSteps == 2 * ss.timeIntegration.numberOfSteps == 400
+    assert result.complete and result.run.time_reached == pytest.approx(0.02)
+    assert set(result.joints) == {"elbow"}

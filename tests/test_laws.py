@@ -133,6 +133,23 @@ def test_friction_names():
     assert exuclear.friction_law("paper") == ModifiedCoulomb.paper()
 
 
+def test_friction_coefficient_above_one_warns_and_a_negative_one_is_refused():
+    # "coulomb:1.5" was taken without a word (issue 21): dry steel on steel is about 0.75,
+    # only clean dry soft metals reach 1 to 1.35 (exuclear.friction.MU_WARN, with its source)
+    import warnings
+
+    with pytest.warns(exuclear.ValidityWarning, match=r"`mu` = 1.5 is above 1"):
+        exuclear.friction_law("coulomb:1.5")
+    with pytest.warns(exuclear.ValidityWarning, match=r"`mu_s` = 1.2"):
+        ModifiedCoulomb(mu_s=1.2, mu_d=0.9, v_s=1e-4, v_d=1e-2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the paper's values and the bound itself are quiet
+        ModifiedCoulomb.paper()
+        exuclear.friction_law(f"coulomb:{exuclear.friction.MU_WARN}")
+    with pytest.raises(ValueError, match="`mu` must be non-negative, got -0.1"):
+        exuclear.friction_law("coulomb:-0.1")
+
+
 
 @pytest.mark.parametrize("law", [ModifiedCoulomb.paper(), exuclear.friction.Coulomb(0.1, v_eps=2e-4)], ids=["paper", "coulomb"])
 def test_friction_expression_matches_the_branch_formula(law):

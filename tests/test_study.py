@@ -3,6 +3,7 @@ interrupts and resumption, executors (serial, local processes, a real Dask Local
 giving equal rows, the scenes' study functions and the command line."""
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import signal
@@ -55,6 +56,21 @@ def crashes_at_2(p: dict) -> dict:
     if p["x"] == 2:
         os._exit(3)
     return {"y": p["x"] + 0.5}
+
+
+def warns(p: dict) -> dict:
+    """Warns as a scene does for a unit slip at x = 1 (twice: carried once), and a plain
+    UserWarning at x = 2 (not carried: shown as usual)."""
+    import warnings
+
+    import exuclear
+
+    if p["x"] == 1:
+        for _ in range(2):
+            warnings.warn("length 15 m: were they given in mm?", exuclear.UnitWarning, stacklevel=2)
+    if p["x"] == 2:
+        warnings.warn("not exuclear's", UserWarning, stacklevel=2)
+    return {"y": float(p["x"]), "message": "own note" if p["x"] == 1 else ""}
 
 
 def _values(df: pd.DataFrame) -> pd.DataFrame:
@@ -152,6 +168,35 @@ def test_own_failure_status_resume_and_retry(tmp_path: Path):
     pd.testing.assert_frame_equal(again, df, check_exact=True)
     st.run_study(reports_failure, st.grid(x=range(3)), out, workers=1, progress=False, retry_failed=True)
     assert CALLS == [1] and len(pd.read_csv(out)) == 3  # only the failed run is redone, and replaces its row
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_run_s_warnings_are_in_its_row(tmp_path: Path, workers: int):
+    # a unit slip (UnitWarning) was a successful row with an empty message (issue 21)
+    with pytest.warns(UserWarning, match="not exuclear's") if workers == 1 else contextlib.nullcontext():
+        df = st.run_study(warns, st.grid(x=range(3)), tmp_path / "w.csv", workers=workers, progress=False)
+    assert df["message"].tolist() == ["", "own note; UnitWarning: length 15 m: were they given in mm?", ""]
+    assert df["success"].all() and st.warned(df).tolist() == [False, True, False]
+    on_disk = st.load_table(tmp_path / "w.csv").sort_values("x")  # in the order the runs finished
+    assert st.warned(on_disk).tolist() == [False, True, False]
+
+
+def test_the_summary_counts_warnings_and_says_what_ran_now(tmp_path: Path, capsys):
+    # the issue's case: 15 for a length in metres is a 33 kN "success" in the slider-crank
+    out = tmp_path / "units.csv"
+    args = ["--no-progress", "--workers", "1", "--out", str(out)]
+    assert st.main(["journal-bearing", "--length", "0.015,15", *args]) == 0
+    said = capsys.readouterr()
+    assert said.out.strip() == f"2 runs, 0 failed, 1 with warnings (see their message); table {out}"
+    assert "warning: UnitWarning: the bearing radius 0.01 m or length 15 m" in said.err  # before the runs, one line
+    row = st.load_table(out).set_index("length").loc[15.0]
+    assert row["success"] and row["message"].startswith("UnitWarning: the bearing radius 0.01 m or length 15 m")
+    # resumed: a resumed study's summary counted all rows as if run now
+    assert st.main(["journal-bearing", "--length", "0.015,15,0.02", *args]) == 0
+    assert capsys.readouterr().out.strip() == (f"3 runs (1 ran now, 2 taken from {out}), 0 failed, 1 with warnings "
+                                               f"(see their message); table {out}")
+    table = st.run_study(st.scene("journal-bearing"), st.grid(length=[0.015, 0.02]), out, workers=1, progress=False)
+    assert (table.attrs["ran"], table.attrs["resumed"]) == (0, 2)
 
 
 def test_bad_input_before_any_run(tmp_path: Path):
@@ -325,3 +370,87 @@ def test_command_line(tmp_path: Path, capsys):
     fig = tmp_path / "fig.png"
     assert st.main(["plot", str(out), "--metric", "peak_force", "--x", "cr", "--out", str(fig)]) == 0
     assert fig.stat().st_size > 0
+
+
+def test_a_negative_value_gets_the_rule_it_breaks(tmp_path: Path, capsys):
+    # argparse read "-1e-4" as an option and said "expected one argument" (issue 21)
+    out = tmp_path / "neg.csv"
+    assert st.main(["slider-crank", "--clearance", "-1e-4", "--no-progress", "--out", str(out)]) == 2
+    assert "`clearance` must be positive, got -0.0001" in capsys.readouterr().err
+    assert st.main(["slider-crank", "--gravity", "-1,0", "--no-progress", "--out", str(out)]) == 2
+    assert "`gravity` must be non-negative, got -1" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_python_m_exuclear_study_prints_no_runpy_warning(tmp_path: Path):
+    # `import exuclear` used to import exuclear.study, and runpy then warned that the module
+    # was in sys.modules before it ran it as __main__: in the parent and again in every
+    # spawned worker (3 times with 2 workers), through the progress bar
+    import subprocess
+    import sys
+
+    import exuclear
+
+    assert exuclear.run_study is st.run_study and exuclear.Study is st.Study  # still the top-level names
+    helped = subprocess.run([sys.executable, "-m", "exuclear.study", "--help"], capture_output=True, text=True)
+    assert helped.returncode == 0 and "RuntimeWarning" not in helped.stderr, helped.stderr
+    ran = subprocess.run([sys.executable, "-m", "exuclear.study", "journal-bearing", "--cr", "0.5,0.9", "--workers", "2",
+                          "--no-progress", "--out", str(tmp_path / "two.csv")], capture_output=True, text=True)
+    assert ran.returncode == 0, ran.stderr
+    assert "Warning" not in ran.stderr, ran.stderr
+    assert st.load_table(tmp_path / "two.csv")["success"].all()
+
+
+@pytest.mark.parametrize("name, module", [("slider-crank", "slider_crank"), ("journal-bearing", "journal_bearing")])
+def test_the_study_speaks_the_scene_s_option_names(name, module):
+    # the study said --bearing-length and --journal-material where the scene's command line
+    # says --length and --journal (issue 21): every spelling of a study parameter on the
+    # scene's command line is one of the study's too
+    import importlib
+
+    scene_parser = importlib.import_module(f"exuclear.models.{module}")._parser()
+    study = st.scene(name)
+    study_parser = st._scene_parser(study, "study")
+
+    def spellings(parser, dest):
+        return {flag for action in parser._actions if action.dest == dest for flag in action.option_strings}
+
+    for parameter in study.parameters:
+        assert spellings(scene_parser, parameter) <= spellings(study_parser, parameter), parameter
+    assert {"--length", "--bearing-length", "--journal", "--journal-material"} <= set(study_parser._option_string_actions)
+    assert "--method" not in study_parser._option_string_actions  # the scenes' solver; the study's draw is --sampling
+    # the API takes the other spellings too, under the parameter's own name (one run id)
+    field = "bearing_length" if name == "slider-crank" else "length"
+    assert study.complete({"length": 0.02})[field] == 0.02 and study.complete({"bearing_length": 0.02})[field] == 0.02
+    assert st.run_id(study.complete({"journal": "aluminium"})) == st.run_id(study.complete({"journal_material": "aluminium"}))
+    with pytest.raises(ValueError, match="given twice"):
+        study.complete({"length": 0.02, "bearing_length": 0.03})
+
+
+def test_plot_axes_say_what_and_in_which_unit(tmp_path: Path):
+    # the axes were labelled with raw column names, no units (issue 21)
+    pytest.importorskip("matplotlib")
+    from matplotlib.figure import Figure
+
+    from exuclear.study_plot import axis_label, plot_metric
+
+    out = tmp_path / "labels.csv"
+    assert st.main(["journal-bearing", "--cr", "0.5,0.9", "--length", "0.01,0.02", "--workers", "1", "--no-progress",
+                    "--out", str(out)]) == 0
+    table = st.load_table(out)
+    study = st._scene_of(table)  # what the command line labels by when no --scene is given
+    assert study is not None and study.name == "journal-bearing"
+    ax = plot_metric(table, "peak_force", "cr", by="length", ax=Figure().subplots(), columns=study.columns)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("coefficient of restitution", "peak contact force [N]")
+    assert ax.get_legend().get_title().get_text() == "bearing length L [m]"
+    heat = plot_metric(table, "contact_duration", "cr", y="length", ax=Figure().subplots(), columns=study.columns)
+    assert heat.get_ylabel() == "bearing length L [m]"
+    assert heat.figure.axes[-1].get_ylabel() == "contact duration [s]"  # the colour bar
+    # the labels come from the scene's own tables: the parameter field's help, the metric's entry
+    from exuclear.models.journal_bearing import STUDY_METRICS, JournalBearingParams
+
+    assert JournalBearingParams.__dataclass_fields__["length"].metadata["help"] == "bearing length L [m]"
+    assert STUDY_METRICS["peak_force"].unit == "N"
+    assert axis_label("wall_time") == "wall time of the run [s]" and axis_label("no_such_column") == "no_such_column"
+    assert st.main(["plot", str(out), "--metric", "peak_force", "--x", "cr", "--scene", "no-such-scene",
+                    "--out", str(tmp_path / "x.png")]) == 2

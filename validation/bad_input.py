@@ -91,7 +91,8 @@ class BadInput:
         The input, as shown in the table.
     expect : str
         The reply the rules ask for: ``ValueError``, ``TypeError`` (Python's own check
-        of a call's arguments), ``UnitWarning``, ``accepted`` (valid input), ``exit 2``,
+        of a call's arguments), ``UnitWarning``, ``ValidityWarning`` (a law outside the
+        range its source covers), ``accepted`` (valid input), ``exit 2``,
         ``exit 0 + warning`` or ``exit 2 + warning``.
     says : str
         Text the reply's message must contain (the name of the argument at fault), if any.
@@ -216,6 +217,11 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "likely unit mistake", "SliderCrankParams.paper(crank_speed=2e4)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.BearingGeometry(9.9, 10.0, 15.0)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.BearingGeometry(9.9e-3, 10e-3, 15.0)", "UnitWarning"),
+    # -- API: unusual values
+    BadInput("API", "unusual value", 'exuclear.friction_law("coulomb:1.5")', "ValidityWarning", says="`mu`"),
+    BadInput("API", "inconsistent input", 'exuclear.friction_law("coulomb:-0.1")', "ValueError", says="`mu`"),
+    BadInput("API", "unusual value", "exuclear.friction.ModifiedCoulomb(mu_s=30, mu_d=25, v_s=1e-4, v_d=1e-2)",
+             "ValidityWarning", says="`mu_s`"),
     # -- CLI: slider-crank
     BadInput("CLI", "wrong type", f"{_SC} --cr abc", "exit 2"),
     BadInput("CLI", "NaN or inf", f"{_SC} --cr nan", "exit 2"),
@@ -240,6 +246,10 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("CLI", "inconsistent input", f"{_SC} --step 1", "exit 2"),
     BadInput("CLI", "inconsistent input", f"{_SC} --revolutions -1", "exit 2"),
     BadInput("CLI", "inconsistent input", f"{_SC} --gravity -9.81", "exit 2"),
+    BadInput("CLI", "inconsistent input", f"{_SC} --clearance -1e-4", "exit 2",
+             says="`clearance` must be positive, got -0.0001"),
+    BadInput("CLI", "unusual value", f"{_SC} --friction coulomb:1.5 --revolutions 0.01", "exit 0 + warning",
+             says="friction coefficient `mu` = 1.5"),
     BadInput("CLI", "likely unit mistake", f"{_SC} --rpm 2e5 --revolutions 0.001", "exit 0 + warning",
              says="above 1e5 rpm"),
     BadInput("CLI", "unwritable output", f"{_SC} --revolutions 0.01 --csv {UNWRITABLE}.csv", "exit 2"),
@@ -272,8 +282,11 @@ def _api(code: str) -> Reply:
             return Reply(type(err).__name__, str(err))
         except Exception as err:  # anything else is a gap of the library, shown as such
             return Reply(type(err).__name__, str(err))
-    units = [str(w.message) for w in caught if issubclass(w.category, exuclear.UnitWarning)]
-    return Reply("UnitWarning", units[0]) if units else Reply("accepted", "")
+    for category in (exuclear.UnitWarning, exuclear.ValidityWarning):
+        said = [str(w.message) for w in caught if issubclass(w.category, category)]
+        if said:
+            return Reply(category.__name__, said[0])
+    return Reply("accepted", "")
 
 
 def _cli_lines(stderr: str) -> list[str]:
@@ -334,7 +347,8 @@ def document(replies: Sequence[tuple[BadInput, Reply]]) -> str:
         "Every row was tried by `python -m validation.bad_input --write docs/bad_input.md`, which wrote this file;",
         "`tests/test_hard_cases.py` tries every row again and fails if a reply changes without this table.",
         "The rules (issue 6, STYLE.md): the API raises `ValueError` naming the argument and the rule (Python's",
-        "own `TypeError` for a missing or unknown keyword); likely unit mistakes give an `exuclear.UnitWarning`;",
+        "own `TypeError` for a missing or unknown keyword); likely unit mistakes give an `exuclear.UnitWarning`,",
+        "values a law's sources do not cover (a friction coefficient above 1) an `exuclear.ValidityWarning`;",
         "the command lines print one line `error: ...` (argparse's errors too, with a pointer to `--help`), exit",
         "with status 2 and show no traceback; warnings are one line `warning: ...`.",
         "",

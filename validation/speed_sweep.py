@@ -54,13 +54,13 @@ def figure(table, path: str) -> str:
 
     from exuclear.study_plot import plot_metric
 
+    columns = st.scene("slider-crank").columns  # axis labels with units, the scene's own
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8.0, 7.5), sharex=True)
-    plot_metric(table, "impacts_by_rev", "rpm", by="cr", points=True, ax=top,
+    plot_metric(table, "impacts_by_rev", "rpm", by="cr", points=True, ax=top, columns=columns,
                 title="slider-crank, clearance 0.1 mm: one point per measured revolution")
-    top.set_ylabel("impacts in the revolution")
-    plot_metric(table, "peak_force_by_rev", "rpm", by="cr", points=True, logy=True, ax=bottom, title="")
-    bottom.set_ylabel("peak contact force in the revolution [N]")
-    bottom.set_xlabel("crank speed [rpm]")
+    plot_metric(table, "peak_force_by_rev", "rpm", by="cr", points=True, logy=True, ax=bottom, title="",
+                columns=columns)
+    top.set_xlabel("")  # the shared axis is labelled below
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
