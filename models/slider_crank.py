@@ -45,6 +45,7 @@ from exudyn.itemInterface import (
     LoadMassProportional,
     MarkerBodyMass,
     MarkerBodyRigid,
+    MarkerKinematicTreeRigid,
     MarkerNodeCoordinate,
     NodeGenericODE2,
     NodePointGround,
@@ -147,7 +148,7 @@ class SliderCrankParams:
         How the clearance joints' forces are evaluated, see
         :func:`exuclear.CreateClearanceJoint`: ``"compiled"`` (default where built) or ``"python"``.
     max_penetration : float, optional
-        Penetration [m] beyond which a run stops, see :func:`exuclear.add_clearance_joint`;
+        Penetration [m] beyond which a run stops, see :func:`exuclear.AddClearanceJoint`;
         default None, the library's default bound.
     """
 
@@ -263,10 +264,10 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
     joints = {}
     for name, journal, x_journal, bearing, x_bearing in revolutes:
         if name in p.clearance_joints and not p.ideal:
-            joints[name] = exuclear.add_clearance_joint(
-                mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
-                name=name, backend=p.backend, max_penetration=p.max_penetration,
-                bearing_rotates=bearing != slider)  # the guide holds the slider's rotation
+            joints[name] = exuclear.AddClearanceJoint(
+                mbs, [rigid(bearing, x_bearing), rigid(journal, x_journal)], joint=p.joint, name=name,
+                backend=p.backend, maxPenetration=p.max_penetration,
+                bearingRotates=bearing != slider)  # the guide holds the slider's rotation
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
@@ -313,9 +314,11 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
                                           inertia(0.0)]),
         linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
         linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
-    handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
-                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B", backend=p.backend,
-                                          max_penetration=p.max_penetration)
+    # B: the bearing on the slider (link 2) at its origin, the journal on the rod (link 1) at its end
+    markers = [mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=link, localPosition=[x, 0.0, 0.0]))
+               for link, x in ((2, 0.0), (1, l))]
+    handle = exuclear.AddClearanceJoint(mbs, markers, joint=p.joint, name="B", backend=p.backend,
+                                        maxPenetration=p.max_penetration)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
