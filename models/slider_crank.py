@@ -615,8 +615,11 @@ def columns(model: Scene) -> dict[str, np.ndarray]:
                     in_contact=zeros)
     else:
         out = model.joint.outputs()
-        cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=out["ecc_x"],
-                    ecc_y=out["ecc_y"], penetration=out["penetration"], in_contact=out["in_contact"])
+        # the eccentricity in the global x, y (the spatial formulation's joint frame is that of
+        # mbs.CreateRevoluteJoint, turned in the plane)
+        ecc_x, ecc_y = model.joint.frame[:2, :2] @ np.array([out["ecc_x"], out["ecc_y"]])
+        cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=ecc_x,
+                    ecc_y=ecc_y, penetration=out["penetration"], in_contact=out["in_contact"])
     return {k: cols[k] for k in COLUMNS}
 
 

@@ -156,11 +156,12 @@ def test_tilt_under_a_static_moment_matches_an_independent_slice_model(backend, 
     assert theta == pytest.approx(theta_ref, rel=1e-8)
     deltas = [s.delta for s in handle.slice_states()]
     assert np.allclose(deltas, delta_ref, rtol=0.0, atol=1e-9 * C)
-    # the restoring moment and the axial force as the connector returns them (T = -M_J, F on the bearing)
+    # the restoring moment and the axial force as the connector returns them (T = -M_J, F on the bearing),
+    # in the frame of mbs.CreateRevoluteJoint (axis z: x_J = -y, y_J = x)
     force = mbs.GetObjectOutput(handle.objectNumber, exu.OutputVariableType.ForceLocal)
     torque = mbs.GetObjectOutput(handle.objectNumber, exu.OutputVariableType.TorqueLocal)
-    assert torque[1] == pytest.approx(moment, rel=1e-8)
-    assert force[0] == pytest.approx(load, rel=1e-8)
+    assert -torque[0] == pytest.approx(moment, rel=1e-8)
+    assert force[1] == pytest.approx(load, rel=1e-8)
     # the normal m_k leans by tan(theta): an axial force, on the bearing dV/dp_z
     assert force[2] == pytest.approx(fz_ref, rel=1e-8)
     if law == "hertz":

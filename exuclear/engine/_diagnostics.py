@@ -30,26 +30,74 @@ from .connector import ClearanceJointHandle
 STANDARD_GRAVITY = 9.81
 
 
-def _body_of(mbs: exu.MainSystem, marker: Any) -> tuple[Any, dict, int | None]:
+def _body_of(mbs: exu.MainSystem, marker: Any) -> tuple[Any, dict | None, int | None]:
+    """The object a marker sits on, its dictionary and its kinematic-tree link; ``(None,
+    None, None)`` for a node marker (``MarkerNodeRigid``), which sits on no object."""
     m = mbs.GetMarker(marker)
     body = m.get("bodyNumber", m.get("objectNumber"))
+    if body is None:
+        return None, None, None
     link = m.get("linkNumber")
     return body, mbs.GetObject(body), (int(link) if link is not None else None)
 
 
+def _where(mbs: exu.MainSystem, marker: Any) -> str:
+    """The body a marker sits on, for messages: "object 3", "link 1 of object 0", "node 2"."""
+    body, _, link = _body_of(mbs, marker)
+    if body is None:
+        return f"node {mbs.GetMarker(marker)['nodeNumber']}"
+    return f"link {link} of object {body}" if link is not None else f"object {body}"
+
+
+def _element_mass(item: dict) -> float:
+    """Mass [kg] of an object, nan where its type does not say: a rigid body's or mass
+    point's ``physicsMass`` / ``mass``; a beam or cable element's mass per length times its
+    length (``ObjectANCFCable2D``, ``ObjectBeamGeometricallyExact2D``: ``massPerLength``
+    and ``length``; the 3D elements: ``physicsMassPerLength`` or their ``sectionData``,
+    and ``physicsLength``)."""
+    for key in ("physicsMass", "mass"):  # ObjectRigidBody and mass points; ObjectRigidBody2D
+        if key in item:
+            return float(item[key])
+    per_length = item.get("massPerLength", item.get("physicsMassPerLength"))
+    if per_length is None and "sectionData" in item:
+        per_length = getattr(item["sectionData"], "massPerLength", None)
+    length = item.get("length", item.get("physicsLength"))
+    if per_length is None or length is None:
+        return math.nan
+    return float(per_length) * float(length)
+
+
+def _node_mass(mbs: exu.MainSystem, node: int) -> float:
+    """Mass [kg] that moves with a node: the whole mass of the objects whose only node it is
+    (a rigid body), and a share ``1 / (number of the element's nodes)`` of every element
+    that has it among several nodes (the lumped mass of a beam or cable node); nan where
+    an attached object's mass is not read (:func:`_element_mass`) or nothing is attached."""
+    mass, attached = 0.0, False
+    for i in range(mbs.systemData.NumberOfObjects()):
+        item = mbs.GetObject(i)
+        nodes = [int(n) for n in item.get("nodeNumbers", [])]
+        if "nodeNumber" in item and item["nodeNumber"] is not None and int(item["nodeNumber"]) >= 0:
+            nodes.append(int(item["nodeNumber"]))
+        if node not in nodes or item["objectType"].startswith(("Connector", "Joint", "Contact")):
+            continue
+        attached = True
+        mass += _element_mass(item) / len(nodes)
+    return mass if attached else math.nan
+
+
 def body_mass(mbs: exu.MainSystem, marker: Any) -> float:
     """Mass [kg] of the body (or kinematic-tree link) a marker sits on; inf for the
-    ground; nan where the object type does not say."""
-    _, item, link = _body_of(mbs, marker)
+    ground; for a node marker the mass that moves with the node (:func:`_node_mass`); nan
+    where the object type does not say."""
+    body, item, link = _body_of(mbs, marker)
+    if item is None:
+        return _node_mass(mbs, int(mbs.GetMarker(marker)["nodeNumber"]))
     kind = item["objectType"]
     if kind == "Ground":
         return math.inf
     if kind == "KinematicTree":
         return float(item["linkMasses"][link])
-    for key in ("physicsMass", "mass"):  # ObjectRigidBody and mass points; ObjectRigidBody2D
-        if key in item:
-            return float(item[key])
-    return math.nan
+    return _element_mass(item)
 
 
 def _gravity(mbs: exu.MainSystem) -> float:
@@ -82,11 +130,9 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
     for handle in joints:
         name = handle.name or handle.objectNumber
         for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
-            body, _, link = _body_of(mbs, marker)
             mass = body_mass(mbs, marker)
             if mass <= 0.0:  # NaN (a body type whose mass is not read here) passes
-                where = f"link {link} of object {body}" if link is not None else f"object {body}"
-                raise ValueError(f"clearance joint {name!r}: its {role} body ({where}) has mass {mass}; every body "
+                raise ValueError(f"clearance joint {name!r}: its {role} body ({_where(mbs, marker)}) has mass {mass}; every body "
                                  "of a clearance joint needs a positive mass (the contact force would accelerate "
                                  "it without bound)")
         delta = initial_penetration(mbs, handle)

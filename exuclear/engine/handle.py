@@ -70,6 +70,7 @@ class ClearanceJointHandle:
         self.constraintNumber: Any = None
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
+        self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
 
@@ -95,6 +96,19 @@ class ClearanceJointHandle:
 
     def __hash__(self) -> int:
         return id(self.__dict__)
+
+    @property
+    def frame(self) -> np.ndarray:
+        """The joint frame in global coordinates in the reference configuration (3 x 3,
+        columns x, y and z = the bearing axis): the frame of the connector's ``ForceLocal``
+        and ``TorqueLocal`` and of the outputs ``ecc_x``, ``ecc_y``, ``tilt_x``, ``tilt_y``.
+        :func:`CreateClearanceJoint` takes that of ``mbs.CreateRevoluteJoint`` (for axis z:
+        x = -y_global, y = x_global); :func:`AddClearanceJoint` marker 0's frame, turned so
+        that z is the axis (marker 0's own frame for axis z)."""
+        rot = self.mbs.GetMarkerOutput(self.markerNumbers[0], exu.OutputVariableType.RotationMatrix,
+                                       configuration=exu.ConfigurationType.Reference)
+        return np.asarray(rot, dtype=float).reshape(3, 3) @ np.asarray(
+            self.mbs.GetObject(self.objectNumber)["rotationMarker0"], dtype=float)
 
     def user_functions(self) -> dict[str, Any]:
         """The user functions of the joint's connector, probe and torque connector."""
@@ -195,12 +209,12 @@ class ClearanceJointHandle:
 
     @property
     def nodes(self) -> list[int]:
-        """The nodes of the bearing's and the journal's bodies (where a body has one node)."""
+        """The nodes of the bearing's and the journal's bodies (where a body has one node), or of their node markers."""
         found = []
         for marker in self.markerNumbers:
             m = self.mbs.GetMarker(marker)
             body = m.get("bodyNumber", m.get("objectNumber"))
-            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else None
+            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else m.get("nodeNumber")
             if node is not None and int(node) >= 0:
                 found.append(int(node))
         return found
