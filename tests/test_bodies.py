@@ -187,3 +187,17 @@ def test_force_local_is_in_the_frame_of_the_replaced_revolute_joint():
     # the clearance's impacts and sliding move the mean by 0.05 and 0.16 N (measured): 0.3 N
     assert np.allclose(clearance, ideal, rtol=0.0, atol=0.3)
     assert math.isclose(clearance[2], 0.0, abs_tol=1e-9)
+
+
+def test_step_auto_names_the_body_whose_mass_is_not_read():
+    # before: "the mass of one of its bodies is not read", not naming which
+    from exudyn.itemInterface import ObjectGenericODE2
+
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D())
+    mbs.AddObject(ObjectGenericODE2(nodeNumbers=[node], massMatrix=np.eye(3)))  # a mass matrix, no mass
+    exuclear.CreateClearanceJoint(mbs, "pin", [ground, mbs.AddMarker(MarkerNodeRigid(nodeNumber=node))], **PIN)
+    mbs.Assemble()
+    with pytest.raises(ValueError, match=r"the mass of its journal body \(node 0\) is not read.*give `step`"):
+        exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha", step="auto"))

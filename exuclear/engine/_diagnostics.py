@@ -100,6 +100,18 @@ def body_mass(mbs: exu.MainSystem, marker: Any) -> float:
     return _element_mass(item)
 
 
+def unread_masses(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
+    """The bodies of a joint whose mass :func:`body_mass` does not read, for messages
+    ("its journal body (object 3, an ObjectFFRF)"), or ``""``."""
+    unread = []
+    for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
+        if math.isnan(body_mass(mbs, marker)):
+            _, item, _ = _body_of(mbs, marker)
+            kind = f", an Object{item['objectType']}" if item is not None else ""
+            unread.append(f"its {role} body ({_where(mbs, marker)}{kind})")
+    return " and ".join(unread)
+
+
 def _gravity(mbs: exu.MainSystem) -> float:
     g = 0.0
     for i in range(mbs.systemData.NumberOfLoads()):
