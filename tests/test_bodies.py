@@ -201,3 +201,38 @@ def test_step_auto_names_the_body_whose_mass_is_not_read():
     mbs.Assemble()
     with pytest.raises(ValueError, match=r"the mass of its journal body \(node 0\) is not read.*give `step`"):
         exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha", step="auto"))
+
+
+@pytest.mark.parametrize("constrain", [False, True])
+def test_out_of_plane_motion_nothing_holds_is_named_before_the_run(constrain):
+    # issue 21: rigidBodyTutorial3 with its second joint replaced and constrainAxial=False
+    # drifted 6 mm along the axis and stopped with "contact too soft for the load ... or a
+    # unit is off", never naming the cause
+    from validation.exudyn_examples import rigid_body_tutorial3
+
+    model = rigid_body_tutorial3.build(True, 1e-3, constrainAxial=constrain)
+    assert exuclear.engine.unheld_motion(model.mbs) == ({} if constrain else
+                                                 {model.joint.name: ["axial translation", "tilt"]})
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        exuclear.simulate(model.mbs, replace_step(model.solver_settings))
+    notes = [str(w.message) for w in caught if issubclass(w.category, exuclear.engine.OutOfPlaneWarning)]
+    if constrain:
+        assert notes == []
+    else:
+        assert len(notes) == 1 and "axial translation and tilt" in notes[0] and "constrainAxial=True" in notes[0]
+
+
+def replace_step(settings):
+    from dataclasses import replace
+
+    return replace(settings, end_time=1e-3)
+
+
+@pytest.mark.parametrize("name", ["double_pendulum_2d", "piston_engine", "kinematic_tree_chain", "ancf_pendulum"])
+def test_models_whose_joints_hold_the_plane_are_not_warned(name):
+    # planar bodies, closed loops and kinematic trees hold what the replaced joint held
+    from validation.exudyn_examples import REGISTRY, load_models
+
+    load_models()
+    assert exuclear.engine.unheld_motion(REGISTRY[name](True, 1e-3).mbs) == {}

@@ -342,6 +342,11 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``ObjectJointGeneric`` also holds axial translation and tilt, as the replaced
         revolute joint did (3D bodies; needs an implicit solver); for a spatial joint
         (``slices``) the axial translation only, since the slices carry the tilt.
+        Where nothing in the model holds what the replaced revolute joint held (a 3D
+        journal whose only link to the bearing is this joint), :func:`exuclear.simulate`
+        warns before the run (``OutOfPlaneWarning``, naming the joint, the motion and
+        this fix); :func:`exuclear.engine.unheld_motion` is the same check for a plain
+        ``mbs.SolveDynamic``.
     bearingRotates : bool, optional
         Whether the bearing body can turn about the axis.  Where it can, two helper
         connectors supply the bearing's own spin to the slip and its own moment
