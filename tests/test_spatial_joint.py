@@ -74,7 +74,7 @@ def test_an_aligned_journal_reproduces_the_planar_joint(backend, slices, law, cr
     planar, x_p, steps_p = _run_pair(backend, None, law, cr, "paper")
     spatial, x_s, steps_s = _run_pair(backend, slices, law, cr, "paper")
     assert steps_p == steps_s
-    assert len(planar.impacts()) == 1 and len(spatial.impacts()) == slices  # each slice records the impact
+    assert len(planar.impacts()) == 1 and sum(map(len, spatial.slice_impacts())) == slices  # each slice records it
     scale = np.abs(x_p).max()
     # round-off of sums of N slice forces, carried through 300 steps of the integration
     assert np.abs(x_s - x_p).max() <= 1e-11 * scale
@@ -87,6 +87,13 @@ def test_an_aligned_journal_reproduces_the_planar_joint(backend, slices, law, cr
         assert rs[0].onset_time == pytest.approx(r.onset_time, rel=1e-9)
         assert rs[0].peak_force * slices == pytest.approx(r.peak_force, rel=1e-9)
         assert np.all(out_s["tilt_x"] == 0.0) and np.all(out_s["tilt_y"] == 0.0)
+    # the joint's physical impact: the slices' records merged, the planar joint's record
+    (merged,) = spatial.impacts()
+    assert merged.onset_time == pytest.approx(r.onset_time, rel=1e-9)
+    assert merged.onset_velocity == pytest.approx(r.onset_velocity, rel=1e-9)
+    assert merged.duration == pytest.approx(r.duration, rel=1e-9)
+    assert merged.peak_force == pytest.approx(r.peak_force, rel=1e-9)
+    assert merged.max_penetration == pytest.approx(r.max_penetration, rel=1e-9)
 
 
 # -- an independent statement of the slice model (not the kernel) ---------------------------
@@ -201,7 +208,7 @@ def test_an_elastic_tumbling_journal_keeps_its_energy(backend):
     result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.02, method="dopri5", step=1e-5, rtol=1e-10,
                                                             atol=1e-13, output_step=1e-3))
     assert result.success, result.message
-    assert len(handle.impacts()) >= 10  # it tumbles: many slice contacts, both edges
+    assert sum(map(len, handle.slice_impacts())) >= 10  # it tumbles: many slice contacts, both edges
     out = handle.outputs()
     assert np.abs(out["tilt_x"]).max() > 0.5 * C / L and np.abs(out["tilt_y"]).max() > 0.5 * C / L
     k = 4.0 / 3.0 * E_STAR * math.sqrt(R_B * R_J / C)

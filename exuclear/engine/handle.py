@@ -12,7 +12,7 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
-from ..history import ContactState, ImpactRecord
+from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
@@ -202,10 +202,14 @@ class ClearanceJointHandle:
 
     def impacts(self) -> list[ImpactRecord]:
         """Records of the contacts that ended in the last run, in order; a contact still
-        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
-        slice's records, by onset time (one contact of a tilted journal may touch
-        several slices, each a record), and the end faces' with an axial clearance."""
-        return sorted((r for rs in self._backend.records() for r in rs), key=lambda r: r.onset_time)
+        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: its
+        physical impacts, the slices' records that overlap in time merged into one
+        (:func:`exuclear.history.merge_overlapping`; per slice: :meth:`slice_impacts`),
+        and the end faces' records with an axial clearance (:meth:`face_impacts`)."""
+        records = self._backend.records()
+        if self.slices:
+            records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
+        return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
 
     @property
     def nodes(self) -> list[int]:
