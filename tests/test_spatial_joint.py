@@ -87,6 +87,13 @@ def test_an_aligned_journal_reproduces_the_planar_joint(backend, slices, law, cr
         assert rs[0].onset_time == pytest.approx(r.onset_time, rel=1e-9)
         assert rs[0].peak_force * slices == pytest.approx(r.peak_force, rel=1e-9)
         assert np.all(out_s["tilt_x"] == 0.0) and np.all(out_s["tilt_y"] == 0.0)
+    # the joint-level outputs: the mid-plane eccentricity and the resultant load are the planar joint's
+    assert np.abs(out_s["ecc_mid_x"] - out_p["ecc_x"]).max() <= 1e-11 * scale
+    assert np.abs(out_s["ecc_mid_y"] - out_p["ecc_y"]).max() <= 1e-11 * scale
+    resultant = np.hypot(out_p["normal_force"], out_p["tangential_force"])
+    assert out_s["force"].shape == (len(out_s["time"]), 3)
+    assert np.abs(np.linalg.norm(out_s["force"], axis=1) - resultant).max() <= 1e-7 * resultant.max()
+    assert np.abs(out_s["force"][:, 2]).max() <= 1e-7 * resultant.max()  # aligned: no axial force
     # the joint's physical impact: the slices' records merged, the planar joint's record
     (merged,) = spatial.impacts()
     assert merged.onset_time == pytest.approx(r.onset_time, rel=1e-9)

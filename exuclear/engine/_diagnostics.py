@@ -172,6 +172,8 @@ def _constraint_jacobian(mbs: exu.MainSystem) -> np.ndarray:
         n2, n1, n_ae = solver.GetODE2size(), solver.GetODE1size(), solver.GetAEsize()
         if n_ae == 0:
             return np.zeros((0, n2))
+        size = n2 + n1 + n_ae  # the matrix is not zeroed by InitializeSolver, and ComputeJacobianAE fills its part
+        solver.SetSystemJacobian(np.zeros((size, size)))
         solver.ComputeJacobianAE(mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=1.0,
                                  velocityLevel=False)
         jacobian = np.asarray(solver.GetSystemJacobian())
@@ -218,6 +220,8 @@ def unheld_motion(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle] | 
         return {}
     saved = np.asarray(mbs.systemData.GetODE2Coordinates(configuration=cur), dtype=float)
     jacobian = _constraint_jacobian(mbs)
+    if not np.all(np.isfinite(jacobian)):  # a constraint without a finite Jacobian: nothing to say
+        return {}
     if jacobian.shape[0]:
         _, sv, vt = np.linalg.svd(jacobian)
         rank = int(np.sum(sv > _RANK_RTOL * sv[0])) if sv.size and sv[0] > 0.0 else 0

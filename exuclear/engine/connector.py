@@ -40,6 +40,7 @@ from exudyn.itemInterface import (
     ObjectGround,
     ObjectJointGeneric,
     SensorNode,
+    SensorObject,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
     VObjectJointGeneric,
@@ -256,6 +257,10 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         handle.sensorNumber = mbs.AddSensor(SensorNode(nodeNumber=handle.nodeNumber, storeInternal=True,
                                                        writeToFile=False,
                                                        outputVariableType=exu.OutputVariableType.Coordinates))
+        if slices:  # the resultant load of all slices and faces, as the connector applies it
+            handle.loadSensorNumbers = [mbs.AddSensor(SensorObject(
+                objectNumber=handle.objectNumber, storeInternal=True, writeToFile=False, outputVariableType=kind))
+                for kind in (exu.OutputVariableType.ForceLocal, exu.OutputVariableType.TorqueLocal)]
     return handle
 
 

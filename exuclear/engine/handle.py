@@ -71,6 +71,7 @@ class ClearanceJointHandle:
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
+        self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
 
@@ -236,7 +237,9 @@ class ClearanceJointHandle:
         return self._backend.failure()
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units (a spatial joint:
+        see :func:`exuclear.engine.outputs.assemble`, with the joint-level
+        :data:`~exuclear.engine.outputs.SPATIAL_JOINT_OUTPUTS`).
 
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
@@ -254,7 +257,8 @@ class ClearanceJointHandle:
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
                 data = data.copy()
                 data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose())
-        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0)
+        loads = [np.asarray(self.mbs.GetSensorStoredData(n), dtype=float) for n in self.loadSensorNumbers]
+        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0, loads)
 
 
 @dataclass(frozen=True)
