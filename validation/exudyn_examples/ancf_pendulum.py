@@ -20,8 +20,8 @@ of the example's four (the cores are shared here, and exuclear's connectors assu
 Exudyn's single-threaded evaluation order), and no renderer.  Changed with
 ``clearance=True``: the hinge (the two coordinate constraints) becomes a clearance
 joint, bearing on the ground, journal on a ``MarkerBodyRigid`` at the start of the first
-cable element (``exuclear.CreateClearanceJoint``, itemNumbers [ground, first element]).  Pin: R_B = 10 mm in the 50 mm cable, L = 50 mm (the cable's width),
-c = 30 um.
+cable element (``exuclear.CreateClearanceJoint``, itemNumbers [ground, first element]).
+Pin: R_B = 10 mm in the 50 mm cable, L = 50 mm (the cable's width), c = 30 um.
 
 Route (exuclear 1.x on Exudyn 1.13.6):
 
