@@ -22,6 +22,7 @@ from exudyn.itemInterface import (
     ObjectRigidBody2D,
     SensorObject,
 )
+from exudyn.rigidBodyUtilities import InertiaCuboid
 
 import exuclear
 from exuclear.engine._diagnostics import body_mass
@@ -236,3 +237,24 @@ def test_models_whose_joints_hold_the_plane_are_not_warned(name):
 
     load_models()
     assert exuclear.engine.unheld_motion(REGISTRY[name](True, 1e-3).mbs) == {}
+
+
+@pytest.mark.parametrize("axis", [[0, 0, 1], [1, 0, 0], [0.6, 0.8, 0]])
+def test_no_deprecated_rotation_marker_for_any_axis(axis):
+    # before: AddClearanceJoint with an axis other than marker 0's z gave its connectors
+    # rotationMarker0, which Exudyn 1.13 deprecates (a DeprecationWarning from Exudyn);
+    # CreateClearanceJoint, with the frame of mbs.CreateRevoluteJoint, for every axis
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    body = mbs.CreateRigidBody(inertia=InertiaCuboid(1000.0, [0.1, 0.1, 0.1]),
+                               referencePosition=[0.5, 0, 0])
+    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=b, localPosition=p)) for b, p in ((ground, [0.5, 0, 0]),
+                                                                                          (body, [0, 0, 0]))]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DeprecationWarning)
+        handle = exuclear.AddClearanceJoint(mbs, markers, axis=axis, constrainAxial=True, **PIN)
+        created = exuclear.CreateClearanceJoint(mbs, itemNumbers=[body, ground], position=[0.5, 0, 0], axis=axis, **PIN)
+    unit = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    for h in (handle, created):
+        assert np.allclose(h.frame[:, 2], unit, rtol=0, atol=1e-15)  # the joint frame's z is the axis
+        assert np.allclose(mbs.GetMarkerOutput(h.markerNumbers[0], OV.Position, configuration=REF), [0.5, 0, 0])

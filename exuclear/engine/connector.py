@@ -89,6 +89,12 @@ BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default
 DEFAULT_BACKEND = kernel.default_backend()
 
 
+#: Largest entry of ``R - I`` below which two markers' reference frames are taken as one:
+#: the round-off of composing and reading back rotation matrices (1e-16 per product),
+#: far below any frame a user sets on purpose.
+SAME_FRAME_ROUNDOFF = 1e-12
+
+
 def joint_frame(axis: np.ndarray) -> np.ndarray:
     """Rotation matrix whose z column is ``axis`` (unit); for ``axis = z`` the identity, so
     that a planar model's eccentricity is in global x, y."""
@@ -186,6 +192,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     in the plane normal to it (planar joint), or slice by slice along it (``slices``; the
     journal's axis is taken parallel to it in the reference configuration).  The other
     arguments are those of :func:`CreateClearanceJoint`.  Call before ``mbs.Assemble()``.
+    Where the joint frame is not marker 0's own, the joint sits on copies of the two markers
+    turned into it (``handle.markerNumbers``), as ``mbs.CreateRevoluteJoint`` makes them.
     """
     check_system(mbs)
     check_markers(mbs, markerNumbers)
@@ -209,10 +217,19 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     a_journal = _marker_rotation(mbs, m_journal)
     # the joint frame in marker 0's frame: from `axis`, or the global frame CreateClearanceJoint gives
     frame = joint_frame(axis_local) if _frame is None else a_bearing.T @ np.asarray(_frame, dtype=float)
+    if not np.array_equal(frame, np.eye(3)) and all("localHT" in mbs.GetMarker(m) for m in (m_bearing, m_journal)):
+        # copies of the markers turned into the joint frame, as Exudyn's CreateRevoluteJoint
+        # makes them: its connectors' rotationMarker0/1 are deprecated
+        m_bearing, m_journal = (_turned_marker(mbs, m_bearing, frame),
+                                _turned_marker(mbs, m_journal, a_journal.T @ a_bearing @ frame))
+        a_bearing, a_journal, frame = _marker_rotation(mbs, m_bearing), _marker_rotation(mbs, m_journal), np.eye(3)
     rotation0 = frame.tolist()
-    rotation1 = (a_journal.T @ a_bearing @ frame).tolist()  # the same joint frame, seen from marker 1
+    relative = a_journal.T @ a_bearing @ frame  # the same joint frame, seen from marker 1
+    if np.abs(relative - np.eye(3)).max() <= SAME_FRAME_ROUNDOFF:
+        relative = np.eye(3)  # markers turned into one frame: no deprecated rotationMarker1 for round-off
+    rotation1 = relative.tolist()
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
-    axis_journal = tuple(float(v) for v in a_journal.T @ a_bearing @ frame[:, 2])
+    axis_journal = tuple(float(v) for v in relative[:, 2])
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal, shoulders)
     handle.markerNumbers = [m_bearing, m_journal]
