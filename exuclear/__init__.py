@@ -23,7 +23,8 @@ Everything else stays importable from its module: the models behind the laws
 the friction classes (:mod:`exuclear.friction`), the contact kinematics
 (:mod:`exuclear.geometry`), the contact history (:mod:`exuclear.history`) and the engine
 glue (:mod:`exuclear.engine`: ``DATA_COLUMNS``, ``simulation_settings``,
-``KernelWarning``, ...).  Physics without exudyn: :mod:`~exuclear.contact`,
+``KernelWarning``, ``unheld_motion`` and its ``OutOfPlaneWarning``, ...).  Physics
+without exudyn: :mod:`~exuclear.contact`,
 :mod:`~exuclear.friction`, :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`,
 :mod:`~exuclear.joint`; see ``docs/physics.md`` for the equations.
 

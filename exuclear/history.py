@@ -111,3 +111,28 @@ class ContactState:
             new.update(normal_force=0.0, tangential_force=0.0)
         return replace(self, delta=delta, delta_dot=delta_dot, time=time, ecc_x=kin.ex, ecc_y=kin.ey,
                        slip_velocity=kin.v_t, **new), record
+
+
+def merge_overlapping(records: list[ImpactRecord]) -> list[ImpactRecord]:
+    """Physical impacts from the contacts of a spatial joint's slices: records whose
+    intervals ``[onset_time, onset_time + duration]`` overlap (directly or through others)
+    are one impact of the journal, which a tilted or aligned journal makes on several
+    slices at once.  The merged record: the earliest onset and its onset velocity (the
+    first slice to touch), the union of the intervals, the largest penetration, and as
+    ``peak_force`` the sum of the slices' peak forces: the resultant's peak where the
+    slices peak at one step (an aligned journal: exactly the planar joint's), an upper
+    bound of it otherwise.  In onset order.
+    """
+    merged: list[ImpactRecord] = []
+    end = -float("inf")
+    for r in sorted(records, key=lambda r: r.onset_time):
+        r_end = r.onset_time + r.duration
+        if merged and r.onset_time <= end:
+            m = merged[-1]
+            end = max(end, r_end)
+            merged[-1] = ImpactRecord(m.onset_time, m.onset_velocity, m.peak_force + r.peak_force,
+                                      end - m.onset_time, max(m.max_penetration, r.max_penetration))
+        else:
+            merged.append(r)
+            end = r_end
+    return merged

@@ -15,7 +15,7 @@ Built as the slider-crank's redundant formulation is: ``ObjectRigidBody2D`` link
 (nodes at the link midpoints), ideal ``JointRevolute2D`` joints at O2, A and O4, the
 crank speed held by a velocity-level ``CoordinateConstraint`` on the crank angle (its
 Lagrange multiplier is the driving moment), and the clearance joint at B through
-:func:`exuclear.add_clearance_joint`.  Needs an implicit solver (generalized-alpha by
+:func:`exuclear.AddClearanceJoint`.  Needs an implicit solver (generalized-alpha by
 default, with impact-aware steps).
 
 The four-bar is the textbook scene where clearance-joint motion turns chaotic: after
@@ -269,9 +269,8 @@ def build(params: FourBarParams) -> Scene:
                    (mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[d, 0.0, 0.0])),
                     rigid(rocker, -c / 2))):
         mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[m0, m1]))
-    handle = exuclear.add_clearance_joint(mbs, coupler, rocker, journal_point=(b / 2, 0.0),
-                                          bearing_point=(c / 2, 0.0), joint=p.joint, name="B", backend=p.backend,
-                                          max_penetration=p.max_penetration)
+    handle = exuclear.AddClearanceJoint(mbs, [rigid(rocker, c / 2), rigid(coupler, b / 2)], joint=p.joint, name="B",
+                                        backend=p.backend, maxPenetration=p.max_penetration)
     # drive: crank angle rate = omega (velocity-level coordinate constraint; its multiplier
     # is minus the driving moment)
     n_ground = mbs.AddNode(NodePointGround())

@@ -33,7 +33,14 @@ from dataclasses import asdict, dataclass, field, replace
 
 import exudyn as exu
 import numpy as np
-from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+from exudyn.itemInterface import (
+    LoadMassProportional,
+    MarkerBodyMass,
+    MarkerBodyRigid,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectRigidBody2D,
+)
 
 import exuclear
 from exuclear import SolverSettings
@@ -88,7 +95,7 @@ class JournalBearingParams:
     backend: str = field(default=DEFAULT_BACKEND, metadata=param(
         "the joint's kernel: compiled (C++) or python", choices=BACKENDS))  # checked by the library
     #: Penetration [m] beyond which a run stops; None: the library's default bound (see
-    #: :func:`exuclear.add_clearance_joint`).
+    #: :func:`exuclear.AddClearanceJoint`).
     max_penetration: float | None = field(default=None, metadata=param(
         "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
         "journal radius)"))  # checked by the library
@@ -134,8 +141,10 @@ def build(params: JournalBearingParams) -> Scene:
     if params.gravity > 0.0:
         mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=journal)),
                                          loadVector=[params.gravity, 0.0, 0.0]))
-    handle = exuclear.add_clearance_joint(mbs, journal, ground, joint=joint, name="journal-bearing",
-                                          backend=params.backend, max_penetration=params.max_penetration)
+    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0]))
+               for body in (ground, journal)]  # bearing, journal: each at its body's reference point
+    handle = exuclear.AddClearanceJoint(mbs, markers, joint=joint, name="journal-bearing", backend=params.backend,
+                                        maxPenetration=params.max_penetration)
     mbs.Assemble()
     return Scene(params, mbs, {handle.name: handle}, nodes={"journal": int(node)},
                  build_time=time.perf_counter() - start, main_joint=handle.name)

@@ -45,6 +45,7 @@ from exudyn.itemInterface import (
     LoadMassProportional,
     MarkerBodyMass,
     MarkerBodyRigid,
+    MarkerKinematicTreeRigid,
     MarkerNodeCoordinate,
     NodeGenericODE2,
     NodePointGround,
@@ -149,7 +150,7 @@ class SliderCrankParams:
         How the clearance joints' forces are evaluated, see
         :func:`exuclear.CreateClearanceJoint`: ``"compiled"`` (default where built) or ``"python"``.
     max_penetration : float, optional
-        Penetration [m] beyond which a run stops, see :func:`exuclear.add_clearance_joint`;
+        Penetration [m] beyond which a run stops, see :func:`exuclear.AddClearanceJoint`;
         default None, the library's default bound.
     """
 
@@ -265,10 +266,10 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
     joints = {}
     for name, journal, x_journal, bearing, x_bearing in revolutes:
         if name in p.clearance_joints and not p.ideal:
-            joints[name] = exuclear.add_clearance_joint(
-                mbs, journal, bearing, journal_point=(x_journal, 0.0), bearing_point=(x_bearing, 0.0), joint=p.joint,
-                name=name, backend=p.backend, max_penetration=p.max_penetration,
-                bearing_rotates=bearing != slider)  # the guide holds the slider's rotation
+            joints[name] = exuclear.AddClearanceJoint(
+                mbs, [rigid(bearing, x_bearing), rigid(journal, x_journal)], joint=p.joint, name=name,
+                backend=p.backend, maxPenetration=p.max_penetration,
+                bearingRotates=bearing != slider)  # the guide holds the slider's rotation
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
     mbs.AddObject(ObjectJointPrismatic2D(markerNumbers=[rigid(ground, r + l), rigid(slider, 0.0)],
@@ -315,9 +316,11 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
                                           inertia(0.0)]),
         linkCOMs=exu.Vector3DList([[r / 2, 0.0, 0.0], [l / 2, 0.0, 0.0], [0.0, 0.0, 0.0]]),
         linkMasses=[p.crank_mass, p.rod_mass, p.slider_mass], gravity=[0.0, -p.gravity, 0.0]))
-    handle = exuclear.add_clearance_joint(mbs, tree, tree, journal_link=1, journal_point=(l, 0.0), bearing_link=2,
-                                          bearing_point=(0.0, 0.0), joint=p.joint, name="B", backend=p.backend,
-                                          max_penetration=p.max_penetration)
+    # B: the bearing on the slider (link 2) at its origin, the journal on the rod (link 1) at its end
+    markers = [mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=link, localPosition=[x, 0.0, 0.0]))
+               for link, x in ((2, 0.0), (1, l))]
+    handle = exuclear.AddClearanceJoint(mbs, markers, joint=p.joint, name="B", backend=p.backend,
+                                        maxPenetration=p.max_penetration)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
@@ -614,8 +617,11 @@ def columns(model: Scene) -> dict[str, np.ndarray]:
                     in_contact=zeros)
     else:
         out = model.joint.outputs()
-        cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=out["ecc_x"],
-                    ecc_y=out["ecc_y"], penetration=out["penetration"], in_contact=out["in_contact"])
+        # the eccentricity in the global x, y (the spatial formulation's joint frame is that of
+        # mbs.CreateRevoluteJoint, turned in the plane)
+        ecc_x, ecc_y = model.joint.frame[:2, :2] @ np.array([out["ecc_x"], out["ecc_y"]])
+        cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=ecc_x,
+                    ecc_y=ecc_y, penetration=out["penetration"], in_contact=out["in_contact"])
     return {k: cols[k] for k in COLUMNS}
 
 

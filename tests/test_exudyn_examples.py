@@ -46,10 +46,6 @@ ENERGY_RTOL = 1e-5
 #: Where ``exuclear.simulate`` fails today on a model (measured on the zoo branch): the
 #: reason, for a strict xfail.
 SIMULATE_FAILS = {
-    "ancf_pendulum": "step='auto' cannot read the mass of an ANCF element (ValueError: 'the mass of one of its "
-                     "bodies is not read from its Exudyn object')",
-    "beam_pendulum_2d": "a journal on a MarkerNodeRigid: simulate's model check calls mbs.GetObject(None) "
-                        "(ExudynTypeError 'failed to convert to ObjectIndex', exuclear/engine/_diagnostics.py)",
     "double_pendulum_2d_friction": "with friction='paper', step='auto' (here end_time / 1000 = 5e-5 s) ignores the "
                                    "friction law's regularisation: Newton fails in the first sliding contact "
                                    "('SolveDynamic terminated ... Newton did not converge')",

@@ -204,8 +204,7 @@ def test_non_finite_state_stops_with_joint_and_time():
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[1e-4, 0, 0], initialVelocities=[math.nan, 0, 0]))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
-    with pytest.warns(DeprecationWarning, match="CreateClearanceJoint"):
-        exuclear.add_clearance_joint(mbs, body, ground, **bad_input.PAPER, cr=0.9, name="J1")
+    exuclear.CreateClearanceJoint(mbs, "J1", [ground, body], useGlobalFrame=False, **bad_input.PAPER, cr=0.9)
     mbs.Assemble()
     # issue 15: a NaN initial velocity is bad input, named as such before any step (no step advice)
     with pytest.raises(ValueError, match="initial velocity 0 .* is nan"):

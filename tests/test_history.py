@@ -59,3 +59,18 @@ def test_a_contact_that_ends_leaves_its_record():
 def test_a_joint_that_starts_in_contact_takes_its_current_rate():
     state, _ = _run([(1e-6, 0.25, 0.0)])
     assert state.in_contact and state.v0 == 0.25 and state.onset_time == 0.0
+
+
+def test_overlapping_slice_records_merge_into_physical_impacts():
+    from exuclear.history import ImpactRecord, merge_overlapping
+
+    # (onset, v0, peak, duration, max penetration): two slices of one impact, a third slice
+    # touching through the second (transitive), then a separate impact
+    a = ImpactRecord(1.0, 0.5, 10.0, 0.2, 1e-6)
+    b = ImpactRecord(1.1, 0.4, 20.0, 0.3, 2e-6)
+    c = ImpactRecord(1.35, 0.1, 5.0, 0.1, 0.5e-6)
+    d = ImpactRecord(2.0, 0.3, 7.0, 0.1, 1e-6)
+    merged = merge_overlapping([d, c, b, a])
+    assert merged[1] == d and merged[0][:3] == (1.0, 0.5, 35.0) and merged[0].max_penetration == 2e-6
+    assert merged[0].duration == pytest.approx(0.45, rel=1e-15)  # 1.45 - 1.0 in floating point
+    assert merge_overlapping([]) == []

@@ -10,7 +10,15 @@ import warnings
 import exudyn as exu
 import numpy as np
 import pytest
-from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
+from exudyn.itemInterface import (
+    LoadMassProportional,
+    MarkerBodyMass,
+    MarkerBodyRigid,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectRigidBody2D,
+    SensorNode,
+)
 
 import exuclear
 from exuclear.engine.solver import AccuracyWarning, automatic_step
@@ -27,10 +35,10 @@ def pendulum(theta0=0.5, mass=MASS, y_offset=0.0, velocity=0.0):
     bar = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=mass * LENGTH**2 / 12))
     mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=bar)),
                                      loadVector=[0, -9.81, 0]))
-    with pytest.warns(DeprecationWarning, match="CreateClearanceJoint"):
-        handle = exuclear.add_clearance_joint(mbs, bar, ground, journal_point=(0, LENGTH / 2),
-                                              journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3, length=15e-3,
-                                              cr=0.9, name="pin")
+    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0])),
+               mbs.AddMarker(MarkerBodyRigid(bodyNumber=bar, localPosition=[0, LENGTH / 2, 0]))]
+    handle = exuclear.AddClearanceJoint(mbs, markers, journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3,
+                                        length=15e-3, cr=0.9, name="pin")
     mbs.Assemble()
     return mbs, handle
 

@@ -31,7 +31,17 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import exudyn as exu
-from exudyn.itemInterface import MarkerBodyPosition, MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+import numpy as np
+from exudyn.itemInterface import (
+    MarkerBodyPosition,
+    MarkerBodyRigid,
+    NodeGenericODE2,
+    NodeRigidBody2D,
+    ObjectBeamGeometricallyExact2D,
+    ObjectGround,
+    ObjectKinematicTree,
+    ObjectRigidBody2D,
+)
 
 import exuclear
 from exuclear.models.journal_bearing import JournalBearingParams
@@ -61,6 +71,38 @@ def markers() -> tuple[exu.MainSystem, list]:
     return mbs, [mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))]
 
 
+def on_marker() -> dict:
+    """A fresh :func:`system` as ``CreateClearanceJoint``'s arguments ``mbs`` and
+    ``itemNumbers`` = [ground, a rigid marker on the body]."""
+    mbs, body, ground = system()
+    return {"mbs": mbs, "itemNumbers": [ground, mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))]}
+
+
+def beam() -> exu.MainSystem:
+    """A fresh system: object 0 the ground, object 1 an ``ObjectBeamGeometricallyExact2D``."""
+    mbs = exu.SystemContainer().AddSystem()
+    mbs.AddObject(ObjectGround())
+    nodes = [mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[x, 0.0, 0.0])) for x in (0.0, 0.1)]
+    mbs.AddObject(ObjectBeamGeometricallyExact2D(nodeNumbers=nodes, length=0.1, massPerLength=1.0,
+                                                 crossSectionInertia=1e-6, bendingStiffness=1.0, axialStiffness=1e3,
+                                                 shearStiffness=1e3))
+    return mbs
+
+
+def kinematic_tree() -> exu.MainSystem:
+    """A fresh system: object 0 an ``ObjectKinematicTree`` of two revolute links."""
+    mbs = exu.SystemContainer().AddSystem()
+    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0, 0.0], initialCoordinates=[0.0, 0.0],
+                                       initialCoordinates_t=[0.0, 0.0], numberOfODE2Coordinates=2))
+    mbs.AddObject(ObjectKinematicTree(
+        nodeNumber=node, linkParents=[-1, 0], jointTypes=[exu.JointType.RevoluteZ] * 2,
+        jointTransformations=exu.Matrix3DList([np.eye(3)] * 2),
+        jointOffsets=exu.Vector3DList([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]]),
+        linkInertiasCOM=exu.Matrix3DList([np.eye(3) * 1e-3] * 2), linkCOMs=exu.Vector3DList([[0.0, 0.0, 0.0]] * 2),
+        linkMasses=[1.0, 1.0]))
+    return mbs
+
+
 def build_journal(params: JournalBearingParams) -> object:
     """:func:`exuclear.models.journal_bearing.build`, imported late."""
     from exuclear.models.journal_bearing import build
@@ -71,7 +113,7 @@ def build_journal(params: JournalBearingParams) -> object:
 #: Names the API rows may use.
 NAMESPACE = {"exuclear": exuclear, "PAPER": PAPER, "SliderCrankParams": SliderCrankParams,
              "JournalBearingParams": JournalBearingParams, "system": system, "markers": markers,
-             "build_journal": build_journal,
+             "build_journal": build_journal, "on_marker": on_marker, "beam": beam, "kinematic_tree": kinematic_tree,
              "nan": math.nan, "inf": math.inf}
 
 
@@ -175,6 +217,16 @@ BAD_INPUTS: tuple[BadInput, ...] = (
              says="rigid markers"),
     BadInput("API", "unknown name", 'exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], **PAPER, '
                                     'cr=0.9, bearingRotates="yes")', "ValueError", says="`bearingRotates`"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(beam(), itemNumbers=[0, 1], **PAPER, cr=0.9)",
+             "ValueError", says="MarkerNodeRigid"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(kinematic_tree(), itemNumbers=[0, 0], "
+                                          "**PAPER, cr=0.9)", "ValueError", says="MarkerKinematicTreeRigid"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(**on_marker(), position=[0, 0, 0], **PAPER, "
+                                          "cr=0.9)", "ValueError", says="`position`"),
+    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], "
+                                          "bodyNumbers=[0, 1], **PAPER, cr=0.9)", "ValueError", says="`itemNumbers`"),
+    BadInput("API", "wrong type", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], axisRadius=-0.1, "
+                                  "**PAPER, cr=0.9)", "ValueError", says="`axisRadius`"),
     # -- API: inconsistent input
     BadInput("API", "inconsistent input", "exuclear.make_joint(journal_radius=10e-3, bearing_radius=10e-3, "
                                           "length=15e-3, cr=0.9)", "ValueError"),

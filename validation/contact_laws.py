@@ -197,7 +197,7 @@ def element_runs(pairs: tuple[tuple[str, float], ...] = (("wang-liu", 0.3), ("wa
     """The same impact through the library's Exudyn element (README's public API), for a few
     pairings and every backend the installed library offers; failures are recorded, not raised."""
     import exudyn as exu
-    from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+    from exudyn.itemInterface import MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
     backends = tuple(getattr(exuclear, "BACKENDS", ("python",)))
     records = []
@@ -214,9 +214,10 @@ def element_runs(pairs: tuple[tuple[str, float], ...] = (("wang-liu", 0.3), ("wa
                                                    initialVelocities=[V_IMPACT, 0, 0]))
                 pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=MASS,
                                                       inertia=0.5 * MASS * GEOMETRY.journal_radius**2))
-                handle = exuclear.add_clearance_joint(
-                    mbs, journal_body=pin, bearing_body=ground, journal_point=(0, 0), bearing_point=(0, 0),
-                    journal_radius=GEOMETRY.journal_radius, bearing_radius=GEOMETRY.bearing_radius,
+                markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0]))
+                           for body in (ground, pin)]  # bearing, journal
+                handle = exuclear.AddClearanceJoint(
+                    mbs, markers, journal_radius=GEOMETRY.journal_radius, bearing_radius=GEOMETRY.bearing_radius,
                     length=GEOMETRY.length, law=law_name, cr=cr, backend=backend)
                 mbs.Assemble()
                 sim = exuclear.simulate(mbs, exuclear.SolverSettings(
@@ -299,7 +300,7 @@ def main(argv: list[str] | None = None) -> int:
         element = element_runs()
         written.append(write_csv(os.path.join(args.out, "element.csv"), element))
         lines += ["## Through the Exudyn element", "",
-                  "Restitution and peak force of the same impact through `exuclear.add_clearance_joint` / "
+                  "Restitution and peak force of the same impact through `exuclear.AddClearanceJoint` / "
                   "`exuclear.simulate` (DOPRI5, steps <= 1e-7 s, rtol 1e-10; peak force sampled every 1e-8 s) "
                   "against the one-DOF reference (peak force sampled at 4000 instants). The restitution does not "
                   "depend on the stiffness model, the peak force does.", "",

@@ -13,6 +13,7 @@
   named table, shared with the compiled kernel);
 - :mod:`~exuclear.engine.solver`: ``simulate``, a convenience around ``SolveDynamic``.
 """
+from ._diagnostics import OutOfPlaneWarning, unheld_motion
 from .checks import default_penetration_limit
 from .connector import BACKENDS, DEFAULT_BACKEND, AddClearanceJoint, CreateClearanceJoint, add_clearance_joint
 from .handle import ClearanceJointHandle
@@ -23,4 +24,5 @@ from .solver import AccuracyWarning, SimulationResult, simulate, simulation_sett
 
 __all__ = ["BACKENDS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "DATA_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle",
            "CreateClearanceJoint", "add_clearance_joint", "default_penetration_limit", "KernelWarning",
-           "AccuracyWarning", "SimulationResult", "simulate", "simulation_settings"]
+           "AccuracyWarning", "SimulationResult", "simulate", "simulation_settings", "OutOfPlaneWarning",
+           "unheld_motion"]

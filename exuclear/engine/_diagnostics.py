@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import warnings
 from collections.abc import Sequence
 from typing import Any
 
@@ -25,31 +26,112 @@ import numpy as np
 from ..timescales import STEPS_PER_CONTACT_PERIOD, contact_period, reduced_mass
 from .connector import ClearanceJointHandle
 
+#: Largest number of ODE2 coordinates for which :func:`unheld_motion` runs: it takes the
+#: dense constraint Jacobian's SVD and one marker read per admissible direction (0.1 s
+#: at a few hundred coordinates); a larger model is not checked.
+UNHELD_MAX_COORDINATES = 1000
+#: Step [coordinate units] along an admissible direction (a unit vector of ODE2
+#: coordinates) at which the journal's axial and tilt motion are read: far below any
+#: model's size, far above round-off of the positions.
+_UNHELD_STEP = 1e-6
+#: Axial displacement [m] or tilt [rad] per unit step below which a direction does not move
+#: the journal out of the plane (round-off of a position of 10 m over the step: 1e-9).
+_UNHELD_TOLERANCE = 1e-6
+#: Singular values of the constraint Jacobian below this fraction of the largest count as
+#: zero (Exudyn's ComputeSystemDegreeOfFreedom uses 1e-12).
+_RANK_RTOL = 1e-10
+
+
+class OutOfPlaneWarning(UserWarning):
+    """A clearance joint's journal can move along the axis or tilt, and nothing in the
+    model holds it (the replaced revolute joint did): see :func:`unheld_motion`."""
+
+
 #: Gravitational acceleration assumed for the contact load where a model has no
 #: mass-proportional load [m/s^2]: a joint is then pressed by its effective mass times g.
 STANDARD_GRAVITY = 9.81
 
 
-def _body_of(mbs: exu.MainSystem, marker: Any) -> tuple[Any, dict, int | None]:
+def _body_of(mbs: exu.MainSystem, marker: Any) -> tuple[Any, dict | None, int | None]:
+    """The object a marker sits on, its dictionary and its kinematic-tree link; ``(None,
+    None, None)`` for a node marker (``MarkerNodeRigid``), which sits on no object."""
     m = mbs.GetMarker(marker)
     body = m.get("bodyNumber", m.get("objectNumber"))
+    if body is None:
+        return None, None, None
     link = m.get("linkNumber")
     return body, mbs.GetObject(body), (int(link) if link is not None else None)
 
 
+def _where(mbs: exu.MainSystem, marker: Any) -> str:
+    """The body a marker sits on, for messages: "object 3", "link 1 of object 0", "node 2"."""
+    body, _, link = _body_of(mbs, marker)
+    if body is None:
+        return f"node {mbs.GetMarker(marker)['nodeNumber']}"
+    return f"link {link} of object {body}" if link is not None else f"object {body}"
+
+
+def _element_mass(item: dict) -> float:
+    """Mass [kg] of an object, nan where its type does not say: a rigid body's or mass
+    point's ``physicsMass`` / ``mass``; a beam or cable element's mass per length times its
+    length (``ObjectANCFCable2D``, ``ObjectBeamGeometricallyExact2D``: ``massPerLength``
+    and ``length``; the 3D elements: ``physicsMassPerLength`` or their ``sectionData``,
+    and ``physicsLength``)."""
+    for key in ("physicsMass", "mass"):  # ObjectRigidBody and mass points; ObjectRigidBody2D
+        if key in item:
+            return float(item[key])
+    per_length = item.get("massPerLength", item.get("physicsMassPerLength"))
+    if per_length is None and "sectionData" in item:
+        per_length = getattr(item["sectionData"], "massPerLength", None)
+    length = item.get("length", item.get("physicsLength"))
+    if per_length is None or length is None:
+        return math.nan
+    return float(per_length) * float(length)
+
+
+def _node_mass(mbs: exu.MainSystem, node: int) -> float:
+    """Mass [kg] that moves with a node: the whole mass of the objects whose only node it is
+    (a rigid body), and a share ``1 / (number of the element's nodes)`` of every element
+    that has it among several nodes (the lumped mass of a beam or cable node); nan where
+    an attached object's mass is not read (:func:`_element_mass`) or nothing is attached."""
+    mass, attached = 0.0, False
+    for i in range(mbs.systemData.NumberOfObjects()):
+        item = mbs.GetObject(i)
+        nodes = [int(n) for n in item.get("nodeNumbers", [])]
+        if "nodeNumber" in item and item["nodeNumber"] is not None and int(item["nodeNumber"]) >= 0:
+            nodes.append(int(item["nodeNumber"]))
+        if node not in nodes or item["objectType"].startswith(("Connector", "Joint", "Contact")):
+            continue
+        attached = True
+        mass += _element_mass(item) / len(nodes)
+    return mass if attached else math.nan
+
+
 def body_mass(mbs: exu.MainSystem, marker: Any) -> float:
     """Mass [kg] of the body (or kinematic-tree link) a marker sits on; inf for the
-    ground; nan where the object type does not say."""
-    _, item, link = _body_of(mbs, marker)
+    ground; for a node marker the mass that moves with the node (:func:`_node_mass`); nan
+    where the object type does not say."""
+    body, item, link = _body_of(mbs, marker)
+    if item is None:
+        return _node_mass(mbs, int(mbs.GetMarker(marker)["nodeNumber"]))
     kind = item["objectType"]
     if kind == "Ground":
         return math.inf
     if kind == "KinematicTree":
         return float(item["linkMasses"][link])
-    for key in ("physicsMass", "mass"):  # ObjectRigidBody and mass points; ObjectRigidBody2D
-        if key in item:
-            return float(item[key])
-    return math.nan
+    return _element_mass(item)
+
+
+def unread_masses(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
+    """The bodies of a joint whose mass :func:`body_mass` does not read, for messages
+    ("its journal body (object 3, an ObjectFFRF)"), or ``""``."""
+    unread = []
+    for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
+        if math.isnan(body_mass(mbs, marker)):
+            _, item, _ = _body_of(mbs, marker)
+            kind = f", an Object{item['objectType']}" if item is not None else ""
+            unread.append(f"its {role} body ({_where(mbs, marker)}{kind})")
+    return " and ".join(unread)
 
 
 def _gravity(mbs: exu.MainSystem) -> float:
@@ -77,16 +159,118 @@ def joint_contact_period(mbs: exu.MainSystem, handle: ClearanceJointHandle, forc
     return contact_period(handle.joint.law, mass, force)
 
 
+def _constraint_jacobian(mbs: exu.MainSystem) -> np.ndarray:
+    """The constraint Jacobian C_q (constraints x ODE2 coordinates) at the initial state,
+    as Exudyn's ``ComputeSystemDegreeOfFreedom`` reads it (no joint force is evaluated)."""
+    settings = exu.SimulationSettings()
+    settings.staticSolver.verboseMode = 0
+    settings.solution.file.write = False
+    settings.solution.sensors.active = False  # no sensor records from this evaluation
+    solver = exu.MainSolverStatic()
+    solver.InitializeSolver(mbs, settings)
+    try:
+        n2, n1, n_ae = solver.GetODE2size(), solver.GetODE1size(), solver.GetAEsize()
+        if n_ae == 0:
+            return np.zeros((0, n2))
+        size = n2 + n1 + n_ae  # the matrix is not zeroed by InitializeSolver, and ComputeJacobianAE fills its part
+        solver.SetSystemJacobian(np.zeros((size, size)))
+        solver.ComputeJacobianAE(mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=1.0,
+                                 velocityLevel=False)
+        jacobian = np.asarray(solver.GetSystemJacobian())
+        return jacobian[:n2, n2 + n1:].T
+    finally:
+        solver.FinalizeSolver(mbs, settings)
+
+
+def _relative_pose(mbs: exu.MainSystem, handle: ClearanceJointHandle, frame: np.ndarray) -> np.ndarray:
+    """Journal centre along the bearing axis [m] and the journal axis's x, y in the bearing's
+    joint frame, in the current configuration."""
+    cur, ov = exu.ConfigurationType.Current, exu.OutputVariableType
+    b, j = handle.markerNumbers
+    a_b = np.asarray(mbs.GetMarkerOutput(b, ov.RotationMatrix, configuration=cur), dtype=float).reshape(3, 3) @ frame
+    a_j = np.asarray(mbs.GetMarkerOutput(j, ov.RotationMatrix, configuration=cur), dtype=float).reshape(3, 3)
+    d = np.asarray(mbs.GetMarkerOutput(j, ov.Position, configuration=cur), dtype=float) - np.asarray(
+        mbs.GetMarkerOutput(b, ov.Position, configuration=cur), dtype=float)
+    axis = a_b.T @ a_j @ np.asarray(handle.axis_journal, dtype=float)
+    return np.array([a_b[:, 2] @ d, axis[0], axis[1]])
+
+
+def unheld_motion(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle] | None = None) -> dict[Any, list[str]]:
+    """The motions a clearance joint leaves free that nothing in the model holds: for each
+    joint (by name, or connector number where unnamed) the list of ``"axial translation"``
+    and ``"tilt"`` its journal can make relative to its bearing without violating any of
+    the model's constraints (a planar joint: both, unless ``constrainAxial``; a spatial
+    one: the axial translation, unless ``constrainAxial`` or ``axial_clearance``).  Only
+    3D bodies can; the replaced revolute joint held both.  Call after ``mbs.Assemble()``.
+
+    Method: the admissible velocities are the null space of the constraint Jacobian at the
+    initial state; the journal is moved a small step (:data:`_UNHELD_STEP`) along each
+    and its axial displacement and tilt are read from the markers.  Models with more than
+    :data:`UNHELD_MAX_COORDINATES` coordinates are not checked (an empty result).
+    """
+    from .handle import joints_of  # noqa: PLC0415 - the handle module imports this one's users
+
+    joints = list(joints_of(mbs) if joints is None else joints)
+    checked = [h for h in joints if h.constraintNumber is None and not (h.slices and h.shoulders is not None)]
+    if not checked:
+        return {}
+    init, cur = exu.ConfigurationType.Initial, exu.ConfigurationType.Current
+    q0 = np.asarray(mbs.systemData.GetODE2Coordinates(configuration=init), dtype=float)
+    if not 0 < q0.size <= UNHELD_MAX_COORDINATES:
+        return {}
+    saved = np.asarray(mbs.systemData.GetODE2Coordinates(configuration=cur), dtype=float)
+    jacobian = _constraint_jacobian(mbs)
+    if not np.all(np.isfinite(jacobian)):  # a constraint without a finite Jacobian: nothing to say
+        return {}
+    if jacobian.shape[0]:
+        _, sv, vt = np.linalg.svd(jacobian)
+        rank = int(np.sum(sv > _RANK_RTOL * sv[0])) if sv.size and sv[0] > 0.0 else 0
+        directions = vt[rank:]
+    else:
+        directions = np.eye(q0.size)
+    frames = {h: np.asarray(mbs.GetObject(h.objectNumber)["rotationMarker0"], dtype=float) for h in checked}
+    found: dict[Any, list[str]] = {}
+    try:
+        mbs.systemData.SetODE2Coordinates(q0.tolist(), configuration=cur)
+        base = {h: _relative_pose(mbs, h, frames[h]) for h in checked}
+        moved = {h: np.zeros(3) for h in checked}
+        for n in directions:
+            mbs.systemData.SetODE2Coordinates((q0 + _UNHELD_STEP * n).tolist(), configuration=cur)
+            for h in checked:
+                moved[h] = np.maximum(moved[h], np.abs(_relative_pose(mbs, h, frames[h]) - base[h]) / _UNHELD_STEP)
+    finally:
+        mbs.systemData.SetODE2Coordinates(saved.tolist(), configuration=cur)
+    for h in checked:
+        free = []
+        if moved[h][0] > _UNHELD_TOLERANCE:
+            free.append("axial translation")
+        if not h.slices and max(moved[h][1:]) > _UNHELD_TOLERANCE:
+            free.append("tilt")
+        if free:
+            found[h.name or h.objectNumber] = free
+    return found
+
+
+def unheld_note(found: dict[Any, list[str]]) -> str:
+    """The warning of :func:`check_model` for the result of :func:`unheld_motion`, or ``""``."""
+    if not found:
+        return ""
+    joints = "; ".join(f"joint {name!r}: {' and '.join(free)}" for name, free in found.items())
+    return (f"nothing in the model holds the journal's out-of-plane motion that the replaced revolute joint held "
+            f"({joints}): the clearance joint acts in the plane normal to its axis only, so the journal may drift "
+            "along the axis or tilt until the contact gives way. Give constrainAxial=True to the clearance joint (or "
+            "hold the motion by other joints, or use the spatial joint with axial_clearance)")
+
+
 def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> None:
-    """``ValueError`` naming the likely cause for a model that cannot run (module docstring)."""
+    """``ValueError`` naming the likely cause for a model that cannot run (module docstring);
+    an :class:`OutOfPlaneWarning` where a journal's out-of-plane motion is held by nothing."""
     for handle in joints:
         name = handle.name or handle.objectNumber
         for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
-            body, _, link = _body_of(mbs, marker)
             mass = body_mass(mbs, marker)
             if mass <= 0.0:  # NaN (a body type whose mass is not read here) passes
-                where = f"link {link} of object {body}" if link is not None else f"object {body}"
-                raise ValueError(f"clearance joint {name!r}: its {role} body ({where}) has mass {mass}; every body "
+                raise ValueError(f"clearance joint {name!r}: its {role} body ({_where(mbs, marker)}) has mass {mass}; every body "
                                  "of a clearance joint needs a positive mass (the contact force would accelerate "
                                  "it without bound)")
         delta = initial_penetration(mbs, handle)
@@ -103,6 +287,9 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
         if bad:
             raise ValueError(f"initial {label} {bad[0]} (ODE2 index; node {_node_of(mbs, bad[0])}) is {values[bad[0]]}: "
                              f"every initial {label} must be finite")
+    note = unheld_note(unheld_motion(mbs, joints))
+    if note:
+        warnings.warn(note, OutOfPlaneWarning, stacklevel=3)
 
 
 def _node_of(mbs: exu.MainSystem, index: int) -> Any:

@@ -30,6 +30,12 @@ PENETRATION_LIMIT_RADIUS = 1e-3
 #: Exudyn marker types that carry a position and an orientation.
 RIGID_MARKERS = ("BodyRigid", "NodeRigid", "KinematicTreeRigid", "SuperElementRigid")
 
+#: Object types on which Exudyn 1.13 builds a ``MarkerBodyRigid`` that cannot run: the
+#: solver stops at the first step with "illegal call to CObjectBody::GetAngularVelocityLocal"
+#: (the element gives a connector no angular velocity).  Their nodes are rigid-body nodes,
+#: which a ``MarkerNodeRigid`` carries.
+NO_RIGID_BODY_MARKER = ("BeamGeometricallyExact2D",)
+
 
 def default_penetration_limit(geometry: Any) -> float:
     """The default penetration bound [m] of a joint (:data:`PENETRATION_LIMIT_CLEARANCE`)."""
@@ -75,15 +81,36 @@ def check_markers(mbs: exu.MainSystem, markerNumbers: Any) -> None:  # noqa: N80
     if isinstance(markerNumbers, (str, bytes)) or len(markerNumbers) != 2:
         raise ValueError(f"`markerNumbers` must be [bearing marker, journal marker], got {markerNumbers!r}")
     for k, marker in enumerate(markerNumbers):
-        try:
-            kind = mbs.GetMarker(marker)["markerType"]
-        except Exception:  # Exudyn raises its own error types for a bad index
-            raise ValueError(f"`markerNumbers[{k}]` {marker!r} is not a marker of this MainSystem") from None
-        if kind not in RIGID_MARKERS:
-            raise ValueError(f"`markerNumbers[{k}]` is a {kind} marker; a clearance joint needs rigid markers "
-                             f"(position and orientation): {', '.join(RIGID_MARKERS)}")
+        check_marker(mbs, marker, f"`markerNumbers[{k}]`")
     if int(markerNumbers[0]) == int(markerNumbers[1]):
         raise ValueError("`markerNumbers` names the same marker twice")
+
+
+def check_marker(mbs: exu.MainSystem, marker: Any, where: str) -> None:
+    """``ValueError`` unless ``marker`` is a rigid marker of ``mbs`` that can carry a joint."""
+    try:
+        kind = mbs.GetMarker(marker)["markerType"]
+    except Exception:  # Exudyn raises its own error types for a bad index
+        raise ValueError(f"{where} {marker!r} is not a marker of this MainSystem") from None
+    if kind not in RIGID_MARKERS:
+        raise ValueError(f"{where} is a {kind} marker; a clearance joint needs rigid markers (position and "
+                         f"orientation): {', '.join(RIGID_MARKERS)}")
+    if kind == "BodyRigid":
+        check_rigid_body_marker(mbs, mbs.GetMarker(marker)["bodyNumber"], f"{where} (a MarkerBodyRigid)")
+
+
+def check_rigid_body_marker(mbs: exu.MainSystem, body: Any, where: str) -> None:
+    """``ValueError`` where ``body`` cannot carry a running ``MarkerBodyRigid``
+    (:data:`NO_RIGID_BODY_MARKER`), naming the marker to give instead."""
+    item = mbs.GetObject(body)
+    kind = item["objectType"]
+    if kind in NO_RIGID_BODY_MARKER:
+        nodes = [int(n) for n in item.get("nodeNumbers", [])]
+        raise ValueError(f"{where} is on object {int(body)}, an Object{kind}, on which Exudyn's MarkerBodyRigid fails at "
+                         "the first step ('illegal call to CObjectBody::GetAngularVelocityLocal'): put the joint on "
+                         f"one of the element's nodes {nodes} with a MarkerNodeRigid (nodeNumber=...), and give that "
+                         "marker in `itemNumbers` of exuclear.CreateClearanceJoint or in `markerNumbers` of "
+                         "exuclear.AddClearanceJoint")
 
 
 def check_flags(name: Any, bearingRotates: Any, **flags: Any) -> None:  # noqa: N803 - Exudyn's argument name

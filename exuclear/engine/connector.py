@@ -40,10 +40,12 @@ from exudyn.itemInterface import (
     ObjectGround,
     ObjectJointGeneric,
     SensorNode,
+    SensorObject,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
     VObjectJointGeneric,
 )
+from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
 
 from .._checks import check_choice, check_positive
 from ..joint import ClearanceJoint
@@ -56,7 +58,9 @@ from .checks import (
     PENETRATION_LIMIT_RADIUS,
     check_axis,
     check_flags,
+    check_marker,
     check_markers,
+    check_rigid_body_marker,
     check_shoulders,
     check_slices,
     check_system,
@@ -75,7 +79,7 @@ __all__ = ["AXIS_UNIT_TOLERANCE", "BACKENDS", "DEFAULT_BACKEND", "DEFAULT_SLICES
            "OUTPUT_COLUMNS", "PENETRATION_LIMIT_CLEARANCE", "PENETRATION_LIMIT_RADIUS", "REGISTRY_KEY",
            "SPATIAL_OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
            "JointHistory", "add_clearance_joint", "default_penetration_limit", "drawing_function", "joint_frame",
-           "joints_of"]
+           "joints_of", "revolute_frame"]
 
 #: How the joint's user functions are evaluated.
 BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default where it passed its self-test)",
@@ -83,6 +87,12 @@ BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default
 
 #: The backend used where none is given: ``"compiled"`` where its self-test passed.
 DEFAULT_BACKEND = kernel.default_backend()
+
+
+#: Largest entry of ``R - I`` below which two markers' reference frames are taken as one:
+#: the round-off of composing and reading back rotation matrices (1e-16 per product),
+#: far below any frame a user sets on purpose.
+SAME_FRAME_ROUNDOFF = 1e-12
 
 
 def joint_frame(axis: np.ndarray) -> np.ndarray:
@@ -96,13 +106,36 @@ def joint_frame(axis: np.ndarray) -> np.ndarray:
 
 
 
-def _reference_pose(mbs: exu.MainSystem, body: Any) -> tuple[np.ndarray, np.ndarray]:
-    """Position and rotation matrix of a body's reference point in the reference configuration."""
-    ref = exu.ConfigurationType.Reference
-    p = np.asarray(mbs.GetObjectOutputBody(body, exu.OutputVariableType.Position, localPosition=[0, 0, 0],
-                                           configuration=ref), dtype=float)
-    a = np.asarray(mbs.GetObjectOutputBody(body, exu.OutputVariableType.RotationMatrix, localPosition=[0, 0, 0],
-                                           configuration=ref), dtype=float).reshape(3, 3)
+def revolute_frame(axis: np.ndarray) -> np.ndarray:
+    """The joint frame of Exudyn's ``mbs.CreateRevoluteJoint`` for a global ``axis``: z along
+    the axis, x and y from Exudyn's ``ComputeOrthonormalBasis`` (its columns b0 = axis, b1,
+    b2: x = -b2, y = b1).  Its revolute joint reports ``ForceLocal`` and ``TorqueLocal`` in
+    this frame (the markers' rotation); for ``axis = z`` it is x = -y_global, y = x_global."""
+    b = ComputeOrthonormalBasis(np.asarray(axis, dtype=float))
+    return np.column_stack([-b[:, 2], b[:, 1], b[:, 0]])
+
+
+def _reference_pose(mbs: exu.MainSystem, item: Any, where: str) -> tuple[np.ndarray, np.ndarray]:
+    """Position and rotation matrix, in the reference configuration, of a rigid marker or
+    of a body's reference point (where the body has no rotation matrix output, as
+    ``ObjectANCFCable2D``: its planar rotation angle)."""
+    ref, ov = exu.ConfigurationType.Reference, exu.OutputVariableType
+    if isinstance(item, exu.MarkerIndex):
+        return (np.asarray(mbs.GetMarkerOutput(item, ov.Position, configuration=ref), dtype=float),
+                _marker_rotation(mbs, item))
+    p = np.asarray(mbs.GetObjectOutputBody(item, ov.Position, localPosition=[0, 0, 0], configuration=ref), dtype=float)
+    try:
+        a = np.asarray(mbs.GetObjectOutputBody(item, ov.RotationMatrix, localPosition=[0, 0, 0], configuration=ref),
+                       dtype=float).reshape(3, 3)
+    except Exception:  # Exudyn raises its own error types for an output a body does not have
+        try:
+            phi = float(mbs.GetObjectOutputBody(item, ov.Rotation, localPosition=[0, 0, 0], configuration=ref))
+        except Exception:  # no planar angle either (a 3D flexible element)
+            raise ValueError(f"{where} (object {int(item)}, an Object{mbs.GetObject(item)['objectType']}) gives no "
+                             "reference orientation from which to place the joint's marker: give a rigid marker on it "
+                             "(e.g. MarkerBodyRigid or MarkerNodeRigid) in `itemNumbers`") from None
+        c, s = math.cos(phi), math.sin(phi)
+        a = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     return p, a
 
 
@@ -148,6 +181,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     record: bool = True,
     show: bool = True,
     slices: int | None = None,
+    _frame: np.ndarray | None = None,
+    _drawing: dict | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Add a clearance joint between two rigid markers: the bearing hole's centre on
@@ -157,13 +192,15 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     in the plane normal to it (planar joint), or slice by slice along it (``slices``; the
     journal's axis is taken parallel to it in the reference configuration).  The other
     arguments are those of :func:`CreateClearanceJoint`.  Call before ``mbs.Assemble()``.
+    Where the joint frame is not marker 0's own, the joint sits on copies of the two markers
+    turned into it (``handle.markerNumbers``), as ``mbs.CreateRevoluteJoint`` makes them.
     """
     check_system(mbs)
     check_markers(mbs, markerNumbers)
     axial_clearance = joint_parameters.pop("axial_clearance", None)
     shoulder_radius = joint_parameters.pop("shoulder_radius", None)
     joint = physics(joint, joint_parameters)
-    axis_local = check_axis(axis)
+    axis_local = check_axis(axis) if _frame is None else None
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
@@ -178,15 +215,26 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)
-    frame = joint_frame(axis_local)  # in marker 0's frame
+    # the joint frame in marker 0's frame: from `axis`, or the global frame CreateClearanceJoint gives
+    frame = joint_frame(axis_local) if _frame is None else a_bearing.T @ np.asarray(_frame, dtype=float)
+    if not np.array_equal(frame, np.eye(3)) and all("localHT" in mbs.GetMarker(m) for m in (m_bearing, m_journal)):
+        # copies of the markers turned into the joint frame, as Exudyn's CreateRevoluteJoint
+        # makes them: its connectors' rotationMarker0/1 are deprecated
+        m_bearing, m_journal = (_turned_marker(mbs, m_bearing, frame),
+                                _turned_marker(mbs, m_journal, a_journal.T @ a_bearing @ frame))
+        a_bearing, a_journal, frame = _marker_rotation(mbs, m_bearing), _marker_rotation(mbs, m_journal), np.eye(3)
     rotation0 = frame.tolist()
-    rotation1 = (a_journal.T @ a_bearing @ frame).tolist()  # the same joint frame, seen from marker 1
+    relative = a_journal.T @ a_bearing @ frame  # the same joint frame, seen from marker 1
+    if np.abs(relative - np.eye(3)).max() <= SAME_FRAME_ROUNDOFF:
+        relative = np.eye(3)  # markers turned into one frame: no deprecated rotationMarker1 for round-off
+    rotation1 = relative.tolist()
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
-    axis_journal = tuple(float(v) for v in a_journal.T @ a_bearing @ frame[:, 2])
+    axis_journal = tuple(float(v) for v in relative[:, 2])
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal, shoulders)
     handle.markerNumbers = [m_bearing, m_journal]
-    handle._axis_local = axis_local / np.linalg.norm(axis_local)
+    handle._axis_local = frame[:, 2].copy()
+    handle._drawing = _drawing or {}
     fns = handle.user_functions()
     hidden = VObjectConnectorRigidBodySpringDamper(show=False)
     if bearingRotates is None:
@@ -226,6 +274,10 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         handle.sensorNumber = mbs.AddSensor(SensorNode(nodeNumber=handle.nodeNumber, storeInternal=True,
                                                        writeToFile=False,
                                                        outputVariableType=exu.OutputVariableType.Coordinates))
+        if slices:  # the resultant load of all slices and faces, as the connector applies it
+            handle.loadSensorNumbers = [mbs.AddSensor(SensorObject(
+                objectNumber=handle.objectNumber, storeInternal=True, writeToFile=False, outputVariableType=kind))
+                for kind in (exu.OutputVariableType.ForceLocal, exu.OutputVariableType.TorqueLocal)]
     return handle
 
 
@@ -234,10 +286,14 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     mbs: exu.MainSystem,
     name: str = "",
     itemNumbers: Sequence[Any] = (None, None),
-    position: Sequence[float] = (0.0, 0.0, 0.0),
+    position: Sequence[float] | None = None,
     axis: Sequence[float] = (0.0, 0.0, 1.0),
     useGlobalFrame: bool = True,
     show: bool = True,
+    axisRadius: float | None = None,
+    axisLength: float | None = None,
+    color: Sequence[float] | None = None,
+    bodyNumbers: Sequence[Any] | None = None,
     *,
     joint: ClearanceJoint | None = None,
     backend: str | None = None,
@@ -258,17 +314,39 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         The system; call before ``mbs.Assemble()``.
     name : str
         The joint's name (its connector's).
-    itemNumbers : [ObjectIndex, ObjectIndex]
-        Bearing body and journal body: any object with rigid body markers (ground,
-        ``ObjectRigidBody2D``, the bodies of ``mbs.CreateRigidBody`` with any rotation
-        node, ``ObjectRigidBody``, flexible bodies that give a ``MarkerBodyRigid``).  For
-        kinematic-tree links use :func:`AddClearanceJoint` with ``MarkerKinematicTreeRigid``.
-    position : 3 floats
-        The joint's centre [m]: global (``useGlobalFrame=True``) or in body 0's frame.
+    itemNumbers : [bearing item, journal item]
+        Each a body (``ObjectIndex``) or a rigid marker (``MarkerIndex``), as in
+        ``mbs.CreateRevoluteJoint``: the ground, ``ObjectRigidBody2D``, the bodies of
+        ``mbs.CreateRigidBody`` with any rotation node, ``ObjectRigidBody``, flexible
+        elements that give a ``MarkerBodyRigid`` (``ObjectANCFCable2D``: the joint's
+        marker sits at ``position`` on the element's axis).  Where a body cannot carry the
+        joint, give a marker: a ``MarkerNodeRigid`` on a node of an
+        ``ObjectBeamGeometricallyExact2D`` (on which a ``MarkerBodyRigid`` fails at the
+        first step, so it is refused here), and a ``MarkerKinematicTreeRigid`` on a
+        kinematic-tree link (``ObjectKinematicTree`` is refused: a joint needs a link, and
+        the tree must give the journal's link its in-plane play, e.g. ``PrismaticX`` and
+        ``PrismaticY`` links before its revolute joint, which its own joint holds otherwise).
+    position : 3 floats, optional
+        The joint's centre [m]: global (``useGlobalFrame=True``) or in item 0's frame;
+        default the global origin.  Where an item is a marker, the marker sets the centre
+        and ``position`` must be omitted (or ``[]``), as in ``mbs.CreateRevoluteJoint``.
     axis : 3 floats
-        Bearing axis (global, or body 0's frame); the contact acts in the plane normal to it.
+        Bearing axis (global, or item 0's frame); the contact acts in the plane normal to it.
+        The joint frame is that of ``mbs.CreateRevoluteJoint`` (:func:`revolute_frame`):
+        ``ForceLocal``/``TorqueLocal`` of ``objectNumber``, the eccentricity and the tilt
+        outputs are in the frame the replaced revolute joint reports in.
+    useGlobalFrame : bool
+        Whether ``position`` and ``axis`` are global (True) or in item 0's frame.
     show : bool
         Draw the joint (Exudyn draws its connector; nothing is drawn without a renderer).
+    axisRadius, axisLength : float, optional
+        ``mbs.CreateRevoluteJoint``'s drawing sizes [m]: the drawn journal radius (the
+        bearing drawn to the same scale, so the play stays in proportion) and the drawn
+        length; default the joint's own ``journal_radius`` and ``length``.
+    color : 4 floats, optional
+        RGBA colour of the drawn journal.
+    bodyNumbers : deprecated
+        Exudyn's former name of ``itemNumbers`` (a ``DeprecationWarning``, as Exudyn gives).
     joint : ClearanceJoint, optional
         The physics, ready built; else built by :func:`exuclear.make_joint` from the
         keyword arguments ``journal_radius``, ``bearing_radius``, ``length``, ``law``,
@@ -286,6 +364,11 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``ObjectJointGeneric`` also holds axial translation and tilt, as the replaced
         revolute joint did (3D bodies; needs an implicit solver); for a spatial joint
         (``slices``) the axial translation only, since the slices carry the tilt.
+        Where nothing in the model holds what the replaced revolute joint held (a 3D
+        journal whose only link to the bearing is this joint), :func:`exuclear.simulate`
+        warns before the run (``OutOfPlaneWarning``, naming the joint, the motion and
+        this fix); :func:`exuclear.engine.unheld_motion` is the same check for a plain
+        ``mbs.SolveDynamic``.
     bearingRotates : bool, optional
         Whether the bearing body can turn about the axis.  Where it can, two helper
         connectors supply the bearing's own spin to the slip and its own moment
@@ -320,33 +403,106 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``objectNumber`` is the connector (for ``SensorObject`` with ``ForceLocal``).
     """
     check_system(mbs)
+    if bodyNumbers is not None:
+        if tuple(itemNumbers) != (None, None):
+            raise ValueError("give `itemNumbers` only: `bodyNumbers` is its deprecated name, and both were given")
+        warnings.warn("`bodyNumbers` is deprecated (as in Exudyn's CreateRevoluteJoint): use `itemNumbers`",
+                      DeprecationWarning, stacklevel=2)
+        itemNumbers = bodyNumbers
     if isinstance(itemNumbers, (str, bytes)) or len(itemNumbers) != 2:
-        raise ValueError(f"`itemNumbers` must be [bearing body, journal body], got {itemNumbers!r}")
+        raise ValueError(f"`itemNumbers` must be [bearing item, journal item] (bodies or rigid markers), "
+                         f"got {itemNumbers!r}")
     if not isinstance(useGlobalFrame, bool):
         raise ValueError(f"`useGlobalFrame` must be True or False, got {useGlobalFrame!r}")
+    draw = _drawing_sizes(axisRadius, axisLength, color)
+    kinds = []
+    for k, (role, item) in enumerate(zip(("bearing", "journal"), itemNumbers)):
+        if item is None:
+            raise ValueError(f"`itemNumbers` needs the {role} item (a body or a rigid marker)")
+        where = f"`itemNumbers[{k}]`"
+        if isinstance(item, exu.MarkerIndex):
+            check_marker(mbs, item, where)
+            kinds.append("marker")
+            continue
+        kind = object_type(mbs, item, f"{role} body")
+        if kind == "KinematicTree":
+            raise ValueError(f"{where} is an ObjectKinematicTree: a joint on a tree sits on one of its links, whose "
+                             "motion the tree's own joints hold: give the journal's link its in-plane play in the tree "
+                             "(PrismaticX and PrismaticY links before its revolute joint), and give MarkerKinematicTreeRigid "
+                             "markers (objectNumber, linkNumber, localPosition) in `itemNumbers` "
+                             "(validation/exudyn_examples/kinematic_tree_chain.py)")
+        check_rigid_body_marker(mbs, item, where)
+        kinds.append(kind)
     b0, b1 = itemNumbers
-    for role, body in (("bearing body", b0), ("journal body", b1)):
-        if body is None:
-            raise ValueError(f"`itemNumbers` needs the {role}")
-        object_type(mbs, body, role)
-    if int(b0) == int(b1):
-        raise ValueError("`itemNumbers` names the same body twice; the bearing and the journal are on different bodies")
-    if (object_type(mbs, b0, "bearing body") == "Ground") and (object_type(mbs, b1, "journal body") == "Ground"):
-        raise ValueError("`itemNumbers` are both ground objects: one must be a moving body")
-    p = vector3("position", position)
-    a = vector3("axis", axis)
-    if not np.linalg.norm(a) > 0.0:
-        raise ValueError(f"`axis` must not be zero, got {axis!r}")
-    p0, a0 = _reference_pose(mbs, b0)
-    p1, a1 = _reference_pose(mbs, b1)
+    if "marker" not in kinds:
+        if int(b0) == int(b1):
+            raise ValueError("`itemNumbers` names the same body twice; the bearing and the journal are on different "
+                             "bodies")
+        if kinds == ["Ground", "Ground"]:
+            raise ValueError("`itemNumbers` are both ground objects: one must be a moving body")
+    a = check_axis(axis)
+    p0, a0 = _reference_pose(mbs, b0, "`itemNumbers[0]`")
+    p1, a1 = _reference_pose(mbs, b1, "`itemNumbers[1]`")
+    if "marker" in kinds:  # the marker sets the joint's centre (mbs.CreateRevoluteJoint's rule)
+        if position is not None and len(position) != 0:
+            raise ValueError(f"`position` must be omitted (or []) where `itemNumbers` gives a marker: the marker sets "
+                             f"the joint's centre, got {position!r}")
+        p = p0 if kinds[0] == "marker" else p1
+    else:
+        p = vector3("position", (0.0, 0.0, 0.0) if position is None else position)
+        if not useGlobalFrame:
+            p = a0 @ p + p0
     if not useGlobalFrame:
-        p, a = a0 @ p + p0, a0 @ a
-    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=b0, localPosition=(a0.T @ (p - p0)).tolist())),
-               mbs.AddMarker(MarkerBodyRigid(bodyNumber=b1, localPosition=(a1.T @ (p - p1)).tolist()))]
-    return AddClearanceJoint(mbs, markers, axis=(a0.T @ a).tolist(), name=name, joint=joint, backend=backend,
-                             maxPenetration=maxPenetration, constrainAxial=constrainAxial,
-                             bearingRotates=bearingRotates, record=record, show=show, slices=slices,
-                             **joint_parameters)
+        a = a0 @ a
+    # the joint frame of mbs.CreateRevoluteJoint, carried by the markers' localHT as Exudyn
+    # carries it (its rotationMarker0 is deprecated): joint frame z = the axis in both markers
+    frame = revolute_frame(a)
+    markers, frame0 = [], None
+    for item, kind, pos, rot in ((b0, kinds[0], p0, a0), (b1, kinds[1], p1, a1)):
+        turn = rot.T @ frame
+        if kind != "marker":
+            markers.append(mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
+                rotation=turn, translation=rot.T @ (p - pos)))))
+            continue
+        marker = _turned_marker(mbs, item, turn)
+        if marker is None:  # a marker without localHT: the connector's rotationMarker0 takes the frame
+            marker, frame0 = item, (frame if not markers else frame0)
+        markers.append(marker)
+    return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
+                             constrainAxial=constrainAxial, bearingRotates=bearingRotates, record=record, show=show,
+                             slices=slices, _frame=frame0, _drawing=draw, **joint_parameters)
+
+
+def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:
+    """A rigid marker whose frame is ``marker``'s turned by ``rotation`` (in its own frame):
+    the marker itself for the unit rotation, else a copy with the composed ``localHT``;
+    None for a marker without ``localHT``."""
+    if np.array_equal(rotation, np.eye(3)):
+        return marker
+    data = mbs.GetMarker(marker)
+    if "localHT" not in data:
+        return None
+    copy = {key: value for key, value in data.items() if key not in ("name", "localPosition") and key[0] != "V"}
+    copy["localHT"] = exu.HT(data["localHT"]) @ exu.HT(rotation=rotation)
+    return mbs.AddMarker(copy)
+
+
+def _drawing_sizes(radius: Any, length: Any, color: Any) -> dict:
+    """``axisRadius``, ``axisLength`` and ``color`` of :func:`CreateClearanceJoint`, checked."""
+    out: dict[str, Any] = {}
+    if radius is not None:
+        out["radius"] = check_positive("axisRadius", radius)
+    if length is not None:
+        out["length"] = check_positive("axisLength", length)
+    if color is not None:
+        try:
+            rgba = [float(v) for v in color]
+        except (TypeError, ValueError):
+            rgba = []
+        if len(rgba) != 4 or not all(0.0 <= v <= 1.0 for v in rgba):
+            raise ValueError(f"`color` must be 4 numbers in [0, 1] (RGBA), got {color!r}")
+        out["color"] = rgba
+    return out
 
 
 def add_clearance_joint(

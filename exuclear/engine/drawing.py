@@ -21,16 +21,21 @@ def drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Vis
     # handle (which keeps the system: a cycle through Exudyn's C++ that is never freed)
     geometry, axis_local = handle.joint.geometry, handle._axis_local
     m_bearing, m_journal = handle.markerNumbers
+    # CreateClearanceJoint's axisRadius, axisLength, color: the journal drawn at axisRadius,
+    # the bearing to the same scale (the play stays in proportion), over axisLength
+    sizes = getattr(handle, "_drawing", {})
+    scale = sizes["radius"] / geometry.journal_radius if "radius" in sizes else 1.0
+    length, journal_color = sizes.get("length", geometry.length), sizes.get("color", JOURNAL_COLOR)
 
     def draw(mbs: exu.MainSystem, item: int) -> list:
         rot = np.asarray(mbs.GetMarkerOutput(m_bearing, exu.OutputVariableType.RotationMatrix,
                                              configuration=configuration)).reshape(3, 3)
         axis = rot @ axis_local
-        shift = 0.5 * geometry.length * axis
+        shift = 0.5 * length * axis
         out = []
-        for marker, radius, inner, color in ((m_journal, geometry.journal_radius, None, JOURNAL_COLOR),
-                                             (m_bearing, BEARING_RING * geometry.bearing_radius,
-                                              geometry.bearing_radius, BEARING_COLOR)):
+        for marker, radius, inner, color in ((m_journal, scale * geometry.journal_radius, None, journal_color),
+                                             (m_bearing, scale * BEARING_RING * geometry.bearing_radius,
+                                              scale * geometry.bearing_radius, BEARING_COLOR)):
             centre = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position,
                                                     configuration=configuration))
             out.append(exu.graphics.Cylinder(pAxis=(centre - shift).tolist(), vAxis=(2.0 * shift).tolist(),

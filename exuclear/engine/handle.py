@@ -12,7 +12,7 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
-from ..history import ContactState, ImpactRecord
+from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
@@ -70,6 +70,8 @@ class ClearanceJointHandle:
         self.constraintNumber: Any = None
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
+        self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
+        self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
 
@@ -95,6 +97,19 @@ class ClearanceJointHandle:
 
     def __hash__(self) -> int:
         return id(self.__dict__)
+
+    @property
+    def frame(self) -> np.ndarray:
+        """The joint frame in global coordinates in the reference configuration (3 x 3,
+        columns x, y and z = the bearing axis): the frame of the connector's ``ForceLocal``
+        and ``TorqueLocal`` and of the outputs ``ecc_x``, ``ecc_y``, ``tilt_x``, ``tilt_y``.
+        :func:`CreateClearanceJoint` takes that of ``mbs.CreateRevoluteJoint`` (for axis z:
+        x = -y_global, y = x_global); :func:`AddClearanceJoint` marker 0's frame, turned so
+        that z is the axis (marker 0's own frame for axis z)."""
+        rot = self.mbs.GetMarkerOutput(self.markerNumbers[0], exu.OutputVariableType.RotationMatrix,
+                                       configuration=exu.ConfigurationType.Reference)
+        return np.asarray(rot, dtype=float).reshape(3, 3) @ np.asarray(
+            self.mbs.GetObject(self.objectNumber)["rotationMarker0"], dtype=float)
 
     def user_functions(self) -> dict[str, Any]:
         """The user functions of the joint's connector, probe and torque connector."""
@@ -188,19 +203,23 @@ class ClearanceJointHandle:
 
     def impacts(self) -> list[ImpactRecord]:
         """Records of the contacts that ended in the last run, in order; a contact still
-        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
-        slice's records, by onset time (one contact of a tilted journal may touch
-        several slices, each a record), and the end faces' with an axial clearance."""
-        return sorted((r for rs in self._backend.records() for r in rs), key=lambda r: r.onset_time)
+        going on at the end is :meth:`state` (``in_contact``).  A spatial joint: its
+        physical impacts, the slices' records that overlap in time merged into one
+        (:func:`exuclear.history.merge_overlapping`; per slice: :meth:`slice_impacts`),
+        and the end faces' records with an axial clearance (:meth:`face_impacts`)."""
+        records = self._backend.records()
+        if self.slices:
+            records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
+        return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
 
     @property
     def nodes(self) -> list[int]:
-        """The nodes of the bearing's and the journal's bodies (where a body has one node)."""
+        """The nodes of the bearing's and the journal's bodies (where a body has one node), or of their node markers."""
         found = []
         for marker in self.markerNumbers:
             m = self.mbs.GetMarker(marker)
             body = m.get("bodyNumber", m.get("objectNumber"))
-            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else None
+            node = self.mbs.GetObject(body).get("nodeNumber") if body is not None else m.get("nodeNumber")
             if node is not None and int(node) >= 0:
                 found.append(int(node))
         return found
@@ -218,7 +237,9 @@ class ClearanceJointHandle:
         return self._backend.failure()
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units (a spatial joint:
+        see :func:`exuclear.engine.outputs.assemble`, with the joint-level
+        :data:`~exuclear.engine.outputs.SPATIAL_JOINT_OUTPUTS`).
 
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
@@ -236,7 +257,8 @@ class ClearanceJointHandle:
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
                 data = data.copy()
                 data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose())
-        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0)
+        loads = [np.asarray(self.mbs.GetSensorStoredData(n), dtype=float) for n in self.loadSensorNumbers]
+        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0, loads)
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,13 @@ OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_f
 #: (arrays of shape (times, slices); ``slip_velocity`` is the slip speed, ``tangential_force``
 #: the friction force's magnitude).
 SPATIAL_OUTPUT_COLUMNS = ("tilt_x", "tilt_y", "axial_displacement")
+#: A spatial joint's joint-level outputs besides those: ``ecc_mid_x``, ``ecc_mid_y`` the
+#: journal centre's eccentricity in the bearing's mid-plane [m] (the mean of the slices':
+#: the journal axis is straight and the slice planes symmetric about the mid-plane), and
+#: ``force``, ``moment`` (shape (times, 3)) the resultant load of all slices and end
+#: faces as the connector applies it (its ``ForceLocal`` and ``TorqueLocal``: on the
+#: bearing, in the joint frame, :attr:`ClearanceJointHandle.frame`) [N, N m].
+SPATIAL_JOINT_OUTPUTS = ("ecc_mid_x", "ecc_mid_y", "force", "moment")
 #: With an axial clearance (docs/physics.md section 9.6), the end faces' outputs: ``"face_"``
 #: and each of :data:`OUTPUT_COLUMNS`, arrays of shape (times, 2), face 0 at z = -L/2
 #: (``slip_velocity`` the signed circumferential slip at the friction radius,
@@ -34,10 +41,12 @@ def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: 
     return spatial_data_values(states[0].time, axis, axial, states)
 
 
-def assemble(data: np.ndarray, slices: int, faces: int) -> dict[str, np.ndarray]:
+def assemble(data: np.ndarray, slices: int, faces: int, loads: Sequence[np.ndarray] = ()) -> dict[str, np.ndarray]:
     """The outputs from the sensor's rows ``data`` (sensor time, then the data node's entries):
     ``time`` and :data:`OUTPUT_COLUMNS` (planar joint, ``slices`` 0), or
-    :data:`SPATIAL_OUTPUT_COLUMNS` and per-slice and per-face arrays."""
+    :data:`SPATIAL_OUTPUT_COLUMNS`, per-slice and per-face arrays and
+    :data:`SPATIAL_JOINT_OUTPUTS` (``force`` and ``moment`` from the rows of the ``loads``
+    sensors, ForceLocal and TorqueLocal, where they were recorded at the same times)."""
     if not slices:
         column = {c: data[:, k + 1] for k, c in enumerate(DATA_COLUMNS)}
         return {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
@@ -48,6 +57,10 @@ def assemble(data: np.ndarray, slices: int, faces: int) -> dict[str, np.ndarray]
     block = data[:, 1 + n_joint:end].reshape(data.shape[0], slices, n_slice)
     for c in OUTPUT_COLUMNS:
         out[c] = block[:, :, SLICE_COLUMNS.index(c)]
+    out["ecc_mid_x"], out["ecc_mid_y"] = out["ecc_x"].mean(axis=1), out["ecc_y"].mean(axis=1)
+    for name, rows in zip(("force", "moment"), loads):
+        if rows.ndim == 2 and rows.shape[0] == data.shape[0] and np.array_equal(rows[:, 0], data[:, 0]):
+            out[name] = rows[:, 1:4]
     if faces:
         block = data[:, end:].reshape(data.shape[0], faces, n_slice)
         for c in OUTPUT_COLUMNS:

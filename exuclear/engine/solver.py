@@ -22,7 +22,7 @@ import exudyn as exu
 
 from ..settings import DEFAULT_STEP, METHODS, SolverSettings
 from ..timescales import step_from_contact_periods
-from ._diagnostics import chatter_note, check_model, joint_contact_period
+from ._diagnostics import chatter_note, check_model, joint_contact_period, unread_masses
 from .checks import check_system
 from .handle import ClearanceJointHandle, joints_of
 
@@ -202,8 +202,8 @@ def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
         period = joint_contact_period(mbs, handle)
         if not period > 0.0:
             raise ValueError(f"`step` 'auto': the contact period of clearance joint {handle.name or handle.objectNumber!r} "
-                             "cannot be estimated, because the mass of one of its bodies is not read from its Exudyn "
-                             "object; give `step` in seconds")
+                             f"cannot be estimated, because the mass of {unread_masses(mbs, handle) or 'one of its bodies'} "
+                             "is not read from its Exudyn object; give `step` in seconds")
         periods.append(period)
     return step_from_contact_periods(periods, settings.end_time)
 

@@ -20,29 +20,30 @@ of the example's four (the cores are shared here, and exuclear's connectors assu
 Exudyn's single-threaded evaluation order), and no renderer.  Changed with
 ``clearance=True``: the hinge (the two coordinate constraints) becomes a clearance
 joint, bearing on the ground, journal on a ``MarkerBodyRigid`` at the start of the first
-cable element.  Pin: R_B = 10 mm in the 50 mm cable, L = 50 mm (the cable's width),
-c = 30 um.
+cable element (``exuclear.CreateClearanceJoint``, itemNumbers [ground, first element]).
+Pin: R_B = 10 mm in the 50 mm cable, L = 50 mm (the cable's width), c = 30 um.
 
 Route (exuclear 1.x on Exudyn 1.13.6):
 
 - ``MarkerBodyRigid`` on an ``ObjectANCFCable2D`` exists in Exudyn 1.13 (position and
   the slope's rotation about z).
-- ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first element], ...)``
-  raises "ObjectANCFCable2D (a body) has no OutputVariableType 'RotationMatrix'"
-  (connector.py ``_reference_pose``), so ``exuclear.AddClearanceJoint`` with markers is
-  used (the README's route for bodies that give a rigid marker).
-- ``exuclear.simulate`` with ``step="auto"`` refuses the model: the cable element's mass
-  is ``massPerLength`` * ``length``, which ``_diagnostics.body_mass`` does not read (NaN),
-  so the contact period cannot be estimated ("`step` 'auto': the contact period of
-  clearance joint 'hinge' cannot be estimated ...").  A numeric step is the way there.
+- Fixed (branch drop): ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first
+  element], ...)`` raised "ObjectANCFCable2D (a body) has no OutputVariableType
+  'RotationMatrix'" (connector.py ``_reference_pose``); it now reads the element's planar
+  rotation angle and places the marker at ``position`` on the element's axis.
+- Fixed (branch drop): ``exuclear.simulate`` with ``step="auto"`` refused the model: the
+  cable element's mass, ``massPerLength`` * ``length``, was not read (NaN), so the contact
+  period could not be estimated; ``_diagnostics.body_mass`` reads it now.
 
 Short runs (exuclear at commit a50d2fe, two shared cores): ideal, the example's
 settings, 0.3 s: reached, 0.19 s wall.  Clearance, the example's settings: 0.05 s
 reached (0.08 s wall, 0.018 c), but a 0.3 s run stops at t = 0.136 s, "exuclear:
 penetration 2.075e-05 m exceeds the limit 1.5e-05 m" (0.69 c), the example's 3 s run at
 t = 0.118 s (3.235e-05 m; the adaptive step's path depends on the end time).  ``exuclear.simulate``:
-``step="auto"`` refused (above); with ``step=1e-5`` it reaches 0.3 s in 4.0 s wall,
-largest penetration 0.013 c, tip within 4e-5 m of the ideal pendulum.
+``step="auto"`` was refused (above); with ``step=1e-5`` it reaches 0.3 s in 4.0 s wall,
+largest penetration 0.013 c, tip within 4e-5 m of the ideal pendulum.  Since branch drop
+``step="auto"`` (2.5e-5 s, from the element's mass) reaches 0.3 s in 1.5 s wall, largest
+penetration 0.014 c.
 """
 from __future__ import annotations
 
@@ -51,7 +52,6 @@ import numpy as np
 from exudyn.itemInterface import (
     LoadMassProportional,
     MarkerBodyMass,
-    MarkerBodyRigid,
     MarkerNodeCoordinate,
     NodePoint2DSlope1,
     NodePointGround,
@@ -108,11 +108,10 @@ def build(clearance: bool, end_time: float | None = None, **joint_options) -> Zo
 
     joint = None
     if clearance:
-        markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),
-                   mbs.AddMarker(MarkerBodyRigid(bodyNumber=cables[0], localPosition=[0.0, 0.0, 0.0]))]
-        joint = exuclear.AddClearanceJoint(mbs, markers, axis=[0.0, 0.0, 1.0], name="hinge",
-                                           **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
-                                                              **joint_options))
+        joint = exuclear.CreateClearanceJoint(mbs, name="hinge", itemNumbers=[ground, cables[0]],
+                                              position=[0.0, 0.0, 0.0], axis=[0.0, 0.0, 1.0],
+                                              **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
+                                                                 **joint_options))
     else:  # the example's hinge: node 0's x and y held to a ground coordinate
         fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
         for coordinate in (0, 1):

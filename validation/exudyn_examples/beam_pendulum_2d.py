@@ -23,29 +23,29 @@ c = 20 um (a 0.01 kg pendulum on a 2 mm steel pin).
 Route (exuclear 1.x on Exudyn 1.13.6; the failures are the library's, found here):
 
 - ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first element], ...)``
-  raises "ObjectBeamGeometricallyExact2D (a body) has no OutputVariableType
-  'RotationMatrix'" (connector.py ``_reference_pose`` asks the body for it).
-- ``exuclear.AddClearanceJoint`` with a ``MarkerBodyRigid`` on the first element
-  (localPosition [0, 0, 0]) builds, but ``mbs.SolveDynamic`` fails: "illegal call to
+  raised "ObjectBeamGeometricallyExact2D (a body) has no OutputVariableType
+  'RotationMatrix'"; ``exuclear.AddClearanceJoint`` with a ``MarkerBodyRigid`` on the
+  first element built, but ``mbs.SolveDynamic`` failed: "illegal call to
   CObjectBody::GetAngularVelocityLocal" (the element gives no local angular velocity to
-  the connector).
-- Used here: ``exuclear.AddClearanceJoint`` with ``MarkerBodyRigid`` on the ground and
-  ``MarkerNodeRigid`` on node 0, which is what the README's "any body with a rigid
-  marker" suggests.  ``mbs.SolveDynamic`` runs it.  ``exuclear.simulate`` raises in
-  ``_diagnostics.check_model`` -> ``body_mass`` -> ``_body_of``: a node marker has no
-  ``bodyNumber``/``objectNumber``, so ``mbs.GetObject(None)`` fails with "failed to
-  convert to ObjectIndex, but received None"; ``step="auto"`` would need the same
-  lookup (``joint_contact_period``), and a beam element's mass is ``massPerLength``,
-  which ``body_mass`` does not read (NaN: ``step="auto"`` refused).
+  the connector).  Now (branch drop) both refuse such a marker at creation, naming a
+  ``MarkerNodeRigid`` on one of the element's nodes.
+- Used here: ``exuclear.CreateClearanceJoint`` with itemNumbers [ground, a
+  ``MarkerNodeRigid`` on node 0] (a marker in ``itemNumbers``, as ``mbs.CreateRevoluteJoint``
+  takes it; the marker sets the joint's centre).  ``exuclear.simulate`` raised in
+  ``_diagnostics.check_model`` -> ``body_mass`` -> ``_body_of`` ("failed to convert to
+  ObjectIndex, but received None": a node marker has no object); fixed (branch drop):
+  a node marker's mass is the lumped mass of its elements (half of each two-node
+  element's ``massPerLength`` * ``length``), so ``step="auto"`` works.
 
 Short runs (exuclear at commit a50d2fe, two shared cores): ideal, the example's
 settings, 0.5 s: reached, 0.01 s wall.  Clearance, the example's settings: stops at
 t = 0.0175 s, "exuclear: penetration 1.379e-05 m exceeds the limit 1e-05 m" (0.69 c;
 the journal sits on node 0, a fraction of a gram, whose contact period is microseconds
 against the 2.5 ms step).  ``exuclear.simulate``: the ``_diagnostics`` error above,
-before the first step, whatever the step.  Plain ``SolveDynamic`` at a 2e-6 s step:
-reaches 0.5 s in 9.9 s wall, largest penetration 0.0021 c, tip within 5e-5 m of the
-ideal pendulum.
+before the first step, whatever the step (before branch drop); since then ``step="auto"``
+(4.2e-6 s, from node 0's lumped mass) reaches 0.1 s in 0.4 s wall, largest penetration
+0.002 c.  Plain ``SolveDynamic`` at a 2e-6 s step: reaches 0.5 s in 9.9 s wall, largest
+penetration 0.0021 c, tip within 5e-5 m of the ideal pendulum.
 """
 from __future__ import annotations
 
@@ -55,7 +55,6 @@ from exudyn.itemInterface import (
     LoadMassProportional,
     MarkerBodyMass,
     MarkerBodyPosition,
-    MarkerBodyRigid,
     MarkerNodePosition,
     MarkerNodeRigid,
     NodeRigidBody2D,
@@ -116,11 +115,12 @@ def build(clearance: bool, end_time: float | None = None, **joint_options) -> Zo
 
     joint = None
     if clearance:
-        markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),
-                   mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[0]))]
-        joint = exuclear.AddClearanceJoint(mbs, markers, axis=[0.0, 0.0, 1.0], name="pivot",
-                                           **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
-                                                              **joint_options))
+        # the element gives no running MarkerBodyRigid: the journal on node 0's MarkerNodeRigid
+        joint = exuclear.CreateClearanceJoint(mbs, name="pivot",
+                                              itemNumbers=[ground, mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[0]))],
+                                              axis=[0.0, 0.0, 1.0],
+                                              **joint_parameters(BEARING_RADIUS, CLEARANCE, BEARING_LENGTH,
+                                                                 **joint_options))
     else:
         mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[
             mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),

@@ -7,7 +7,9 @@ each) from ``mbs.CreateRigidBody``, released from rest along the x axis under gr
 ``exuclear.CreateClearanceJoint``: R_B 10 mm, R_J 9.9 mm (c = 0.1 mm), L 20 mm, Wang-Liu,
 cr 0.7, steel on steel, no friction, and the joint's default ``constrainAxial=False`` as
 in the issue (gravity and the contact act in the xy plane through the bars' axes, so
-nothing drives the axial or tilt motion the clearance joint leaves free).  Exudyn's
+nothing drives the axial or tilt motion the clearance joint leaves free; ``exuclear.simulate``
+warns that nothing holds it, ``OutOfPlaneWarning``).  The clearance joint's ``ForceLocal``
+is in the replaced revolute joint's frame (tests/test_bodies.py compares the two).  Exudyn's
 default generalized-alpha (spectral radius 0.9), 1 s, at the issue's fixed step 1e-4 s
 (Exudyn's default of 100 steps per second would be 1e-2 s).
 

@@ -27,7 +27,10 @@ massless links (``PrismaticX``, ``PrismaticY``) in J1's joint frame, then link 1
 did.  ``exuclear.AddClearanceJoint`` between ``MarkerKinematicTreeRigid`` markers (bearing:
 link 0 at J1; journal: link 1 at its origin; axis: J1's z axis in link 0's frame), as the
 README says for kinematic-tree links; ``exuclear.CreateClearanceJoint`` given the tree
-fails ("ObjectKinematicTree (a body) has no OutputVariableType 'Position'").  Pin:
+failed ("ObjectKinematicTree (a body) has no OutputVariableType 'Position'"), and now
+(branch drop) refuses it, saying that the journal's link needs its play in the tree and
+that the markers go in ``itemNumbers`` (which it takes, as ``mbs.CreateRevoluteJoint``
+does).  Pin:
 R_B = 20 mm in the 100 mm links, L = 100 mm, c = 50 um.
 
 ``exuclear.simulate`` has no explicit Euler (its methods: dopri5, ode23, rk44,

@@ -19,7 +19,8 @@ the clearance joint acts only in the plane normal to x, and nothing else in the 
 holds link 1 along x or against tilt about y and z, which the replaced joint did; link 0
 turns about z, which swings link 1 outwards along x and tilts it.  Without the
 constraint (``constrainAxial=False``), ``exuclear.simulate`` stops at t = 0.134 s at the
-joint's penetration limit.  ``friction="paper"`` (the paper's modified
+joint's penetration limit; since branch drop it first warns (``OutOfPlaneWarning``) that
+nothing holds the joint's axial translation and tilt, and names ``constrainAxial=True``.  ``friction="paper"`` (the paper's modified
 Coulomb law) gives the registered variant ``rigid_body_tutorial3_friction``.
 
                    y
