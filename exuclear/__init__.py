@@ -32,7 +32,7 @@ Of the third-party packages, ``import exuclear`` imports numpy and exudyn only;
 matplotlib, pandas, tqdm, scipy and dask are imported where a function needs them
 (``tests/test_api.py``).
 """
-from ._checks import UnitWarning
+from .checks import UnitWarning
 from .contact import V_MIN_DEFAULT, ContactLaw, ValidityWarning, contact_law
 from .convergence import ConvergenceResult, RunRecord, check_convergence
 from .engine import (

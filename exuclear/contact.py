@@ -40,7 +40,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from ._checks import check_choice, check_open_closed, check_positive, check_real
+from .checks import check_choice, check_open_closed, check_positive, check_real
 from .geometry import BearingGeometry
 
 #: Default floor of the onset velocity in the damping term [m/s] (docs/physics.md eq. (17)):

@@ -46,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import check_positive
+from .checks import check_positive
 from .contact import V_MIN_DEFAULT
 from .history import ImpactRecord
 from .settings import SolverSettings

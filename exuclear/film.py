@@ -44,7 +44,7 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-from ._checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
+from .checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
 from .geometry import BearingGeometry
 
 #: Eccentricity ratio below which the film acts alone (physics.md eq. (70)): the threshold

@@ -12,7 +12,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ._checks import check_nonnegative, check_positive
+from .checks import check_nonnegative, check_positive
 from .contact import ValidityWarning
 
 #: Friction coefficients above this warn (:class:`~exuclear.ValidityWarning`), they are not

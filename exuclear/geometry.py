@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
-from ._checks import check_positive, warn_unit
+from .checks import check_positive, warn_unit
 
 #: Clearances above this fraction of the journal radius are legal but unusual for a
 #: revolute joint (the paper's is 1 %): a warning asks whether a unit slipped.

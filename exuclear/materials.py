@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ._checks import check_choice, check_open, check_positive, warn_unit
+from .checks import check_choice, check_open, check_positive, warn_unit
 
 #: Young's moduli below this are legal but softer than engineering polymers (~1e9 Pa):
 #: a warning asks whether the modulus was given in MPa or GPa instead of Pa.

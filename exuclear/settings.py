@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
-from ._checks import check_choice, check_positive, check_real
+from .checks import check_choice, check_positive, check_real
 
 #: Exudyn's default numerical damping of generalized-alpha at infinite frequency.
 SPECTRAL_RADIUS_DEFAULT = 0.9

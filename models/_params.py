@@ -7,8 +7,8 @@ A scene's parameter field says what it means and which rule it obeys in its meta
 :func:`check_fields` applies the rules (``ValueError`` naming the field and the rule,
 nothing clamped), and :func:`add_param_options` makes one command-line option per field
 (``crank_length`` -> ``--crank-length``, its type from the annotation, its help from the
-metadata, its default from the scene's named constructor).  The scenes use these instead
-of the library's private checks, so that they rest on the library's public API only.
+metadata, its default from the scene's named constructor).  The numeric rules are the
+library's public checks (:mod:`exuclear.checks`).
 """
 from __future__ import annotations
 
@@ -19,9 +19,9 @@ import types
 import typing
 from collections.abc import Callable, Iterable
 from dataclasses import Field, fields
-from numbers import Real
 from typing import Any
 
+from exuclear.checks import check_nonnegative, check_positive, check_real
 from exuclear.study import Column
 
 #: A field's rule: takes the field's name and value, returns the value (a float for the
@@ -29,28 +29,9 @@ from exuclear.study import Column
 Check = Callable[[str, Any], Any]
 
 
-def real(name: str, value: object) -> float:
-    """``value`` as a float; rejects non-numbers, bools, NaN and infinity."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise ValueError(f"`{name}` must be a real number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"`{name}` must be finite, got {value}")
-    return value
-
-
-def positive(name: str, value: object) -> float:
-    value = real(name, value)
-    if value <= 0.0:
-        raise ValueError(f"`{name}` must be positive, got {value}")
-    return value
-
-
-def nonnegative(name: str, value: object) -> float:
-    value = real(name, value)
-    if value < 0.0:
-        raise ValueError(f"`{name}` must be non-negative, got {value}")
-    return value
+#: The numeric rules are the library's own checks (exuclear.checks), so that a scene's
+#: field and the library's argument refuse a bad value with the same words.
+real, positive, nonnegative = check_real, check_positive, check_nonnegative
 
 
 def nonzero(rule: str) -> Check:

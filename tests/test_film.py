@@ -64,7 +64,7 @@ def test_bad_input_names_the_argument(kwargs, word):
 
 
 def test_viscosity_in_mpa_s_warns():
-    from exuclear._checks import UnitWarning
+    from exuclear.checks import UnitWarning
 
     with pytest.warns(UnitWarning, match="mPa s"):
         Lubrication(viscosity=40.0)
@@ -325,4 +325,4 @@ def test_film_module_is_pure_physics():
     imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
     imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
     assert not {name for name in imported if name.split(".")[0] in ("exudyn", "matplotlib")}
-    assert imported <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "_checks", "geometry"}
+    assert imported <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "checks", "geometry"}

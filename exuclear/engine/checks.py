@@ -9,7 +9,7 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
-from .._checks import check_positive
+from ..checks import check_positive
 from ..joint import ClearanceJoint, make_joint
 from ..spatial import ShoulderGeometry
 

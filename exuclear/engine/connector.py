@@ -47,7 +47,7 @@ from exudyn.itemInterface import (
 )
 from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
 
-from .._checks import check_choice, check_positive
+from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
 from . import kernel

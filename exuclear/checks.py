@@ -1,4 +1,4 @@
-"""Input checks shared by the public constructors.
+"""Input checks shared by the public constructors and the scenes (exuclear.models).
 
 Every check raises ``ValueError`` naming the argument and the rule it broke, so a
 bad parameter fails before any simulation starts.  Nothing is clamped.
