@@ -74,7 +74,7 @@ def test_the_scenes_use_no_private_library_module_and_do_not_import_each_other_i
                    and any(part.startswith("_") for part in n.split(".")[1:])]
         private += [f"exuclear.{node.attr}" for node in ast.walk(ast.parse(path.read_text()))
                     if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
-                    and node.value.id == "exuclear" and node.attr.startswith("_")]  # exuclear.checks.x
+                    and node.value.id == "exuclear" and node.attr.startswith("_")]  # e.g. exuclear._private.x
         assert not private, (path.name, private)
         graph[path.stem] = {n.split(".")[2] for n in names if n.startswith("exuclear.models.")} - {path.stem}
     done, visiting = set(), []
