@@ -10,6 +10,7 @@
 //                       normal force, friction; the same for slices and end faces)
 //   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
 //   contact history     exuclear/history.py    (onset velocity, records)
+//   film                exuclear/film.py       (eqs. (55)-(70); the short and finite models)
 //   the joint           exuclear/engine/_python_kernel.py JointKernel (which history an
 //                       evaluation uses; force and post-Newton drivers over the contacts)
 // The planar joint is the spatial joint with one slice and no end faces, whose motion is
@@ -72,6 +73,8 @@ const double INF = std::numeric_limits<double>::infinity();
 // ---- parameters: the named layout (exuclear/engine/layout.py LAYOUT) ----------------------
 enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
+// layout.py FILM_CODES; the long model (2) is the Python kernel's only
+enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
 
 // The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
 // test compares this table (exported as the module's LAYOUT) with layout.py's.
@@ -81,6 +84,7 @@ enum Field {
     STIFFNESS_CONSTANTS, FRICTION_CONSTANTS,
     SLICES, LENGTH, AXIS_JOURNAL,
     AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
+    FILM_MODEL, VISCOSITY, EPS_FILM, EPS_CAP,
     N_FIELDS
 };
 
@@ -98,6 +102,8 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
     {"friction_constants", 3, 0, 4},
     {"slices", 4, 0, 1},          {"length", 4, 1, 1},         {"axis_journal", 4, 2, 3},
     {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
+    {"film_model", 3, 4, 1},      {"viscosity", 3, 5, 1},
+    {"eps_film", 5, 4, 1},        {"eps_cap", 5, 5, 1},
 };
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
@@ -117,6 +123,9 @@ struct Params {
     // the spatial joint's axial clearance (section 9.6): total play (0: none), friction radius
     // R_e, face stiffness K_f
     double play, friction_radius, face_stiffness;
+    // the lubricated joint's film (section 10): model code (0: dry), viscosity, blend thresholds (eq. (70))
+    int film_model;
+    double viscosity, eps_film, eps_cap;
 };
 
 Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
@@ -139,6 +148,10 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.play = field(p, AXIAL_CLEARANCE);
     a.friction_radius = field(p, FRICTION_RADIUS);
     a.face_stiffness = field(p, FACE_STIFFNESS);
+    a.film_model = static_cast<int>(field(p, FILM_MODEL));
+    a.viscosity = field(p, VISCOSITY);
+    a.eps_film = field(p, EPS_FILM);
+    a.eps_cap = field(p, EPS_CAP);
     return a;
 }
 
@@ -345,6 +358,7 @@ struct History {
     double onset_time = 0.0, peak_force = 0.0, max_penetration = 0.0;
     // outputs at this accepted state
     double f_n = 0.0, f_t = 0.0, v_t = 0.0, ex = 0.0, ey = 0.0;
+    double film_fx = 0.0, film_fy = 0.0, film_torque = 0.0;  // a lubricated joint's film (set by the driver)
 };
 
 struct Record {
@@ -508,6 +522,171 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
     }
 }
 
+// ---- the film: film.py (docs/physics.md section 10, eqs. (55)-(70)) ------------------------------
+// film.py FilmInput (_python_kernel.py): e in the bearing's joint frame, de/dt as the connector
+// hands it over (the inertial derivative in that frame's components), the absolute spins.
+struct FilmInput {
+    double ex, ey, vx, vy, omega_journal, omega_bearing;
+};
+
+struct FilmKinematics {  // film.py FilmKinematics, eq. (56)
+    double eps, eps_dot, omega_eff, nx, ny;
+};
+
+struct FilmLoad {  // film.py FilmLoad: force on the journal, moments on journal and bearing, eqs. (68)-(69)
+    double fx, fy, torque_journal, torque_bearing;
+};
+
+FilmKinematics film_kinematics(const FilmInput& in, double clearance) {  // eqs. (55)-(56)
+    double ecc = std::hypot(in.ex, in.ey);
+    double nx, ny, phi_dot;
+    if (ecc > 0.0) {
+        nx = in.ex / ecc;
+        ny = in.ey / ecc;
+        phi_dot = (in.ex * in.vy - in.ey * in.vx) / (ecc * ecc);
+    } else {  // centred: the normal along de/dt, or (1, 0) at rest
+        double speed = std::hypot(in.vx, in.vy);
+        nx = speed > 0.0 ? in.vx / speed : 1.0;
+        ny = speed > 0.0 ? in.vy / speed : 0.0;
+        phi_dot = 0.0;
+    }
+    double eps_dot = (nx * in.vx + ny * in.vy) / clearance;
+    return FilmKinematics{ecc / clearance, eps_dot, in.omega_journal + in.omega_bearing - 2.0 * phi_dot, nx, ny};
+}
+
+// film.py blend_eccentricity, eq. (70): the eccentricity ratio (and rate) the film is evaluated at
+void blend_eccentricity(double eps, double eps_dot, double eps_film, double eps_cap, double& eps_b,
+                        double& eps_dot_b) {
+    if (eps <= eps_film) {
+        eps_b = eps;
+        eps_dot_b = eps_dot;
+        return;
+    }
+    double width = eps_cap - eps_film;
+    double x = (eps - eps_film) / width;
+    double ch = std::cosh(x);
+    eps_b = eps_film + width * std::tanh(x);
+    eps_dot_b = eps_dot / (ch * ch);
+}
+
+// ShortBearing.components, eqs. (58)-(60): the positive part of Ocvirk's pressure.  Its sign in
+// gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot: one arc
+// around the phase of (a1, b1) (film.py finds the same arc as roots of a polynomial, _positive_arcs).
+void short_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
+                      double& f_perp) {
+    double s = std::sqrt(1.0 - eps * eps);
+    double rot = eps * omega_eff * s;
+    double a0 = 2.0 * eps_dot * eps, a1 = -2.0 * eps_dot, b1 = rot;
+    double amplitude = std::hypot(a1, b1);
+    double g1 = 0.0, g2 = 0.0;  // the arc; empty where g1 == g2
+    if (a0 >= amplitude) {
+        if (a0 > 0.0) g2 = 2.0 * M_PI;  // positive everywhere
+    } else if (a0 > -amplitude) {
+        double half = std::acos(-a0 / amplitude), phase = std::atan2(b1, a1);
+        g1 = phase - half;
+        g2 = phase + half;
+    }
+    auto g_n = [&](double x) {  // antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+        return (rot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x))
+                - 2.0 * eps_dot * ((0.5 + eps * eps) * x + 0.25 * std::sin(2.0 * x) - 2.0 * eps * std::sin(x)));
+    };
+    auto g_t = [&](double x) {  // antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+        return (rot * (0.5 * x - 0.25 * std::sin(2.0 * x))
+                - 2.0 * eps_dot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x)));
+    };
+    double scale = a.viscosity * a.length * a.length * a.length * a.r_j / (2.0 * clearance * clearance);  // eq. (60)
+    double in_n = g2 > g1 ? g_n(g2) - g_n(g1) : 0.0;
+    double in_t = g2 > g1 ? g_t(g2) - g_t(g1) : 0.0;
+    f_n = scale * in_n / std::pow(s, 5);
+    f_perp = scale * in_t / std::pow(s, 4);
+}
+
+// film.py _A1 ... _A9: Butenschoen's fits (1976), polynomials in B/D, lowest power first (eqs. (64)-(66))
+const double FINITE_A[9][5] = {
+    {1.1642, -1.9456, 7.1161, -10.1073, 5.0141},
+    {-1.000026, -0.023634, -0.4215, -0.038817, -0.090551},
+    {1.152624, -0.104565, 0.0, 0.0, 0.0},
+    {-2.5905, 0.798745, 0.0, 0.0, 0.0},
+    {8.73393, -2.3291, 0.0, 0.0, 0.0},
+    {-13.3414, 3.424337, 0.0, 0.0, 0.0},
+    {6.6294, -1.591732, 0.0, 0.0, 0.0},
+    {0.70038, 3.2415, -12.2486, 18.895, -9.3561},
+    {-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928},
+};
+const int FINITE_A_DEGREE[9] = {4, 4, 1, 1, 1, 1, 1, 4, 4};
+
+double polynomial(const double* coefficients, int degree, double x) {  // film.py _polynomial
+    double r = 0.0;
+    for (int k = 0; k <= degree; ++k) r += coefficients[k] * std::pow(x, k);
+    return r;
+}
+
+// FiniteBearing.components, eqs. (64)-(67): Butenschoen's rotation and squeeze fits
+void finite_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff,
+                       double& f_n, double& f_perp) {
+    double bd = a.length / (2.0 * a.r_j);
+    double c[9];
+    for (int i = 0; i < 9; ++i) c[i] = polynomial(FINITE_A[i], FINITE_A_DEGREE[i], bd);
+    // rotation, eqs. (64)-(65)
+    double one_m = 1.0 - eps * eps;
+    double so = (bd * bd * eps / (2.0 * one_m * one_m) * std::sqrt(M_PI * M_PI * one_m + 16.0 * eps * eps)
+                 * c[0] * (eps - 1.0) / (c[1] + eps));
+    double base = std::atan2(M_PI * std::sqrt(one_m), 2.0 * eps);
+    double beta = base * (c[2] + c[3] * eps + c[4] * std::pow(eps, 2) + c[5] * std::pow(eps, 3)
+                          + c[6] * std::pow(eps, 4));
+    // squeeze, eq. (66), at eps approaching the wall, -eps leaving it
+    double x = eps_dot >= 0.0 ? eps : -eps;
+    double one_mx = 1.0 - x * x;
+    double so_v = (4.0 * bd * bd * std::pow(one_mx, -2.5)
+                   * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * std::sqrt(one_mx))
+                   * c[7] * (1.0 - x) / (-c[8] - x));
+    double psi = clearance / a.r_j;
+    double unit = a.length * 2.0 * a.r_j * a.viscosity / (psi * psi);  // B D eta / psi^2, eq. (67)
+    double f_d = so * unit * std::fabs(omega_eff);
+    double sgn = omega_eff >= 0.0 ? 1.0 : -1.0;
+    double f_v = so_v * unit * eps_dot;  // signed: against the squeeze
+    f_n = -f_d * std::cos(beta) - f_v;
+    f_perp = sgn * f_d * std::sin(beta);
+}
+
+// FilmLaw.blended_load and _assemble: the film as the joint applies it (eqs. (68)-(70))
+FilmLoad film_load(const Params& a, const FilmInput& in) {
+    double clearance = a.r_b - a.r_j;
+    FilmKinematics kin = film_kinematics(in, clearance);
+    double eps_b, eps_dot_b;
+    blend_eccentricity(kin.eps, kin.eps_dot, a.eps_film, a.eps_cap, eps_b, eps_dot_b);
+    double f_n = 0.0, f_perp = 0.0;
+    if (a.film_model == FILM_SHORT) {
+        short_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else if (a.film_model == FILM_FINITE) {
+        finite_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else {
+        throw std::runtime_error("exuclear kernel: film model " + std::to_string(a.film_model) +
+                                 " has no compiled form");
+    }
+    double fx = f_n * kin.nx - f_perp * kin.ny;  // n turned +90 degrees is (-n_y, n_x)
+    double fy = f_n * kin.ny + f_perp * kin.nx;
+    // eq. (69): Couette shear over the whole circumference, and the pressure's share
+    double couette = (2.0 * M_PI * a.viscosity * std::pow(a.r_j, 3) * a.length * (in.omega_journal - in.omega_bearing)
+                      / (clearance * std::sqrt(1.0 - eps_b * eps_b)));
+    double e_cross_f = kin.eps * clearance * (kin.nx * fy - kin.ny * fx);  // with the true e: no net moment
+    return FilmLoad{fx, fy, -couette - 0.5 * e_cross_f, couette - 0.5 * e_cross_f};
+}
+
+// _python_kernel.py Film.add_loads: F = -F_film on the bearing, T = -M_J, the bearing's moment beyond T
+void add_film_loads(double* loads, const FilmLoad& r) {
+    loads[0] += -r.fx;
+    loads[1] += -r.fy;
+    loads[5] += -r.torque_journal;
+    loads[8] += r.torque_bearing + r.torque_journal;
+}
+
+void set_film_outputs(History& h, const FilmLoad& r) {  // Film.with_outputs
+    h.film_fx = r.fx;
+    h.film_fy = r.fy;
+    h.film_torque = r.torque_journal;
+}
+
 // ---- the per-joint table -------------------------------------------------------------------
 // One joint's state (_python_kernel.py JointKernel): per contact, its history at the start
 // (prev) and at the end (cur) of the last post-processed step and its records.
@@ -519,6 +698,7 @@ struct JointState {
     std::vector<History> next;               // scratch of the post-Newton update (storage reused)
     std::vector<std::vector<Record>> records;
     V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
+    FilmInput film_input{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // the last evaluation's, for a lubricated joint
     V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
     V3 initial_axis{0.0, 0.0, 1.0};
     double initial_axial = 0.0;
@@ -574,6 +754,7 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        if (a.film_model != FILM_NONE) s.film_input = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
     } else {
         for (int k = 0; k < n_slices; ++k) {
             s.kins[static_cast<size_t>(k)] =
@@ -612,6 +793,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
             fresh.time = t;
             s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         }
+        if (a.film_model != FILM_NONE) set_film_outputs(s.cur[0], film_load(a, s.film_input));
         s.prev = s.cur;
         s.initial = s.cur;
         s.started = true;
@@ -638,6 +820,7 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
         ContactKind kind = contact_kind(a, i);
         add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
     }
+    if (a.film_model != FILM_NONE) add_film_loads(loads, film_load(a, s.film_input));  // at every eccentricity
     if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
         s.torque_correction = V3{loads[6], loads[7], loads[8]};
     } else {
@@ -673,8 +856,10 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
 const double REDO_STEP_ERROR = 1e3;
 // Relative slack on a step length compared with impact_step (Exudyn's steps carry round-off).
 const double STEP_SLACK = 1e-9;
-// Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS).
+// Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS), and a lubricated joint's
+// film entries after them (FILM_DATA_COLUMNS).
 const int N_DATA = 14;
+const int N_FILM_DATA = 3;
 
 // Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
 void write_data(const History& h, StdVector& out, int first = 0) {
@@ -725,11 +910,17 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
         s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
+    if (a.film_model != FILM_NONE) set_film_outputs(s.next[0], film_load(a, s.film_input));
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
-    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS
-        out.reserve(2 + N_DATA);
+    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
+        out.reserve(2 + N_DATA + N_FILM_DATA);
         write_data(s.cur[0], out);
+        if (a.film_model != FILM_NONE) {
+            out.push_back(s.cur[0].film_fx);
+            out.push_back(s.cur[0].film_fy);
+            out.push_back(s.cur[0].film_torque);
+        }
         return out;
     }
     out.reserve(2 + 4 + n * (N_DATA - 1));  // layout.spatial_data_columns
@@ -776,6 +967,9 @@ py::dict history_dict(const History& h) {
     d["slip_velocity"] = h.v_t;
     d["ecc_x"] = h.ex;
     d["ecc_y"] = h.ey;
+    d["film_fx"] = h.film_fx;
+    d["film_fy"] = h.film_fy;
+    d["film_torque"] = h.film_torque;
     return d;
 }
 
@@ -849,5 +1043,6 @@ PYBIND11_MODULE(_ckernel, m) {
     for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
     m.attr("LAYOUT") = layout;
     m.attr("N_DATA") = N_DATA;
+    m.attr("N_FILM_DATA") = N_FILM_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
 }

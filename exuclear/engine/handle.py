@@ -17,7 +17,7 @@ from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
-from .layout import MAIN, PROBE, TORQUE, parameters, read
+from .layout import MAIN, PROBE, TORQUE, check_film, parameters, read
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -59,6 +59,7 @@ class ClearanceJointHandle:
         self.name, self.backend, self.max_penetration = name, backend, max_penetration
         self._joint = joint
         self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
+        check_film(joint.film, slices, backend == "compiled")  # before any item is added
         self._backend = make_backend(backend, joint, slices, axis_journal, shoulders)
         self.joint_id = self._backend.joint_id
         self.objectNumber: Any = None
@@ -110,6 +111,10 @@ class ClearanceJointHandle:
     def joint(self, joint: ClearanceJoint) -> None:
         if not isinstance(joint, ClearanceJoint):
             raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
+        if (joint.film is None) != (self._joint.film is None):
+            raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
+                             "create a new clearance joint")
+        check_film(joint.film, self.slices, self._backend.compiled)
         self._joint = joint
         self._backend.set_joint(joint)
         self._write_parameters()
@@ -235,8 +240,10 @@ class ClearanceJointHandle:
             initial = self._backend.states("initial")
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
                 data = data.copy()
-                data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose())
-        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0)
+                data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose(),
+                                                    lubricated=self._joint.film is not None)
+        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0,
+                                 self._joint.film)
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..contact import ContactLaw
+from ..film import FilmLaw
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
 from ..spatial import ShoulderGeometry
@@ -64,6 +65,10 @@ LAYOUT = (
     Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
     Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
     Field("face_stiffness", 5, 2, 1, "K_f [N/m] of the end faces, eq. (52)"),
+    Field("film_model", 3, 4, 1, "the film model's code (FILM_CODES; 0: a dry joint; section 10)"),
+    Field("viscosity", 3, 5, 1, "eta [Pa s] of the film"),
+    Field("eps_film", 5, 4, 1, "eccentricity ratio below which the film acts alone, eq. (70)"),
+    Field("eps_cap", 5, 5, 1, "eccentricity ratio the film's argument tends to at the wall, eq. (70)"),
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
@@ -92,6 +97,11 @@ def write(matrix: np.ndarray, name: str, value: float | Sequence[float]) -> None
 #: The data node's entries, in order (the compiled kernel's ``write_data``).
 DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                 "slip_velocity", "v0", "in_contact", "onsets", "onset_time", "peak_force", "max_penetration")
+
+#: A lubricated planar joint's data node: :data:`DATA_COLUMNS`, then these (the film force
+#: on the journal [N] in the bearing's joint frame and the journal's viscous moment [N m],
+#: eqs. (68)-(69), at the accepted state); a dry joint's node keeps :data:`DATA_COLUMNS` only.
+FILM_DATA_COLUMNS = ("film_fx", "film_fy", "film_torque")
 
 #: The spatial joint's own entries, before the slices' (``spatial_data_values``).
 SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
@@ -132,6 +142,31 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
     raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
 
 
+#: Film model name -> code in the parameter matrix (0: no film).  The compiled kernel
+#: evaluates the codes of COMPILED_FILM_CODES (clearance_kernel.cpp ``film_components``).
+FILM_CODES = {"short": 1, "long": 2, "finite": 3}
+COMPILED_FILM_CODES = frozenset((1, 3))
+
+
+def data_columns(lubricated: bool) -> tuple[str, ...]:
+    """A planar joint's data-node entries: :data:`DATA_COLUMNS`, and
+    :data:`FILM_DATA_COLUMNS` where the joint is lubricated."""
+    return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
+
+
+def check_film(film: FilmLaw | None, slices: int, compiled: bool) -> None:
+    """``ValueError`` for a film the kernels cannot evaluate: one on a spatial joint (not
+    yet available), or a model without a compiled form on the compiled kernel."""
+    if film is None:
+        return
+    if slices:
+        raise ValueError(f"`lubrication` is available for the planar joint only (slices=None), got slices={slices}; "
+                         "the spatial joint's film (one per slice) is not implemented yet")
+    if compiled and FILM_CODES[film.name] not in COMPILED_FILM_CODES:
+        raise ValueError(f"the {film.name!r} film model has no compiled form; use model='short' or 'finite', or "
+                         "backend='python'")
+
+
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
@@ -145,11 +180,15 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
     p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
+    check_film(joint.film, slices, compiled)
     values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
               "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
               "slices": slices, "length": g.length, "axis_journal": axis_journal}
+    if joint.film is not None:
+        values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,
+                      eps_film=joint.film.eps_film, eps_cap=joint.film.eps_cap)
     if shoulders is not None:
         values.update(axial_clearance=shoulders.axial_clearance, friction_radius=shoulders.friction_radius,
                       face_stiffness=shoulders.face_stiffness(law.E_star))
