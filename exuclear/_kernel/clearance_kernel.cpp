@@ -27,6 +27,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -538,14 +539,14 @@ struct FilmLoad {  // film.py FilmLoad: force on the journal, moments on journal
 };
 
 FilmKinematics film_kinematics(const FilmInput& in, double clearance) {  // eqs. (55)-(56)
-    double ecc = std::hypot(in.ex, in.ey);
+    double ecc = std::sqrt(in.ex * in.ex + in.ey * in.ey);
     double nx, ny, phi_dot;
     if (ecc > 0.0) {
         nx = in.ex / ecc;
         ny = in.ey / ecc;
         phi_dot = (in.ex * in.vy - in.ey * in.vx) / (ecc * ecc);
     } else {  // centred: the normal along de/dt, or (1, 0) at rest
-        double speed = std::hypot(in.vx, in.vy);
+        double speed = std::sqrt(in.vx * in.vx + in.vy * in.vy);
         nx = speed > 0.0 ? in.vx / speed : 1.0;
         ny = speed > 0.0 ? in.vy / speed : 0.0;
         phi_dot = 0.0;
@@ -564,41 +565,49 @@ void blend_eccentricity(double eps, double eps_dot, double eps_film, double eps_
     }
     double width = eps_cap - eps_film;
     double x = (eps - eps_film) / width;
-    double ch = std::cosh(x);
-    eps_b = eps_film + width * std::tanh(x);
-    eps_dot_b = eps_dot / (ch * ch);
+    double q = std::exp(-2.0 * x);  // tanh(x) = (1 - q) / (1 + q), 1 / cosh^2(x) = 4 q / (1 + q)^2: one exp
+    eps_b = eps_film + width * ((1.0 - q) / (1.0 + q));
+    eps_dot_b = eps_dot * (4.0 * q / ((1.0 + q) * (1.0 + q)));
 }
 
 // ShortBearing.components, eqs. (58)-(60): the positive part of Ocvirk's pressure.  Its sign in
-// gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot: one arc
-// around the phase of (a1, b1) (film.py finds the same arc as roots of a polynomial, _positive_arcs).
+// gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot, positive on
+// one arc (phase - half, phase + half) around the phase of (a1, b1), cos(half) = -a0 / |(a1, b1)|
+// (film.py finds the same arc as roots of a polynomial, _positive_arcs).  The antiderivatives
+// g_n, g_t of film.py are evaluated between its ends from their cosines and sines, which follow
+// from (a0, a1, b1) without trigonometric calls; only the arc's length needs acos.
 void short_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
                       double& f_perp) {
     double s = std::sqrt(1.0 - eps * eps);
     double rot = eps * omega_eff * s;
     double a0 = 2.0 * eps_dot * eps, a1 = -2.0 * eps_dot, b1 = rot;
-    double amplitude = std::hypot(a1, b1);
-    double g1 = 0.0, g2 = 0.0;  // the arc; empty where g1 == g2
+    double amplitude = std::sqrt(a1 * a1 + b1 * b1);
+    // the arc's ends x1 < x2 by cosine and sine, and its length
+    double c1 = 1.0, s1 = 0.0, c2 = 1.0, s2 = 0.0, length = 0.0;
     if (a0 >= amplitude) {
-        if (a0 > 0.0) g2 = 2.0 * M_PI;  // positive everywhere
+        if (a0 > 0.0) length = 2.0 * M_PI;  // positive everywhere: the whole circle
     } else if (a0 > -amplitude) {
-        double half = std::acos(-a0 / amplitude), phase = std::atan2(b1, a1);
-        g1 = phase - half;
-        g2 = phase + half;
+        double cp = a1 / amplitude, sp = b1 / amplitude;    // phase
+        double ch = -a0 / amplitude;                         // cos(half)
+        double sh = std::sqrt(1.0 - ch * ch);                // sin(half) >= 0
+        c1 = cp * ch + sp * sh;
+        s1 = sp * ch - cp * sh;
+        c2 = cp * ch - sp * sh;
+        s2 = sp * ch + cp * sh;
+        length = 2.0 * std::acos(ch);
     }
-    auto g_n = [&](double x) {  // antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
-        return (rot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x))
-                - 2.0 * eps_dot * ((0.5 + eps * eps) * x + 0.25 * std::sin(2.0 * x) - 2.0 * eps * std::sin(x)));
-    };
-    auto g_t = [&](double x) {  // antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
-        return (rot * (0.5 * x - 0.25 * std::sin(2.0 * x))
-                - 2.0 * eps_dot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x)));
-    };
+    double d_cos = c2 - c1, d_sin = s2 - s1;
+    double d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1);  // cos(2 x2) - cos(2 x1)
+    double d_sin2 = 2.0 * (s2 * c2 - s1 * c1);                  // sin(2 x2) - sin(2 x1)
+    // g_n: antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+    double in_n = (rot * (-0.25 * d_cos2 + eps * d_cos)
+                   - 2.0 * eps_dot * ((0.5 + eps * eps) * length + 0.25 * d_sin2 - 2.0 * eps * d_sin));
+    // g_t: antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+    double in_t = rot * (0.5 * length - 0.25 * d_sin2) - 2.0 * eps_dot * (-0.25 * d_cos2 + eps * d_cos);
     double scale = a.viscosity * a.length * a.length * a.length * a.r_j / (2.0 * clearance * clearance);  // eq. (60)
-    double in_n = g2 > g1 ? g_n(g2) - g_n(g1) : 0.0;
-    double in_t = g2 > g1 ? g_t(g2) - g_t(g1) : 0.0;
-    f_n = scale * in_n / std::pow(s, 5);
-    f_perp = scale * in_t / std::pow(s, 4);
+    double s2_ = s * s;
+    f_n = scale * in_n / (s2_ * s2_ * s);
+    f_perp = scale * in_t / (s2_ * s2_);
 }
 
 // film.py _A1 ... _A9: Butenschoen's fits (1976), polynomials in B/D, lowest power first (eqs. (64)-(66))
@@ -621,24 +630,41 @@ double polynomial(const double* coefficients, int degree, double x) {  // film.p
     return r;
 }
 
+// FiniteBearing's a1 ... a9 at B/D = L / (2 R_J), kept per joint and recomputed when L or R_J change
+// (FiniteBearing.__post_init__ computes them once per law)
+struct FiniteCoefficients {
+    double length = -1.0, r_j = -1.0, bd = 0.0;
+    double c[9] = {};
+};
+
+const FiniteCoefficients& finite_coefficients(FiniteCoefficients& k, const Params& a) {
+    if (k.length != a.length || k.r_j != a.r_j) {
+        k.length = a.length;
+        k.r_j = a.r_j;
+        k.bd = a.length / (2.0 * a.r_j);
+        for (int i = 0; i < 9; ++i) k.c[i] = polynomial(FINITE_A[i], FINITE_A_DEGREE[i], k.bd);
+    }
+    return k;
+}
+
 // FiniteBearing.components, eqs. (64)-(67): Butenschoen's rotation and squeeze fits
-void finite_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff,
-                       double& f_n, double& f_perp) {
-    double bd = a.length / (2.0 * a.r_j);
-    double c[9];
-    for (int i = 0; i < 9; ++i) c[i] = polynomial(FINITE_A[i], FINITE_A_DEGREE[i], bd);
+void finite_components(const Params& a, const FiniteCoefficients& k, double clearance, double eps, double eps_dot,
+                       double omega_eff, double& f_n, double& f_perp) {
+    const double* c = k.c;
+    double bd = k.bd;
     // rotation, eqs. (64)-(65)
     double one_m = 1.0 - eps * eps;
     double so = (bd * bd * eps / (2.0 * one_m * one_m) * std::sqrt(M_PI * M_PI * one_m + 16.0 * eps * eps)
                  * c[0] * (eps - 1.0) / (c[1] + eps));
     double base = std::atan2(M_PI * std::sqrt(one_m), 2.0 * eps);
-    double beta = base * (c[2] + c[3] * eps + c[4] * std::pow(eps, 2) + c[5] * std::pow(eps, 3)
-                          + c[6] * std::pow(eps, 4));
+    double eps2 = eps * eps;
+    double beta = base * (c[2] + c[3] * eps + c[4] * eps2 + c[5] * eps2 * eps + c[6] * eps2 * eps2);
     // squeeze, eq. (66), at eps approaching the wall, -eps leaving it
     double x = eps_dot >= 0.0 ? eps : -eps;
     double one_mx = 1.0 - x * x;
-    double so_v = (4.0 * bd * bd * std::pow(one_mx, -2.5)
-                   * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * std::sqrt(one_mx))
+    double root_mx = std::sqrt(one_mx);
+    double so_v = (4.0 * bd * bd / (one_mx * one_mx * root_mx)
+                   * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * root_mx)
                    * c[7] * (1.0 - x) / (-c[8] - x));
     double psi = clearance / a.r_j;
     double unit = a.length * 2.0 * a.r_j * a.viscosity / (psi * psi);  // B D eta / psi^2, eq. (67)
@@ -650,7 +676,7 @@ void finite_components(const Params& a, double clearance, double eps, double eps
 }
 
 // FilmLaw.blended_load and _assemble: the film as the joint applies it (eqs. (68)-(70))
-FilmLoad film_load(const Params& a, const FilmInput& in) {
+FilmLoad film_load(const Params& a, FiniteCoefficients& finite, const FilmInput& in) {
     double clearance = a.r_b - a.r_j;
     FilmKinematics kin = film_kinematics(in, clearance);
     double eps_b, eps_dot_b;
@@ -659,7 +685,7 @@ FilmLoad film_load(const Params& a, const FilmInput& in) {
     if (a.film_model == FILM_SHORT) {
         short_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
     } else if (a.film_model == FILM_FINITE) {
-        finite_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+        finite_components(a, finite_coefficients(finite, a), clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
     } else {
         throw std::runtime_error("exuclear kernel: film model " + std::to_string(a.film_model) +
                                  " has no compiled form");
@@ -667,7 +693,7 @@ FilmLoad film_load(const Params& a, const FilmInput& in) {
     double fx = f_n * kin.nx - f_perp * kin.ny;  // n turned +90 degrees is (-n_y, n_x)
     double fy = f_n * kin.ny + f_perp * kin.nx;
     // eq. (69): Couette shear over the whole circumference, and the pressure's share
-    double couette = (2.0 * M_PI * a.viscosity * std::pow(a.r_j, 3) * a.length * (in.omega_journal - in.omega_bearing)
+    double couette = (2.0 * M_PI * a.viscosity * a.r_j * a.r_j * a.r_j * a.length * (in.omega_journal - in.omega_bearing)
                       / (clearance * std::sqrt(1.0 - eps_b * eps_b)));
     double e_cross_f = kin.eps * clearance * (kin.nx * fy - kin.ny * fx);  // with the true e: no net moment
     return FilmLoad{fx, fy, -couette - 0.5 * e_cross_f, couette - 0.5 * e_cross_f};
@@ -699,6 +725,7 @@ struct JointState {
     std::vector<std::vector<Record>> records;
     V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
     FilmInput film_input{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // the last evaluation's, for a lubricated joint
+    FiniteCoefficients finite;                           // the finite film model's a1 ... a9 at this B/D
     V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
     V3 initial_axis{0.0, 0.0, 1.0};
     double initial_axial = 0.0;
@@ -793,7 +820,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
             fresh.time = t;
             s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         }
-        if (a.film_model != FILM_NONE) set_film_outputs(s.cur[0], film_load(a, s.film_input));
+        if (a.film_model != FILM_NONE) set_film_outputs(s.cur[0], film_load(a, s.finite, s.film_input));
         s.prev = s.cur;
         s.initial = s.cur;
         s.started = true;
@@ -820,7 +847,7 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
         ContactKind kind = contact_kind(a, i);
         add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
     }
-    if (a.film_model != FILM_NONE) add_film_loads(loads, film_load(a, s.film_input));  // at every eccentricity
+    if (a.film_model != FILM_NONE) add_film_loads(loads, film_load(a, s.finite, s.film_input));  // at every eccentricity
     if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
         s.torque_correction = V3{loads[6], loads[7], loads[8]};
     } else {
@@ -910,7 +937,7 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
         s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
-    if (a.film_model != FILM_NONE) set_film_outputs(s.next[0], film_load(a, s.film_input));
+    if (a.film_model != FILM_NONE) set_film_outputs(s.next[0], film_load(a, s.finite, s.film_input));
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
@@ -1005,6 +1032,19 @@ PYBIND11_MODULE(_ckernel, m) {
     m.def("joints_in_use", []() { return static_cast<long>(g_joints.size() - g_free.size()); });
     m.def("reset", [](long id) { state(id) = JointState(); });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
+        // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)
+        V3 rotation{0.0, 0.0, 0.0};
+        volatile double sink = 0.0;  // keeps the evaluations from being optimised away
+        auto start = std::chrono::steady_clock::now();
+        for (long i = 0; i < n; ++i) {  // what force_torque does for the joint's connector: decode, evaluate
+            Params a = decode(parameters);
+            V6 f = joint_force(a, t, displacement, rotation, velocity, angularVelocity);
+            sink = sink + f[0];
+        }
+        std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        return elapsed.count() / static_cast<double>(n);
+    }, "seconds per evaluation of the joint's force function (a micro benchmark)");
     m.def("calls", [](long id) {
         JointState& s = state(id);
         return py::make_tuple(s.force_calls, s.post_newton_calls);
