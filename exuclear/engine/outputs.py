@@ -10,7 +10,7 @@ import numpy as np
 from ..film import FilmLaw
 from ..history import ContactState
 from ._python_kernel import data_values, spatial_data_values
-from .layout import DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
+from .layout import SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
