@@ -6,8 +6,8 @@ included, as Exudyn's call does) many times at one state; this script times
 
 - ``dry contact``: a dry joint in contact (penetration 1 um, closing, with Coulomb friction):
   the contact law's full path;
-- ``film``: the same joint lubricated, the journal at eps 0.5 (the film alone), for the
-  short and the finite model;
+- ``film``: the same joint lubricated, the journal at eps 0.5 (the film alone), for each
+  model;
 - ``film + contact``: lubricated and in contact (the film blended near the wall, plus the
   dry law);
 
@@ -88,7 +88,7 @@ def main() -> None:
         raise SystemExit(f"the compiled kernel is not available: {kernel.REASON}")
     dry = per_evaluation(None, 1.0 + 1e-6 / C)
     rows = [("dry contact (penetration 1 um)", dry)]
-    for model in ("short", "finite"):
+    for model in ("short", "long", "finite"):
         rows.append((f"{model} film, eps 0.5", per_evaluation(model, 0.5)))
         rows.append((f"{model} film + contact (penetration 1 um)", per_evaluation(model, 1.0 + 1e-6 / C)))
     print(f"compiled force function, median of {TRIALS} x {EVALUATIONS} evaluations (shared 2-core machine)")

@@ -10,7 +10,7 @@
 //                       normal force, friction; the same for slices and end faces)
 //   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
 //   contact history     exuclear/history.py    (onset velocity, records)
-//   film                exuclear/film.py       (eqs. (55)-(70); the short and finite models)
+//   film                exuclear/film.py       (eqs. (55)-(70))
 //   the joint           exuclear/engine/_python_kernel.py JointKernel (which history an
 //                       evaluation uses; force and post-Newton drivers over the contacts)
 // The planar joint is the spatial joint with one slice and no end faces, whose motion is
@@ -26,6 +26,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -74,7 +75,7 @@ const double INF = std::numeric_limits<double>::infinity();
 // ---- parameters: the named layout (exuclear/engine/layout.py LAYOUT) ----------------------
 enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
-// layout.py FILM_CODES; the long model (2) is the Python kernel's only
+// layout.py FILM_CODES
 enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
 
 // The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
@@ -610,6 +611,134 @@ void short_components(const Params& a, double clearance, double eps, double eps_
     f_perp = scale * in_t / (s2_ * s2_);
 }
 
+// film.py _positive_arcs: the arcs (g1, g2), g1 < g2, where g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x
+// is positive.  Its real zeros are the unit-modulus roots of z^2 g(z), z = exp(i x): a polynomial
+// of degree <= 4 whose roots are found here by the Durand-Kerner iteration (film.py: numpy's roots);
+// a root counts when its modulus is within UNIT_CIRCLE_TOL of 1, the sign is tested at each arc's
+// midpoint, and arcs that meet at a tangent (double) root are merged, as film.py does.
+const double UNIT_CIRCLE_TOL = 1e-6;  // film.py _UNIT_CIRCLE_TOL
+// Durand-Kerner: quadratic convergence near simple roots (a step below ROOT_CONVERGED is followed by
+// one more sweep, which lands at round-off), linear near a double root (halving: 1e-8, the accuracy a
+// double root has anyway, after about 30 sweeps); ROOT_ITERATIONS caps the jitter there.
+const int ROOT_ITERATIONS = 60;
+const double ROOT_CONVERGED = 1e-10;
+
+// complex arithmetic on plain doubles: std::complex's operators call the library's NaN- and
+// inf-checking routines (__muldc3, __divdc3), which made the root finding 3 times slower
+struct Cx {
+    double re, im;
+};
+inline Cx operator+(Cx a, Cx b) { return Cx{a.re + b.re, a.im + b.im}; }
+inline Cx operator-(Cx a, Cx b) { return Cx{a.re - b.re, a.im - b.im}; }
+inline Cx operator*(Cx a, Cx b) { return Cx{a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+inline Cx operator/(Cx a, Cx b) {
+    double d = b.re * b.re + b.im * b.im;
+    return Cx{(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
+}
+inline double modulus(Cx a) { return std::sqrt(a.re * a.re + a.im * a.im); }
+
+int positive_arcs(double a0, double a1, double b1, double a2, double b2, double (&arcs)[4][2]) {
+    Cx coeffs[5] = {Cx{0.5 * a2, -0.5 * b2}, Cx{0.5 * a1, -0.5 * b1}, Cx{a0, 0.0}, Cx{0.5 * a1, 0.5 * b1},
+                    Cx{0.5 * a2, 0.5 * b2}};  // highest power first
+    int first = 0;
+    while (first < 5 && coeffs[first].re == 0.0 && coeffs[first].im == 0.0) ++first;  // leading zeros dropped
+    int degree = 4 - first;  // (an all-zero g has no arc)
+    auto g = [&](double x) {
+        return a0 + a1 * std::cos(x) + b1 * std::sin(x) + a2 * std::cos(2.0 * x) + b2 * std::sin(2.0 * x);
+    };
+    double angles[4];
+    int n_angles = 0;
+    if (degree >= 1) {
+        Cx z[4];
+        Cx start{0.4, 0.9};  // the customary starting points: powers of a number off both axes
+        for (int k = 0; k < degree; ++k) z[k] = k == 0 ? start : z[k - 1] * start;
+        bool polished = false;
+        for (int it = 0; it < ROOT_ITERATIONS; ++it) {
+            double change = 0.0;
+            for (int k = 0; k < degree; ++k) {
+                Cx p = coeffs[first];
+                for (int j = first + 1; j < 5; ++j) p = p * z[k] + coeffs[j];
+                Cx q = coeffs[first];
+                for (int j = 0; j < degree; ++j) {
+                    if (j != k) q = q * (z[k] - z[j]);
+                }
+                Cx step = p / q;
+                z[k] = z[k] - step;
+                change = std::max(change, modulus(step) / std::max(1.0, modulus(z[k])));
+            }
+            if (change < ROOT_CONVERGED) {
+                if (polished) break;
+                polished = true;  // one more sweep
+            }
+        }
+        for (int k = 0; k < degree; ++k) {
+            if (std::fabs(modulus(z[k]) - 1.0) < UNIT_CIRCLE_TOL) {
+                double angle = std::fmod(std::atan2(z[k].im, z[k].re), 2.0 * M_PI);  // Python's % 2 pi: [0, 2 pi)
+                if (angle < 0.0) angle += 2.0 * M_PI;
+                angles[n_angles++] = angle;
+            }
+        }
+        for (int i = 1; i < n_angles; ++i) {  // sorted (insertion: at most four)
+            for (int j = i; j > 0 && angles[j - 1] > angles[j]; --j) std::swap(angles[j - 1], angles[j]);
+        }
+    }
+    if (n_angles == 0) {
+        if (g(0.0) > 0.0) {
+            arcs[0][0] = 0.0;
+            arcs[0][1] = 2.0 * M_PI;
+            return 1;
+        }
+        return 0;
+    }
+    int n_arcs = 0;
+    for (int k = 0; k < n_angles; ++k) {
+        double a = angles[k];
+        double b = k + 1 < n_angles ? angles[k + 1] : angles[0] + 2.0 * M_PI;
+        if (b - a > 0.0 && g(0.5 * (a + b)) > 0.0) {
+            if (n_arcs > 0 && arcs[n_arcs - 1][1] == a) {  // a tangent (double) root inside a positive arc
+                arcs[n_arcs - 1][1] = b;
+            } else {
+                arcs[n_arcs][0] = a;
+                arcs[n_arcs][1] = b;
+                ++n_arcs;
+            }
+        }
+    }
+    return n_arcs;
+}
+
+// LongBearing.components, eqs. (61)-(63): Sommerfeld's pressure, its positive part
+void long_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
+                     double& f_perp) {
+    double s = std::sqrt(1.0 - eps * eps);
+    double rho = eps * omega_eff * s / (2.0 + eps * eps);
+    double sigma = eps_dot / (2.0 + 3.0 * eps * eps);
+    double eps3 = eps * eps * eps;
+    // sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+    double q0 = 7.0 * eps - 2.0 * eps3, q1 = -(4.0 + 6.0 * eps * eps), q2 = 2.0 * eps + 3.0 * eps3;
+    double arcs[4][2];
+    int n_arcs = positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
+                               -0.5 * rho * eps, arcs);
+    double two_eps_dot = 2.0 * eps_dot;
+    auto g_n = [&](double x) {  // antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+        return (rho * (-0.5 * std::cos(2.0 * x) - eps * std::cos(x))
+                + two_eps_dot * (0.5 * x - 0.25 * std::sin(2.0 * x)));
+    };
+    auto g_t = [&](double x) {  // antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+        return (rho * (s * s * x + 0.5 * std::sin(2.0 * x) - eps * std::sin(x))
+                + two_eps_dot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x)));
+    };
+    double in_n = 0.0, in_t = 0.0;
+    for (int k = 0; k < n_arcs; ++k) {
+        in_n += g_n(arcs[k][1]) - g_n(arcs[k][0]);
+        in_t += g_t(arcs[k][1]) - g_t(arcs[k][0]);
+    }
+    double scale = 6.0 * a.viscosity * a.r_j * a.r_j * a.r_j * a.length / (clearance * clearance);  // eq. (63)
+    double s2_ = s * s;
+    f_n = -scale * in_n / (s2_ * s);
+    f_perp = scale * in_t / (s2_ * s2_);
+}
+
 // film.py _A1 ... _A9: Butenschoen's fits (1976), polynomials in B/D, lowest power first (eqs. (64)-(66))
 const double FINITE_A[9][5] = {
     {1.1642, -1.9456, 7.1161, -10.1073, 5.0141},
@@ -684,11 +813,12 @@ FilmLoad film_load(const Params& a, FiniteCoefficients& finite, const FilmInput&
     double f_n = 0.0, f_perp = 0.0;
     if (a.film_model == FILM_SHORT) {
         short_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else if (a.film_model == FILM_LONG) {
+        long_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
     } else if (a.film_model == FILM_FINITE) {
         finite_components(a, finite_coefficients(finite, a), clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
     } else {
-        throw std::runtime_error("exuclear kernel: film model " + std::to_string(a.film_model) +
-                                 " has no compiled form");
+        throw std::runtime_error("exuclear kernel: unknown film model " + std::to_string(a.film_model));
     }
     double fx = f_n * kin.nx - f_perp * kin.ny;  // n turned +90 degrees is (-n_y, n_x)
     double fy = f_n * kin.ny + f_perp * kin.nx;

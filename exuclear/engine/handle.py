@@ -59,7 +59,7 @@ class ClearanceJointHandle:
         self.name, self.backend, self.max_penetration = name, backend, max_penetration
         self._joint = joint
         self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
-        check_film(joint.film, slices, backend == "compiled")  # before any item is added
+        check_film(joint.film, slices)  # before any item is added
         self._backend = make_backend(backend, joint, slices, axis_journal, shoulders)
         self.joint_id = self._backend.joint_id
         self.objectNumber: Any = None
@@ -114,7 +114,7 @@ class ClearanceJointHandle:
         if (joint.film is None) != (self._joint.film is None):
             raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
                              "create a new clearance joint")
-        check_film(joint.film, self.slices, self._backend.compiled)
+        check_film(joint.film, self.slices)
         self._joint = joint
         self._backend.set_joint(joint)
         self._write_parameters()

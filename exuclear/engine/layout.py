@@ -142,10 +142,8 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
     raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
 
 
-#: Film model name -> code in the parameter matrix (0: no film).  The compiled kernel
-#: evaluates the codes of COMPILED_FILM_CODES (clearance_kernel.cpp ``film_components``).
+#: Film model name -> code in the parameter matrix (0: no film; clearance_kernel.cpp ``FilmCode``).
 FILM_CODES = {"short": 1, "long": 2, "finite": 3}
-COMPILED_FILM_CODES = frozenset((1, 3))
 
 
 def data_columns(lubricated: bool) -> tuple[str, ...]:
@@ -154,17 +152,12 @@ def data_columns(lubricated: bool) -> tuple[str, ...]:
     return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
 
 
-def check_film(film: FilmLaw | None, slices: int, compiled: bool) -> None:
-    """``ValueError`` for a film the kernels cannot evaluate: one on a spatial joint (not
-    yet available), or a model without a compiled form on the compiled kernel."""
-    if film is None:
-        return
-    if slices:
+def check_film(film: FilmLaw | None, slices: int) -> None:
+    """``ValueError`` for a film on a spatial joint (not available yet: the film of the
+    planar joint only)."""
+    if film is not None and slices:
         raise ValueError(f"`lubrication` is available for the planar joint only (slices=None), got slices={slices}; "
                          "the spatial joint's film (one per slice) is not implemented yet")
-    if compiled and FILM_CODES[film.name] not in COMPILED_FILM_CODES:
-        raise ValueError(f"the {film.name!r} film model has no compiled form; use model='short' or 'finite', or "
-                         "backend='python'")
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
@@ -180,7 +173,7 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
     p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
-    check_film(joint.film, slices, compiled)
+    check_film(joint.film, slices)
     values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
               "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
