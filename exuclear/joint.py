@@ -98,8 +98,9 @@ class ClearanceJoint:
         return self.law.geometry
 
     def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:
-        """Forces for the contact state ``kin`` given the last accepted ``history``
-        (docs/physics.md eqs. (9), (20), (24)-(26))."""
+        """Forces of the dry contact for the contact state ``kin`` given the last accepted
+        ``history`` (docs/physics.md eqs. (9), (20), (24)-(26)); a lubricated joint's film
+        adds :meth:`exuclear.film.FilmLaw.blended_load` (its kernels' ``Film``)."""
         f_n, f_t, v0 = contact_response(self.law.normal_force, self.friction, kin.delta, kin.delta_dot, kin.v_t,
                                         history)
         loads = joint_loads(self.law.geometry, kin, f_n, f_t) if kin.delta > 0.0 else _NO_LOADS
