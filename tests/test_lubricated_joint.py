@@ -67,9 +67,9 @@ def lubricated(model: str) -> dict:
 
 
 def steady_run(model: str, width_ratio: float, load: float, backend: str = "compiled", eps0: float = 0.3,
-               t_end: float = T_END) -> dict:
+               t_end: float = T_END, slices: int | None = None) -> dict:
     """A journal spinning at OMEGA in a fixed bearing under ``load`` along -y, released at
-    ``eps0`` below the centre; the joint's outputs."""
+    ``eps0`` below the centre; the joint's outputs (``slices``: the spatial joint's)."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, -eps0 * C, 0],
@@ -80,7 +80,7 @@ def steady_run(model: str, width_ratio: float, load: float, backend: str = "comp
                                 loadVector=[0, -load, 0]))
     joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, pin], position=[0, 0, 0], axis=[0, 0, 1],
                                           journal_radius=R, bearing_radius=R + C, length=2.0 * R * width_ratio,
-                                          cr=0.9, backend=backend, **lubricated(model))
+                                          cr=0.9, backend=backend, slices=slices, **lubricated(model))
     solve(mbs, t_end, STEP)
     return joint.outputs()
 
@@ -317,6 +317,89 @@ def test_kernels_agree_on_the_film_load_at_single_states():
             kernel.COMPILED.release(joint_id)
 
 
+# -- the spatial joint: a film per slice ------------------------------------------------------------
+@needs_compiled
+@pytest.mark.parametrize("backend", ["compiled", "python"])
+def test_aligned_spatial_film_is_the_planar_film(backend):
+    # an aligned journal: every slice sees the planar film's state, and N shares of 1/N add
+    # up to the planar film (the run equals the planar one to round-off)
+    width_ratio = 0.25
+    so, _ = ocvirk(width_ratio, 0.5)
+    load = so * unit_load(width_ratio)
+    planar = steady_run("short", width_ratio, load, backend=backend, t_end=0.05)
+    spatial = steady_run("short", width_ratio, load, backend=backend, t_end=0.05, slices=4)
+    assert spatial["film_fx"].shape == (len(planar["time"]), 4)
+    for k in range(4):
+        np.testing.assert_allclose(spatial["ecc_x"][:, k], planar["ecc_x"], rtol=0, atol=1e-12 * C)
+        np.testing.assert_allclose(spatial["ecc_y"][:, k], planar["ecc_y"], rtol=0, atol=1e-12 * C)
+        np.testing.assert_allclose(4.0 * spatial["film_fx"][:, k], planar["film_fx"], rtol=1e-12, atol=1e-9)
+
+
+@needs_compiled
+@pytest.mark.parametrize("model", ["short", "long", "finite"])
+def test_tilted_journal_film_loads_per_slice(model):
+    # a journal tilted about x by alpha, spinning about its own axis, its centre 0.5 c below the
+    # bearing's: each slice's film at its own eccentricity, a share 1/N each; both kernels'
+    # torque equals minus the journal's moment about its centre summed from the film law
+    # here, to 1e-12, and the film resists the tilt (the journal's moment about x opposes it)
+    from exuclear.engine import _python_kernel
+    from exuclear.engine.layout import MAIN, parameters
+    from exuclear.spatial import slice_centres
+
+    slices, alpha, length = 8, 2e-3, 0.01
+    joint = exuclear.make_joint(journal_radius=R, bearing_radius=R + C, length=length, cr=0.8,
+                                lubrication=Lubrication(viscosity=0.03, model=model))
+    p, u = (0.0, -0.5 * C, 0.0), (0.0, -math.sin(alpha), math.cos(alpha))
+    moment = np.zeros(3)
+    for z in slice_centres(length, slices):
+        s_k = (z - p[2]) / u[2]
+        r = joint.film.blended_load(p[0] + s_k * u[0], p[1] + s_k * u[1], 0.0, 0.0, OMEGA, 0.0)
+        moment += np.cross([s_k * u[0], s_k * u[1], s_k * u[2]], [r.fx, r.fy, 0.0]) / slices
+        moment[2] += r.torque_journal / slices
+    args = (None, 1.0, 0, list(p), [alpha, 0.0, 0.0], [0.0] * 3, [OMEGA * v for v in u])  # spin about its axis
+    python = _python_kernel.JointKernel(joint, slices)
+    joint_id = kernel.COMPILED.new_joint()
+    try:
+        par = parameters(joint, joint_id, MAIN, 1e-3, slices=slices)
+        rest = (par, par, [[0.0] * 3] * 3, [[0.0] * 3] * 3, [0.0] * 6)
+        for loads in (kernel.COMPILED.force_torque(*args, *rest), python.force_torque(*args, *rest)):
+            np.testing.assert_allclose(-np.array(loads[3:]), moment, rtol=1e-12, atol=1e-12 * np.abs(moment).max())
+    finally:
+        kernel.COMPILED.release(joint_id)
+    assert moment[0] < 0.0  # the slice nearer the wall (z > 0) pushes harder: back towards alignment
+
+
+def spatial_run(backend: str) -> dict:
+    """A 3D steel journal (20 mm radius, 40 mm long) in a fixed bearing with axial play and
+    a film (short model, 1e-4 Pa s), thrown sideways and axially, tilting and spinning: the
+    film carries it (eps up to 0.44, per slice) while the end faces take the axial impact,
+    within 2 ms."""
+    from exudyn.utilities import InertiaCylinder
+
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.CreateGround()
+    body = mbs.CreateRigidBody(inertia=InertiaCylinder(7800.0, 0.04, R, 2), referencePosition=[0, 0, 0],
+                               initialVelocity=[0.3, 0.05, -0.02], initialAngularVelocity=[0.05, -0.03, 50.0],
+                               nodeType=exu.NodeType.RotationRxyz, returnDict=True)
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body["bodyNumber"]], position=[0, 0, 0],
+                                          slices=6, journal_radius=R, bearing_radius=R + C, length=0.04, cr=0.8,
+                                          friction="coulomb:0.1", axial_clearance=2e-5, shoulder_radius=1.2 * R,
+                                          backend=backend, show=False,
+                                          lubrication=Lubrication(viscosity=1e-4, model="short"))
+    solve(mbs, 2e-3, 1e-6)
+    return joint.outputs()
+
+
+@needs_compiled
+def test_compiled_equals_python_on_a_lubricated_spatial_joint():
+    compiled, python = spatial_run("compiled"), spatial_run("python")
+    assert compiled["film_fx"].shape[1] == 6
+    for name in ("tilt_x", "tilt_y", "axial_displacement", "ecc_x", "ecc_y", "film_fx", "film_fy", "film_torque",
+                 "normal_force", "face_normal_force"):
+        scale = np.max(np.abs(python[name])) or 1.0
+        np.testing.assert_allclose(compiled[name], python[name], rtol=0, atol=1e-9 * scale, err_msg=name)
+
+
 # -- outputs and refusals ------------------------------------------------------------------------
 @needs_compiled
 def test_dry_joint_keeps_its_data_node_and_outputs():
@@ -359,13 +442,6 @@ def _two_bodies():
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
     return mbs, ground, mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
-
-
-def test_spatial_joint_refuses_lubrication():
-    mbs, ground, pin = _two_bodies()
-    with pytest.raises(ValueError, match="`lubrication`.*planar"):
-        exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, pin], position=[0, 0, 0], axis=[0, 0, 1], slices=4,
-                                      **PAPER, lubrication=Lubrication(viscosity=0.05), backend="python")
 
 
 def test_a_joint_cannot_switch_between_dry_and_lubricated():

@@ -222,9 +222,6 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, '
                                           'length=0.03, cr=0.9, lubrication=exuclear.Lubrication(0.05, "finite"))',
              "ValueError", says="B/D"),
-    BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], **PAPER, "
-                                          "cr=0.9, slices=4, lubrication=exuclear.Lubrication(0.05))", "ValueError",
-             says="`lubrication`"),
     # -- API: likely unit mistakes
     BadInput("API", "likely unit mistake", "exuclear.Lubrication(viscosity=50)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.Material(3e6, 0.4)", "UnitWarning"),

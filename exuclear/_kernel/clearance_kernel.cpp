@@ -837,11 +837,36 @@ void add_film_loads(double* loads, const FilmLoad& r) {
     loads[8] += r.torque_bearing + r.torque_journal;
 }
 
-void set_film_outputs(History& h, const FilmLoad& r) {  // Film.with_outputs
-    h.film_fx = r.fx;
-    h.film_fy = r.fy;
-    h.film_torque = r.torque_journal;
+// Film.add_slice_loads: a spatial slice's share w / L of the film (section 10.8): -F on the bearing,
+// T = s u x (-F) - M_J z, the bearing's moment beyond T (before p x F) e x F + (M_B + M_J) z
+void add_film_slice_loads(double* loads, double share, const V3& u, const Kinematics& k, const FilmLoad& r) {
+    double w = share;
+    double fx = w * r.fx, fy = w * r.fy, m_j = w * r.torque_journal, m_b = w * r.torque_bearing;
+    double sx = k.s * u[0], sy = k.s * u[1], sz = k.s * u[2];
+    loads[0] += -fx;
+    loads[1] += -fy;
+    loads[3] += sz * fy;  // (s u) x (-F), F in the plane
+    loads[4] += -sz * fx;
+    loads[5] += -(sx * fy - sy * fx) - m_j;
+    loads[8] += (k.ex * fy - k.ey * fx) + (m_b + m_j);
 }
+
+// _python_kernel.py slice_film_input: a slice's axis point, its rate in the bearing's rotating frame
+// (the w of eq. (38)), the journal's spin relative to the bearing, the bearing's 0
+FilmInput slice_film_input(const Kinematics& k, const V3& p, const V3& u, const V3& dv, const V3& dw, const V3& w_j) {
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    double wx = dv[0] - (w_j[1] * p[2] - w_j[2] * p[1]) + (dw[1] * su[2] - dw[2] * su[1]);
+    double wy = dv[1] - (w_j[2] * p[0] - w_j[0] * p[2]) + (dw[2] * su[0] - dw[0] * su[2]);
+    return FilmInput{k.ex, k.ey, wx, wy, dw[0] * u[0] + dw[1] * u[1] + dw[2] * u[2], 0.0};
+}
+
+void set_film_outputs(History& h, const FilmLoad& r, double share) {  // Film.with_outputs
+    h.film_fx = share * r.fx;
+    h.film_fy = share * r.fy;
+    h.film_torque = share * r.torque_journal;
+}
+
+double film_share(const Params& a) { return a.slices > 0 ? 1.0 / a.slices : 1.0; }  // w / L, eq. (41)
 
 // ---- the per-joint table -------------------------------------------------------------------
 // One joint's state (_python_kernel.py JointKernel): per contact, its history at the start
@@ -854,7 +879,7 @@ struct JointState {
     std::vector<History> next;               // scratch of the post-Newton update (storage reused)
     std::vector<std::vector<Record>> records;
     V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
-    FilmInput film_input{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // the last evaluation's, for a lubricated joint
+    std::vector<FilmInput> film_inputs;  // the last evaluation's, per slice, for a lubricated joint
     FiniteCoefficients finite;                           // the finite film model's a1 ... a9 at this B/D
     V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
     V3 initial_axis{0.0, 0.0, 1.0};
@@ -911,11 +936,21 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
-        if (a.film_model != FILM_NONE) s.film_input = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(1);
+            s.film_inputs[0] = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
+        }
     } else {
         for (int k = 0; k < n_slices; ++k) {
             s.kins[static_cast<size_t>(k)] =
                 slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+        }
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(static_cast<size_t>(n_slices));
+            for (int k = 0; k < n_slices; ++k) {
+                s.film_inputs[static_cast<size_t>(k)] =
+                    slice_film_input(s.kins[static_cast<size_t>(k)], q.p, q.u, dv, dw, w_j);
+            }
         }
     }
     if (a.play > 0.0) {
@@ -950,7 +985,9 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
             fresh.time = t;
             s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         }
-        if (a.film_model != FILM_NONE) set_film_outputs(s.cur[0], film_load(a, s.finite, s.film_input));
+        for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+            set_film_outputs(s.cur[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+        }
         s.prev = s.cur;
         s.initial = s.cur;
         s.started = true;
@@ -977,7 +1014,16 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
         ContactKind kind = contact_kind(a, i);
         add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
     }
-    if (a.film_model != FILM_NONE) add_film_loads(loads, film_load(a, s.finite, s.film_input));  // at every eccentricity
+    if (a.film_model != FILM_NONE) {  // at every eccentricity (section 10.5), on every slice
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            FilmLoad r = film_load(a, s.finite, s.film_inputs[i]);
+            if (a.slices == 0) {
+                add_film_loads(loads, r);
+            } else {
+                add_film_slice_loads(loads, film_share(a), q.u, s.kins[i], r);
+            }
+        }
+    }
     if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
         s.torque_correction = V3{loads[6], loads[7], loads[8]};
     } else {
@@ -1067,7 +1113,9 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
         s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
-    if (a.film_model != FILM_NONE) set_film_outputs(s.next[0], film_load(a, s.finite, s.film_input));
+    for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+        set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+    }
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
@@ -1086,6 +1134,13 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
     out.push_back(q.u[1]);
     out.push_back(q.p[2]);
     for (const History& h : s.cur) write_data(h, out, 1);  // each contact's entries without its time
+    if (a.film_model != FILM_NONE) {  // then each slice's film entries (layout.FILM_DATA_COLUMNS)
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            out.push_back(s.cur[i].film_fx);
+            out.push_back(s.cur[i].film_fy);
+            out.push_back(s.cur[i].film_torque);
+        }
+    }
     return out;
 }
 

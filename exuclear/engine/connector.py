@@ -201,7 +201,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
             rotationMarker0=rotation0, springForceTorqueUserFunction=fns["probe"],
             postNewtonStepUserFunction=fns["probe_post_newton"], visualization=hidden))
     n_faces = len(FACE_SIDES) if shoulders is not None else 0
-    n_data = len(spatial_data_columns(slices, n_faces)) if slices else len(data_columns(joint.film is not None))
+    lubricated = joint.film is not None
+    n_data = len(spatial_data_columns(slices, n_faces, lubricated)) if slices else len(data_columns(lubricated))
     handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * n_data, numberOfDataCoordinates=n_data))
     handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,

@@ -17,7 +17,7 @@ from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
-from .layout import MAIN, PROBE, TORQUE, check_film, parameters, read
+from .layout import MAIN, PROBE, TORQUE, parameters, read
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -59,7 +59,6 @@ class ClearanceJointHandle:
         self.name, self.backend, self.max_penetration = name, backend, max_penetration
         self._joint = joint
         self.slices, self.axis_journal, self.shoulders = slices, axis_journal, shoulders
-        check_film(joint.film, slices)  # before any item is added
         self._backend = make_backend(backend, joint, slices, axis_journal, shoulders)
         self.joint_id = self._backend.joint_id
         self.objectNumber: Any = None
@@ -114,7 +113,6 @@ class ClearanceJointHandle:
         if (joint.film is None) != (self._joint.film is None):
             raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
                              "create a new clearance joint")
-        check_film(joint.film, self.slices)
         self._joint = joint
         self._backend.set_joint(joint)
         self._write_parameters()

@@ -24,7 +24,6 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..contact import ContactLaw
-from ..film import FilmLaw
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
 from ..spatial import ShoulderGeometry
@@ -109,12 +108,14 @@ SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
 SLICE_COLUMNS = DATA_COLUMNS[1:]
 
 
-def spatial_data_columns(slices: int, faces: int = 0) -> tuple[str, ...]:
+def spatial_data_columns(slices: int, faces: int = 0, lubricated: bool = False) -> tuple[str, ...]:
     """Names of a spatial joint's data-node entries: ``SPATIAL_JOINT_COLUMNS``, then
     ``SLICE_COLUMNS`` of slice 0, 1, ... as ``"normal_force[3]"``, then those of the
-    ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``."""
+    ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``, then,
+    where the joint is ``lubricated``, each slice's :data:`FILM_DATA_COLUMNS` (``"film_fx[3]"``)."""
     return (SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
-            + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS))
+            + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS)
+            + (tuple(f"{c}[{k}]" for k in range(slices) for c in FILM_DATA_COLUMNS) if lubricated else ()))
 
 
 #: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
@@ -152,14 +153,6 @@ def data_columns(lubricated: bool) -> tuple[str, ...]:
     return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
 
 
-def check_film(film: FilmLaw | None, slices: int) -> None:
-    """``ValueError`` for a film on a spatial joint (not available yet: the film of the
-    planar joint only)."""
-    if film is not None and slices:
-        raise ValueError(f"`lubrication` is available for the planar joint only (slices=None), got slices={slices}; "
-                         "the spatial joint's film (one per slice) is not implemented yet")
-
-
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
@@ -173,7 +166,6 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
     p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
-    check_film(joint.film, slices)
     values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
               "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,

@@ -10,7 +10,7 @@ import numpy as np
 from ..film import FilmLaw
 from ..history import ContactState
 from ._python_kernel import data_values, spatial_data_values
-from .layout import SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
+from .layout import FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
@@ -45,14 +45,15 @@ def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: 
     journal's initial ``axis`` and ``axial`` displacement."""
     if not slices:
         return data_values(states[0], lubricated)
-    return spatial_data_values(states[0].time, axis, axial, states)
+    return spatial_data_values(states[0].time, axis, axial, states, slices if lubricated else 0)
 
 
 def assemble(data: np.ndarray, slices: int, faces: int, film: FilmLaw | None = None) -> dict[str, np.ndarray]:
     """The outputs from the sensor's rows ``data`` (sensor time, then the data node's entries):
     ``time`` and :data:`OUTPUT_COLUMNS` (planar joint, ``slices`` 0; with a ``film``, also
     :data:`FILM_OUTPUT_COLUMNS`), or :data:`SPATIAL_OUTPUT_COLUMNS` and per-slice and
-    per-face arrays."""
+    per-face arrays (with a ``film``, :data:`FILM_OUTPUT_COLUMNS` per slice: the slice's
+    share of the film force and moment)."""
     if not slices:
         column = {c: data[:, k + 1] for k, c in enumerate(data_columns(film is not None))}
         out = {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
@@ -67,9 +68,16 @@ def assemble(data: np.ndarray, slices: int, faces: int, film: FilmLaw | None = N
     for c in OUTPUT_COLUMNS:
         out[c] = block[:, :, SLICE_COLUMNS.index(c)]
     if faces:
-        block = data[:, end:].reshape(data.shape[0], faces, n_slice)
+        block = data[:, end:end + faces * n_slice].reshape(data.shape[0], faces, n_slice)
         for c in OUTPUT_COLUMNS:
             out[FACE_OUTPUT_PREFIX + c] = block[:, :, SLICE_COLUMNS.index(c)]
+    if film is not None:  # per slice: arrays of shape (times, slices)
+        start = end + faces * n_slice
+        block = data[:, start:start + slices * len(FILM_DATA_COLUMNS)].reshape(data.shape[0], slices,
+                                                                                len(FILM_DATA_COLUMNS))
+        column = {c: block[:, :, k] for k, c in enumerate(FILM_DATA_COLUMNS)}
+        column.update({c: out[c] for c in ("ecc_x", "ecc_y", "penetration")})
+        out.update(film_outputs(column, film))
     return out
 
 
