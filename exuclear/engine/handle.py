@@ -221,7 +221,9 @@ class ClearanceJointHandle:
         return self._backend.failure()
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
+        """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units (a spatial joint's:
+        :func:`~exuclear.engine.outputs.assemble`; a lubricated joint's also
+        :data:`~exuclear.engine.outputs.FILM_OUTPUT_COLUMNS`).
 
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
