@@ -10,10 +10,11 @@ The steady-load scene (:func:`steady_run`): journal radius 20 mm, clearance 40 u
 (psi = 2e-3), eta = 0.05 Pa s, omega = 100 rad/s; the load from the reference's Sommerfeld
 number.  **Mass and speed below oil whip**: a light journal at low eps whirls once omega is
 above about twice its first critical speed, i.e. once the dimensionless mass
-``M = m c omega^2 / F`` passes a threshold of order 1 (for the short bearing about 1.5 at
-eps = 0.5, Lund's rigid-rotor result); the mass here is set from ``M = 0.01`` for every
-case, two orders below, so the steady state is stable and reached in a few tens of
-revolutions (the film's relaxation time is of order 1/omega).  The journal's moment of
+``M = m c omega^2 / F`` passes a threshold of order 1 at moderate eps (rigid-rotor
+stability analyses; the exact value was not rechecked here); the mass here is set from
+``M = 0.01`` for every case, two orders below, so the steady state is stable and reached
+in a few revolutions (the film's relaxation time is of order 1/omega; the run checks that
+eps no longer moves over its second half).  The journal's moment of
 inertia is 100 kg m^2 so that the film's Couette moment (0.25 N m at B/D = 1) slows it by
 less than 1e-5 relative over a run: the spin is constant to that.
 """
