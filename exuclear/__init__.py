@@ -5,6 +5,7 @@ The public API is the names of ``__all__`` below, by role:
 - **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (Exudyn items; they
   return a :class:`ClearanceJointHandle`), and the physics of one joint,
   :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
+  :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``);
 - **contact laws**: :func:`contact_law` is the one way to build a :class:`ContactLaw`,
   by the name of a named law (``"wang-liu"``) or of a stiffness model and a damping
   model (``"pereira+gonthier"``); ``V_MIN_DEFAULT`` is the laws' velocity floor;
@@ -47,6 +48,7 @@ from .engine import (
     add_clearance_joint,  # noqa: F401 - exuclear 0.1's planar form, kept importable while it is deprecated
     simulate,
 )
+from .film import Lubrication
 from .friction import friction_law
 from .geometry import BearingGeometry
 from .joint import ClearanceJoint, make_joint
@@ -78,7 +80,7 @@ __version__ = "0.1.0"
 __all__ = [
     # joints
     "CreateClearanceJoint", "AddClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
-    "make_joint",
+    "make_joint", "Lubrication",
     # contact laws
     "contact_law", "ContactLaw", "V_MIN_DEFAULT",
     # friction

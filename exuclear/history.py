@@ -48,7 +48,9 @@ class ContactState:
     contact's onset velocity; ``onsets`` the contacts begun and ``closed`` those ended
     since the run began; ``onset_time``, ``peak_force`` and ``max_penetration`` describe
     the current (or last) contact; ``normal_force``, ``tangential_force``,
-    ``slip_velocity``, ``ecc_x``, ``ecc_y`` are the outputs at this state.
+    ``slip_velocity``, ``ecc_x``, ``ecc_y`` are the outputs at this state; ``film_fx``,
+    ``film_fy``, ``film_torque`` the film's force on the journal and its viscous moment on
+    the journal there (a lubricated joint's; the kernel sets them, :meth:`accept` keeps 0).
     """
 
     time: float = 0.0
@@ -66,6 +68,9 @@ class ContactState:
     slip_velocity: float = 0.0
     ecc_x: float = 0.0
     ecc_y: float = 0.0
+    film_fx: float = 0.0
+    film_fy: float = 0.0
+    film_torque: float = 0.0
 
     def onset_velocity(self, delta: float, delta_dot: float) -> float:
         """``v0`` for a state (``delta > 0``) of the coming step; no side effects."""

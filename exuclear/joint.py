@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, is_elastic, pair_name, split_law_name
+from .film import FilmLaw, Lubrication
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .history import ContactState
@@ -69,24 +70,37 @@ class ClearanceJoint:
         Normal contact law; it carries the :class:`BearingGeometry`.
     friction : FrictionLaw
         Friction law; default frictionless.
+    film : FilmLaw, optional
+        The oil film of a lubricated joint (:mod:`exuclear.film`), bound to the same
+        geometry; None (the default) for the dry joint.  The film acts at every
+        eccentricity, the contact law where the journal penetrates the wall, the two
+        added (docs/physics.md section 10.5).
     """
 
     law: ContactLaw
     friction: FrictionLaw = NO_FRICTION
+    film: FilmLaw | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.law, ContactLaw):
             raise ValueError(f"`law` must be a ContactLaw, got {type(self.law).__name__}")
         if not isinstance(self.friction, FrictionLaw):
             raise ValueError(f"`friction` must be a FrictionLaw, got {type(self.friction).__name__}")
+        if self.film is not None:
+            if not isinstance(self.film, FilmLaw):
+                raise ValueError(f"`film` must be a FilmLaw or None, got {type(self.film).__name__}")
+            if self.film.geometry != self.law.geometry:
+                raise ValueError(f"`film` was built for {self.film.geometry}, which differs from the law's "
+                                 f"{self.law.geometry}")
 
     @property
     def geometry(self) -> BearingGeometry:
         return self.law.geometry
 
     def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:
-        """Forces for the contact state ``kin`` given the last accepted ``history``
-        (docs/physics.md eqs. (9), (20), (24)-(26))."""
+        """Forces of the dry contact for the contact state ``kin`` given the last accepted
+        ``history`` (docs/physics.md eqs. (9), (20), (24)-(26)); a lubricated joint's film
+        adds :meth:`exuclear.film.FilmLaw.blended_load` (its kernels' ``Film``)."""
         f_n, f_t, v0 = contact_response(self.law.normal_force, self.friction, kin.delta, kin.delta_dot, kin.v_t,
                                         history)
         loads = joint_loads(self.law.geometry, kin, f_n, f_t) if kin.delta > 0.0 else _NO_LOADS
@@ -107,6 +121,7 @@ def make_joint(
     v_min: float | None = None,
     stiffness: str | None = None,
     damping: str | None = None,
+    lubrication: Lubrication | None = None,
 ) -> ClearanceJoint:
     """Build a :class:`ClearanceJoint` from dimensions, materials and law names.
 
@@ -137,8 +152,13 @@ def make_joint(
         :data:`exuclear.contact.STIFFNESS_MODELS` and one of
         :data:`exuclear.contact.DAMPING_MODELS`; a missing one is that of the default
         law (``liu``, ``zhiying-qishao``).
+    lubrication : Lubrication, optional
+        The oil of a lubricated joint (:class:`exuclear.Lubrication`: viscosity and film
+        model); None (the default): the dry joint.  The film law is bound to this joint's
+        geometry (``c = bearing_radius - journal_radius``, ``B = length``).
     """
     geometry = BearingGeometry(journal_radius, bearing_radius, length)
+    film = _film(lubrication, geometry)
     if isinstance(law, ContactLaw):
         if stiffness is not None or damping is not None:
             raise ValueError("give either `law` or `stiffness`/`damping`, not both")
@@ -150,7 +170,7 @@ def make_joint(
                              f"{', '.join(f'`{name}`' for name in given)} or give the law by name")
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
-        return ClearanceJoint(law, friction_law(friction))
+        return ClearanceJoint(law, friction_law(friction), film)
     if stiffness is not None or damping is not None:
         if law is not None:
             raise ValueError("give either `law` or `stiffness`/`damping`, not both")
@@ -166,4 +186,14 @@ def make_joint(
         E_star = composite_modulus(DEFAULT_MATERIAL if journal_material is None else journal_material,
                                    DEFAULT_MATERIAL if bearing_material is None else bearing_material)
     return ClearanceJoint(contact_law(law, geometry, E_star, cr, V_MIN_DEFAULT if v_min is None else v_min),
-                          friction_law(friction))
+                          friction_law(friction), film)
+
+
+def _film(lubrication: Lubrication | None, geometry: BearingGeometry) -> FilmLaw | None:
+    """The film law of ``lubrication`` in ``geometry``, or None for a dry joint."""
+    if lubrication is None:
+        return None
+    if not isinstance(lubrication, Lubrication):
+        raise ValueError(f"`lubrication` must be an exuclear.Lubrication (viscosity, model) or None (dry), got "
+                         f"{type(lubrication).__name__}")
+    return lubrication.law(geometry)

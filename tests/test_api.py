@@ -23,8 +23,9 @@ PAPER = {"journal_radius": 9.9e-3, "bearing_radius": 10e-3, "length": 15e-3}
 
 
 def test_all_is_small_and_every_name_exists():
-    # the reviewer's limit was "at most about 30"; the public names of issue 22 are 30
-    assert len(exuclear.__all__) <= 30
+    # the reviewer's limit was "at most about 30"; the public names of issue 22 are 30, and
+    # issue 23 adds Lubrication (the lubricated joint's one new public name): 31
+    assert len(exuclear.__all__) <= 31
     assert len(set(exuclear.__all__)) == len(exuclear.__all__)
     for name in exuclear.__all__:
         assert hasattr(exuclear, name), name

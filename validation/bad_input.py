@@ -263,7 +263,20 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", "SliderCrankParams.paper(max_penetration=0.0)", "ValueError",
              says="`max_penetration`"),
     BadInput("API", "inconsistent input", "build_journal(JournalBearingParams.paper(start_gap=1e-3))", "ValueError"),
+    # -- API: the lubricated joint (issue 23)
+    BadInput("API", "wrong type", 'exuclear.make_joint(**PAPER, cr=0.9, lubrication="oil")', "ValueError",
+             says="`lubrication`"),
+    BadInput("API", "wrong type", 'exuclear.Lubrication(viscosity="0.05")', "ValueError", says="`viscosity`"),
+    BadInput("API", "NaN or inf", "exuclear.Lubrication(viscosity=nan)", "ValueError", says="`viscosity`"),
+    BadInput("API", "unknown name", 'exuclear.Lubrication(viscosity=0.05, model="petroff")', "ValueError",
+             says="`model`"),
+    BadInput("API", "inconsistent input", "exuclear.Lubrication(viscosity=0.05, eps_film=0.95, eps_cap=0.9)",
+             "ValueError", says="`eps_cap`"),
+    BadInput("API", "inconsistent input", 'exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, '
+                                          'length=0.03, cr=0.9, lubrication=exuclear.Lubrication(0.05, "finite"))',
+             "ValueError", says="B/D"),
     # -- API: likely unit mistakes
+    BadInput("API", "likely unit mistake", "exuclear.Lubrication(viscosity=50)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.Material(3e6, 0.4)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.BearingGeometry(5e-3, 10e-3, 15e-3)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "SliderCrankParams.paper(crank_speed=2e4)", "UnitWarning"),

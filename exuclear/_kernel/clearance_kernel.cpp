@@ -10,6 +10,7 @@
 //                       normal force, friction; the same for slices and end faces)
 //   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
 //   contact history     exuclear/history.py    (onset velocity, records)
+//   film                exuclear/film.py       (eqs. (55)-(70))
 //   the joint           exuclear/engine/_python_kernel.py JointKernel (which history an
 //                       evaluation uses; force and post-Newton drivers over the contacts)
 // The planar joint is the spatial joint with one slice and no end faces, whose motion is
@@ -25,7 +26,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -72,6 +75,8 @@ const double INF = std::numeric_limits<double>::infinity();
 // ---- parameters: the named layout (exuclear/engine/layout.py LAYOUT) ----------------------
 enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
+// layout.py FILM_CODES
+enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
 
 // The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
 // test compares this table (exported as the module's LAYOUT) with layout.py's.
@@ -81,6 +86,7 @@ enum Field {
     STIFFNESS_CONSTANTS, FRICTION_CONSTANTS,
     SLICES, LENGTH, AXIS_JOURNAL,
     AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
+    FILM_MODEL, VISCOSITY, EPS_FILM, EPS_CAP,
     N_FIELDS
 };
 
@@ -98,6 +104,8 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
     {"friction_constants", 3, 0, 4},
     {"slices", 4, 0, 1},          {"length", 4, 1, 1},         {"axis_journal", 4, 2, 3},
     {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
+    {"film_model", 3, 4, 1},      {"viscosity", 3, 5, 1},
+    {"eps_film", 5, 4, 1},        {"eps_cap", 5, 5, 1},
 };
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
@@ -117,6 +125,9 @@ struct Params {
     // the spatial joint's axial clearance (section 9.6): total play (0: none), friction radius
     // R_e, face stiffness K_f
     double play, friction_radius, face_stiffness;
+    // the lubricated joint's film (section 10): model code (0: dry), viscosity, blend thresholds (eq. (70))
+    int film_model;
+    double viscosity, eps_film, eps_cap;
 };
 
 Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
@@ -139,6 +150,10 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.play = field(p, AXIAL_CLEARANCE);
     a.friction_radius = field(p, FRICTION_RADIUS);
     a.face_stiffness = field(p, FACE_STIFFNESS);
+    a.film_model = static_cast<int>(field(p, FILM_MODEL));
+    a.viscosity = field(p, VISCOSITY);
+    a.eps_film = field(p, EPS_FILM);
+    a.eps_cap = field(p, EPS_CAP);
     return a;
 }
 
@@ -345,6 +360,7 @@ struct History {
     double onset_time = 0.0, peak_force = 0.0, max_penetration = 0.0;
     // outputs at this accepted state
     double f_n = 0.0, f_t = 0.0, v_t = 0.0, ex = 0.0, ey = 0.0;
+    double film_fx = 0.0, film_fy = 0.0, film_torque = 0.0;  // a lubricated joint's film (set by the driver)
 };
 
 struct Record {
@@ -508,6 +524,350 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
     }
 }
 
+// ---- the film: film.py (docs/physics.md section 10, eqs. (55)-(70)) ------------------------------
+// film.py FilmInput (_python_kernel.py): e in the bearing's joint frame, de/dt as the connector
+// hands it over (the inertial derivative in that frame's components), the absolute spins.
+struct FilmInput {
+    double ex, ey, vx, vy, omega_journal, omega_bearing;
+};
+
+struct FilmKinematics {  // film.py FilmKinematics, eq. (56)
+    double eps, eps_dot, omega_eff, nx, ny;
+};
+
+struct FilmLoad {  // film.py FilmLoad: force on the journal, moments on journal and bearing, eqs. (68)-(69)
+    double fx, fy, torque_journal, torque_bearing;
+};
+
+FilmKinematics film_kinematics(const FilmInput& in, double clearance) {  // eqs. (55)-(56)
+    double ecc = std::sqrt(in.ex * in.ex + in.ey * in.ey);
+    double nx, ny, phi_dot;
+    if (ecc > 0.0) {
+        nx = in.ex / ecc;
+        ny = in.ey / ecc;
+        phi_dot = (in.ex * in.vy - in.ey * in.vx) / (ecc * ecc);
+    } else {  // centred: the normal along de/dt, or (1, 0) at rest
+        double speed = std::sqrt(in.vx * in.vx + in.vy * in.vy);
+        nx = speed > 0.0 ? in.vx / speed : 1.0;
+        ny = speed > 0.0 ? in.vy / speed : 0.0;
+        phi_dot = 0.0;
+    }
+    double eps_dot = (nx * in.vx + ny * in.vy) / clearance;
+    return FilmKinematics{ecc / clearance, eps_dot, in.omega_journal + in.omega_bearing - 2.0 * phi_dot, nx, ny};
+}
+
+// film.py blend_eccentricity, eq. (70): the eccentricity ratio (and rate) the film is evaluated at
+void blend_eccentricity(double eps, double eps_dot, double eps_film, double eps_cap, double& eps_b,
+                        double& eps_dot_b) {
+    if (eps <= eps_film) {
+        eps_b = eps;
+        eps_dot_b = eps_dot;
+        return;
+    }
+    double width = eps_cap - eps_film;
+    double x = (eps - eps_film) / width;
+    double q = std::exp(-2.0 * x);  // tanh(x) = (1 - q) / (1 + q), 1 / cosh^2(x) = 4 q / (1 + q)^2: one exp
+    eps_b = eps_film + width * ((1.0 - q) / (1.0 + q));
+    eps_dot_b = eps_dot * (4.0 * q / ((1.0 + q) * (1.0 + q)));
+}
+
+// ShortBearing.components, eqs. (58)-(60): the positive part of Ocvirk's pressure.  Its sign in
+// gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot, positive on
+// one arc (phase - half, phase + half) around the phase of (a1, b1), cos(half) = -a0 / |(a1, b1)|
+// (film.py finds the same arc as roots of a polynomial, _positive_arcs).  The antiderivatives
+// g_n, g_t of film.py are evaluated between its ends from their cosines and sines, which follow
+// from (a0, a1, b1) without trigonometric calls; only the arc's length needs acos.
+void short_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
+                      double& f_perp) {
+    double s = std::sqrt(1.0 - eps * eps);
+    double rot = eps * omega_eff * s;
+    double a0 = 2.0 * eps_dot * eps, a1 = -2.0 * eps_dot, b1 = rot;
+    double amplitude = std::sqrt(a1 * a1 + b1 * b1);
+    // the arc's ends x1 < x2 by cosine and sine, and its length
+    double c1 = 1.0, s1 = 0.0, c2 = 1.0, s2 = 0.0, length = 0.0;
+    if (a0 >= amplitude) {
+        if (a0 > 0.0) length = 2.0 * M_PI;  // positive everywhere: the whole circle
+    } else if (a0 > -amplitude) {
+        double cp = a1 / amplitude, sp = b1 / amplitude;    // phase
+        double ch = -a0 / amplitude;                         // cos(half)
+        double sh = std::sqrt(1.0 - ch * ch);                // sin(half) >= 0
+        c1 = cp * ch + sp * sh;
+        s1 = sp * ch - cp * sh;
+        c2 = cp * ch - sp * sh;
+        s2 = sp * ch + cp * sh;
+        length = 2.0 * std::acos(ch);
+    }
+    double d_cos = c2 - c1, d_sin = s2 - s1;
+    double d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1);  // cos(2 x2) - cos(2 x1)
+    double d_sin2 = 2.0 * (s2 * c2 - s1 * c1);                  // sin(2 x2) - sin(2 x1)
+    // g_n: antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+    double in_n = (rot * (-0.25 * d_cos2 + eps * d_cos)
+                   - 2.0 * eps_dot * ((0.5 + eps * eps) * length + 0.25 * d_sin2 - 2.0 * eps * d_sin));
+    // g_t: antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+    double in_t = rot * (0.5 * length - 0.25 * d_sin2) - 2.0 * eps_dot * (-0.25 * d_cos2 + eps * d_cos);
+    double scale = a.viscosity * a.length * a.length * a.length * a.r_j / (2.0 * clearance * clearance);  // eq. (60)
+    double s2_ = s * s;
+    f_n = scale * in_n / (s2_ * s2_ * s);
+    f_perp = scale * in_t / (s2_ * s2_);
+}
+
+// film.py _positive_arcs: the arcs (g1, g2), g1 < g2, where g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x
+// is positive.  Its real zeros are the unit-modulus roots of z^2 g(z), z = exp(i x): a polynomial
+// of degree <= 4 whose roots are found here by the Durand-Kerner iteration (film.py: numpy's roots);
+// a root counts when its modulus is within UNIT_CIRCLE_TOL of 1, the sign is tested at each arc's
+// midpoint, and arcs that meet at a tangent (double) root are merged, as film.py does.
+const double UNIT_CIRCLE_TOL = 1e-6;  // film.py _UNIT_CIRCLE_TOL
+// Durand-Kerner: quadratic convergence near simple roots (a step below ROOT_CONVERGED is followed by
+// one more sweep, which lands at round-off), linear near a double root (halving: 1e-8, the accuracy a
+// double root has anyway, after about 30 sweeps); ROOT_ITERATIONS caps the jitter there.
+const int ROOT_ITERATIONS = 60;
+const double ROOT_CONVERGED = 1e-10;
+
+// complex arithmetic on plain doubles: std::complex's operators call the library's NaN- and
+// inf-checking routines (__muldc3, __divdc3), which made the root finding 3 times slower
+struct Cx {
+    double re, im;
+};
+inline Cx operator+(Cx a, Cx b) { return Cx{a.re + b.re, a.im + b.im}; }
+inline Cx operator-(Cx a, Cx b) { return Cx{a.re - b.re, a.im - b.im}; }
+inline Cx operator*(Cx a, Cx b) { return Cx{a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+inline Cx operator/(Cx a, Cx b) {
+    double d = b.re * b.re + b.im * b.im;
+    return Cx{(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
+}
+inline double modulus(Cx a) { return std::sqrt(a.re * a.re + a.im * a.im); }
+
+int positive_arcs(double a0, double a1, double b1, double a2, double b2, double (&arcs)[4][2]) {
+    Cx coeffs[5] = {Cx{0.5 * a2, -0.5 * b2}, Cx{0.5 * a1, -0.5 * b1}, Cx{a0, 0.0}, Cx{0.5 * a1, 0.5 * b1},
+                    Cx{0.5 * a2, 0.5 * b2}};  // highest power first
+    int first = 0;
+    while (first < 5 && coeffs[first].re == 0.0 && coeffs[first].im == 0.0) ++first;  // leading zeros dropped
+    int degree = 4 - first;  // (an all-zero g has no arc)
+    auto g = [&](double x) {
+        return a0 + a1 * std::cos(x) + b1 * std::sin(x) + a2 * std::cos(2.0 * x) + b2 * std::sin(2.0 * x);
+    };
+    double angles[4];
+    int n_angles = 0;
+    if (degree >= 1) {
+        Cx z[4];
+        Cx start{0.4, 0.9};  // the customary starting points: powers of a number off both axes
+        for (int k = 0; k < degree; ++k) z[k] = k == 0 ? start : z[k - 1] * start;
+        bool polished = false;
+        for (int it = 0; it < ROOT_ITERATIONS; ++it) {
+            double change = 0.0;
+            for (int k = 0; k < degree; ++k) {
+                Cx p = coeffs[first];
+                for (int j = first + 1; j < 5; ++j) p = p * z[k] + coeffs[j];
+                Cx q = coeffs[first];
+                for (int j = 0; j < degree; ++j) {
+                    if (j != k) q = q * (z[k] - z[j]);
+                }
+                Cx step = p / q;
+                z[k] = z[k] - step;
+                change = std::max(change, modulus(step) / std::max(1.0, modulus(z[k])));
+            }
+            if (change < ROOT_CONVERGED) {
+                if (polished) break;
+                polished = true;  // one more sweep
+            }
+        }
+        for (int k = 0; k < degree; ++k) {
+            if (std::fabs(modulus(z[k]) - 1.0) < UNIT_CIRCLE_TOL) {
+                double angle = std::fmod(std::atan2(z[k].im, z[k].re), 2.0 * M_PI);  // Python's % 2 pi: [0, 2 pi)
+                if (angle < 0.0) angle += 2.0 * M_PI;
+                angles[n_angles++] = angle;
+            }
+        }
+        for (int i = 1; i < n_angles; ++i) {  // sorted (insertion: at most four)
+            for (int j = i; j > 0 && angles[j - 1] > angles[j]; --j) std::swap(angles[j - 1], angles[j]);
+        }
+    }
+    if (n_angles == 0) {
+        if (g(0.0) > 0.0) {
+            arcs[0][0] = 0.0;
+            arcs[0][1] = 2.0 * M_PI;
+            return 1;
+        }
+        return 0;
+    }
+    int n_arcs = 0;
+    for (int k = 0; k < n_angles; ++k) {
+        double a = angles[k];
+        double b = k + 1 < n_angles ? angles[k + 1] : angles[0] + 2.0 * M_PI;
+        if (b - a > 0.0 && g(0.5 * (a + b)) > 0.0) {
+            if (n_arcs > 0 && arcs[n_arcs - 1][1] == a) {  // a tangent (double) root inside a positive arc
+                arcs[n_arcs - 1][1] = b;
+            } else {
+                arcs[n_arcs][0] = a;
+                arcs[n_arcs][1] = b;
+                ++n_arcs;
+            }
+        }
+    }
+    return n_arcs;
+}
+
+// LongBearing.components, eqs. (61)-(63): Sommerfeld's pressure, its positive part
+void long_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
+                     double& f_perp) {
+    double s = std::sqrt(1.0 - eps * eps);
+    double rho = eps * omega_eff * s / (2.0 + eps * eps);
+    double sigma = eps_dot / (2.0 + 3.0 * eps * eps);
+    double eps3 = eps * eps * eps;
+    // sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+    double q0 = 7.0 * eps - 2.0 * eps3, q1 = -(4.0 + 6.0 * eps * eps), q2 = 2.0 * eps + 3.0 * eps3;
+    double arcs[4][2];
+    int n_arcs = positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
+                               -0.5 * rho * eps, arcs);
+    double two_eps_dot = 2.0 * eps_dot;
+    auto g_n = [&](double x) {  // antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+        return (rho * (-0.5 * std::cos(2.0 * x) - eps * std::cos(x))
+                + two_eps_dot * (0.5 * x - 0.25 * std::sin(2.0 * x)));
+    };
+    auto g_t = [&](double x) {  // antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+        return (rho * (s * s * x + 0.5 * std::sin(2.0 * x) - eps * std::sin(x))
+                + two_eps_dot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x)));
+    };
+    double in_n = 0.0, in_t = 0.0;
+    for (int k = 0; k < n_arcs; ++k) {
+        in_n += g_n(arcs[k][1]) - g_n(arcs[k][0]);
+        in_t += g_t(arcs[k][1]) - g_t(arcs[k][0]);
+    }
+    double scale = 6.0 * a.viscosity * a.r_j * a.r_j * a.r_j * a.length / (clearance * clearance);  // eq. (63)
+    double s2_ = s * s;
+    f_n = -scale * in_n / (s2_ * s);
+    f_perp = scale * in_t / (s2_ * s2_);
+}
+
+// film.py _A1 ... _A9: Butenschoen's fits (1976), polynomials in B/D, lowest power first (eqs. (64)-(66))
+const double FINITE_A[9][5] = {
+    {1.1642, -1.9456, 7.1161, -10.1073, 5.0141},
+    {-1.000026, -0.023634, -0.4215, -0.038817, -0.090551},
+    {1.152624, -0.104565, 0.0, 0.0, 0.0},
+    {-2.5905, 0.798745, 0.0, 0.0, 0.0},
+    {8.73393, -2.3291, 0.0, 0.0, 0.0},
+    {-13.3414, 3.424337, 0.0, 0.0, 0.0},
+    {6.6294, -1.591732, 0.0, 0.0, 0.0},
+    {0.70038, 3.2415, -12.2486, 18.895, -9.3561},
+    {-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928},
+};
+const int FINITE_A_DEGREE[9] = {4, 4, 1, 1, 1, 1, 1, 4, 4};
+
+double polynomial(const double* coefficients, int degree, double x) {  // film.py _polynomial
+    double r = 0.0;
+    for (int k = 0; k <= degree; ++k) r += coefficients[k] * std::pow(x, k);
+    return r;
+}
+
+// FiniteBearing's a1 ... a9 at B/D = L / (2 R_J), kept per joint and recomputed when L or R_J change
+// (FiniteBearing.__post_init__ computes them once per law)
+struct FiniteCoefficients {
+    double length = -1.0, r_j = -1.0, bd = 0.0;
+    double c[9] = {};
+};
+
+const FiniteCoefficients& finite_coefficients(FiniteCoefficients& k, const Params& a) {
+    if (k.length != a.length || k.r_j != a.r_j) {
+        k.length = a.length;
+        k.r_j = a.r_j;
+        k.bd = a.length / (2.0 * a.r_j);
+        for (int i = 0; i < 9; ++i) k.c[i] = polynomial(FINITE_A[i], FINITE_A_DEGREE[i], k.bd);
+    }
+    return k;
+}
+
+// FiniteBearing.components, eqs. (64)-(67): Butenschoen's rotation and squeeze fits
+void finite_components(const Params& a, const FiniteCoefficients& k, double clearance, double eps, double eps_dot,
+                       double omega_eff, double& f_n, double& f_perp) {
+    const double* c = k.c;
+    double bd = k.bd;
+    // rotation, eqs. (64)-(65)
+    double one_m = 1.0 - eps * eps;
+    double so = (bd * bd * eps / (2.0 * one_m * one_m) * std::sqrt(M_PI * M_PI * one_m + 16.0 * eps * eps)
+                 * c[0] * (eps - 1.0) / (c[1] + eps));
+    double base = std::atan2(M_PI * std::sqrt(one_m), 2.0 * eps);
+    double eps2 = eps * eps;
+    double beta = base * (c[2] + c[3] * eps + c[4] * eps2 + c[5] * eps2 * eps + c[6] * eps2 * eps2);
+    // squeeze, eq. (66), at eps approaching the wall, -eps leaving it
+    double x = eps_dot >= 0.0 ? eps : -eps;
+    double one_mx = 1.0 - x * x;
+    double root_mx = std::sqrt(one_mx);
+    double so_v = (4.0 * bd * bd / (one_mx * one_mx * root_mx)
+                   * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * root_mx)
+                   * c[7] * (1.0 - x) / (-c[8] - x));
+    double psi = clearance / a.r_j;
+    double unit = a.length * 2.0 * a.r_j * a.viscosity / (psi * psi);  // B D eta / psi^2, eq. (67)
+    double f_d = so * unit * std::fabs(omega_eff);
+    double sgn = omega_eff >= 0.0 ? 1.0 : -1.0;
+    double f_v = so_v * unit * eps_dot;  // signed: against the squeeze
+    f_n = -f_d * std::cos(beta) - f_v;
+    f_perp = sgn * f_d * std::sin(beta);
+}
+
+// FilmLaw.blended_load and _assemble: the film as the joint applies it (eqs. (68)-(70))
+FilmLoad film_load(const Params& a, FiniteCoefficients& finite, const FilmInput& in) {
+    double clearance = a.r_b - a.r_j;
+    FilmKinematics kin = film_kinematics(in, clearance);
+    double eps_b, eps_dot_b;
+    blend_eccentricity(kin.eps, kin.eps_dot, a.eps_film, a.eps_cap, eps_b, eps_dot_b);
+    double f_n = 0.0, f_perp = 0.0;
+    if (a.film_model == FILM_SHORT) {
+        short_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else if (a.film_model == FILM_LONG) {
+        long_components(a, clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else if (a.film_model == FILM_FINITE) {
+        finite_components(a, finite_coefficients(finite, a), clearance, eps_b, eps_dot_b, kin.omega_eff, f_n, f_perp);
+    } else {
+        throw std::runtime_error("exuclear kernel: unknown film model " + std::to_string(a.film_model));
+    }
+    double fx = f_n * kin.nx - f_perp * kin.ny;  // n turned +90 degrees is (-n_y, n_x)
+    double fy = f_n * kin.ny + f_perp * kin.nx;
+    // eq. (69): Couette shear over the whole circumference, and the pressure's share
+    double couette = (2.0 * M_PI * a.viscosity * a.r_j * a.r_j * a.r_j * a.length * (in.omega_journal - in.omega_bearing)
+                      / (clearance * std::sqrt(1.0 - eps_b * eps_b)));
+    double e_cross_f = kin.eps * clearance * (kin.nx * fy - kin.ny * fx);  // with the true e: no net moment
+    return FilmLoad{fx, fy, -couette - 0.5 * e_cross_f, couette - 0.5 * e_cross_f};
+}
+
+// _python_kernel.py Film.add_loads: F = -F_film on the bearing, T = -M_J, the bearing's moment beyond T
+void add_film_loads(double* loads, const FilmLoad& r) {
+    loads[0] += -r.fx;
+    loads[1] += -r.fy;
+    loads[5] += -r.torque_journal;
+    loads[8] += r.torque_bearing + r.torque_journal;
+}
+
+// Film.add_slice_loads: a spatial slice's share w / L of the film (section 10.8): -F on the bearing,
+// T = s u x (-F) - M_J z, the bearing's moment beyond T (before p x F) e x F + (M_B + M_J) z
+void add_film_slice_loads(double* loads, double share, const V3& u, const Kinematics& k, const FilmLoad& r) {
+    double w = share;
+    double fx = w * r.fx, fy = w * r.fy, m_j = w * r.torque_journal, m_b = w * r.torque_bearing;
+    double sx = k.s * u[0], sy = k.s * u[1], sz = k.s * u[2];
+    loads[0] += -fx;
+    loads[1] += -fy;
+    loads[3] += sz * fy;  // (s u) x (-F), F in the plane
+    loads[4] += -sz * fx;
+    loads[5] += -(sx * fy - sy * fx) - m_j;
+    loads[8] += (k.ex * fy - k.ey * fx) + (m_b + m_j);
+}
+
+// _python_kernel.py slice_film_input: a slice's axis point, its rate in the bearing's rotating frame
+// (the w of eq. (38)), the journal's spin relative to the bearing, the bearing's 0
+FilmInput slice_film_input(const Kinematics& k, const V3& p, const V3& u, const V3& dv, const V3& dw, const V3& w_j) {
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    double wx = dv[0] - (w_j[1] * p[2] - w_j[2] * p[1]) + (dw[1] * su[2] - dw[2] * su[1]);
+    double wy = dv[1] - (w_j[2] * p[0] - w_j[0] * p[2]) + (dw[2] * su[0] - dw[0] * su[2]);
+    return FilmInput{k.ex, k.ey, wx, wy, dw[0] * u[0] + dw[1] * u[1] + dw[2] * u[2], 0.0};
+}
+
+void set_film_outputs(History& h, const FilmLoad& r, double share) {  // Film.with_outputs
+    h.film_fx = share * r.fx;
+    h.film_fy = share * r.fy;
+    h.film_torque = share * r.torque_journal;
+}
+
+double film_share(const Params& a) { return a.slices > 0 ? 1.0 / a.slices : 1.0; }  // w / L, eq. (41)
+
 // ---- the per-joint table -------------------------------------------------------------------
 // One joint's state (_python_kernel.py JointKernel): per contact, its history at the start
 // (prev) and at the end (cur) of the last post-processed step and its records.
@@ -519,6 +879,8 @@ struct JointState {
     std::vector<History> next;               // scratch of the post-Newton update (storage reused)
     std::vector<std::vector<Record>> records;
     V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
+    std::vector<FilmInput> film_inputs;  // the last evaluation's, per slice, for a lubricated joint
+    FiniteCoefficients finite;                           // the finite film model's a1 ... a9 at this B/D
     V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
     V3 initial_axis{0.0, 0.0, 1.0};
     double initial_axial = 0.0;
@@ -574,10 +936,21 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(1);
+            s.film_inputs[0] = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
+        }
     } else {
         for (int k = 0; k < n_slices; ++k) {
             s.kins[static_cast<size_t>(k)] =
                 slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+        }
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(static_cast<size_t>(n_slices));
+            for (int k = 0; k < n_slices; ++k) {
+                s.film_inputs[static_cast<size_t>(k)] =
+                    slice_film_input(s.kins[static_cast<size_t>(k)], q.p, q.u, dv, dw, w_j);
+            }
         }
     }
     if (a.play > 0.0) {
@@ -612,6 +985,9 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
             fresh.time = t;
             s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         }
+        for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+            set_film_outputs(s.cur[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+        }
         s.prev = s.cur;
         s.initial = s.cur;
         s.started = true;
@@ -637,6 +1013,16 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
         if (k.delta <= 0.0) continue;
         ContactKind kind = contact_kind(a, i);
         add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
+    }
+    if (a.film_model != FILM_NONE) {  // at every eccentricity (section 10.5), on every slice
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            FilmLoad r = film_load(a, s.finite, s.film_inputs[i]);
+            if (a.slices == 0) {
+                add_film_loads(loads, r);
+            } else {
+                add_film_slice_loads(loads, film_share(a), q.u, s.kins[i], r);
+            }
+        }
     }
     if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
         s.torque_correction = V3{loads[6], loads[7], loads[8]};
@@ -673,8 +1059,10 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
 const double REDO_STEP_ERROR = 1e3;
 // Relative slack on a step length compared with impact_step (Exudyn's steps carry round-off).
 const double STEP_SLACK = 1e-9;
-// Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS).
+// Entries of the data node (exuclear/engine/layout.py DATA_COLUMNS), and a lubricated joint's
+// film entries after them (FILM_DATA_COLUMNS).
 const int N_DATA = 14;
+const int N_FILM_DATA = 3;
 
 // Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
 void write_data(const History& h, StdVector& out, int first = 0) {
@@ -725,11 +1113,19 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
         s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
         if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
     }
+    for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+        set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+    }
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
-    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS
-        out.reserve(2 + N_DATA);
+    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
+        out.reserve(2 + N_DATA + N_FILM_DATA);
         write_data(s.cur[0], out);
+        if (a.film_model != FILM_NONE) {
+            out.push_back(s.cur[0].film_fx);
+            out.push_back(s.cur[0].film_fy);
+            out.push_back(s.cur[0].film_torque);
+        }
         return out;
     }
     out.reserve(2 + 4 + n * (N_DATA - 1));  // layout.spatial_data_columns
@@ -738,6 +1134,13 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
     out.push_back(q.u[1]);
     out.push_back(q.p[2]);
     for (const History& h : s.cur) write_data(h, out, 1);  // each contact's entries without its time
+    if (a.film_model != FILM_NONE) {  // then each slice's film entries (layout.FILM_DATA_COLUMNS)
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            out.push_back(s.cur[i].film_fx);
+            out.push_back(s.cur[i].film_fy);
+            out.push_back(s.cur[i].film_torque);
+        }
+    }
     return out;
 }
 
@@ -776,6 +1179,9 @@ py::dict history_dict(const History& h) {
     d["slip_velocity"] = h.v_t;
     d["ecc_x"] = h.ex;
     d["ecc_y"] = h.ey;
+    d["film_fx"] = h.film_fx;
+    d["film_fy"] = h.film_fy;
+    d["film_torque"] = h.film_torque;
     return d;
 }
 
@@ -811,6 +1217,19 @@ PYBIND11_MODULE(_ckernel, m) {
     m.def("joints_in_use", []() { return static_cast<long>(g_joints.size() - g_free.size()); });
     m.def("reset", [](long id) { state(id) = JointState(); });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
+        // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)
+        V3 rotation{0.0, 0.0, 0.0};
+        volatile double sink = 0.0;  // keeps the evaluations from being optimised away
+        auto start = std::chrono::steady_clock::now();
+        for (long i = 0; i < n; ++i) {  // what force_torque does for the joint's connector: decode, evaluate
+            Params a = decode(parameters);
+            V6 f = joint_force(a, t, displacement, rotation, velocity, angularVelocity);
+            sink = sink + f[0];
+        }
+        std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        return elapsed.count() / static_cast<double>(n);
+    }, "seconds per evaluation of the joint's force function (a micro benchmark)");
     m.def("calls", [](long id) {
         JointState& s = state(id);
         return py::make_tuple(s.force_calls, s.post_newton_calls);
@@ -849,5 +1268,6 @@ PYBIND11_MODULE(_ckernel, m) {
     for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
     m.attr("LAYOUT") = layout;
     m.attr("N_DATA") = N_DATA;
+    m.attr("N_FILM_DATA") = N_FILM_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
 }

@@ -31,8 +31,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any, NamedTuple
 
+from ..film import FilmLaw, FilmLoad
 from ..friction import FrictionLaw
 from ..geometry import ContactKinematics, contact_kinematics, joint_loads
 from ..history import ContactState, ImpactRecord
@@ -166,6 +168,67 @@ class Face(Contact):
         add_face_loads(loads, self.friction_radius, u, kin, r.f_n, r.f_t)                # eq. (54)
 
 
+class FilmInput(NamedTuple):
+    """What the film law takes (:meth:`exuclear.film.FilmLaw.blended_load`): the eccentricity
+    ``e`` [m] in the bearing's joint frame, ``de/dt`` [m/s] as the connector hands it over
+    (``A0^T (v1 - v0)``: the inertial derivative in the bearing frame's components, without
+    the frame-rotation term), and the spins [rad/s] of journal and bearing about the axis.
+    With that velocity the absolute spins are the consistent pair: ``dphi/dt`` is then the
+    inertial angle rate of ``e``, and ``omega_eff = omega_J + omega_B - 2 dphi/dt`` equals
+    ``omega_J - omega_B - 2 dphi_rel/dt`` of the bearing's rotating frame (docs/physics.md
+    section 10.6)."""
+
+    ex: float
+    ey: float
+    vx: float
+    vy: float
+    omega_journal: float
+    omega_bearing: float
+
+
+class Film:
+    """The oil film of a lubricated joint (docs/physics.md section 10): one more kind of
+    contact, without history, acting at every eccentricity (at the blended one of eq. (70)
+    near the wall), added to the dry contact's loads (the compiled kernel's ``FILM``)."""
+
+    def __init__(self, film: FilmLaw, share: float = 1.0) -> None:
+        self.law, self.share = film, share
+
+    def load(self, kin: FilmInput) -> FilmLoad:
+        """Film force on the journal and viscous moments, eqs. (68)-(70)."""
+        return self.law.blended_load(kin.ex, kin.ey, kin.vx, kin.vy, kin.omega_journal, kin.omega_bearing)
+
+    def add_loads(self, loads: list[float], r: FilmLoad) -> None:
+        """``F = -F_film`` on the bearing, ``T = -M_J``, and the bearing's moment beyond
+        ``T``, ``M_B + M_J`` (as the planar slice's, eqs. (24)-(26))."""
+        loads[0] += -r.fx
+        loads[1] += -r.fy
+        loads[5] += -r.torque_journal
+        loads[8] += r.torque_bearing + r.torque_journal
+
+    def add_slice_loads(self, loads: list[float], u: V3, kin: SliceKinematics, r: FilmLoad) -> None:
+        """A spatial slice's share ``w / L`` of the film (docs/physics.md section 10.8): ``-F``
+        on the bearing at the slice's axis point, ``F`` on the journal at ``c = p + s u``, the
+        viscous moments about the bearing axis: ``T = s u x (-F) - M_J z``, and the bearing's
+        moment beyond ``T`` (before ``p x F``), ``e x F + (M_B + M_J) z``."""
+        w = self.share
+        fx, fy, m_j, m_b = w * r.fx, w * r.fy, w * r.torque_journal, w * r.torque_bearing
+        sx, sy, sz = kin.s * u[0], kin.s * u[1], kin.s * u[2]
+        loads[0] += -fx
+        loads[1] += -fy
+        loads[3] += sz * fy                     # (s u) x (-F), F in the plane
+        loads[4] += -sz * fx
+        loads[5] += -(sx * fy - sy * fx) - m_j
+        loads[8] += (kin.ex * fy - kin.ey * fx) + (m_b + m_j)
+
+    def with_outputs(self, state: ContactState, kin: FilmInput) -> ContactState:
+        """``state`` with the film's outputs at ``kin`` (the data node's film columns): a
+        slice's share of the force and of the journal's moment."""
+        r = self.load(kin)
+        w = self.share
+        return replace(state, film_fx=w * r.fx, film_fy=w * r.fy, film_torque=w * r.torque_journal)
+
+
 # -- one joint --------------------------------------------------------------------------------
 class JointKernel:
     """One joint's user functions and state (the compiled kernel's ``JointState``): per
@@ -202,6 +265,7 @@ class JointKernel:
         self.contacts: list[Contact] = [slice_contact] * self.slices
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
+        self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
 
     def reset(self) -> None:
         self.started = False
@@ -209,6 +273,7 @@ class JointKernel:
         self.previous = self.current = self.initial = empty
         self.records: list[list[ImpactRecord]] = [[] for _ in range(self.n_contacts)]
         self.omega_bearing = (0.0, 0.0, 0.0)
+        self.film_inputs: list[FilmInput] = []
         self.torque_correction = (0.0, 0.0, 0.0)
         self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
         self.failure, self.failure_time = "", 0.0
@@ -229,6 +294,9 @@ class JointKernel:
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
             kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
                                      omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            if self.film is not None:
+                self.film_inputs = [FilmInput(displacement[0], displacement[1], velocity[0], velocity[1], omega_i,
+                                              omega_j)]
             return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), [kin]
         p = (displacement[0], displacement[1], displacement[2])
         u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)      # eq. (34)
@@ -236,6 +304,8 @@ class JointKernel:
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
         w_j = self.omega_bearing
         kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
+        if self.film is not None:
+            self.film_inputs = [slice_film_input(k, p, u, dv, dw, w_j) for k in kins]
         if self.shoulders is not None:
             g, play = self._joint.geometry, self.shoulders.axial_clearance
             r_e = self.shoulders.friction_radius
@@ -253,6 +323,9 @@ class JointKernel:
             if not math.isfinite(state.normal_force):
                 self._fail("the contact force became non-finite (NaN or inf)", t)
             states.append(state)
+        if self.film is not None:
+            for i, kin in enumerate(self.film_inputs):
+                states[i] = self.film.with_outputs(states[i], kin)
         return tuple(states)
 
     def history_for(self, kins: list[Kinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
@@ -264,6 +337,9 @@ class JointKernel:
             self.failure = ""
             self.current = tuple(ContactState(time=t).accept(c.accepted(k), c, t)[0]
                                  for k, c in zip(kins, self.contacts))
+            if self.film is not None:
+                films = [self.film.with_outputs(c, k) for c, k in zip(self.current, self.film_inputs)]
+                self.current = (*films, *self.current[len(films):])
             self.previous = self.initial = self.current
             self.started = True
             if not all(_finite(k) for k in kins):
@@ -283,6 +359,13 @@ class JointKernel:
             if kin.delta <= 0.0:
                 continue
             c.add_loads(loads, u, kin, c.response(c.accepted(kin), h))
+        if self.film is not None:  # the film acts at every eccentricity (section 10.5), on every slice
+            for kin, film_input in zip(kins, self.film_inputs):
+                r = self.film.load(film_input)
+                if self.planar:
+                    self.film.add_loads(loads, r)
+                else:
+                    self.film.add_slice_loads(loads, u, kin, r)
         if self.planar:  # the planar slice's loads hold the bearing's whole moment (eq. (26))
             self.torque_correction = (loads[6], loads[7], loads[8])
             return loads[:6]
@@ -332,25 +415,45 @@ class JointKernel:
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the
         one slice for the planar joint, :func:`spatial_data_values` for the spatial joint."""
-        return data_values(states[0]) if self.planar else spatial_data_values(t, u, axial, states)
+        lubricated = self.film is not None
+        if self.planar:
+            return data_values(states[0], lubricated)
+        return spatial_data_values(t, u, axial, states, self.slices if lubricated else 0)
 
 
 def _finite(kin: Kinematics) -> bool:
     return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))
 
 
-def data_values(s: ContactState) -> list[float]:
-    """The data node's entries (layout.DATA_COLUMNS) for a state."""
+def data_values(s: ContactState, lubricated: bool = False) -> list[float]:
+    """The data node's entries (layout.DATA_COLUMNS; then layout.FILM_DATA_COLUMNS where
+    the joint is ``lubricated``) for a state."""
+    film = [s.film_fx, s.film_fy, s.film_torque] if lubricated else []
     return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
             s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
-            s.peak_force, s.max_penetration]
+            s.peak_force, s.max_penetration, *film]
 
 
-def spatial_data_values(t: float, u: Any, axial: float, states: Any) -> list[float]:
+def spatial_data_values(t: float, u: Any, axial: float, states: Any, film_slices: int = 0) -> list[float]:
     """The spatial data node's entries (layout.spatial_data_columns): time, journal axis
     x, y (tilt, rad for small angles), axial displacement, then each slice's
-    ``data_values`` without the time (with an axial clearance, the two end faces follow)."""
+    ``data_values`` without the time (with an axial clearance, the two end faces follow),
+    then, for a lubricated joint (``film_slices`` its slices), each slice's film columns."""
     out = [t, u[0], u[1], axial]
     for s in states:
         out.extend(data_values(s)[1:])
+    for s in states[:film_slices]:
+        out.extend((s.film_fx, s.film_fy, s.film_torque))
     return out
+
+
+def slice_film_input(kin: SliceKinematics, p: V3, u: V3, dv: V3, dw: V3, w_j: V3) -> FilmInput:
+    """A spatial slice's film input (docs/physics.md section 10.8): the eccentricity of its
+    axis point ``c = p + s u`` and its rate in the bearing's rotating frame, ``dv - w_j x p +
+    dw x s u`` (the ``w`` of eq. (38)), with the journal's spin relative to the bearing
+    ``dw . u`` and the bearing's 0: the rotating frame's pair (the planar joint takes the
+    inertial one; both give the same ``omega_eff``)."""
+    su = (kin.s * u[0], kin.s * u[1], kin.s * u[2])
+    wx = dv[0] - (w_j[1] * p[2] - w_j[2] * p[1]) + (dw[1] * su[2] - dw[2] * su[1])
+    wy = dv[1] - (w_j[2] * p[0] - w_j[0] * p[2]) + (dw[2] * su[0] - dw[0] * su[2])
+    return FilmInput(kin.ex, kin.ey, wx, wy, dw[0] * u[0] + dw[1] * u[1] + dw[2] * u[2], 0.0)

@@ -71,7 +71,7 @@ from .checks import (
 )
 from .drawing import drawing_function
 from .handle import REGISTRY_KEY, ClearanceJointHandle, JointHistory, joints_of, register
-from .layout import DATA_COLUMNS, MAIN, parameters, spatial_data_columns
+from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
 
 #: Names kept here for the code that imports them from this module.
@@ -249,7 +249,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
             rotationMarker0=rotation0, springForceTorqueUserFunction=fns["probe"],
             postNewtonStepUserFunction=fns["probe_post_newton"], visualization=hidden))
     n_faces = len(FACE_SIDES) if shoulders is not None else 0
-    n_data = len(spatial_data_columns(slices, n_faces)) if slices else len(DATA_COLUMNS)
+    lubricated = joint.film is not None
+    n_data = len(spatial_data_columns(slices, n_faces, lubricated)) if slices else len(data_columns(lubricated))
     handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * n_data, numberOfDataCoordinates=n_data))
     handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,

@@ -125,6 +125,9 @@ class ClearanceJointHandle:
     def joint(self, joint: ClearanceJoint) -> None:
         if not isinstance(joint, ClearanceJoint):
             raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
+        if (joint.film is None) != (self._joint.film is None):
+            raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
+                             "create a new clearance joint")
         self._joint = joint
         self._backend.set_joint(joint)
         self._write_parameters()
@@ -239,7 +242,8 @@ class ClearanceJointHandle:
     def outputs(self) -> dict[str, np.ndarray]:
         """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units (a spatial joint:
         see :func:`exuclear.engine.outputs.assemble`, with the joint-level
-        :data:`~exuclear.engine.outputs.SPATIAL_JOINT_OUTPUTS`).
+        :data:`~exuclear.engine.outputs.SPATIAL_JOINT_OUTPUTS`; a lubricated joint's also
+        :data:`~exuclear.engine.outputs.FILM_OUTPUT_COLUMNS`).
 
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
@@ -256,9 +260,11 @@ class ClearanceJointHandle:
             initial = self._backend.states("initial")
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
                 data = data.copy()
-                data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose())
+                data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose(),
+                                                    lubricated=self._joint.film is not None)
         loads = [np.asarray(self.mbs.GetSensorStoredData(n), dtype=float) for n in self.loadSensorNumbers]
-        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0, loads)
+        return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0,
+                                 self._joint.film, loads)
 
 
 @dataclass(frozen=True)

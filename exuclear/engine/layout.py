@@ -64,6 +64,10 @@ LAYOUT = (
     Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
     Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
     Field("face_stiffness", 5, 2, 1, "K_f [N/m] of the end faces, eq. (52)"),
+    Field("film_model", 3, 4, 1, "the film model's code (FILM_CODES; 0: a dry joint; section 10)"),
+    Field("viscosity", 3, 5, 1, "eta [Pa s] of the film"),
+    Field("eps_film", 5, 4, 1, "eccentricity ratio below which the film acts alone, eq. (70)"),
+    Field("eps_cap", 5, 5, 1, "eccentricity ratio the film's argument tends to at the wall, eq. (70)"),
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
@@ -93,18 +97,25 @@ def write(matrix: np.ndarray, name: str, value: float | Sequence[float]) -> None
 DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                 "slip_velocity", "v0", "in_contact", "onsets", "onset_time", "peak_force", "max_penetration")
 
+#: A lubricated planar joint's data node: :data:`DATA_COLUMNS`, then these (the film force
+#: on the journal [N] in the bearing's joint frame and the journal's viscous moment [N m],
+#: eqs. (68)-(69), at the accepted state); a dry joint's node keeps :data:`DATA_COLUMNS` only.
+FILM_DATA_COLUMNS = ("film_fx", "film_fy", "film_torque")
+
 #: The spatial joint's own entries, before the slices' (``spatial_data_values``).
 SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
 #: Each slice's entries in the spatial data node, in order.
 SLICE_COLUMNS = DATA_COLUMNS[1:]
 
 
-def spatial_data_columns(slices: int, faces: int = 0) -> tuple[str, ...]:
+def spatial_data_columns(slices: int, faces: int = 0, lubricated: bool = False) -> tuple[str, ...]:
     """Names of a spatial joint's data-node entries: ``SPATIAL_JOINT_COLUMNS``, then
     ``SLICE_COLUMNS`` of slice 0, 1, ... as ``"normal_force[3]"``, then those of the
-    ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``."""
+    ``faces`` end faces (0 or 2; face 0 at z = -L/2) as ``"normal_force[face0]"``, then,
+    where the joint is ``lubricated``, each slice's :data:`FILM_DATA_COLUMNS` (``"film_fx[3]"``)."""
     return (SPATIAL_JOINT_COLUMNS + tuple(f"{c}[{k}]" for k in range(slices) for c in SLICE_COLUMNS)
-            + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS))
+            + tuple(f"{c}[face{k}]" for k in range(faces) for c in SLICE_COLUMNS)
+            + (tuple(f"{c}[{k}]" for k in range(slices) for c in FILM_DATA_COLUMNS) if lubricated else ()))
 
 
 #: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
@@ -132,6 +143,16 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
     raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
 
 
+#: Film model name -> code in the parameter matrix (0: no film; clearance_kernel.cpp ``FilmCode``).
+FILM_CODES = {"short": 1, "long": 2, "finite": 3}
+
+
+def data_columns(lubricated: bool) -> tuple[str, ...]:
+    """A planar joint's data-node entries: :data:`DATA_COLUMNS`, and
+    :data:`FILM_DATA_COLUMNS` where the joint is lubricated."""
+    return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
+
+
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
@@ -150,6 +171,9 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
               "slices": slices, "length": g.length, "axis_journal": axis_journal}
+    if joint.film is not None:
+        values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,
+                      eps_film=joint.film.eps_film, eps_cap=joint.film.eps_cap)
     if shoulders is not None:
         values.update(axial_clearance=shoulders.axial_clearance, friction_radius=shoulders.friction_radius,
                       face_stiffness=shoulders.face_stiffness(law.E_star))

@@ -7,9 +7,10 @@ from typing import Any
 
 import numpy as np
 
+from ..film import FilmLaw
 from ..history import ContactState
 from ._python_kernel import data_values, spatial_data_values
-from .layout import DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS
+from .layout import FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
@@ -31,25 +32,44 @@ SPATIAL_JOINT_OUTPUTS = ("ecc_mid_x", "ecc_mid_y", "force", "moment")
 #: (``slip_velocity`` the signed circumferential slip at the friction radius,
 #: ``tangential_force`` the signed friction force there).
 FACE_OUTPUT_PREFIX = "face_"
+#: A lubricated joint's outputs beyond :data:`OUTPUT_COLUMNS` (docs/physics.md section 10):
+#: the film force on the journal ``film_fx``, ``film_fy`` [N] (bearing's joint frame) and its
+#: magnitude ``film_force``, the journal's viscous moment ``film_torque`` [N m], the
+#: eccentricity ratio ``eccentricity_ratio`` = |e| / c, the attitude angle ``attitude_angle``
+#: [rad] between the load the film carries (``-F``) and ``e``, the minimum film thickness
+#: ``min_film_thickness`` = c (1 - eps) [m] (negative in metal contact), and the regime
+#: ``regime``: 0 the film alone (eps <= eps_film), 1 the film near the wall (its blended
+#: eccentricity, eq. (70)), 2 metal contact (penetration > 0, the dry law and the film).
+FILM_OUTPUT_COLUMNS = ("film_fx", "film_fy", "film_force", "film_torque", "eccentricity_ratio", "attitude_angle",
+                       "min_film_thickness", "regime")
+#: Codes of the ``regime`` output.
+REGIME_FILM, REGIME_BLEND, REGIME_CONTACT = 0, 1, 2
 
 
-def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: float) -> list[float]:
+def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: float,
+                 lubricated: bool = False) -> list[float]:
     """The data node's entries at a run's initial state: the per-contact ``states`` and the
     journal's initial ``axis`` and ``axial`` displacement."""
     if not slices:
-        return data_values(states[0])
-    return spatial_data_values(states[0].time, axis, axial, states)
+        return data_values(states[0], lubricated)
+    return spatial_data_values(states[0].time, axis, axial, states, slices if lubricated else 0)
 
 
-def assemble(data: np.ndarray, slices: int, faces: int, loads: Sequence[np.ndarray] = ()) -> dict[str, np.ndarray]:
+def assemble(data: np.ndarray, slices: int, faces: int, film: FilmLaw | None = None,
+             loads: Sequence[np.ndarray] = ()) -> dict[str, np.ndarray]:
     """The outputs from the sensor's rows ``data`` (sensor time, then the data node's entries):
-    ``time`` and :data:`OUTPUT_COLUMNS` (planar joint, ``slices`` 0), or
-    :data:`SPATIAL_OUTPUT_COLUMNS`, per-slice and per-face arrays and
-    :data:`SPATIAL_JOINT_OUTPUTS` (``force`` and ``moment`` from the rows of the ``loads``
-    sensors, ForceLocal and TorqueLocal, where they were recorded at the same times)."""
+    ``time`` and :data:`OUTPUT_COLUMNS` (planar joint, ``slices`` 0; with a ``film``, also
+    :data:`FILM_OUTPUT_COLUMNS`), or :data:`SPATIAL_OUTPUT_COLUMNS`, per-slice and per-face
+    arrays and :data:`SPATIAL_JOINT_OUTPUTS` (``force`` and ``moment`` from the rows of the
+    ``loads`` sensors, ForceLocal and TorqueLocal, where they were recorded at the same
+    times; with a ``film``, :data:`FILM_OUTPUT_COLUMNS` per slice: the slice's share of the
+    film force and moment)."""
     if not slices:
-        column = {c: data[:, k + 1] for k, c in enumerate(DATA_COLUMNS)}
-        return {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
+        column = {c: data[:, k + 1] for k, c in enumerate(data_columns(film is not None))}
+        out = {"time": data[:, 0], **{c: column[c] for c in OUTPUT_COLUMNS}}
+        if film is not None:
+            out.update(film_outputs(column, film))
+        return out
     n_joint, n_slice = len(SPATIAL_JOINT_COLUMNS), len(SLICE_COLUMNS)
     # after the sensor's time: the data node's own time, then SPATIAL_OUTPUT_COLUMNS
     out = {"time": data[:, 0], **{c: data[:, 2 + k] for k, c in enumerate(SPATIAL_OUTPUT_COLUMNS)}}
@@ -62,7 +82,27 @@ def assemble(data: np.ndarray, slices: int, faces: int, loads: Sequence[np.ndarr
         if rows.ndim == 2 and rows.shape[0] == data.shape[0] and np.array_equal(rows[:, 0], data[:, 0]):
             out[name] = rows[:, 1:4]
     if faces:
-        block = data[:, end:].reshape(data.shape[0], faces, n_slice)
+        block = data[:, end:end + faces * n_slice].reshape(data.shape[0], faces, n_slice)
         for c in OUTPUT_COLUMNS:
             out[FACE_OUTPUT_PREFIX + c] = block[:, :, SLICE_COLUMNS.index(c)]
+    if film is not None:  # per slice: arrays of shape (times, slices)
+        start = end + faces * n_slice
+        block = data[:, start:start + slices * len(FILM_DATA_COLUMNS)].reshape(data.shape[0], slices,
+                                                                                len(FILM_DATA_COLUMNS))
+        column = {c: block[:, :, k] for k, c in enumerate(FILM_DATA_COLUMNS)}
+        column.update({c: out[c] for c in ("ecc_x", "ecc_y", "penetration")})
+        out.update(film_outputs(column, film))
     return out
+
+
+def film_outputs(column: dict[str, np.ndarray], film: FilmLaw) -> dict[str, np.ndarray]:
+    """:data:`FILM_OUTPUT_COLUMNS` from the data node's columns (by name) of a lubricated joint."""
+    ex, ey, fx, fy = column["ecc_x"], column["ecc_y"], column["film_fx"], column["film_fy"]
+    c = film.geometry.clearance
+    eps = np.hypot(ex, ey) / c                                                # eq. (55)
+    regime = np.where(column["penetration"] > 0.0, REGIME_CONTACT,
+                      np.where(eps > film.eps_film, REGIME_BLEND, REGIME_FILM)).astype(float)
+    return {"film_fx": fx, "film_fy": fy, "film_force": np.hypot(fx, fy), "film_torque": column["film_torque"],
+            "eccentricity_ratio": eps,
+            "attitude_angle": np.arctan2(np.abs(ex * fy - ey * fx), -(ex * fx + ey * fy)),  # film.attitude_angle
+            "min_film_thickness": c * (1.0 - eps), "regime": regime}

@@ -1,0 +1,106 @@
+"""Cost of the compiled film force per evaluation, against the dry contact's (issue 23, part 5).
+
+The brief: the compiled film force per evaluation at most 3 times the dry contact's.  The
+kernel's ``time_force`` evaluates the joint connector's force function (parameter decoding
+included, as Exudyn's call does) many times at one state; this script times
+
+- ``dry contact``: a dry joint in contact (penetration 1 um, closing, with Coulomb friction):
+  the contact law's full path;
+- ``film``: the same joint lubricated, the journal at eps 0.5 (the film alone), for each
+  model;
+- ``film + contact``: lubricated and in contact (the film blended near the wall, plus the
+  dry law);
+
+and a whole run: the steady-load scene of tests/test_lubricated_joint.py per step,
+lubricated against dry (the dry journal resting on the wall).  Medians of repeated
+trials; the machine (2 cores) is shared, so single numbers vary by tens of per cent::
+
+    python -m validation.film_cost
+"""
+from __future__ import annotations
+
+import statistics
+import time
+
+import exudyn as exu
+from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+import exuclear
+from exuclear.engine import kernel
+from exuclear.engine.layout import MAIN, parameters
+
+R, C, L = 0.02, 40e-6, 0.01     # journal radius, clearance, length [m]: B/D = 1/4
+ETA, OMEGA = 0.05, 100.0         # [Pa s], [rad/s]
+EVALUATIONS = 200_000            # per trial: ~10-50 ms, long against the clock's resolution
+TRIALS = 15
+
+
+def joint(model: str | None) -> exuclear.ClearanceJoint:
+    lube = None if model is None else exuclear.Lubrication(viscosity=ETA, model=model)
+    return exuclear.make_joint(journal_radius=R, bearing_radius=R + C, length=L, cr=0.9, friction="coulomb:0.1",
+                               lubrication=lube)
+
+
+def per_evaluation(model: str | None, eps: float) -> float:
+    """Median seconds per force evaluation of a joint at eccentricity ratio ``eps`` (closing at 1 mm/s)."""
+    ck = kernel.COMPILED
+    joint_id = ck.new_joint()
+    try:
+        p = parameters(joint(model), joint_id, MAIN, 1e-3)
+        d, v, w = [eps * C, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 0.0, OMEGA]
+        ck.time_force(p, d, v, w, 1.0, 10)  # the run's initial state is taken here
+        return statistics.median(ck.time_force(p, d, v, w, 2.0, EVALUATIONS) for _ in range(TRIALS))
+    finally:
+        ck.release(joint_id)
+
+
+def per_step(model: str | None, steps: int = 5000) -> float:
+    """Median wall time per step [s] of the steady-load scene (B/D 1/4, load of eps 0.5)."""
+    load = 0.25 ** 2 / 2 * 0.5 * (3.1416 ** 2 * 0.75 + 4.0) ** 0.5 / 0.75 ** 2 * (2 * R * 0.25 * 2 * R * ETA * OMEGA
+                                                                                / (C / R) ** 2)
+    times = []
+    for _ in range(5):
+        mbs = exu.SystemContainer().AddSystem()
+        ground = mbs.AddObject(ObjectGround())
+        node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, -0.3 * C, 0],
+                                           initialVelocities=[0, 0, OMEGA]))
+        pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.01 * load / (C * OMEGA ** 2), inertia=100.0))
+        mbs.AddLoad(LoadForceVector(markerNumber=mbs.AddMarker(MarkerBodyPosition(bodyNumber=pin)),
+                                    loadVector=[0, -load, 0]))
+        lube = {} if model is None else {"lubrication": exuclear.Lubrication(viscosity=ETA, model=model)}
+        exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, pin], position=[0, 0, 0], axis=[0, 0, 1],
+                                      journal_radius=R, bearing_radius=R + C, length=2 * R * 0.25, cr=0.9,
+                                      friction="coulomb:0.1", **lube)
+        mbs.Assemble()
+        ss = exu.SimulationSettings()
+        ss.timeIntegration.endTime = steps * 1e-4
+        ss.timeIntegration.numberOfSteps = steps
+        ss.timeIntegration.verboseMode = 0
+        ss.solution.file.write = False
+        start = time.perf_counter()
+        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        times.append((time.perf_counter() - start) / steps)
+    return statistics.median(times)
+
+
+def main() -> None:
+    if kernel.COMPILED is None:
+        raise SystemExit(f"the compiled kernel is not available: {kernel.REASON}")
+    dry = per_evaluation(None, 1.0 + 1e-6 / C)
+    rows = [("dry contact (penetration 1 um)", dry)]
+    for model in ("short", "long", "finite"):
+        rows.append((f"{model} film, eps 0.5", per_evaluation(model, 0.5)))
+        rows.append((f"{model} film + contact (penetration 1 um)", per_evaluation(model, 1.0 + 1e-6 / C)))
+    print(f"compiled force function, median of {TRIALS} x {EVALUATIONS} evaluations (shared 2-core machine)")
+    for name, seconds in rows:
+        print(f"  {name:42s} {seconds * 1e9:7.1f} ns   {seconds / dry:5.2f} x dry contact")
+    dry_step = per_step(None)
+    print("steady-load scene, generalized-alpha, 5000 steps, median of 5 runs")
+    print(f"  {'dry (journal resting on the wall)':42s} {dry_step * 1e6:7.2f} us/step")
+    for model in ("short", "finite"):
+        s = per_step(model)
+        print(f"  {model + ' film':42s} {s * 1e6:7.2f} us/step   {s / dry_step:5.2f} x dry")
+
+
+if __name__ == "__main__":
+    main()
