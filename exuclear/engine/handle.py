@@ -5,6 +5,8 @@ its item numbers, its physics (replaceable between runs), and what its last run 
 from __future__ import annotations
 
 import itertools
+import math
+import warnings
 import weakref
 from dataclasses import dataclass
 from typing import Any
@@ -72,6 +74,8 @@ class ClearanceJointHandle:
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
+        self._reported_run, self._notes = 0, []
+        self._backend.set_run_start(_RunStart(mbs, self.token))
 
     @property
     def mbs(self) -> exu.MainSystem:
@@ -191,6 +195,7 @@ class ClearanceJointHandle:
         going on at the end is :meth:`state` (``in_contact``).  A spatial joint: every
         slice's records, by onset time (one contact of a tilted journal may touch
         several slices, each a record), and the end faces' with an axial clearance."""
+        self._report()
         return sorted((r for rs in self._backend.records() for r in rs), key=lambda r: r.onset_time)
 
     @property
@@ -215,7 +220,31 @@ class ClearanceJointHandle:
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""
+        self._report()
         return self._backend.failure()
+
+    @property
+    def notes(self) -> list[str]:
+        """What the joint's own step control could not do in the last run (steps it could not
+        resolve, a penetration beyond the limit), each with the joint's name, the time, the
+        step and the step to use; empty if the run was resolved.  Each note is also issued
+        once as an :class:`~exuclear.engine.solver.AccuracyWarning`, at the first access to
+        the joint's results after the run."""
+        self._report()
+        return list(self._notes)
+
+    def _report(self) -> None:
+        """After a run, once: turn the kernel's step-control counters into notes and warnings."""
+        control = self._backend.step_control()
+        if control["runs"] == self._reported_run:
+            return
+        self._reported_run = control["runs"]
+        self._notes = _step_notes(self, control)
+        if self._notes:
+            from .solver import AccuracyWarning  # the solver driver imports this module
+
+            for note in self._notes:
+                warnings.warn(note, AccuracyWarning, stacklevel=3)
 
     def outputs(self) -> dict[str, np.ndarray]:
         """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units.
@@ -223,6 +252,7 @@ class ClearanceJointHandle:
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
         """
+        self._report()
         if self.sensorNumber is None:
             raise RuntimeError(f"joint {self.name!r} was created with record=False: nothing was recorded")
         try:
@@ -263,6 +293,90 @@ class JointHistory:
     @property
     def delta(self) -> float:
         return self.state.delta
+
+
+def label(handle: ClearanceJointHandle) -> str:
+    """How messages name a joint: its name, else its connector's object number."""
+    return repr(handle.name) if handle.name else str(handle.objectNumber)
+
+
+def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
+    """Whether the solver of the run ``mbs.SolveDynamic`` is starting redoes a step that a
+    post-Newton function rejects with a shorter one, its minimum step [s], if not, why, and
+    whether the joint's rate criterion applies (SolveDynamic stores its settings and solver
+    in ``mbs.sys`` before solving).  The rate criterion is off where an explicit solver
+    controls its step by its error estimate (DOPRI5 and the like): that control resolves
+    the contact (the paper's numbers come from it), and the criterion would only add
+    rejected steps.  Unknown settings (a solver run without SolveDynamic) count as able to
+    shorten: a step that comes back unshortened is then accepted and reported."""
+    try:
+        ti = mbs.sys["simulationSettings"].timeIntegration
+        solver = mbs.sys["dynamicSolver"]
+        explicit = "Explicit" in type(solver).__name__
+    except Exception:  # no SolveDynamic run: the kernel's defaults
+        return True, 0.0, "", True
+    if explicit:
+        try:
+            error_control = bool(ti.automaticStepSize) and bool(solver.HasAutomaticStepSizeControl(
+                mbs, mbs.sys["simulationSettings"]))
+        except Exception:  # an Exudyn without the query: keep the criterion
+            error_control = False
+        return (bool(ti.automaticStepSize), float(ti.minimumStepSize),
+                "" if ti.automaticStepSize else "timeIntegration.automaticStepSize is False", not error_control)
+    return (bool(ti.adaptiveStep), float(ti.minimumStepSize),
+            "" if ti.adaptiveStep else "timeIntegration.adaptiveStep is False", True)
+
+
+class _RunStart:
+    """The kernel's run-start callback: whether the solver can shorten steps, its minimum
+    step and the joint's label.  It holds its system weakly and finds its handle by token:
+    the kernel's table outlives no handle through it."""
+
+    def __init__(self, mbs: exu.MainSystem, token: int) -> None:
+        self._mbs, self._token = weakref.ref(mbs), token
+
+    def __call__(self) -> tuple[bool, float, str, bool]:
+        mbs = self._mbs()
+        if mbs is None:
+            return True, 0.0, "", True
+        can_shorten, min_step, _why, rate = solver_steps(mbs)
+        name = next((label(h) for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), "")
+        return can_shorten, min_step, name, rate
+
+
+def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[str]:
+    """Sentences for what the joint's step control could not do in the last run: each names
+    the joint, what happened (time, step, penetration / c) and the step to use (the smaller
+    of the kernel's recommendation and a tenth of the joint's contact period)."""
+    if not control["unresolved"] and not control["over_limit"]:
+        return []
+    _can, _min, why, _rate = solver_steps(handle.mbs)
+    why = why or "the same step came back unshortened"
+    period = math.nan
+    try:
+        from ._diagnostics import joint_contact_period
+
+        period = joint_contact_period(handle.mbs, handle)
+    except Exception:  # a body whose mass is not read: the kernel's recommendation stands
+        pass
+    name, c = label(handle), handle.joint.geometry.clearance
+    notes = []
+    for count, when, step, advice, what in (
+            (control["unresolved"], control["unresolved_time"], control["unresolved_step"],
+             control["unresolved_advice"], "did not resolve the contact (the penetration rate changed by more than "
+                                           "the joint's step control allows)"),
+            (control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
+             f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
+             f"{handle.max_penetration / c:.3g} c")):
+        if not count:
+            continue
+        if period > 0.0:
+            advice = min(advice, period / 10)
+        notes.append(f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) of the "
+                     f"run, and the solver could not shorten them ({why}); the results may be inaccurate: use a step "
+                     f"of at most {advice:.3g} s, or let the solver shorten steps (timeIntegration.adaptiveStep = "
+                     "True for implicit, automaticStepSize = True for explicit solvers)")
+    return notes
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:

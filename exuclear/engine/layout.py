@@ -64,6 +64,8 @@ LAYOUT = (
     Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
     Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
     Field("face_stiffness", 5, 2, 1, "K_f [N/m] of the end faces, eq. (52)"),
+    Field("rate_limit", 1, 5, 1, "KAPPA of the joint's own step control: the change of the penetration rate a "
+                                 "step may hold, as a fraction of the onset velocity (0: off)"),
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
@@ -132,8 +134,16 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
     raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
 
 
+#: Default KAPPA of the joint's own step control (``rate_limit``): a step in contact may
+#: change the penetration rate by at most this fraction of the contact's onset velocity.
+#: An impact reverses the rate, a change of (1 + e) v0, so 0.5 asks for about four steps
+#: per reversal: enough for the departure velocity to 1 % (tests/test_step_control.py),
+#: with neither the bodies' masses nor the law's stiffness in the criterion.
+RATE_KAPPA = 0.1
+
+
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
-               impact_step: float = 0.0, compiled: bool = True, slices: int = 0,
+               impact_step: float = 0.0, rate_limit: float = RATE_KAPPA, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
                shoulders: ShoulderGeometry | None = None, token: int = 0) -> list[list[float]]:
     """The ``stiffness`` matrix that carries ``joint`` to the kernels (:data:`LAYOUT`);
@@ -147,6 +157,7 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
     values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
               "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
+              "rate_limit": rate_limit,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
               "slices": slices, "length": g.length, "axis_journal": axis_journal}
