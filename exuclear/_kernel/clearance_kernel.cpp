@@ -736,6 +736,14 @@ const double ONSET_FLOOR = 0.05;
 // The recommended step's margin below the estimate (the change of the penetration rate is
 // not linear in the step: aim a little short, so that the redone step is accepted).
 const double STEP_SAFETY = 0.8;
+// The rate criterion shortens a step at most this much per attempt (a step still too long is
+// rejected again): the change of the rate is far from linear in a long step, and a larger
+// cut overshoots towards the solver's minimum step (measured on the zoo's piston engine: a
+// cut from 2.1e-7 s to 1.7e-8 s, where Exudyn's Newton then failed).
+const double MAX_CUT = 0.1;
+// ... and never below this many times the solver's minimum step, near which Exudyn's Newton
+// iteration fails (its residual falls to round-off): there the step is accepted and reported.
+const double MIN_STEP_MARGIN = 10.0;
 // A penetration beyond the joint's limit redoes the step with this fraction of it ...
 const double PENETRATION_CUT = 0.25;
 // ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
@@ -758,9 +766,10 @@ bool same(double x, double y) { return std::fabs(x - y) <= STEP_SLACK * std::fab
 // handle's warning, as is a penetration beyond the limit that shorter steps do not remove.
 //   onset: a contact with an impact velocity (|v0| > v_min) that began in the step's first half;
 //   rate:  |delta_dot_end - delta_dot_start| > KAPPA max(|v0|, v_min) in a contact (or one that
-//          began or ended in the step) whose |v0| > v_min: several steps per velocity reversal,
-//          with neither the mass nor the law in the criterion.  A settled contact (|v0| at the
-//          v_min floor) is not limited: the implicit integrator damps its stiff oscillation.
+//          began or ended in the step): several steps per velocity reversal, with neither the
+//          mass nor the law in the criterion.  Settled contacts (|v0| at the v_min floor) are
+//          limited too (exempting them left 5x simulate's penetration on the zoo's piston
+//          engine, and more steps; _python_kernel.py step_control has the numbers).
 double step_control(const Params& a, JointState& s, const std::vector<History>& base, double t) {
     StepControl& c = s.control;
     double h = t - base[0].time;
@@ -802,8 +811,8 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         if (k.delta <= 0.0 && !b.in_contact) continue;  // free flight: nothing limits the step
         bool onset = !b.in_contact;
         double v0 = onset ? onset_velocity(b, k.delta, k.delta_dot) : b.v0;
-        if (!(std::fabs(v0) > a.v_min)) continue;  // a settled contact
-        if (onset && b.delta != -INF) {
+        bool impact = std::fabs(v0) > a.v_min;
+        if (impact && onset && b.delta != -INF) {
             double share = b.delta / (b.delta - k.delta);  // the onset's fraction of the step
             if (1.0 - share > ONSET_TAIL && share > ONSET_FLOOR) {
                 double h_on = h * share / (1.0 - ONSET_TARGET);
@@ -811,15 +820,18 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
             }
         }
         double change = std::fabs(k.delta_dot - b.delta_dot);
-        double allowed = kappa * std::fabs(v0);
+        double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);
         if (change > allowed) {
             double h_rate = STEP_SAFETY * h * allowed / change;
+            h_rate = h_rate > MAX_CUT * h ? h_rate : MAX_CUT * h;
             h_rec = h_rate < h_rec ? h_rate : h_rec;
             rate_exceeded = true;
         }
     }
     if (h_rec == INF) return 0.0;
-    if (shortens) {
+    double floor = MIN_STEP_MARGIN * c.min_step;
+    if (h_rec < floor) h_rec = floor;
+    if (shortens && h > floor * (1.0 + STEP_SLACK)) {
         c.rejected++;
         c.last_time = t;
         c.last_step = h;
