@@ -123,3 +123,23 @@ def test_compiled_and_python_step_control_agree(adaptive):
     (v_c, *rest_c), (v_p, *rest_p) = runs
     assert v_c == pytest.approx(v_p, rel=1e-12, abs=1e-15)  # round-off (no fused multiply-add)
     assert rest_c == rest_p
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_non_finite_state_stops_the_run_naming_the_joint(backend):
+    # the one condition that still ends a run from the user function: Exudyn appends its
+    # own words, but the message and joint.failure() name the joint and the cause
+    mbs, _node, joint = impact(backend)
+    functions = joint.user_functions()
+    stiffness = joint.parameters()
+    nan = float("nan")
+    args = (mbs, 0.0, 0, [1e-4, 0.0, 0.0], [0.0, 0.0, 0.0], [0.3, 0.0, 0.0], [0.0, 0.0, 0.0], stiffness,
+            [[0.0] * 6] * 6, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0] * 6)
+    functions["force_torque"](*args)  # the run's initial state: the run-start callback names the joint
+    data = [0.0] * 14
+    bad = (mbs, 1e-6, 0, data, [nan, 0.0, 0.0], *args[4:])
+    with pytest.raises(Exception, match=r"joint 'pin': the state became non-finite"):
+        functions["post_newton"](*bad)
+    reason, when = joint.failure()
+    assert "non-finite" in reason and when == pytest.approx(1e-6)
