@@ -804,6 +804,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
     double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit : 0.0;
     if (!(kappa > 0.0)) return 0.0;
     double h_rec = INF;
+    double h_need = INF;  // the rate criterion's estimate without the cap: the advice of a note
     bool rate_exceeded = false;
     for (size_t i = 0; i < s.kins.size(); ++i) {
         const Kinematics& k = s.kins[i];
@@ -823,6 +824,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);
         if (change > allowed) {
             double h_rate = STEP_SAFETY * h * allowed / change;
+            if (impact) h_need = h_rate < h_need ? h_rate : h_need;
             h_rate = h_rate > MAX_CUT * h ? h_rate : MAX_CUT * h;
             h_rec = h_rate < h_rec ? h_rate : h_rec;
             // reported only for an impact: a settled contact's rate at a fixed step is the load's
@@ -845,7 +847,8 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
             c.unresolved_step = h;
         }
         c.unresolved++;
-        c.unresolved_advice = h_rec < c.unresolved_advice ? h_rec : c.unresolved_advice;
+        h_need = h_need > floor ? h_need : floor;
+        c.unresolved_advice = h_need < c.unresolved_advice ? h_need : c.unresolved_advice;
     }
     return 0.0;
 }

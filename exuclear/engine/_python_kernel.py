@@ -443,6 +443,7 @@ class JointKernel:
         if not kappa > 0.0:
             return 0.0
         h_rec, rate_exceeded = math.inf, False
+        h_need = math.inf  # the rate criterion's estimate without the cap: the advice of a note
         v_min = self._joint.law.v_min
         for kin, b in zip(kins, base):
             if kin.delta <= 0.0 and not b.in_contact:
@@ -457,7 +458,10 @@ class JointKernel:
             change = abs(kin.delta_dot - b.delta_dot)
             allowed = kappa * (abs(v0) if impact else v_min)
             if change > allowed:
-                h_rec = min(h_rec, max(STEP_SAFETY * h * allowed / change, MAX_CUT * h))
+                h_rate = STEP_SAFETY * h * allowed / change
+                if impact:
+                    h_need = min(h_need, h_rate)
+                h_rec = min(h_rec, max(h_rate, MAX_CUT * h))
                 # reported only for an impact: a settled contact's rate at a fixed step is the
                 # load's (measured: the resting pendulum of tests/test_robust.py, right at its step)
                 rate_exceeded = rate_exceeded or impact
@@ -473,7 +477,7 @@ class JointKernel:
             if c.unresolved == 0:
                 c.unresolved_time, c.unresolved_step = t, h
             c.unresolved += 1
-            c.unresolved_advice = min(c.unresolved_advice, h_rec)
+            c.unresolved_advice = min(c.unresolved_advice, max(h_need, floor))
         return 0.0
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
