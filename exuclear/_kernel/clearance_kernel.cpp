@@ -591,6 +591,18 @@ void start_run(JointState& s) {
     }
 }
 
+// JointKernel.tell: the first step of a run that the joint could not resolve (of each kind)
+// is told at once, through the run-start callback's `note()` (Python issues the
+// AccuracyWarning, with its advice): a run that Exudyn then stops is not silent either.
+void tell(JointState& s) {
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        s.run_start.attr("note")();
+    } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
+        PyErr_Clear();
+    }
+}
+
 const char* const DIVERGED = "the state became non-finite (NaN or inf); the integration diverged";
 
 struct Pose {  // the journal's centre p and axis u in J0
@@ -799,6 +811,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         }
         c.over_limit++;
         c.deepest = deepest > c.deepest ? deepest : c.deepest;
+        if (c.over_limit == 1) tell(s);
     }
     // an explicit impact_step overrides the rate criterion (the caller resolves contacts so)
     double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit : 0.0;
@@ -849,6 +862,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         c.unresolved++;
         h_need = h_need > floor ? h_need : floor;
         c.unresolved_advice = h_need < c.unresolved_advice ? h_need : c.unresolved_advice;
+        if (c.unresolved == 1) tell(s);  // with its advice
     }
     return 0.0;
 }

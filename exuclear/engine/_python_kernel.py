@@ -285,6 +285,17 @@ class JointKernel:
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
+    def tell(self) -> None:
+        """The first step of a run that the joint could not resolve (of each kind) is told at
+        once, through the run-start callback's ``note()`` (Python issues the AccuracyWarning,
+        with its advice): a run that Exudyn then stops is not silent either."""
+        note = getattr(self.run_start, "note", None)
+        if note is not None:
+            try:
+                note()
+            except Exception:  # a warning filter that raises: the notes keep it
+                pass
+
     # -- bookkeeping -------------------------------------------------------------------
     def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
                     ) -> tuple[V3, V3, list[Kinematics]]:
@@ -438,6 +449,8 @@ class JointKernel:
                 self.failure_time = t
             c.over_limit += 1
             c.deepest = max(c.deepest, deepest)
+            if c.over_limit == 1:
+                self.tell()
         if not c.rate or impact_step > 0.0:  # an explicit impact_step overrides the rate criterion
             kappa = 0.0
         if not kappa > 0.0:
@@ -478,6 +491,8 @@ class JointKernel:
                 c.unresolved_time, c.unresolved_step = t, h
             c.unresolved += 1
             c.unresolved_advice = min(c.unresolved_advice, max(h_need, floor))
+            if c.unresolved == 1:
+                self.tell()  # with its advice
         return 0.0
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:

@@ -75,6 +75,7 @@ class ClearanceJointHandle:
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
         self._reported_run, self._notes = 0, []
+        self._told_run, self._told = 0, set()  # the run, and the kinds of notes already warned of
         self._backend.set_run_start(_RunStart(mbs, self.token))
 
     @property
@@ -233,17 +234,26 @@ class ClearanceJointHandle:
         self._report()
         return list(self._notes)
 
-    def _report(self) -> None:
-        """After a run, once: turn the kernel's step-control counters into notes and warnings."""
+    def _report(self, running: bool = False) -> None:
+        """Turn the kernel's step-control counters into notes, and warn of each kind of note
+        once per run: at once where the kernel tells (``running``, during the run), else at
+        the first access to the joint's results after the run."""
         control = self._backend.step_control()
-        if control["runs"] == self._reported_run:
-            return
-        self._reported_run = control["runs"]
-        self._notes = _step_notes(self, control)
-        if self._notes:
+        runs = control["runs"]
+        if runs != self._told_run:
+            self._told_run, self._told = runs, set()
+        if not running:
+            if runs == self._reported_run:
+                return
+            self._reported_run = runs
+        notes = _step_notes(self, control, running)
+        self._notes = [text for _kind, text in notes]
+        fresh = [text for kind, text in notes if kind not in self._told]
+        self._told.update(kind for kind, _text in notes)
+        if fresh:
             from .solver import AccuracyWarning  # the solver driver imports this module
 
-            for note in self._notes:
+            for note in fresh:
                 warnings.warn(note, AccuracyWarning, stacklevel=3)
 
     def outputs(self) -> dict[str, np.ndarray]:
@@ -340,12 +350,23 @@ class _RunStart:
         if mbs is None:
             return True, 0.0, "", True
         can_shorten, min_step, _why, rate = solver_steps(mbs)
-        name = next((label(h) for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), "")
-        return can_shorten, min_step, name, rate
+        handle = self._handle(mbs)
+        return can_shorten, min_step, label(handle) if handle is not None else "", rate
+
+    def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:
+        return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), None)
+
+    def note(self) -> None:
+        """The kernel's first unresolved step of a kind in this run: warn now (the run may
+        still be stopped by Exudyn, after which nobody might ask the joint)."""
+        mbs = self._mbs()
+        handle = self._handle(mbs) if mbs is not None else None
+        if handle is not None:
+            handle._report(running=True)
 
 
-def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[str]:
-    """Sentences for what the joint's step control could not do in the last run: each names
+def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: bool = False) -> list[tuple[str, str]]:
+    """(kind, sentence) for what the joint's step control could not do in the last run: each names
     the joint, what happened (time, step, penetration / c) and the fixed step to use: the
     smaller of the kernel's recommendation at the worst step and a tenth of the joint's
     contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
@@ -363,21 +384,22 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[s
         pass
     name, c = label(handle), handle.joint.geometry.clearance
     notes = []
-    for count, when, step, advice, what, otherwise in (
-            (control["unresolved"], control["unresolved_time"], control["unresolved_step"],
+    for kind, count, when, step, advice, what, otherwise in (
+            ("unresolved", control["unresolved"], control["unresolved_time"], control["unresolved_step"],
              control["unresolved_advice"], "did not resolve the contact (the penetration rate changed by more than "
                                            "the joint's step control allows)", "the same step came back unshortened"),
-            (control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
+            ("over_limit", control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
              f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
              f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it")):
         if not count:
             continue
         if period > 0.0:  # a tenth of the contact period under the weight, as step="auto"; an
             advice = min(advice, period / 10)  # impact is faster: the kernel's worst step is then shorter
-        notes.append(f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) of the "
-                     f"run, which could not be shortened enough ({why or otherwise}); the results may be inaccurate: use a step "
-                     f"of at most {advice:.3g} s, or let the solver shorten steps (timeIntegration.adaptiveStep = "
-                     "True for implicit, automaticStepSize = True for explicit solvers)")
+        notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
+                     f"of the run{' so far' if running else ''}, which could not be shortened enough "
+                     f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
+                     "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
+                     "automaticStepSize = True for explicit solvers)"))
     return notes
 
 

@@ -266,7 +266,9 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         if watchdog.step_times is not None:
             watchdog.step_times.append(ss.timeIntegration.startTime)
         try:
-            ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
+            with warnings.catch_warnings():  # the joints' notes are issued with the result's
+                warnings.simplefilter("ignore", AccuracyWarning)
+                ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
             message = "" if ok else "Exudyn's solver reported failure"
         except KeyboardInterrupt:
             raise
