@@ -87,6 +87,7 @@ enum Field {
     SLICES, LENGTH, AXIS_JOURNAL,
     AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
     FILM_MODEL, VISCOSITY, EPS_FILM, EPS_CAP,
+    RATE_LIMIT,
     N_FIELDS
 };
 
@@ -106,6 +107,7 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
     {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
     {"film_model", 3, 4, 1},      {"viscosity", 3, 5, 1},
     {"eps_film", 5, 4, 1},        {"eps_cap", 5, 5, 1},
+    {"rate_limit", 1, 5, 1},
 };
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
@@ -128,6 +130,7 @@ struct Params {
     // the lubricated joint's film (section 10): model code (0: dry), viscosity, blend thresholds (eq. (70))
     int film_model;
     double viscosity, eps_film, eps_cap;
+    double rate_limit;  // KAPPA of the joint's own step control (0: off)
 };
 
 Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
@@ -154,6 +157,7 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.viscosity = field(p, VISCOSITY);
     a.eps_film = field(p, EPS_FILM);
     a.eps_cap = field(p, EPS_CAP);
+    a.rate_limit = field(p, RATE_LIMIT);
     return a;
 }
 
@@ -871,6 +875,25 @@ double film_share(const Params& a) { return a.slices > 0 ? 1.0 / a.slices : 1.0;
 // ---- the per-joint table -------------------------------------------------------------------
 // One joint's state (_python_kernel.py JointKernel): per contact, its history at the start
 // (prev) and at the end (cur) of the last post-processed step and its records.
+// What the joint's own step control did in the last run (_python_kernel.py StepControl):
+// steps it rejected, and steps it could not resolve because the solver could not shorten
+// them (read by the handle after the run, which says so in an AccuracyWarning).
+struct StepControl {
+    bool can_shorten = true;  // the solver redoes a rejected step shorter (from the run-start callback)
+    double min_step = 0.0;    // the solver's minimum step [s]
+    bool rate = true;         // false: an explicit solver's error control sets the step (no rate criterion)
+    std::string label;        // the joint's name, for messages (from the run-start callback)
+    long runs = 0;            // runs started since the joint was created
+    long rejected = 0;        // steps rejected by the joint and redone shorter
+    long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
+    double unresolved_time = 0.0, unresolved_step = 0.0, unresolved_advice = INF;  // the first; smallest advice
+    long over_limit = 0;      // steps accepted with a penetration beyond the limit
+    double over_time = 0.0, over_step = 0.0, deepest = 0.0;
+    double last_time = -INF, last_step = 0.0;  // the last rejected step (to see it come back unshortened)
+    double retry_start = -INF;                  // the start of the step the penetration retries are about
+    int retries = 0;
+};
+
 struct JointState {
     bool in_use = true;    // false: released (its handle is gone), the slot is free for a new joint
     bool started = false;  // an accepted (initial) state exists in this run
@@ -887,6 +910,8 @@ struct JointState {
     long force_calls = 0, post_newton_calls = 0;
     std::string failure;
     double failure_time = 0.0;
+    StepControl control;
+    py::object run_start;  // Python callable, once per run start: (can_shorten, min_step, label, rate); None: none
 };
 
 std::vector<JointState> g_joints;
@@ -900,11 +925,44 @@ JointState& state(long id) {
 }
 
 // Record why the run cannot go on, and stop it (an exception ends Exudyn's solve; mirrors
-// _python_kernel's _fail).
+// _python_kernel's _fail).  Only for a state that cannot go on (non-finite, a penetration
+// beyond the limit that shorter steps do not remove): the message names the joint.
 [[noreturn]] void fail(JointState& s, double t, const std::string& message) {
     s.failure = message;
     s.failure_time = t;
-    throw std::runtime_error("exuclear: " + message);
+    std::string who = s.control.label.empty() ? "" : "joint " + s.control.label + ": ";
+    throw std::runtime_error("exuclear: " + who + message + " at t = " + std::to_string(t) +
+                             " s (joint.failure() says more)");
+}
+
+// JointKernel.start_run: a new run begins; forget the last run's step control and ask the
+// handle (Python, once per run) whether the solver can shorten steps and the joint's name.
+void start_run(JointState& s) {
+    long runs = s.control.runs + 1;
+    s.control = StepControl();
+    s.control.runs = runs;
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        py::tuple r = s.run_start();
+        s.control.can_shorten = r[0].cast<bool>();
+        s.control.min_step = r[1].cast<double>();
+        s.control.label = r[2].cast<std::string>();
+        s.control.rate = r[3].cast<bool>();
+    } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
+        PyErr_Clear();
+    }
+}
+
+// JointKernel.tell: the first step of a run that the joint could not resolve (of each kind)
+// is told at once, through the run-start callback's `note()` (Python issues the
+// AccuracyWarning, with its advice): a run that Exudyn then stops is not silent either.
+void tell(JointState& s) {
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        s.run_start.attr("note")();
+    } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
+        PyErr_Clear();
+    }
 }
 
 const char* const DIVERGED = "the state became non-finite (NaN or inf); the integration diverged";
@@ -979,6 +1037,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
         s.initial_axial = q.p[2];
         s.records.assign(n, std::vector<Record>());
         s.failure.clear();
+        start_run(s);
         s.cur.resize(n);
         for (size_t i = 0; i < n; ++i) {
             History fresh;
@@ -1064,6 +1123,138 @@ const double STEP_SLACK = 1e-9;
 const int N_DATA = 14;
 const int N_FILM_DATA = 3;
 
+// ---- the joint's own step control (_python_kernel.py JointKernel.step_control) -------------
+// The fraction of a step a contact may have begun before the step's end without a redo: a
+// contact that began deeper inside the step is redone so that it begins in the step's last
+// ONSET_TARGET (its force then acts from about its onset on, as in the exact path).
+const double ONSET_TAIL = 0.5;
+const double ONSET_TARGET = 0.2;
+// A contact that began in the step's first ONSET_FLOOR (touching at its start) is resolved
+// from its start: it is not redone (that would shrink the step towards zero); the rate
+// criterion resolves the rest.
+const double ONSET_FLOOR = 0.05;
+// The recommended step's margin below the estimate (the change of the penetration rate is
+// not linear in the step: aim a little short, so that the redone step is accepted).
+const double STEP_SAFETY = 0.8;
+// The rate criterion shortens a step at most this much per attempt (a step still too long is
+// rejected again): the change of the rate is far from linear in a long step, and a larger
+// cut overshoots towards the solver's minimum step (measured on the zoo's piston engine: a
+// cut from 2.1e-7 s to 1.7e-8 s, where Exudyn's Newton then failed).
+const double MAX_CUT = 0.1;
+// ... and never below this many times the solver's minimum step, near which Exudyn's Newton
+// iteration fails (its residual falls to round-off): there the step is accepted and reported.
+const double MIN_STEP_MARGIN = 10.0;
+// A penetration beyond the joint's limit redoes the step with this fraction of it ...
+const double PENETRATION_CUT = 0.25;
+// ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
+// still beyond the limit then is the contact's, not the step's: the step is accepted, the
+// joint's failure() says so and the handle warns (exuclear.simulate stops the run there).
+const int PENETRATION_RETRIES = 4;
+
+std::string fmt(double x) {
+    std::ostringstream o;
+    o.precision(4);
+    o << x;
+    return o.str();
+}
+
+bool same(double x, double y) { return std::fabs(x - y) <= STEP_SLACK * std::fabs(y) + 1e-300; }
+
+// Whether the step [base.time, t] resolves the joint's contacts; 0: yes (accept it), else the
+// shorter step to redo it with.  A step the solver cannot shorten (its settings forbid it, its
+// minimum step, or the same step came back unshortened) is accepted and counted for the
+// handle's warning, as is a penetration beyond the limit that shorter steps do not remove.
+//   onset: a contact with an impact velocity (|v0| > v_min) that began in the step's first half;
+//   rate:  |delta_dot_end - delta_dot_start| > KAPPA max(|v0|, v_min) in a contact (or one that
+//          began or ended in the step): several steps per velocity reversal, with neither the
+//          mass nor the law in the criterion.  Settled contacts (|v0| at the v_min floor) are
+//          limited too (exempting them left 5x simulate's penetration on the zoo's piston
+//          engine, and more steps; _python_kernel.py step_control has the numbers).
+double step_control(const Params& a, JointState& s, const std::vector<History>& base, double t) {
+    StepControl& c = s.control;
+    double h = t - base[0].time;
+    if (!(h > 0.0)) return 0.0;
+    bool repeated = same(t, c.last_time) && same(h, c.last_step);  // the solver did not shorten it
+    bool shortens = c.can_shorten && !repeated && h > c.min_step * (1.0 + STEP_SLACK);
+    double deepest = -INF;
+    for (const Kinematics& k : s.kins) deepest = k.delta > deepest ? k.delta : deepest;
+    if (deepest > a.max_penetration) {
+        if (!same(base[0].time, c.retry_start)) {
+            c.retry_start = base[0].time;
+            c.retries = 0;
+        }
+        if (shortens && c.retries < PENETRATION_RETRIES) {
+            c.retries++;
+            c.rejected++;
+            c.last_time = t;
+            c.last_step = h;
+            double h_new = h * PENETRATION_CUT;
+            return h_new > c.min_step ? h_new : c.min_step * (1.0 + STEP_SLACK);
+        }
+        if (c.over_limit == 0) {  // accepted: the run goes on, the handle says so (a simulate run stops)
+            c.over_time = t;
+            c.over_step = h;
+            s.failure = "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
+            s.failure_time = t;
+        }
+        c.over_limit++;
+        c.deepest = deepest > c.deepest ? deepest : c.deepest;
+        if (c.over_limit == 1) tell(s);
+    }
+    // an explicit impact_step overrides the rate criterion (the caller resolves contacts so)
+    double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit : 0.0;
+    if (!(kappa > 0.0)) return 0.0;
+    double h_rec = INF;
+    double h_need = INF;  // the rate criterion's estimate without the cap: the advice of a note
+    bool rate_exceeded = false;
+    for (size_t i = 0; i < s.kins.size(); ++i) {
+        const Kinematics& k = s.kins[i];
+        const History& b = base[i];
+        if (k.delta <= 0.0 && !b.in_contact) continue;  // free flight: nothing limits the step
+        bool onset = !b.in_contact;
+        double v0 = onset ? onset_velocity(b, k.delta, k.delta_dot) : b.v0;
+        bool impact = std::fabs(v0) > a.v_min;
+        if (impact && onset && b.delta != -INF) {
+            double share = b.delta / (b.delta - k.delta);  // the onset's fraction of the step
+            if (1.0 - share > ONSET_TAIL && share > ONSET_FLOOR) {
+                double h_on = h * share / (1.0 - ONSET_TARGET);
+                h_rec = h_on < h_rec ? h_on : h_rec;
+            }
+        }
+        double change = std::fabs(k.delta_dot - b.delta_dot);
+        double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);
+        if (change > allowed) {
+            double h_rate = STEP_SAFETY * h * allowed / change;
+            if (impact) h_need = h_rate < h_need ? h_rate : h_need;
+            h_rate = h_rate > MAX_CUT * h ? h_rate : MAX_CUT * h;
+            h_rec = h_rate < h_rec ? h_rate : h_rec;
+            // reported only for an impact: a settled contact's rate at a fixed step is the load's
+            // (measured: the resting pendulum of tests/test_robust.py, right at its fixed step)
+            rate_exceeded = rate_exceeded || impact;
+        }
+    }
+    if (h_rec == INF) return 0.0;
+    double floor = MIN_STEP_MARGIN * c.min_step;
+    if (h_rec < floor) h_rec = floor;
+    if (shortens && h > floor * (1.0 + STEP_SLACK)) {
+        c.rejected++;
+        c.last_time = t;
+        c.last_step = h;
+        return h_rec > c.min_step ? h_rec : c.min_step * (1.0 + STEP_SLACK);
+    }
+    if (rate_exceeded) {  // accepted unresolved: say so after the run
+        if (c.unresolved == 0) {
+            c.unresolved_time = t;
+            c.unresolved_step = h;
+        }
+        c.unresolved++;
+        h_need = h_need > floor ? h_need : floor;
+        c.unresolved_advice = h_need < c.unresolved_advice ? h_need : c.unresolved_advice;
+        if (c.unresolved == 1) tell(s);  // with its advice
+    }
+    return 0.0;
+}
+
 // Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
 void write_data(const History& h, StdVector& out, int first = 0) {
     double values[N_DATA] = {h.time, h.delta == -INF ? 0.0 : h.delta, h.delta_dot, h.ex, h.ey, h.f_n, h.f_t, h.v_t,
@@ -1072,12 +1263,6 @@ void write_data(const History& h, StdVector& out, int first = 0) {
     for (int i = first; i < N_DATA; ++i) out.push_back(values[i]);
 }
 
-std::string fmt(double x) {
-    std::ostringstream o;
-    o.precision(4);
-    o << x;
-    return o.str();
-}
 
 // JointKernel.post_newton: the contacts' history update, once per accepted step.
 // Returns [error, recommended step, data...].
@@ -1091,11 +1276,6 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
     bool advance = t > s.cur[0].time;
     const std::vector<History>& base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
     if (!all_finite(s)) fail(s, t, DIVERGED);
-    double deepest = -INF;
-    for (const Kinematics& k : s.kins) deepest = k.delta > deepest ? k.delta : deepest;
-    if (deepest > a.max_penetration) {
-        fail(s, t, "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m");
-    }
     size_t n = s.kins.size();
     if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
         for (size_t i = 0; i < n; ++i) {
@@ -1106,6 +1286,13 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
                 return out;
             }
         }
+    }
+    double redo = step_control(a, s, base, t);
+    if (redo > 0.0) {
+        out[0] = REDO_STEP_ERROR;
+        out[1] = redo;
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
     }
     s.next.resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -1215,7 +1402,36 @@ PYBIND11_MODULE(_ckernel, m) {
         g_free.push_back(id);
     }, "free a joint's state (its handle is gone); new_joint reuses the slot");
     m.def("joints_in_use", []() { return static_cast<long>(g_joints.size() - g_free.size()); });
-    m.def("reset", [](long id) { state(id) = JointState(); });
+    m.def("reset", [](long id) {  // forget the history; keep the run-start callback and the run count
+        JointState& s = state(id);
+        py::object run_start = s.run_start;
+        long runs = s.control.runs;
+        s = JointState();
+        s.run_start = run_start;
+        s.control.runs = runs;
+    });
+    m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
+          "a callable called once per run start: (can_shorten, min_step, label, rate); hold no strong "
+          "reference to the joint's handle in it");
+    m.def("step_control", [](long id) {  // what the joint's own step control did in the last run
+        const StepControl& c = state(id).control;
+        py::dict d;
+        d["runs"] = c.runs;
+        d["can_shorten"] = c.can_shorten;
+        d["min_step"] = c.min_step;
+        d["rate"] = c.rate;
+        d["label"] = c.label;
+        d["rejected"] = c.rejected;
+        d["unresolved"] = c.unresolved;
+        d["unresolved_time"] = c.unresolved_time;
+        d["unresolved_step"] = c.unresolved_step;
+        d["unresolved_advice"] = c.unresolved_advice;
+        d["over_limit"] = c.over_limit;
+        d["over_time"] = c.over_time;
+        d["over_step"] = c.over_step;
+        d["deepest"] = c.deepest;
+        return d;
+    });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
     m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
         // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)

@@ -60,6 +60,14 @@ class Backend:
         """Why and when the kernel stopped the last run (``""`` if it did not)."""
         raise NotImplementedError
 
+    def set_run_start(self, callback: Any) -> None:
+        """The callable the kernel calls once per run start: ``(can_shorten, min_step, label)``."""
+        raise NotImplementedError
+
+    def step_control(self) -> dict[str, Any]:
+        """What the joint's own step control did in the last run (the kernel's ``StepControl``)."""
+        raise NotImplementedError
+
 
 class PythonBackend(Backend):
     """The Python kernel (:class:`~exuclear.engine._python_kernel.JointKernel`)."""
@@ -97,6 +105,12 @@ class PythonBackend(Backend):
     def failure(self) -> tuple[str, float]:
         return self.kernel.failure, self.kernel.failure_time
 
+    def set_run_start(self, callback: Any) -> None:
+        self.kernel.run_start = callback
+
+    def step_control(self) -> dict[str, Any]:
+        return self.kernel.control.as_dict()
+
 
 class CompiledBackend(Backend):
     """The compiled kernel: one entry of its table, released when the backend is collected
@@ -133,6 +147,12 @@ class CompiledBackend(Backend):
 
     def failure(self) -> tuple[str, float]:
         return tuple(kernel.COMPILED.failure(self.joint_id))
+
+    def set_run_start(self, callback: Any) -> None:
+        kernel.COMPILED.set_run_start(self.joint_id, callback)
+
+    def step_control(self) -> dict[str, Any]:
+        return dict(kernel.COMPILED.step_control(self.joint_id))
 
 
 def make_backend(name: str, joint: ClearanceJoint, slices: int, axis_journal: V3,

@@ -5,6 +5,8 @@ its item numbers, its physics (replaceable between runs), and what its last run 
 from __future__ import annotations
 
 import itertools
+import math
+import warnings
 import weakref
 from dataclasses import dataclass
 from typing import Any
@@ -74,6 +76,9 @@ class ClearanceJointHandle:
         self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
         self._impact_step = 0.0
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
+        self._reported_run, self._notes = 0, []
+        self._told_run, self._told = 0, set()  # the run, and the kinds of notes already warned of
+        self._backend.set_run_start(_RunStart(mbs, self.token))
 
     @property
     def mbs(self) -> exu.MainSystem:
@@ -210,6 +215,7 @@ class ClearanceJointHandle:
         physical impacts, the slices' records that overlap in time merged into one
         (:func:`exuclear.history.merge_overlapping`; per slice: :meth:`slice_impacts`),
         and the end faces' records with an axial clearance (:meth:`face_impacts`)."""
+        self._report()
         records = self._backend.records()
         if self.slices:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
@@ -237,7 +243,40 @@ class ClearanceJointHandle:
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""
+        self._report()
         return self._backend.failure()
+
+    @property
+    def notes(self) -> list[str]:
+        """What the joint's own step control could not do in the last run (steps it could not
+        resolve, a penetration beyond the limit), each with the joint's name, the time, the
+        step and the step to use; empty if the run was resolved.  Each note is also issued
+        once as an :class:`~exuclear.engine.solver.AccuracyWarning`, at the first access to
+        the joint's results after the run."""
+        self._report()
+        return list(self._notes)
+
+    def _report(self, running: bool = False) -> None:
+        """Turn the kernel's step-control counters into notes, and warn of each kind of note
+        once per run: at once where the kernel tells (``running``, during the run), else at
+        the first access to the joint's results after the run."""
+        control = self._backend.step_control()
+        runs = control["runs"]
+        if runs != self._told_run:
+            self._told_run, self._told = runs, set()
+        if not running:
+            if runs == self._reported_run:
+                return
+            self._reported_run = runs
+        notes = _step_notes(self, control, running)
+        self._notes = [text for _kind, text in notes]
+        fresh = [text for kind, text in notes if kind not in self._told]
+        self._told.update(kind for kind, _text in notes)
+        if fresh:
+            from .solver import AccuracyWarning  # the solver driver imports this module
+
+            for note in fresh:
+                warnings.warn(note, AccuracyWarning, stacklevel=3)
 
     def outputs(self) -> dict[str, np.ndarray]:
         """Recorded outputs: ``time`` and :data:`OUTPUT_COLUMNS`, SI units (a spatial joint:
@@ -248,6 +287,7 @@ class ClearanceJointHandle:
         Recorded at Exudyn's sensor write period (``solution.sensors.writePeriod``) from
         the data node, i.e. at accepted steps; the first row is the run's initial state.
         """
+        self._report()
         if self.sensorNumber is None:
             raise RuntimeError(f"joint {self.name!r} was created with record=False: nothing was recorded")
         try:
@@ -291,6 +331,104 @@ class JointHistory:
     @property
     def delta(self) -> float:
         return self.state.delta
+
+
+def label(handle: ClearanceJointHandle) -> str:
+    """How messages name a joint: its name, else its connector's object number."""
+    return repr(handle.name) if handle.name else str(handle.objectNumber)
+
+
+def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
+    """Whether the solver of the run ``mbs.SolveDynamic`` is starting redoes a step that a
+    post-Newton function rejects with a shorter one, its minimum step [s], if not, why, and
+    whether the joint's rate criterion applies (SolveDynamic stores its settings and solver
+    in ``mbs.sys`` before solving).  The rate criterion is off where an explicit solver
+    controls its step by its error estimate (DOPRI5 and the like): that control resolves
+    the contact (the paper's numbers come from it), and the criterion would only add
+    rejected steps.  Unknown settings (a solver run without SolveDynamic) count as able to
+    shorten: a step that comes back unshortened is then accepted and reported."""
+    try:
+        ti = mbs.sys["simulationSettings"].timeIntegration
+        solver = mbs.sys["dynamicSolver"]
+        explicit = "Explicit" in type(solver).__name__
+    except Exception:  # no SolveDynamic run: the kernel's defaults
+        return True, 0.0, "", True
+    if explicit:
+        try:
+            error_control = bool(ti.automaticStepSize) and bool(solver.HasAutomaticStepSizeControl(
+                mbs, mbs.sys["simulationSettings"]))
+        except Exception:  # an Exudyn without the query: keep the criterion
+            error_control = False
+        return (bool(ti.automaticStepSize), float(ti.minimumStepSize),
+                "" if ti.automaticStepSize else "timeIntegration.automaticStepSize is False", not error_control)
+    return (bool(ti.adaptiveStep), float(ti.minimumStepSize),
+            "" if ti.adaptiveStep else "timeIntegration.adaptiveStep is False", True)
+
+
+class _RunStart:
+    """The kernel's run-start callback: whether the solver can shorten steps, its minimum
+    step and the joint's label.  It holds its system weakly and finds its handle by token:
+    the kernel's table outlives no handle through it."""
+
+    def __init__(self, mbs: exu.MainSystem, token: int) -> None:
+        self._mbs, self._token = weakref.ref(mbs), token
+
+    def __call__(self) -> tuple[bool, float, str, bool]:
+        mbs = self._mbs()
+        if mbs is None:
+            return True, 0.0, "", True
+        can_shorten, min_step, _why, rate = solver_steps(mbs)
+        handle = self._handle(mbs)
+        return can_shorten, min_step, label(handle) if handle is not None else "", rate
+
+    def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:
+        return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), None)
+
+    def note(self) -> None:
+        """The kernel's first unresolved step of a kind in this run: warn now (the run may
+        still be stopped by Exudyn, after which nobody might ask the joint)."""
+        mbs = self._mbs()
+        handle = self._handle(mbs) if mbs is not None else None
+        if handle is not None:
+            handle._report(running=True)
+
+
+def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: bool = False) -> list[tuple[str, str]]:
+    """(kind, sentence) for what the joint's step control could not do in the last run: each names
+    the joint, what happened (time, step, penetration / c) and the fixed step to use: the
+    smaller of the kernel's recommendation at the worst step and a tenth of the joint's
+    contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
+    can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
+    5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
+    if not control["unresolved"] and not control["over_limit"]:
+        return []
+    _can, _min, why, _rate = solver_steps(handle.mbs)
+    period = math.nan
+    try:
+        from ._diagnostics import joint_contact_period
+
+        period = joint_contact_period(handle.mbs, handle)
+    except Exception:  # a body whose mass is not read: the kernel's recommendation stands
+        pass
+    name, c = label(handle), handle.joint.geometry.clearance
+    notes = []
+    for kind, count, when, step, advice, what, otherwise in (
+            ("unresolved", control["unresolved"], control["unresolved_time"], control["unresolved_step"],
+             control["unresolved_advice"], "did not resolve the contact (the penetration rate changed by more than "
+                                           "the joint's step control allows)", "the same step came back unshortened"),
+            ("over_limit", control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
+             f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
+             f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it")):
+        if not count:
+            continue
+        if period > 0.0:  # a tenth of the contact period under the weight, as step="auto"; an
+            advice = min(advice, period / 10)  # impact is faster: the kernel's worst step is then shorter
+        notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
+                     f"of the run{' so far' if running else ''}, which could not be shortened enough "
+                     f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
+                     "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
+                     "automaticStepSize = True for explicit solvers)"))
+    return notes
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:

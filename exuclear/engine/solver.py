@@ -109,8 +109,12 @@ class _Watchdog:
     """Pre- and post-step functions for one run: end a step retried without end and an
     adaptive step that collapsed to its minimum; the user's functions are called from them."""
 
-    def __init__(self, mbs: exu.MainSystem, min_step: float, record_steps: bool) -> None:
+    def __init__(self, mbs: exu.MainSystem, min_step: float, record_steps: bool,
+                 joints: tuple[ClearanceJointHandle, ...] = ()) -> None:
         self.mbs = mbs
+        # a joint whose failure() speaks (a penetration beyond its limit that shorter steps did
+        # not remove, accepted by the kernel so that a plain SolveDynamic goes on) ends the run
+        self.backends = tuple(h._backend for h in joints)
         self.user_pre = _user_function(mbs.GetPreStepUserFunction())
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
@@ -141,6 +145,8 @@ class _Watchdog:
             step, self.last = t - self.last, t
             if self.step_times is not None:
                 self.step_times.append(t)
+            if any(b.failure()[0] for b in self.backends):
+                return False  # simulate's result says why (the joint's failure)
             if 0.0 < step <= self.min_step:
                 self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), "
                                 "where Exudyn would go on without error control; the problem is too stiff for this "
@@ -256,11 +262,13 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
     start = time.perf_counter()
-    with _Watchdog(mbs, min_step, record_steps=not settings.explicit) as watchdog:
+    with _Watchdog(mbs, min_step, record_steps=not settings.explicit, joints=tuple(joints)) as watchdog:
         if watchdog.step_times is not None:
             watchdog.step_times.append(ss.timeIntegration.startTime)
         try:
-            ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
+            with warnings.catch_warnings():  # the joints' notes are issued with the result's
+                warnings.simplefilter("ignore", AccuracyWarning)
+                ok = bool(exu.SolveDynamic(mbs, ss, solverType=solver_type))
             message = "" if ok else "Exudyn's solver reported failure"
         except KeyboardInterrupt:
             raise
@@ -274,6 +282,11 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     it = mbs.sys["dynamicSolver"].it
     steps, rejected = int(it.currentStepIndex) - 1, int(it.rejectedAutomaticStepSizeSteps)
     t_reached = mbs.systemData.GetTime()
+    step_notes = []
+    with warnings.catch_warnings():  # the joints' own notes are issued below, with the run's
+        warnings.simplefilter("ignore", AccuracyWarning)
+        for handle in joints:
+            step_notes += handle.notes
     for handle in joints:
         reason, when = handle.failure()
         if reason:
@@ -287,9 +300,9 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
                     f"{_solver_advice(message, settings)})")
         return SimulationResult(ok, message, wall, steps, rejected, t_reached, step=settings.step)
-    notes = ()
+    notes = tuple(step_notes)
     if not settings.explicit:  # adaptive explicit methods resolve separations by their error control
-        notes = tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
+        notes += tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)
     return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes, step=settings.step)

@@ -337,6 +337,8 @@ def _solve_plain(model: ZooModel, time_limit: float) -> _Run:
         except Exception as err:  # Exudyn raises its own error types on solver failure
             message = f"{type(err).__name__}: {_all_lines(err)}"
         wall = time.perf_counter() - start
+        if model.joint is not None:
+            _ = model.joint.notes  # the joint's AccuracyWarnings about the run, issued at the first access
     t = mbs.systemData.GetTime()
     steps = int(mbs.sys["dynamicSolver"].it.currentStepIndex) - 1 if "dynamicSolver" in mbs.sys else -1
     reached = not message and not limit.hit and t >= end * (1 - 1e-9)
