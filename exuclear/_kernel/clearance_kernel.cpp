@@ -1480,6 +1480,7 @@ PYBIND11_MODULE(_ckernel, m) {
         JointState& s = state(id);
         return py::make_tuple(s.failure, s.failure_time);
     });
+    m.def("failed", [](long id) { return !state(id).failure.empty(); });  // per step, cheap: no string
     py::list layout;
     for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
     m.attr("LAYOUT") = layout;

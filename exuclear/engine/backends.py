@@ -60,6 +60,10 @@ class Backend:
         """Why and when the kernel stopped the last run (``""`` if it did not)."""
         raise NotImplementedError
 
+    def failed(self) -> bool:
+        """Whether :meth:`failure` has something to say (cheap enough to ask every step)."""
+        raise NotImplementedError
+
     def set_run_start(self, callback: Any) -> None:
         """The callable the kernel calls once per run start: ``(can_shorten, min_step, label)``."""
         raise NotImplementedError
@@ -105,6 +109,9 @@ class PythonBackend(Backend):
     def failure(self) -> tuple[str, float]:
         return self.kernel.failure, self.kernel.failure_time
 
+    def failed(self) -> bool:
+        return bool(self.kernel.failure)
+
     def set_run_start(self, callback: Any) -> None:
         self.kernel.run_start = callback
 
@@ -147,6 +154,9 @@ class CompiledBackend(Backend):
 
     def failure(self) -> tuple[str, float]:
         return tuple(kernel.COMPILED.failure(self.joint_id))
+
+    def failed(self) -> bool:
+        return kernel.COMPILED.failed(self.joint_id)
 
     def set_run_start(self, callback: Any) -> None:
         kernel.COMPILED.set_run_start(self.joint_id, callback)

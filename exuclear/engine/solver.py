@@ -114,7 +114,7 @@ class _Watchdog:
         self.mbs = mbs
         # a joint whose failure() speaks (a penetration beyond its limit that shorter steps did
         # not remove, accepted by the kernel so that a plain SolveDynamic goes on) ends the run
-        self.backends = tuple(h._backend for h in joints)
+        self.failed = tuple(h._backend.failed for h in joints)
         self.user_pre = _user_function(mbs.GetPreStepUserFunction())
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
@@ -145,8 +145,9 @@ class _Watchdog:
             step, self.last = t - self.last, t
             if self.step_times is not None:
                 self.step_times.append(t)
-            if any(b.failure()[0] for b in self.backends):
-                return False  # simulate's result says why (the joint's failure)
+            for failed in self.failed:
+                if failed():
+                    return False  # simulate's result says why (the joint's failure)
             if 0.0 < step <= self.min_step:
                 self.problem = (f"at t = {t:.6g} s, the adaptive step collapsed to the minimum step ({step:.3g} s), "
                                 "where Exudyn would go on without error control; the problem is too stiff for this "
