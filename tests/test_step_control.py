@@ -21,7 +21,7 @@ RTOL = 1e-2
 BACKENDS = (["compiled"] if kernel.COMPILED is not None else []) + ["python"]
 
 
-def impact(backend: str = "compiled", **options):
+def impact(backend: str = exuclear.DEFAULT_BACKEND, **options):
     """The README's journal impact: a 0.04 kg journal touching the bearing wall at 0.3 m/s."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())

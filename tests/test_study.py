@@ -397,7 +397,7 @@ def test_python_m_exuclear_study_prints_no_runpy_warning(tmp_path: Path):
     ran = subprocess.run([sys.executable, "-m", "exuclear.study", "journal-bearing", "--cr", "0.5,0.9", "--workers", "2",
                           "--no-progress", "--out", str(tmp_path / "two.csv")], capture_output=True, text=True)
     assert ran.returncode == 0, ran.stderr
-    assert "Warning" not in ran.stderr, ran.stderr
+    assert "RuntimeWarning" not in ran.stderr, ran.stderr  # a KernelWarning (no compiler) may stand there
     assert st.load_table(tmp_path / "two.csv")["success"].all()
 
 
