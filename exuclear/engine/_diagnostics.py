@@ -2,7 +2,8 @@
 
 Before: a model that cannot run names its likely cause (issue 15): a body of a
 clearance joint without mass, a journal that starts outside its bearing, a non-finite
-initial coordinate or velocity.  After: contact chatter that is a numerical artefact.
+initial coordinate or velocity.  After: contact chatter that is a numerical artefact, and
+the tilt of a spatial joint that started aligned (below).
 
 Chatter.  An implicit method without error control (Exudyn's generalized-alpha) that
 takes steps of more than a tenth of a joint's contact period
@@ -11,6 +12,12 @@ opening: the contact mode rings and the journal leaves the wall without a physic
 cause.  A resting pendulum at steps of 1e-3 s leaves the wall 68 times in 2 s where
 DOPRI5 and physics give one contact.  Separations taken at such steps are counted per
 joint from the contact records and the accepted step times, and the run says so.
+
+Tilt of an aligned journal (issue 21, docs/physics.md section 9.8).  A spatial joint's
+journal that starts exactly aligned stays in its plane only as long as round-off does:
+under a varying in-plane load (a swinging double pendulum) the tilt is an unstable mode of
+the rigid bodies on the slices, and it grows from 1e-17 rad at some 30 per second.  A run
+in which such a journal tilted beyond a fraction of ``c / L`` says so.
 """
 from __future__ import annotations
 
@@ -40,6 +47,17 @@ _UNHELD_TOLERANCE = 1e-6
 #: Singular values of the constraint Jacobian below this fraction of the largest count as
 #: zero (Exudyn's ComputeSystemDegreeOfFreedom uses 1e-12).
 _RANK_RTOL = 1e-10
+#: Initial tilt [rad] up to which a spatial joint's journal counts as started aligned:
+#: round-off of a rotation matrix (1e-16) with a wide margin, far below any misalignment
+#: a model would set on purpose.
+ALIGNED_TILT = 1e-12
+#: Fraction of ``c / L`` (the tilt at which an edge of the journal crosses the clearance,
+#: from centred) beyond which a journal that started aligned is named after the run: far
+#: above round-off, far below the edge contact (issue 21's model: 0.16 of it in 1 s).
+TILT_NOTE_FRACTION = 0.01
+#: Relative angular velocity across the axis [rad/s] up to which a journal counts as
+#: started without tilting: a journal set tumbling on purpose has far more.
+ALIGNED_TILT_RATE = 1e-12
 
 
 class OutOfPlaneWarning(UserWarning):
@@ -339,3 +357,44 @@ def chatter_note(mbs: exu.MainSystem, handle: ClearanceJointHandle, step_times: 
             f"longer than a tenth of its contact period ({period:.2g} s, estimated); such separations are not "
             f"resolved, and the {onsets} contact onsets may be numerical chatter, not physics. Rerun with "
             f"`step` <= {limit:.2g} s (or an explicit adaptive method where the model allows)")
+
+
+def started_aligned(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> bool:
+    """Whether a spatial joint's journal starts aligned and not tilting: its axis within
+    :data:`ALIGNED_TILT` of the bearing axis, and the relative angular velocity across the
+    axis within :data:`ALIGNED_TILT_RATE`, in the initial configuration."""
+    if not handle.slices:
+        return False
+    ref, ov = exu.ConfigurationType.Initial, exu.OutputVariableType
+    b, j = handle.markerNumbers
+    frame = np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
+    a_b = np.asarray(mbs.GetMarkerOutput(b, ov.RotationMatrix, configuration=ref), dtype=float).reshape(3, 3) @ frame
+    a_j = np.asarray(mbs.GetMarkerOutput(j, ov.RotationMatrix, configuration=ref), dtype=float).reshape(3, 3)
+    axis = a_b.T @ a_j @ np.asarray(handle.axis_journal, dtype=float)
+    rate = a_b.T @ (np.asarray(mbs.GetMarkerOutput(j, ov.AngularVelocity, configuration=ref), dtype=float)
+                    - np.asarray(mbs.GetMarkerOutput(b, ov.AngularVelocity, configuration=ref), dtype=float))
+    return bool(math.hypot(axis[0], axis[1]) <= ALIGNED_TILT and math.hypot(rate[0], rate[1]) <= ALIGNED_TILT_RATE)
+
+
+def tilt_note(handle: ClearanceJointHandle, aligned: bool) -> str:
+    """A sentence if a spatial joint whose journal started aligned (``aligned``, from
+    :func:`started_aligned`) tilted beyond :data:`TILT_NOTE_FRACTION` of ``c / L`` (module
+    docstring), else ``""``.  Reads the recorded outputs: nothing without ``record``."""
+    if not aligned or handle.sensorNumber is None:
+        return ""
+    out = handle.outputs()
+    if len(out["time"]) == 0:
+        return ""
+    tilt = np.hypot(out["tilt_x"], out["tilt_y"])
+    k = int(np.argmax(tilt))
+    geometry = handle.joint.geometry
+    scale = geometry.clearance / geometry.length
+    if not tilt[k] > TILT_NOTE_FRACTION * scale:
+        return ""
+    return (f"joint {handle.name or handle.objectNumber!r}: the journal started aligned and tilted to {tilt[k]:.2g} rad "
+            f"({tilt[k] / scale:.2g} c/L) at t = {out['time'][k]:.4g} s. If nothing in the model loads it out of its "
+            "plane, this is the unstable tilt mode of the sliced joint under a varying in-plane load, grown from "
+            "round-off (docs/physics.md section 9.8): its growth rate is the model's, its size at a given time is set "
+            "by round-off. "
+            "For a model meant to stay planar, use the planar joint (no `slices`) with constrainAxial=True, which "
+            "holds the tilt")

@@ -364,7 +364,10 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the out-of-plane motion stays free of redundant constraints.  True: an
         ``ObjectJointGeneric`` also holds axial translation and tilt, as the replaced
         revolute joint did (3D bodies; needs an implicit solver); for a spatial joint
-        (``slices``) the axial translation only, since the slices carry the tilt.
+        (``slices``) the axial translation only, since the slices carry the tilt.  A spatial
+        journal started aligned under varying in-plane loads tilts from round-off (an
+        unstable mode of the slices, docs/physics.md section 9.8): for a model meant to stay
+        planar, leave out ``slices``.
         Where nothing in the model holds what the replaced revolute joint held (a 3D
         journal whose only link to the bearing is this joint), :func:`exuclear.simulate`
         warns before the run (``OutOfPlaneWarning``, naming the joint, the motion and

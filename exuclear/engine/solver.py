@@ -22,7 +22,7 @@ import exudyn as exu
 
 from ..settings import DEFAULT_STEP, METHODS, SolverSettings
 from ..timescales import step_from_contact_periods
-from ._diagnostics import chatter_note, check_model, joint_contact_period, unread_masses
+from ._diagnostics import chatter_note, check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
 from .checks import check_system
 from .handle import ClearanceJointHandle, joints_of
 
@@ -248,6 +248,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         mbs.Assemble()
     joints = joints_of(mbs)
     check_model(mbs, joints)
+    aligned = [started_aligned(mbs, h) for h in joints]  # read before the run changes the state
     settings = _with_step(mbs, settings)
     if settings.explicit:
         constrained = _constraint_objects(mbs)
@@ -304,6 +305,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     notes = tuple(step_notes)
     if not settings.explicit:  # adaptive explicit methods resolve separations by their error control
         notes += tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
+    notes += tuple(n for n in (tilt_note(h, a) for h, a in zip(joints, aligned)) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)
     return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes, step=settings.step)
