@@ -247,6 +247,18 @@ class ClearanceJointHandle:
         return self._backend.failure()
 
     @property
+    def counts(self) -> dict[str, int]:
+        """What the joint counted in the last run, so that a user of a plain
+        ``mbs.SolveDynamic`` needs no solver internals: ``impacts`` (contacts begun, as
+        :attr:`history`'s ``onsets``), ``rejected_steps`` (steps the joint's step control
+        sent back shorter), ``unresolved_steps`` (steps it could not have shortened enough:
+        see :attr:`notes`) and ``over_limit_steps`` (accepted with a penetration beyond
+        ``maxPenetration``)."""
+        control = self._backend.step_control()
+        return {"impacts": self.history.onsets, "rejected_steps": int(control["rejected"]),
+                "unresolved_steps": int(control["unresolved"]), "over_limit_steps": int(control["over_limit"])}
+
+    @property
     def notes(self) -> list[str]:
         """What the joint's own step control could not do in the last run (steps it could not
         resolve, a penetration beyond the limit), each with the joint's name, the time, the
