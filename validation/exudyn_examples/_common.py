@@ -186,6 +186,26 @@ def example_settings(end_time: float, steps: int) -> exu.SimulationSettings:
     return ss
 
 
+def rigid_body_energy(bodies: list[Any], inertias: list[Any], gravity: Any) -> Callable[[exu.MainSystem], tuple]:
+    """``ZooModel.energy`` of bodies made by ``mbs.CreateRigidBody``: kinetic energy and the
+    gravity potential ``-m g . r`` of each centre of mass (0 at the origin) [J], for the
+    bodies' ``RigidBodyInertia`` (``com`` in the body frame) and the gravity vector [m/s^2]."""
+    g = np.asarray(gravity, dtype=float)
+
+    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
+        kinetic = potential = 0.0
+        for body, inertia in zip(bodies, inertias):
+            com = [float(x) for x in inertia.com]
+            v = np.asarray(mbs.GetObjectOutputBody(body, exu.OutputVariableType.Velocity, com))
+            w = np.asarray(mbs.GetObjectOutputBody(body, exu.OutputVariableType.AngularVelocityLocal, com))
+            r = np.asarray(mbs.GetObjectOutputBody(body, exu.OutputVariableType.Position, com))
+            kinetic += 0.5 * inertia.mass * v @ v + 0.5 * w @ np.asarray(inertia.InertiaCOM()) @ w
+            potential -= inertia.mass * g @ r
+        return kinetic, potential
+
+    return energy
+
+
 def scaled_end(settings: exu.SimulationSettings, end_time: float | None) -> None:
     """Shorten (or lengthen) a run to ``end_time`` [s] at the same step; None: keep."""
     if end_time is None:

@@ -37,7 +37,16 @@ import numpy as np
 
 import exuclear
 
-from ._common import JOINT_DEFAULTS, PROBE_BOUND_CARRIED, ZooModel, example_settings, register, scaled_end, solver_settings_like
+from ._common import (
+    JOINT_DEFAULTS,
+    PROBE_BOUND_CARRIED,
+    ZooModel,
+    example_settings,
+    register,
+    rigid_body_energy,
+    scaled_end,
+    solver_settings_like,
+)
 
 EXAMPLE = "exuclear issue 20 (3D double pendulum of two steel bars)"
 BODIES = "mbs.CreateRigidBody (NodeRigidBodyEP / Rxyz / RotVecLG), mbs.CreateRevoluteJoint"
@@ -52,21 +61,6 @@ JOURNAL_RADIUS, BEARING_RADIUS, BEARING_LENGTH, CR = 9.9e-3, 10e-3, 20e-3, 0.7
 #: Node types of the registered variants.
 NODE_TYPES = {"ep": exu.NodeType.RotationEulerParameters, "rxyz": exu.NodeType.RotationRxyz,
               "rotvec": exu.NodeType.RotationRotationVector}
-
-
-def _energy(bodies: list[Any], inertia: Any) -> Any:
-    """Kinetic and gravity potential energy [J] of the bars (potential 0 at y = 0)."""
-    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
-        kinetic = potential = 0.0
-        for b in bodies:
-            v = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.Velocity, [0, 0, 0]))
-            w = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.AngularVelocityLocal, [0, 0, 0]))
-            y = mbs.GetObjectOutputBody(b, exu.OutputVariableType.Position, [0, 0, 0])[1]
-            j = np.asarray(inertia.InertiaCOM())  # the body's reference point is its centre of mass
-            kinetic += 0.5 * inertia.mass * v @ v + 0.5 * w @ j @ w
-            potential += inertia.mass * GRAVITY * y
-        return kinetic, potential
-    return energy
 
 
 def build(clearance: bool, end_time: float | None = None, node_type: str = "ep", **joint_options: Any) -> ZooModel:
@@ -100,7 +94,7 @@ def build(clearance: bool, end_time: float | None = None, node_type: str = "ep",
 
     return ZooModel(f"double_pendulum_3d_{node_type}", mbs, ss, solver, joint,
                     BEARING_RADIUS - JOURNAL_RADIUS if clearance else None, probe, solver_settings_like(ss, solver),
-                    probe_bound=PROBE_BOUND_CARRIED, energy=_energy(bars, inertia))
+                    probe_bound=PROBE_BOUND_CARRIED, energy=rigid_body_energy(bars, [inertia] * 2, [0, -GRAVITY, 0]))
 
 
 for _name in NODE_TYPES:  # one registered model per node type

@@ -61,7 +61,16 @@ from exudyn.itemInterface import MarkerBodyRigid, ObjectJointGeneric
 
 import exuclear
 
-from ._common import PROBE_BOUND_CARRIED, ZooModel, example_settings, joint_parameters, register, scaled_end, solver_settings_like
+from ._common import (
+    PROBE_BOUND_CARRIED,
+    ZooModel,
+    example_settings,
+    joint_parameters,
+    register,
+    rigid_body_energy,
+    scaled_end,
+    solver_settings_like,
+)
 
 EXAMPLE = "main/pythonDev/Examples/fourBarMechanism3D.py"
 BODIES = "mbs.CreateRigidBody (NodeRigidBodyEP), ObjectJointGeneric revolute joints, closed (redundant) loop"
@@ -80,23 +89,6 @@ REVOLUTE_Z = [1, 1, 1, 1, 1, 0]
 #: The example's cure 3 for its last joint (rocker - ground): x and y only, which removes
 #: the closed loop's three redundant constraints (z, rotation about x and y).
 PLANAR_CLOSURE = [1, 1, 0, 0, 0, 0]
-
-
-def _energy(bodies: list[Any], inertia: Any) -> Any:
-    """Kinetic and gravity potential energy [J] of the links (potential -m g.r, 0 at the origin)."""
-    g = np.asarray(GRAVITY)
-
-    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
-        kinetic = potential = 0.0
-        inertia_com = np.asarray(inertia.InertiaCOM())
-        for b in bodies:
-            v = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.Velocity, [0, 0, 0]))
-            w = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.AngularVelocityLocal, [0, 0, 0]))
-            r = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.Position, [0, 0, 0]))
-            kinetic += 0.5 * inertia.mass * v @ v + 0.5 * w @ inertia_com @ w
-            potential -= inertia.mass * g @ r
-        return kinetic, potential
-    return energy
 
 
 @register
@@ -145,5 +137,5 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
                                                 localPosition=[0, 0, half]))
 
     return ZooModel("four_bar_3d", mbs, ss, solver, joint, CLEARANCE if clearance else None, probe,
-                    solver_settings_like(ss, solver), energy=_energy([crank, coupler, rocker], inertia),
+                    solver_settings_like(ss, solver), energy=rigid_body_energy([crank, coupler, rocker], [inertia] * 3, GRAVITY),
                     probe_bound=PROBE_BOUND_CARRIED)

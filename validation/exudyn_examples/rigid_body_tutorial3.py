@@ -38,7 +38,16 @@ import numpy as np
 
 import exuclear
 
-from ._common import PROBE_BOUND_CARRIED, ZooModel, example_settings, joint_parameters, register, scaled_end, solver_settings_like
+from ._common import (
+    PROBE_BOUND_CARRIED,
+    ZooModel,
+    example_settings,
+    joint_parameters,
+    register,
+    rigid_body_energy,
+    scaled_end,
+    solver_settings_like,
+)
 
 EXAMPLE = "main/pythonDev/Examples/rigidBodyTutorial3.py"
 BODIES = "mbs.CreateRigidBody (NodeRigidBodyEP, COM offset), mbs.CreateRevoluteJoint, constrainAxial"
@@ -50,21 +59,6 @@ END_TIME, STEP = 4.0, 1e-3
 #: Our pin: bearing radius (the example's drawn axis radius 0.2 w), radial clearance,
 #: bearing length (the links' width) [m].
 BEARING_RADIUS, CLEARANCE, BEARING_LENGTH = 0.2 * WIDTH, 40e-6, WIDTH
-
-
-def _energy(bodies: list[Any], inertias: list[Any]) -> Any:
-    """Kinetic and gravity potential energy [J] of the links (potential 0 at y = 0)."""
-    def energy(mbs: exu.MainSystem) -> tuple[float, float]:
-        kinetic = potential = 0.0
-        for b, inertia in zip(bodies, inertias):
-            com = inertia.com
-            v = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.Velocity, list(com)))
-            w = np.asarray(mbs.GetObjectOutputBody(b, exu.OutputVariableType.AngularVelocityLocal, [0, 0, 0]))
-            y = mbs.GetObjectOutputBody(b, exu.OutputVariableType.Position, list(com))[1]
-            kinetic += 0.5 * inertia.mass * v @ v + 0.5 * w @ np.asarray(inertia.InertiaCOM()) @ w
-            potential += inertia.mass * GRAVITY * y
-        return kinetic, potential
-    return energy
 
 
 @register
@@ -101,7 +95,8 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
                                                 localPosition=[0, 0, 0.5 * LENGTH]))
 
     return ZooModel("rigid_body_tutorial3", mbs, ss, solver, joint, CLEARANCE if clearance else None, probe,
-                    solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED, energy=_energy([link0, link1], [inertia0, inertia1]))
+                    solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED,
+                    energy=rigid_body_energy([link0, link1], [inertia0, inertia1], gravity))
 
 
 register(build, name="rigid_body_tutorial3_friction", friction="paper")
