@@ -202,3 +202,23 @@ def test_kinematic_tree_chain_at_its_explicit_euler_step_is_told():
     with pytest.warns(exuclear.AccuracyWarning, match=r"joint 'J1'.*use a step of at most"):
         model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
     assert model.mbs.systemData.GetTime() == pytest.approx(OWN, rel=1e-9)
+
+
+def test_a_run_exudyn_ends_in_contact_is_told_with_the_tolerance_that_works():
+    # the zoo's slider-crank keeps SliderCrank.py's Newton tolerances of 1e-10, below the
+    # crank pin's contact round-off: Exudyn's Newton gives up at 0.027 s and says only
+    # "SolveDynamic terminated"; the joint names itself, the time and the tolerance to use,
+    # and that tolerance is the one that lets the same run reach its end (issue 20)
+    from validation.exudyn_examples import slider_crank_2d
+
+    model = slider_crank_2d.build(True, 0.05)
+    with pytest.raises(Exception, match="SolveDynamic terminated"):
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    with pytest.warns(exuclear.AccuracyWarning, match="ended the run at t = 0.027"):
+        notes = model.joint.notes
+    assert len(notes) == 1 and "'crank pin'" in notes[0] and "relativeTolerance >= 1e-08" in notes[0]
+    model = slider_crank_2d.build(True, 0.05)
+    model.simulation_settings.timeIntegration.newton.relativeTolerance = 1e-8
+    model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    assert model.mbs.systemData.GetTime() == pytest.approx(0.05)
+    assert model.joint.notes == []

@@ -412,8 +412,9 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
     contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
     can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
     5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
+    stopped = [] if running else _stopped_note(handle)
     if not control["unresolved"] and not control["over_limit"]:
-        return []
+        return stopped
     _can, _min, why, _rate = solver_steps(handle.mbs)
     period = math.nan
     try:
@@ -440,7 +441,40 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
                      f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
                      "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
                      "automaticStepSize = True for explicit solvers)"))
-    return notes
+    return notes + stopped
+
+
+#: Newton tolerances at which a stiff contact's residual converges (the defaults of
+#: exuclear.SolverSettings): below them Newton stalls at the contact's round-off.
+CONTACT_NEWTON_RTOL, CONTACT_NEWTON_ATOL = 1e-8, 1e-6
+
+
+def _stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
+    """("stopped", sentence) where Exudyn's solver ended the last run before its end time
+    while this joint was in contact: Exudyn then says only "SolveDynamic terminated"."""
+    mbs = handle.mbs
+    try:
+        solver, settings = mbs.sys["dynamicSolver"], mbs.sys["simulationSettings"]
+        finished, end = bool(solver.output.finishedSuccessfully), float(settings.timeIntegration.endTime)
+        newton = settings.timeIntegration.newton
+        rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
+        adaptive = bool(settings.timeIntegration.adaptiveStep)
+    except Exception:  # no SolveDynamic run (or another solver): nothing to say
+        return []
+    t, state = mbs.systemData.GetTime(), handle.state()
+    if finished or t >= end or not state.in_contact:
+        return []
+    advice = []
+    if rtol < CONTACT_NEWTON_RTOL or atol < CONTACT_NEWTON_ATOL:
+        advice.append(f"Newton tolerances no tighter than the contact's round-off allows (timeIntegration.newton."
+                      f"relativeTolerance >= {CONTACT_NEWTON_RTOL:g}, now {rtol:g}; absoluteTolerance >= "
+                      f"{CONTACT_NEWTON_ATOL:g}, now {atol:g})")
+    if not adaptive:
+        advice.append("timeIntegration.adaptiveStep = True, so that the joint can shorten the steps")
+    advice.append("a shorter step")
+    return [("stopped", f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s "
+                        f"(e.g. its Newton did not converge) while this joint was in contact (penetration "
+                        f"{state.delta / handle.joint.geometry.clearance:.3g} c); try " + ", or ".join(advice))]
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
