@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import warnings
 from dataclasses import replace
 
@@ -190,12 +191,13 @@ def test_too_soft_material_stops_with_time_joint_advice_and_kept_results():
 
 
 def test_too_large_step_stops_with_time_and_advice():
-    # generalized-alpha at a fixed 2e-4 s (no impact-aware steps) cannot resolve the first
-    # impact (~40 us): Newton fails
+    # generalized-alpha at a fixed 2e-4 s (no impact-aware steps) cannot resolve the impacts
+    # (~40 us each): the penetration passes the joint's limit at t = 8 ms (with a coarser
+    # Jacobian, Newton failed first; either way the run stops with the time and the advice)
     params = SliderCrankParams.paper(formulation="redundant")
     result = sc_model.run(params, replace(sc_model.default_settings(params), step=2e-4, impact_step=None))
     assert not result.success
-    assert "stopped at t = " in result.message and "try a smaller `step`" in result.message
+    assert "stopped at t = " in result.message and re.search(r"try a smaller `?step", result.message)
     assert 0 < result.columns["time"][-1] < params.end_time
 
 

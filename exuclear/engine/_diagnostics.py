@@ -16,7 +16,8 @@ joint from the contact records and the accepted step times, and the run says so.
 Tilt of an aligned journal (issue 21, docs/physics.md section 9.8).  A spatial joint's
 journal that starts exactly aligned stays in its plane only as long as round-off does:
 under a varying in-plane load (a swinging double pendulum) the tilt is an unstable mode of
-the rigid bodies on the slices, and it grows from 1e-17 rad at some 30 per second.  A run
+the rigid bodies on the slices, and it grows from round-off (1e-17 to 1e-14 rad) at some 30
+to 60 per second.  A run
 in which such a journal tilted beyond a fraction of ``c / L`` says so.
 """
 from __future__ import annotations

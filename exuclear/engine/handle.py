@@ -20,6 +20,7 @@ from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
 from .layout import MAIN, PROBE, TORQUE, parameters, read
+from .newton import steer_newton
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -75,6 +76,10 @@ class ClearanceJointHandle:
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
         self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
         self._impact_step = 0.0
+        #: Whether the joint sets the Newton settings of the implicit runs it starts
+        #: (:mod:`exuclear.engine.newton`); ``newton_changes``: what it set in the last run.
+        self.steer_newton = True
+        self.newton_changes: dict[str, tuple[Any, Any]] = {}
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
         self._reported_run, self._notes = 0, []
         self._told_run, self._told = 0, set()  # the run, and the kinds of notes already warned of
@@ -391,6 +396,14 @@ class _RunStart:
             return True, 0.0, "", True
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
+        if handle is not None and handle.steer_newton:
+            from ._diagnostics import joint_contact_period  # the diagnostics import this module
+
+            try:
+                period = joint_contact_period(mbs, handle)
+            except Exception:  # a body whose mass is not read: no Jacobian per step
+                period = math.nan
+            handle.newton_changes = steer_newton(mbs, period)
         return can_shorten, min_step, label(handle) if handle is not None else "", rate
 
     def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:

@@ -1,0 +1,75 @@
+"""What the joint changes in an implicit solver's Newton method for the run it starts.
+
+Exudyn differentiates the joint's connector numerically (an
+``ObjectConnectorRigidBodySpringDamper`` with a user function offers no analytic Jacobian:
+its ``GetAvailableJacobians`` lists ``ODE2_ODE2`` and ``ODE2_ODE2_t`` without the
+``_function`` flags, so ``CSystem::JacobianODE2RHS`` perturbs each of its coordinates).  The
+forward-difference increment is ``relativeEpsilon * max(minimumCoordinateSize, |q|)``:
+with Exudyn's default ``relativeEpsilon = 1e-7`` that is 1e-7 m on a coordinate of 1 m,
+the size of a resting journal's penetration (0.2 um on the zoo's double pendulum).  A
+contact force ``K delta^n`` differenced over an increment ``h`` has the relative slope error
+``(n - 1) h / (2 delta)``, 12 % there, and Newton converges only linearly: 8 iterations
+per step in contact where Exudyn's step recovery (``adaptiveStepRecoveryIterations = 7``)
+needs 7 at most, so a step cut at an impact never grows back.
+
+For the run it starts (the solver's own copy of the settings; the user's
+``SimulationSettings`` are not changed), the joint therefore sets
+
+- ``relativeEpsilon`` to at most :data:`RELATIVE_EPSILON`: an increment of 1e-9 m per metre
+  of coordinate, a slope error of 0.25 % on a 0.2 um penetration at 1 m, and well above
+  the round-off of the difference quotient (relative error ~1e-16 / 1e-9 = 1e-7; at 1e-10
+  the Newton iterates carry that round-off out of the joint's plane, and an aligned spatial
+  journal's tilt, physics.md section 9.8, then grows from 7e-12 rad, not from 1e-17);
+- ``modifiedNewtonJacUpdatePerStep`` to True where the user runs Exudyn's modified Newton
+  (its default) with a step ``h`` longer than :data:`JACOBIAN_PER_STEP_ABOVE` times the
+  joint's contact period ``T_c`` (:func:`exuclear.timescales.contact_period`, under the
+  joint's weight).  Newton's matrix holds the mass term ``M / (beta h^2)`` and the contact
+  stiffness ``k = M omega_c^2``; their ratio ``beta (omega_c h)^2 = beta (2 pi h / T_c)^2``
+  is 2.5 at ``h = T_c / 2`` (``beta ~ 1/4``) and 10 at ``h = T_c``.  There a Jacobian of
+  another contact state, or of free flight, is wrong by that much and the modified Newton
+  stalls (contraction ~0.4 per iteration, 8 to 11 iterations per step, read from Exudyn's
+  verbose log of the zoo's double pendulum at ``h = 2 T_c``); one Jacobian at the start of
+  each step holds the present stiffness.  Below, stale Jacobians still converge (6
+  iterations per step on the zoo's ANCF pendulum at ``h = 0.4 T_c``) and the extra
+  Jacobians cost more than they save (7.1 s against 5.2 s there).
+
+Measured on the zoo (``validation/exudyn_examples``, own settings, plain
+``mbs.SolveDynamic``, see README).  ``joint.steer_newton = False`` leaves the solver as
+the user set it.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import exudyn as exu
+
+#: The largest ``numericalDifferentiation.relativeEpsilon`` the joint lets an implicit run
+#: use (module docstring).
+RELATIVE_EPSILON = 1e-9
+#: A Jacobian at the start of each step where the run's largest step exceeds this fraction
+#: of the joint's contact period (module docstring).
+JACOBIAN_PER_STEP_ABOVE = 0.5
+
+
+def steer_newton(mbs: exu.MainSystem, contact_period: float) -> dict[str, tuple[Any, Any]]:
+    """Set the Newton settings of the implicit solver ``mbs.SolveDynamic`` is starting (module
+    docstring) for a joint of ``contact_period`` [s] (NaN: unknown, no Jacobian per step);
+    returns what changed, ``{setting: (before, after)}``, empty where nothing did (an
+    explicit solver, a run not started by ``SolveDynamic``, settings already as needed)."""
+    try:
+        solver = mbs.sys["dynamicSolver"]
+        newton = solver.newton
+    except Exception:  # no SolveDynamic run, or an explicit solver (no Newton)
+        return {}
+    if "Explicit" in type(solver).__name__:
+        return {}
+    changed: dict[str, tuple[Any, Any]] = {}
+    differentiation = newton.numericalDifferentiation
+    if differentiation.relativeEpsilon > RELATIVE_EPSILON:
+        changed["numericalDifferentiation.relativeEpsilon"] = (differentiation.relativeEpsilon, RELATIVE_EPSILON)
+        differentiation.relativeEpsilon = RELATIVE_EPSILON
+    if (newton.useModifiedNewton and not newton.modifiedNewtonJacUpdatePerStep
+            and solver.it.maxStepSize > JACOBIAN_PER_STEP_ABOVE * contact_period):
+        changed["modifiedNewtonJacUpdatePerStep"] = (False, True)
+        newton.modifiedNewtonJacUpdatePerStep = True
+    return changed

@@ -1,0 +1,84 @@
+"""The joint's Newton settings for the implicit runs it starts (exuclear.engine.newton, issue 20).
+
+Exudyn differentiates the joint's connector numerically with an increment of 1e-7 per unit
+of coordinate, the size of a resting journal's penetration; its modified Newton then
+converges linearly and takes more iterations per step than Exudyn's step recovery allows
+(``adaptiveStepRecoveryIterations``, 7), so a step cut at an impact never grows back.  The
+joint sets the solver's copy of the increment, and a Jacobian per step where the step is
+longer than half its contact period.  Checked on the zoo's planar double pendulum
+(doublePendulum2D.py, own settings: generalized-alpha at 1e-3 s, twice the elbow's contact
+period).
+"""
+from __future__ import annotations
+
+import warnings
+
+import exudyn as exu
+import pytest
+
+from exuclear.engine._diagnostics import joint_contact_period
+from exuclear.engine.newton import JACOBIAN_PER_STEP_ABOVE, RELATIVE_EPSILON
+from validation.exudyn_examples import double_pendulum_2d, double_pendulum_3d, kinematic_tree_chain
+
+EXUDYN_EPSILON = exu.SimulationSettings().timeIntegration.newton.numericalDifferentiation.relativeEpsilon
+RECOVERY_ITERATIONS = exu.SimulationSettings().timeIntegration.adaptiveStepRecoveryIterations  # 7
+
+
+def _run(build, end_time, steer=True):
+    model = build(True, end_time)
+    model.joint.steer_newton = steer
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    return model
+
+
+def test_the_solver_copy_is_set_and_the_users_settings_are_not():
+    model = _run(double_pendulum_2d.build, 0.05)
+    solver = model.mbs.sys["dynamicSolver"]
+    assert solver.newton.numericalDifferentiation.relativeEpsilon == RELATIVE_EPSILON
+    assert solver.newton.modifiedNewtonJacUpdatePerStep
+    user = model.simulation_settings.timeIntegration.newton
+    assert user.numericalDifferentiation.relativeEpsilon == EXUDYN_EPSILON
+    assert not user.modifiedNewtonJacUpdatePerStep
+    assert model.joint.newton_changes == {
+        "numericalDifferentiation.relativeEpsilon": (EXUDYN_EPSILON, RELATIVE_EPSILON),
+        "modifiedNewtonJacUpdatePerStep": (False, True)}
+
+
+def test_steer_newton_false_leaves_the_solver_as_the_user_set_it():
+    model = _run(double_pendulum_2d.build, 0.05, steer=False)
+    solver = model.mbs.sys["dynamicSolver"]
+    assert solver.newton.numericalDifferentiation.relativeEpsilon == EXUDYN_EPSILON
+    assert not solver.newton.modifiedNewtonJacUpdatePerStep
+    assert model.joint.newton_changes == {}
+
+
+def test_a_jacobian_per_step_only_where_the_step_exceeds_half_the_contact_period():
+    # the 3D double pendulum runs at 1e-4 s, 0.23 of its elbow's contact period
+    model = _run(double_pendulum_3d.build, 0.02)
+    step = model.mbs.sys["dynamicSolver"].it.maxStepSize
+    assert step < JACOBIAN_PER_STEP_ABOVE * joint_contact_period(model.mbs, model.joint)
+    assert list(model.joint.newton_changes) == ["numericalDifferentiation.relativeEpsilon"]
+
+
+def test_an_explicit_solver_is_left_alone():
+    model = _run(kinematic_tree_chain.build, 0.05)  # explicit Euler: no Newton
+    assert model.joint.newton_changes == {}
+
+
+def test_newton_converges_within_exudyns_step_recovery_and_the_steps_grow_back():
+    # 1 s: 21 impacts settling into permanent contact.  Exudyn's own settings: 7.7 Newton
+    # iterations per step (more than the 7 that let a step grow) and 7002 steps; steered:
+    # 5.3 and 2330 (measured)
+    steered, own = _run(double_pendulum_2d.build, 1.0), _run(double_pendulum_2d.build, 1.0, steer=False)
+    counts = {}
+    for name, model in (("steered", steered), ("own", own)):
+        it = model.mbs.sys["dynamicSolver"].it
+        counts[name] = (it.newtonStepsCount / it.currentStepIndex, it.currentStepIndex)
+    assert counts["own"][0] > RECOVERY_ITERATIONS
+    assert counts["steered"][0] < RECOVERY_ITERATIONS
+    assert counts["steered"][1] < 0.5 * counts["own"][1]
+    # both runs resolve the same contacts: the largest penetration agrees to 1 %
+    pen = [m.joint.outputs()["penetration"].max() for m in (steered, own)]
+    assert pen[0] == pytest.approx(pen[1], rel=0.01)
