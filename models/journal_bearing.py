@@ -155,6 +155,7 @@ class JournalBearingParams:
 
     def __post_init__(self) -> None:
         check_fields(self)
+        lubrication(self.viscosity, self.film_model)  # a film model without oil is refused here, not at joint()
 
     def joint(self) -> exuclear.ClearanceJoint:
         return exuclear.make_joint(
