@@ -839,7 +839,8 @@ def main(argv: list[str] | None = None) -> int:
 #: with the crank speed in rpm, ``startup`` revolutions left out of the steady metrics and
 #: ``revolutions`` measured after them.  Every name but ``rpm`` and ``startup`` is a
 #: :class:`SliderCrankParams` field.  ``viscosity`` None (or ``"none"`` on a command line:
-#: ``--viscosity none,0.01,0.1`` sweeps dry and two oils) is a dry joint.
+#: ``--viscosity none,0.01,0.1`` sweeps dry and two oils) is a dry joint, whatever the
+#: ``film_model`` of its row.
 def _study_defaults() -> dict:
     paper = SliderCrankParams.paper()
     fields = ("law", "journal_material", "bearing_material", "friction", "bearing_length", "gravity", "v_min",
@@ -902,6 +903,10 @@ def study_params(values: dict) -> SliderCrankParams:
     v = {**STUDY_PARAMETERS, **values}
     if isinstance(v["viscosity"], str) and v["viscosity"].lower() == "none":
         v["viscosity"] = None  # a dry joint, as the command line spells it
+    if v["viscosity"] is None:
+        # the dry runs of a sweep over viscosity and film model (--viscosity none,0.01
+        # --film-model finite): a dry joint has no film, so the film model does not apply
+        v["film_model"] = FILM_MODEL_DEFAULT
     unknown = sorted(set(v) - set(STUDY_PARAMETERS))
     if unknown:
         raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")

@@ -118,6 +118,8 @@ def test_command_line_options_parse_and_refuse_bad_input(capsys):
 
 def test_the_study_sweeps_viscosity():
     assert sc.study_params({"viscosity": "none"}).joint.film is None  # the command line's spelling of dry
+    # a sweep's dry rows: the film model of the oiled rows does not apply to them
+    assert sc.study_params({"viscosity": "none", "film_model": "finite"}).joint.film is None
     p = sc.study_params({"viscosity": 0.02, "film_model": "finite"})
     assert p.joint.film.viscosity == 0.02 and p.joint.film.name == "finite"
     assert sc.STUDY_COLUMNS["viscosity"].unit == "Pa s"
