@@ -805,11 +805,12 @@ def main(argv: list[str] | None = None) -> int:
     else:
         print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
         if "film_force" in result.columns:
-            cols = result.columns
+            cols, t = result.columns, result.columns["time"]
+            contact = float(np.trapezoid((cols["regime"] == REGIME_CONTACT).astype(float), t)) / (t[-1] - t[0])
             print(f"  oil film: peak joint force (film and contact) {cols['joint_force'].max():.1f} N, largest "
                   f"eccentricity ratio {cols['eccentricity_ratio'].max():.4g}, smallest film thickness "
-                  f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact in "
-                  f"{100.0 * np.mean(cols['regime'] == REGIME_CONTACT):.3g} % of the outputs")
+                  f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact {100.0 * contact:.3g} % "
+                  "of the time")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
     if args.check_convergence:
         print(check_convergence(params, settings).report())
