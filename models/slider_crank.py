@@ -872,7 +872,7 @@ STUDY_METRICS = {
     # mechanism's (ideal_slider_acceleration), and that over the ideal RMS
     "slider_acc_rms_dev": Column("RMS deviation of the slider acceleration from the ideal", "m/s^2"),
     "slider_acc_rms_dev_rel": Column("RMS deviation of the slider acceleration / ideal RMS"),
-    # the energy audit (_energy_audit; minimal formulation, NaN in the others)
+    # the energy audit (_energy_audit; minimal formulation and a dry joint, NaN otherwise)
     "drive_work": Column("drive work", "J"),
     "contact_dissipated": Column("energy dissipated by the contact", "J"),
     "energy_residual": Column("energy residual", "J"),
@@ -1020,7 +1020,9 @@ def study(values: dict) -> dict:
 
     dev = rms(cols["slider_a"] - ideal)
     in_contact = (cols["penetration"] > 0.0).astype(float)
-    audit = (_energy_audit(model) if p.formulation == "minimal" else
+    # the audit counts what the metal contact dissipates, not the oil film's viscous work:
+    # with a film its residual would be that work, so a lubricated run has none
+    audit = (_energy_audit(model) if p.formulation == "minimal" and p.viscosity is None else
              dict.fromkeys(("drive_work", "contact_dissipated", "energy_residual", "energy_residual_rel"), math.nan))
     steady_force = cols["contact_force"][steady]
     # each steady revolution on its own (the last one may be partial): the points of a

@@ -116,6 +116,13 @@ def test_command_line_options_parse_and_refuse_bad_input(capsys):
     assert "invalid choice: 'ocvirk'" in capsys.readouterr().err
 
 
+def test_a_lubricated_study_row_has_no_energy_audit():
+    # the audit counts the contact's dissipation, not the film's viscous work (study())
+    row = sc.study({"viscosity": 0.05, "film_model": "finite", "startup": 0.1, "revolutions": 0.1})
+    assert row["success"] and math.isnan(row["energy_residual"]) and math.isnan(row["drive_work"])
+    assert row["metal_contact_fraction"] == 0.0 and row["min_film_thickness"] > 0.0
+
+
 def test_the_study_sweeps_viscosity():
     assert sc.study_params({"viscosity": "none"}).joint.film is None  # the command line's spelling of dry
     # a sweep's dry rows: the film model of the oiled rows does not apply to them
