@@ -128,8 +128,9 @@ class JournalBearingParams:
         "journal radius)"))  # checked by the library
     #: Dynamic viscosity [Pa s] of the oil in the clearance; None: dry (the paper's scene).
     viscosity: float | None = field(default=None, metadata=param(
-        "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); with oil the journal starts "
-        "at the centre (the approach scene)", optional(positive)))
+        "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
+        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated",
+        optional(positive)))
     film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
         "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
         choices=FILM_MODEL_NAMES))
@@ -148,7 +149,7 @@ class JournalBearingParams:
         """The approach scene (module docstring): the paper's journal and bearing, the journal
         started at the centre (``start_gap`` = c) towards the wall at the paper's 0.3 m/s,
         :data:`APPROACH_END_TIME`; dry unless ``viscosity`` is given."""
-        base = cls.paper(end_time=APPROACH_END_TIME, **changes)
+        base = cls.paper(**{"end_time": APPROACH_END_TIME, **changes})
         if "start_gap" in changes:
             return base
         return replace(base, start_gap=base.bearing_radius - base.journal_radius)
@@ -345,7 +346,8 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
     if args.viscosity is not None:
-        return _main_approach(args)
+        given = sys.argv[1:] if argv is None else argv
+        return _main_approach(args, end_time_given=any(a.split("=")[0] == "--end-time" for a in given))
     try:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
@@ -395,8 +397,9 @@ APPROACH_LINES = (
 )
 
 
-def _main_approach(args: argparse.Namespace) -> int:
-    """``--viscosity``: the approach scene (module docstring), dry and lubricated side by side."""
+def _main_approach(args: argparse.Namespace, end_time_given: bool) -> int:
+    """``--viscosity``: the approach scene (module docstring), dry and lubricated side by side;
+    its own end time unless ``--end-time`` was given (``end_time_given``)."""
     try:
         if args.plot is not None:
             raise ValueError("`--plot` draws the paper's impact (force against penetration); with --viscosity the "
@@ -404,7 +407,7 @@ def _main_approach(args: argparse.Namespace) -> int:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
         changes = changes_from_args(args, JournalBearingParams)
-        if changes["end_time"] == DEFAULT_END_TIME:  # the paper impact's default: the approach has its own
+        if not end_time_given:  # the paper impact's default: the approach has its own
             del changes["end_time"]
         oiled = JournalBearingParams.approach(**changes, law=law, cr=cr)
         dry = replace(oiled, viscosity=None, film_model=FILM_MODEL_DEFAULT)

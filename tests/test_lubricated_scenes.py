@@ -234,6 +234,15 @@ def test_journal_bearing_csv_holds_the_film(tmp_path):
     assert header[:2] == ["time", "penetration"] and "film_force" in header and "eccentricity_ratio" in header
 
 
+def test_journal_bearing_approach_end_time(tmp_path):
+    # the approach runs 1 ms (APPROACH_END_TIME) unless --end-time is given, even at the
+    # paper impact's 0.4 ms
+    for extra, end in (([], jb.APPROACH_END_TIME), (["--end-time", "4e-4"], 4e-4), (["--end-time=2e-4"], 2e-4)):
+        path = tmp_path / "approach.csv"
+        assert jb.main(["--viscosity", str(HOT_OIL), "--csv", str(path), "--dt-out", "1e-6", *extra]) == 0
+        assert np.loadtxt(path, delimiter=",", skiprows=1)[-1, 0] == pytest.approx(end, rel=1e-3)
+
+
 @pytest.mark.slow
 def test_the_validation_script_writes_its_figures_and_report(tmp_path):
     # python -m validation.lubricated_slider_crank with one timed run of each kind (~10 s)
