@@ -19,6 +19,16 @@ drawn lying on its side, "down" points at the wall) and a gap at the start
 ``v_impact = 0``) or dropped onto it from the centre (``start_gap = c``): build it with
 :func:`build` and integrate it with :func:`exuclear.simulate`.
 
+**With oil** (``viscosity``, ``film_model``) the paper's start means nothing: a journal
+touching the wall has no film between it and the wall.  The lubricated scene is the
+*approach* (:meth:`JournalBearingParams.approach`, :func:`run_approach`): the paper's journal
+starts at the centre of its bearing and moves towards the wall at the paper's impact
+velocity, through the clearance the dry journal crosses in free flight.  Dry, it hits the
+wall at that velocity; lubricated, the squeeze film between journal and wall slows it down
+(docs/physics.md eq. (66)), and the summary says how far it came (largest eccentricity
+ratio, smallest film thickness) and with which forces (metal contact, film, the two
+together), dry and lubricated side by side on the command line (``--viscosity``).
+
 Run ``python -m exuclear.models.journal_bearing --help`` for the options: one per
 :class:`JournalBearingParams` field of the paper's scene, and the outputs.
 """
@@ -46,11 +56,23 @@ import exuclear
 from exuclear import SolverSettings
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
+from exuclear.engine.outputs import FILM_OUTPUT_COLUMNS
 from exuclear.materials import MATERIALS
 from exuclear.study import Column
 
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
-from ._params import add_param_options, changes_from_args, check_fields, nonnegative, param, positive, study_columns
+from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication
+from ._params import (
+    add_param_options,
+    changes_from_args,
+    check_fields,
+    nonnegative,
+    one_of,
+    optional,
+    param,
+    positive,
+    study_columns,
+)
 from .scene import Scene
 
 #: Resolution of the impact: the largest step and the output interval [s].  A paper
@@ -63,6 +85,11 @@ GAP_ROUNDOFF = 1e-9
 #: The run stops this long after the start [s]: several impact durations.  The result
 #: reports an error if the journal has not left the wall by then.
 DEFAULT_END_TIME = 4e-4
+#: End of the approach scene [s] (:meth:`JournalBearingParams.approach`): three times the
+#: dry journal's flight across the paper's clearance (0.1 mm at 0.3 m/s: 0.33 ms), so that
+#: the dry journal's impact and rebound lie inside it, and a lubricated journal has come
+#: to rest on its squeeze film (the film's damping time ``m / d`` is microseconds here).
+APPROACH_END_TIME = 1e-3
 
 
 @dataclass(frozen=True)
@@ -99,6 +126,14 @@ class JournalBearingParams:
     max_penetration: float | None = field(default=None, metadata=param(
         "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
         "journal radius)"))  # checked by the library
+    #: Dynamic viscosity [Pa s] of the oil in the clearance; None: dry (the paper's scene).
+    viscosity: float | None = field(default=None, metadata=param(
+        "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
+        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated",
+        optional(positive)))
+    film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
+        "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
+        choices=FILM_MODEL_NAMES))
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -109,14 +144,26 @@ class JournalBearingParams:
                    impact_velocity=0.3)
         return replace(base, **changes)
 
+    @classmethod
+    def approach(cls, **changes: object) -> JournalBearingParams:
+        """The approach scene (module docstring): the paper's journal and bearing, the journal
+        started at the centre (``start_gap`` = c) towards the wall at the paper's 0.3 m/s,
+        :data:`APPROACH_END_TIME`; dry unless ``viscosity`` is given."""
+        base = cls.paper(**{"end_time": APPROACH_END_TIME, **changes})
+        if "start_gap" in changes:
+            return base
+        return replace(base, start_gap=base.bearing_radius - base.journal_radius)
+
     def __post_init__(self) -> None:
         check_fields(self)
+        lubrication(self.viscosity, self.film_model)  # a film model without oil is refused here, not at joint()
 
     def joint(self) -> exuclear.ClearanceJoint:
         return exuclear.make_joint(
             journal_radius=self.journal_radius, bearing_radius=self.bearing_radius, length=self.length,
             law=self.law, cr=self.cr, journal_material=self.journal_material,
-            bearing_material=self.bearing_material, v_min=self.v_min)
+            bearing_material=self.bearing_material, v_min=self.v_min,
+            lubrication=lubrication(self.viscosity, self.film_model))
 
 
 def build(params: JournalBearingParams) -> Scene:
@@ -187,6 +234,10 @@ def run(params: JournalBearingParams, settings: SolverSettings | None = None) ->
     if params.gravity != 0.0 or params.start_gap != 0.0:
         raise ValueError("run() summarises one impact that starts at t = 0 without gravity; for a resting or "
                          "dropped journal (`gravity`, `start_gap`) use build() and exuclear.simulate()")
+    if params.viscosity is not None:
+        raise ValueError("run() summarises the paper's impact, which starts touching the wall: no oil film is "
+                         "left there; for a lubricated journal use the approach scene (run_approach, "
+                         "JournalBearingParams.approach)")
     positive("impact_velocity", params.impact_velocity)
     scene = build(params)
     settings = settings or default_settings(params)
@@ -212,6 +263,57 @@ def run(params: JournalBearingParams, settings: SolverSettings | None = None) ->
         newton_departure_velocity=params.cr * params.impact_velocity,
         effective_restitution=departure / params.impact_velocity, wall_time=sim.wall_time,
         success=success, message=message)
+    return result, out
+
+
+@dataclass(frozen=True)
+class ApproachResult:
+    """Summary of the approach scene (SI units); ``success`` False with ``message`` if it
+    failed.  Forces: ``peak_contact_force`` the metal contact's, ``peak_film_force`` the oil
+    film's (0 dry), ``peak_joint_force`` the two together (:func:`joint_force`)."""
+
+    viscosity: float | None
+    film_model: str | None
+    impact_velocity: float
+    start_gap: float
+    peak_contact_force: float
+    peak_film_force: float
+    peak_joint_force: float
+    max_eccentricity_ratio: float
+    min_film_thickness: float  # c - |e| at its smallest: negative where the journal penetrated the wall
+    max_penetration: float
+    contact_onsets: int
+    final_velocity: float  # the journal's velocity along the approach at the end [m/s]; negative: rebounding
+    wall_time: float
+    success: bool
+    message: str
+
+
+def run_approach(params: JournalBearingParams,
+                 settings: SolverSettings | None = None) -> tuple[ApproachResult, dict[str, np.ndarray]]:
+    """Simulate the approach scene (:meth:`JournalBearingParams.approach`; any ``start_gap``
+    > 0) and summarise it; returns the summary and the joint's recorded outputs."""
+    if params.start_gap <= 0.0:
+        raise ValueError("the approach starts with a gap between journal and wall: give `start_gap` > 0 "
+                         "(JournalBearingParams.approach starts at the centre)")
+    scene = build(params)
+    sim = exuclear.simulate(scene.mbs, settings or default_settings(params))
+    out = scene.joint.outputs()
+    c = scene.joint.joint.geometry.clearance
+    ecc = np.hypot(out["ecc_x"], out["ecc_y"])
+    lubricated = params.viscosity is not None
+    contact = np.hypot(out["normal_force"], out["tangential_force"])
+    velocity = scene.mbs.GetNodeOutput(scene.nodes["journal"], exu.OutputVariableType.Velocity)
+    result = ApproachResult(
+        viscosity=params.viscosity, film_model=params.film_model if lubricated else None,
+        impact_velocity=params.impact_velocity, start_gap=params.start_gap,
+        peak_contact_force=float(contact.max()),
+        peak_film_force=float(out["film_force"].max()) if lubricated else 0.0,
+        peak_joint_force=float((joint_force(out) if lubricated else contact).max()),
+        max_eccentricity_ratio=float(ecc.max() / c), min_film_thickness=float(c - ecc.max()),
+        max_penetration=max(float(out["penetration"].max()), 0.0),
+        contact_onsets=len(scene.joint.history.onset_times), final_velocity=float(velocity[0]),
+        wall_time=sim.wall_time, success=sim.success, message=sim.message)
     return result, out
 
 
@@ -243,6 +345,9 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     one_line_warnings()
+    if args.viscosity is not None:
+        given = sys.argv[1:] if argv is None else argv
+        return _main_approach(args, end_time_given=any(a.split("=")[0] == "--end-time" for a in given))
     try:
         law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
                                        args.paper_cr)
@@ -277,6 +382,59 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {result.message}", file=sys.stderr)
         return 1
     return 0
+
+
+#: The approach scene's summary lines: (label, :class:`ApproachResult` field, scale, unit).
+APPROACH_LINES = (
+    ("peak contact force (metal)", "peak_contact_force", 1.0, "N"),
+    ("peak film force", "peak_film_force", 1.0, "N"),
+    ("peak joint force", "peak_joint_force", 1.0, "N"),
+    ("largest eccentricity ratio", "max_eccentricity_ratio", 1.0, ""),
+    ("smallest film c - |e|", "min_film_thickness", 1e6, "um"),
+    ("contact onsets", "contact_onsets", 1.0, ""),
+    ("velocity at the end", "final_velocity", 1.0, "m/s"),
+    ("wall time", "wall_time", 1.0, "s"),
+)
+
+
+def _main_approach(args: argparse.Namespace, end_time_given: bool) -> int:
+    """``--viscosity``: the approach scene (module docstring), dry and lubricated side by side;
+    its own end time unless ``--end-time`` was given (``end_time_given``)."""
+    try:
+        if args.plot is not None:
+            raise ValueError("`--plot` draws the paper's impact (force against penetration); with --viscosity the "
+                             "scene is the approach from the centre: use --csv for its time series")
+        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
+                                       args.paper_cr)
+        changes = changes_from_args(args, JournalBearingParams)
+        if not end_time_given:  # the paper impact's default: the approach has its own
+            del changes["end_time"]
+        oiled = JournalBearingParams.approach(**changes, law=law, cr=cr)
+        dry = replace(oiled, viscosity=None, film_model=FILM_MODEL_DEFAULT)
+        settings = replace(default_settings(oiled), output_step=positive("--dt-out", args.dt_out))
+        if args.csv is not None:
+            check_output_file("--csv", args.csv)
+        results = [run_approach(p, settings) for p in (dry, oiled)]
+    except ValueError as err:
+        return bad_input(err)
+    (r_dry, _), (r_oil, out) = results
+    if args.json:
+        print(json.dumps({"dry": asdict(r_dry), "lubricated": asdict(r_oil)}))
+    else:
+        print(f"journal-bearing approach: from the centre towards the wall at {oiled.impact_velocity:g} m/s, "
+              f"{law}, cr = {cr}; oil {oiled.viscosity:g} Pa s, {oiled.film_model} film")
+        print(f"  {'':28s} {'dry':>12s} {'lubricated':>12s}")
+        for label, name, scale, unit in APPROACH_LINES:
+            values = [getattr(r, name) * scale for r in (r_dry, r_oil)]
+            print(f"  {label:28s} {values[0]:12.4g} {values[1]:12.4g}  {unit}")
+    if args.csv is not None:
+        write_csv(args.csv, out, ("time", *OUTPUT_COLUMNS, *FILM_OUTPUT_COLUMNS),
+                  incomplete="" if r_oil.success else r_oil.message)
+        print(f"wrote {args.csv}", file=sys.stderr if args.json else sys.stdout)
+    failed = [f"{kind}: {r.message}" for kind, r in (("dry", r_dry), ("lubricated", r_oil)) if not r.success]
+    for message in failed:
+        print(f"error: {message}", file=sys.stderr)
+    return 1 if failed else 0
 
 
 # =======================================================================================

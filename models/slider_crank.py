@@ -66,6 +66,7 @@ from exuclear import SolverSettings
 from exuclear import convergence as _convergence
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, AccuracyWarning
+from exuclear.engine.outputs import REGIME_CONTACT
 from exuclear.materials import MATERIALS
 from exuclear.settings import METHODS
 from exuclear.study import Column
@@ -83,6 +84,7 @@ from ._cli import (
 )
 from ._cli import write_csv as _write_columns
 from ._defaults import PAPER_CLEARANCE, PAPER_CRANK_SPEED, PAPER_RPM
+from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication
 from ._params import (
     add_param_options,
     boolean,
@@ -109,6 +111,13 @@ FLYWHEEL_INERTIA = 1e6
 #: Output columns of a run (SI units, angles in degrees), in CSV order.
 COLUMNS = ("time", "crank_angle", "slider_x", "slider_v", "slider_a", "contact_force", "crank_moment",
            "ecc_x", "ecc_y", "penetration", "in_contact")
+
+#: Output columns a run with a lubricated joint at B adds (after :data:`COLUMNS`): the
+#: film force [N], eccentricity ratio, smallest film thickness [m] and regime (0 film alone,
+#: 1 film near the wall, 2 metal contact) of docs/physics.md section 10.8, and the force the
+#: joint carries, film and metal contact together [N] (``contact_force`` is the metal
+#: contact's alone).
+FILM_COLUMNS = ("film_force", "eccentricity_ratio", "min_film_thickness", "regime", "joint_force")
 
 #: Crank speeds above this [rad/s] (1e5 rpm) are legal but far beyond any slider-crank:
 #: a warning asks whether rpm were given where rad/s are expected, or the like.
@@ -152,6 +161,12 @@ class SliderCrankParams:
     max_penetration : float, optional
         Penetration [m] beyond which a run stops, see :func:`exuclear.AddClearanceJoint`;
         default None, the library's default bound.
+    viscosity : float, optional
+        Dynamic viscosity [Pa s] of the oil in the clearance joints (:class:`exuclear.Lubrication`);
+        default None, dry joints.
+    film_model : str
+        The oil film's model, ``"short"``, ``"long"`` or ``"finite"`` (docs/physics.md section
+        10); only with a ``viscosity``.
     """
 
     crank_length: float = field(metadata=param("crank length r [m]", positive))
@@ -184,6 +199,11 @@ class SliderCrankParams:
     max_penetration: float | None = field(default=None, metadata=param(
         "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
         "journal radius)", optional(positive)))
+    viscosity: float | None = field(default=None, metadata=param(
+        "dynamic viscosity of the oil in the clearance joint [Pa s] (default: none, a dry joint)", optional(positive)))
+    film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
+        "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
+        choices=FILM_MODEL_NAMES))
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -220,7 +240,7 @@ class SliderCrankParams:
             journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
             length=self.bearing_length,
             law=self.law, cr=self.cr, journal_material=self.journal_material, bearing_material=self.bearing_material,
-            friction=self.friction, v_min=self.v_min)
+            friction=self.friction, v_min=self.v_min, lubrication=lubrication(self.viscosity, self.film_model))
         object.__setattr__(self, "_joint", joint)
 
     @property
@@ -622,6 +642,9 @@ def columns(model: Scene) -> dict[str, np.ndarray]:
         ecc_x, ecc_y = model.joint.frame[:2, :2] @ np.array([out["ecc_x"], out["ecc_y"]])
         cols.update(contact_force=np.hypot(out["normal_force"], out["tangential_force"]), ecc_x=ecc_x,
                     ecc_y=ecc_y, penetration=out["penetration"], in_contact=out["in_contact"])
+        if model.joint.joint.film is not None:
+            cols.update({k: out[k] for k in FILM_COLUMNS[:-1]}, joint_force=joint_force(out))
+            return {k: cols[k] for k in COLUMNS + FILM_COLUMNS}
     return {k: cols[k] for k in COLUMNS}
 
 
@@ -646,12 +669,14 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
 
 
 def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", notes: tuple[str, ...] = ()) -> None:
-    """Write :data:`COLUMNS` with a header line (SI units, angles in degrees).
+    """Write :data:`COLUMNS` (and :data:`FILM_COLUMNS` where ``columns`` holds them: a
+    lubricated joint) with a header line (SI units, angles in degrees).
 
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
     ``# INCOMPLETE: ...`` before the header; ``notes`` follow as ``# NOTE: ...`` lines.
     """
-    _write_columns(path, columns, COLUMNS, incomplete, notes)
+    names = COLUMNS + FILM_COLUMNS if "film_force" in columns else COLUMNS
+    _write_columns(path, columns, names, incomplete, notes)
 
 
 #: The columns :func:`record` hands to :func:`exuclear.check_convergence` as named
@@ -762,7 +787,8 @@ def main(argv: list[str] | None = None) -> int:
         return bad_input(err)
     kind = "ideal joint at B" if params.ideal else (
         f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
-        f"{params.bearing_material} bearing, friction {params.friction}")
+        f"{params.bearing_material} bearing, friction {params.friction}"
+        + ("" if params.viscosity is None else f", oil {params.viscosity:g} Pa s ({params.film_model} film)"))
     print(f"slider-crank, {formulation} coordinates{chosen}, {settings.method}: {kind}")
     if result.success:
         print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
@@ -778,6 +804,13 @@ def main(argv: list[str] | None = None) -> int:
               f"{np.nanmax(result.columns['contact_force']):.1f} N (closed form of the ideal mechanism)")
     else:
         print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
+        if "film_force" in result.columns:
+            cols, t = result.columns, result.columns["time"]
+            contact = float(np.trapezoid((cols["regime"] == REGIME_CONTACT).astype(float), t)) / (t[-1] - t[0])
+            print(f"  oil film: peak joint force (film and contact) {cols['joint_force'].max():.1f} N, largest "
+                  f"eccentricity ratio {cols['eccentricity_ratio'].max():.4g}, smallest film thickness "
+                  f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact {100.0 * contact:.3g} % "
+                  "of the time")
     print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
     if args.check_convergence:
         print(check_convergence(params, settings).report())
@@ -806,11 +839,13 @@ def main(argv: list[str] | None = None) -> int:
 #: Parameters of :func:`study` and their defaults: the paper's case (:meth:`SliderCrankParams.paper`)
 #: with the crank speed in rpm, ``startup`` revolutions left out of the steady metrics and
 #: ``revolutions`` measured after them.  Every name but ``rpm`` and ``startup`` is a
-#: :class:`SliderCrankParams` field.
+#: :class:`SliderCrankParams` field.  ``viscosity`` None (or ``"none"`` on a command line:
+#: ``--viscosity none,0.01,0.1`` sweeps dry and two oils) is a dry joint, whatever the
+#: ``film_model`` of its row.
 def _study_defaults() -> dict:
     paper = SliderCrankParams.paper()
     fields = ("law", "journal_material", "bearing_material", "friction", "bearing_length", "gravity", "v_min",
-              "formulation", "backend")
+              "formulation", "backend", "viscosity", "film_model")
     return {"cr": paper.cr, "clearance": paper.clearance, "rpm": PAPER_RPM, "startup": 1.0,
             "revolutions": paper.revolutions, **{name: getattr(paper, name) for name in fields}}
 
@@ -827,11 +862,17 @@ STUDY_METRICS = {
     "impacts_per_rev": Column("contact onsets per steady revolution"),
     "impacts_by_rev": Column("contact onsets in each steady revolution"),
     "max_ecc_over_c": Column("largest |e| / c, steady"),
+    # the force the joint carries, oil film and metal contact together (joint_force): the
+    # peak contact force of a dry joint
+    "peak_joint_force": Column("peak joint force (film and contact), whole run", "N"),
+    # c - |e| at its smallest, steady: negative where the journal penetrates the wall
+    "min_film_thickness": Column("smallest film thickness c - |e|, steady", "m"),
+    "metal_contact_fraction": Column("fraction of the steady time in metal contact"),
     # RMS over the steady revolutions of the slider acceleration minus the ideal
     # mechanism's (ideal_slider_acceleration), and that over the ideal RMS
     "slider_acc_rms_dev": Column("RMS deviation of the slider acceleration from the ideal", "m/s^2"),
     "slider_acc_rms_dev_rel": Column("RMS deviation of the slider acceleration / ideal RMS"),
-    # the energy audit (_energy_audit; minimal formulation, NaN in the others)
+    # the energy audit (_energy_audit; minimal formulation and a dry joint, NaN otherwise)
     "drive_work": Column("drive work", "J"),
     "contact_dissipated": Column("energy dissipated by the contact", "J"),
     "energy_residual": Column("energy residual", "J"),
@@ -861,6 +902,12 @@ def study_params(values: dict) -> SliderCrankParams:
     """The :class:`SliderCrankParams` of a study's parameter set (defaults
     :data:`STUDY_PARAMETERS`); ``ValueError`` for a value the model refuses."""
     v = {**STUDY_PARAMETERS, **values}
+    if isinstance(v["viscosity"], str) and v["viscosity"].lower() == "none":
+        v["viscosity"] = None  # a dry joint, as the command line spells it
+    if v["viscosity"] is None:
+        # the dry runs of a sweep over viscosity and film model (--viscosity none,0.01
+        # --film-model finite): a dry joint has no film, so the film model does not apply
+        v["film_model"] = FILM_MODEL_DEFAULT
     unknown = sorted(set(v) - set(STUDY_PARAMETERS))
     if unknown:
         raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
@@ -972,7 +1019,10 @@ def study(values: dict) -> dict:
         return math.sqrt(float(np.trapezoid(x[steady] ** 2, ts)) / (ts[-1] - ts[0])) if steady.sum() > 1 else math.nan
 
     dev = rms(cols["slider_a"] - ideal)
-    audit = (_energy_audit(model) if p.formulation == "minimal" else
+    in_contact = (cols["penetration"] > 0.0).astype(float)
+    # the audit counts what the metal contact dissipates, not the oil film's viscous work:
+    # with a film its residual would be that work, so a lubricated run has none
+    audit = (_energy_audit(model) if p.formulation == "minimal" and p.viscosity is None else
              dict.fromkeys(("drive_work", "contact_dissipated", "energy_residual", "energy_residual_rel"), math.nan))
     steady_force = cols["contact_force"][steady]
     # each steady revolution on its own (the last one may be partial): the points of a
@@ -990,6 +1040,9 @@ def study(values: dict) -> dict:
         "impacts_by_rev": np.bincount(np.floor((onsets[onsets >= t_start] - t_start) / period).astype(int),
                                       minlength=count)[:count].tolist(),
         "max_ecc_over_c": float(ecc[steady].max()) if steady.any() else math.nan,
+        "peak_joint_force": float(cols.get("joint_force", cols["contact_force"]).max()),
+        "min_film_thickness": p.clearance * (1.0 - float(ecc[steady].max())) if steady.any() else math.nan,
+        "metal_contact_fraction": rms(in_contact) ** 2,  # the time average of a 0/1 signal
         "slider_acc_rms_dev": dev, "slider_acc_rms_dev_rel": dev / rms(ideal),
         **audit,
         "steps": sim.steps, "sim_wall_time": sim.wall_time,

@@ -222,3 +222,17 @@ def test_a_run_exudyn_ends_in_contact_is_told_with_the_tolerance_that_works():
     model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
     assert model.mbs.systemData.GetTime() == pytest.approx(0.05)
     assert model.joint.notes == []
+
+
+def test_lubricated_big_end_is_carried_by_its_film():
+    # the piston engine's lubricated variant (issue 23) with the example's own settings: the
+    # film alone carries the big end (eccentricity ratio below eps_film = 0.9, where the
+    # joint's film acts unblended: docs/physics.md eq. (70)), so the metal contact never acts
+    from exuclear.engine.outputs import REGIME_FILM
+
+    model = REGISTRY["piston_engine_lubricated"](True, OWN)
+    assert model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    out = model.joint.outputs()
+    assert (out["regime"] == REGIME_FILM).all()
+    assert out["eccentricity_ratio"].max() < model.joint.joint.film.eps_film
+    assert out["film_force"].max() > 0.0 and out["normal_force"].max() == 0.0

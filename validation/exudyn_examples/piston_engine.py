@@ -44,6 +44,22 @@ penetration 4.009e-05 m exceeds the limit 1.5e-05 m" (over 0.1 s it ends silentl
 with 0.16 c).  ``exuclear.simulate`` (auto step 2.6e-5 s): reaches 2 s in 14 s wall,
 77927 steps, largest penetration 0.005 c; piston 0 within 0.06 mm and the free-running
 crank speed 3.139 rad/s against the ideal engine's 3.142.
+
+Variant ``piston_engine_lubricated`` (issue 23): the same big end with an oil film
+(``lubrication=``, :data:`OIL`): an SAE 40 engine oil at SAE J300's smallest
+high-temperature high-shear viscosity of its grade, 3.7 mPa s at 150 degC (the oil of
+``validation/lubricated_slider_crank.py``, where its source is given), in the long-bearing
+model: the pin's B/D = 24 / 16 = 1.5 lies above the finite model's fits (1/8 ... 1), and of
+the two limits the long bearing is the nearer; it leaves out the leakage at the bearing's
+ends, so it overestimates the film's load (docs/physics.md section 10.6: by 10.7 % still at
+B/D = 8).  The engine turns at pi rad/s without gravity: the big end's load is a fraction
+of a newton, and the film holds the journal near the centre of its bearing.  Measured
+over 2 s (exuclear at this commit's parent, two shared cores): the example's own settings
+reach the end, 0.29 s wall (1.2 times the ideal engine's), largest eccentricity ratio 0.13,
+film force at most 0.35 N, no metal contact; the zoo's verdict "right", its convergence
+check's path agreeing to 1e-6 c.  Once the drive is off (1 s), the film's viscous moment
+(at most 4e-5 N m, docs/physics.md eq. (69)) brakes the free-running engine: crank speed
+3.1347 rad/s at 2 s against the ideal engine's 3.1419, so piston 0 lags by 0.1 mm.
 """
 from __future__ import annotations
 
@@ -96,6 +112,8 @@ CLEARANCE = 30e-6                          # radial clearance c [m]
 BEARING_RADIUS = PIN_RADIUS                # R_B [m]
 BEARING_LENGTH = PIN_LENGTH                # L [m]
 REPLACED_CYLINDER = 0
+#: The lubricated variant's oil (module docstring).
+OIL = exuclear.Lubrication(viscosity=3.7e-3, model="long")
 
 
 def _crank_inertia():
@@ -220,3 +238,6 @@ def build(clearance: bool, end_time: float | None = None, **joint_options) -> Zo
     return ZooModel(name="piston_engine", mbs=mbs, simulation_settings=ss, solver_type=solver, joint=joint,
                     clearance=CLEARANCE if clearance else None, probe=probe,
                     solver_settings=solver_settings_like(ss, solver), probe_bound=PROBE_BOUND_CARRIED)
+
+
+register(build, name="piston_engine_lubricated", lubrication=OIL)

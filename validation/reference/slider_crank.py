@@ -118,6 +118,8 @@ def _mechanism(p: SliderCrankParams) -> _Mechanism:
 
 
 def _laws(p: SliderCrankParams) -> Laws:
+    if p.viscosity is not None:  # the reference has the dry joint's laws only: never treat oil as dry
+        raise ValueError(f"the SciPy reference models the dry joint; got `viscosity` {p.viscosity} (an oil film)")
     return build_laws(journal_radius=p.bearing_radius - p.clearance, bearing_radius=p.bearing_radius,
                       length=p.bearing_length, law=p.law, cr=p.cr, journal_material=p.journal_material,
                       bearing_material=p.bearing_material, friction=p.friction, v_min=p.v_min)
