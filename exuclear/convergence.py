@@ -275,6 +275,8 @@ def _rule(settings: Any, factor: float) -> str:
         return f"rtol, atol and largest step / {factor:g}"
     if settings.explicit:
         return f"step / {factor:g}"
+    if settings.steered:
+        return f"largest step / {factor:g} (the joints' step control unchanged)"
     return f"step{' and impact step' if settings.impact_step is not None else ''} / {factor:g}"
 
 
@@ -291,6 +293,8 @@ def _describe(settings: Any) -> str:
         s += f" (largest), rtol {settings.rtol:.3g}, atol {settings.atol:.3g}"
     if settings.impact_step is not None:
         s += f", impact step {settings.impact_step:.3g} s"
+    if settings.steered:
+        s += " (largest; the joints control the steps)"
     return s
 
 
@@ -722,7 +726,7 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
         if not math.isfinite(first.step):
             raise ValueError(f"`step` is 'auto' but {label}'s record does not say which step the run chose: build it "
                              "with RunRecord.from_handles(result, ...), whose result.step it is")
-        settings = replace(settings, step=first.step)
+        settings = replace(settings, step=first.step, joint_steps=settings.steered)
     reference_settings = refined_settings(settings, factor)
     second = run(reference_settings)
     if not isinstance(second, RunRecord):

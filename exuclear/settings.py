@@ -62,7 +62,17 @@ class SolverSettings:
 
         ``"auto"``: :func:`exuclear.simulate` chooses the step from the model
         (:func:`exuclear.engine.solver.automatic_step`; ``result.step`` says which).
-        Fixed-step methods (generalized-alpha, trapezoidal, RK44) take
+
+        Implicit methods (generalized-alpha, trapezoidal) then take steps controlled by
+        the clearance joints (``joint_steps``) with the largest step ``end_time / 1000``
+        (:data:`exuclear.timescales.MIN_STEPS_PER_RUN`): the joints shorten the steps
+        their contacts need, as under a plain ``mbs.SolveDynamic`` with Exudyn's
+        defaults.  ``end_time / 1000`` resolves a motion of a tenth of the run with 100
+        steps and knows nothing of the model's own frequencies (check such a run at half
+        the step, or with :func:`exuclear.check_convergence`).
+
+        Fixed steps (RK44, or an implicit method with ``joint_steps=False`` or
+        ``impact_step``) take
 
             step = min(T_c / 10 over the clearance joints, end_time / 1000)
 
@@ -75,13 +85,12 @@ class SolverSettings:
         (issue 15's pendulum: steps of 2.3 periods chatter, a quarter period does not).
         The force is a rough estimate, and need be no more: under a Hertz-like law
         ``T_c`` varies as ``F**(-1/6)``, so a load ten times the weight shortens it by
-        a third, within the margin of the ten steps.  ``end_time / 1000`` bounds the step
-        of a model without clearance joints; it knows nothing of the model's own
-        frequencies (check such a run at half the step).  Explicit adaptive methods
+        a third, within the margin of the ten steps.  Explicit adaptive methods
         (DOPRI5, ODE23) control their step by their error estimate and keep
         :data:`DEFAULT_STEP` as their largest step.  ``impact_step`` and ``min_step``
         must not exceed the chosen step.  :func:`exuclear.check_convergence` needs a
-        number: give it the settings with ``step=result.step``.
+        number: give it the settings with ``step=result.step`` (and
+        ``joint_steps=settings.steered``).
     rtol, atol : float
         Relative and absolute error tolerances of adaptive explicit methods.  Default
         rtol 1e-6 (the paper's tolerance) and atol 1e-9 m, i.e. 1e-5 of the paper's
@@ -100,6 +109,14 @@ class SolverSettings:
         whenever a clearance joint's contact begins within a step, the step is redone
         with ``impact_step`` [s], and the step doubles again after every
         ``recovery_steps`` accepted steps, up to ``step``.  Default None: fixed steps.
+    joint_steps : bool, optional
+        Implicit methods only: adaptive steps controlled by the clearance joints
+        (README, "The joint steers the step"): ``step`` is the largest step; a joint
+        rejects a step in which its contact cannot be resolved and Exudyn redoes it
+        shorter (down to Exudyn's ``minimumStepSize``, 1e-8 s), then doubles it again after 10 accepted steps
+        that converged in at most 7 Newton iterations (Exudyn's rule).  Default None:
+        True with ``step="auto"`` (and no ``impact_step``), False (fixed steps)
+        otherwise.  :attr:`steered` is the value in effect.
     recovery_steps : int
         Accepted steps between two doublings of the step after an impact (with
         ``impact_step``); default 100, i.e. 100 us at 1e-6 s, longer than one impact of
@@ -124,6 +141,7 @@ class SolverSettings:
     spectral_radius: float = SPECTRAL_RADIUS_DEFAULT
     output_step: float = 1e-5
     impact_step: float | None = None
+    joint_steps: bool | None = None
     recovery_steps: int = 100
     newton_rtol: float = NEWTON_RTOL_DEFAULT
     newton_atol: float = NEWTON_ATOL_DEFAULT
@@ -161,6 +179,16 @@ class SolverSettings:
             if check_positive("impact_step", self.impact_step) > self._step_or(math.inf):
                 raise ValueError(f"`impact_step` must not exceed `step`, got impact_step = {self.impact_step}, "
                                  f"step = {self.step}")
+        if self.joint_steps is not None and not isinstance(self.joint_steps, bool):
+            raise ValueError(f"`joint_steps` must be True, False or None (the default for the step), got "
+                             f"{self.joint_steps!r}")
+        if self.joint_steps:
+            if self.explicit:
+                raise ValueError(f"`joint_steps` applies to the implicit methods; {self.method!r} controls its step by "
+                                 "its error estimate (use rtol, atol)")
+            if self.impact_step is not None:
+                raise ValueError("give `joint_steps` or `impact_step`, not both: with joint_steps the joints choose "
+                                 f"the steps at a contact, got impact_step = {self.impact_step}")
         if isinstance(self.recovery_steps, bool) or not isinstance(self.recovery_steps, int) or self.recovery_steps < 1:
             raise ValueError(f"`recovery_steps` must be a positive integer, got {self.recovery_steps!r}")
         if self._step_or(0.0) > self.end_time:
@@ -174,6 +202,14 @@ class SolverSettings:
     def _step_or(self, default: float) -> float:
         """``step`` [s], or ``default`` where it is ``"auto"``."""
         return default if self.automatic else float(self.step)
+
+    @property
+    def steered(self) -> bool:
+        """True if the clearance joints control the steps (``joint_steps``, or its default:
+        an implicit method with ``step="auto"`` and no ``impact_step``)."""
+        if self.joint_steps is not None:
+            return self.joint_steps
+        return self.automatic and not self.explicit and self.impact_step is None
 
     @property
     def explicit(self) -> bool:

@@ -43,15 +43,10 @@ OWN = 0.1
 #: Measured: 1e-7 (3D rigid-body tutorial) and below.
 ENERGY_RTOL = 1e-5
 
-#: Where ``exuclear.simulate`` fails today on a model (measured on the zoo branch): the
-#: reason, for a strict xfail.
-SIMULATE_FAILS = {
-    "double_pendulum_2d_friction": "with friction='paper', step='auto' (here end_time / 1000 = 5e-5 s) ignores the "
-                                   "friction law's regularisation: Newton fails in the first sliding contact "
-                                   "('SolveDynamic terminated ... Newton did not converge')",
-    "rigid_body_tutorial3_friction": "with friction='paper', step='auto' (5e-5 s) ignores the friction law's "
-                                     "regularisation: Newton fails at t = 3.5 ms in the first sliding contact",
-}
+#: Where ``exuclear.simulate`` fails today on a model: the reason, for a strict xfail.  None
+#: since step="auto" lets the joints control implicit steps (issue 20); before, the friction
+#: variants failed at the automatic fixed step (5e-5 s) in their first sliding contact.
+SIMULATE_FAILS: dict[str, str] = {}
 
 #: Where the example's own settings fail today (issue 20: the plain mbs.SolveDynamic path
 #: at a step that does not resolve the contact), measured at t = OWN.  Six models failed
@@ -95,9 +90,9 @@ def test_ideal_model_runs_and_keeps_its_energy(name):
     assert abs((t1 + v1) - (t0 + v0)) <= ENERGY_RTOL * exchanged
 
 
-#: Settings known to work where step="auto" does not: the friction law's regularisation
-#: (the paper's modified Coulomb law) needs a far smaller step than the contact period
-#: (measured: 2e-5 s and 1e-5 s fail at the first sliding contact, 2e-6 s runs).
+#: Fixed steps that work with friction: the friction law's regularisation (the paper's
+#: modified Coulomb law) needs a far smaller fixed step than the contact period (measured:
+#: 2e-5 s and 1e-5 s fail at the first sliding contact, 2e-6 s runs).
 WORKING_SETTINGS = [pytest.param(name, {"step": 2e-6}, id=f"{name}-step 2e-6 s")
                     for name in ("double_pendulum_2d_friction", "rigid_body_tutorial3_friction")]
 

@@ -132,14 +132,14 @@ def swing_period(end_time, **settings):
     return result, handle.history.onsets, (crossings[-1] - crossings[0]) / (len(crossings) - 1)
 
 
-def test_automatic_step_of_the_pendulum_holds_contact_and_period():
-    # The issue's 10 s run: at the default 1e-5 s it took 43.9 s.  The automatic step is a
-    # tenth of the contact period (3.5e-5 s), where the journal stays on the wall (one onset,
-    # the initial contact) and the swing period is DOPRI5's.  Measured: 0.9113776 s against
-    # DOPRI5's 0.9113779 s (3e-7 relative); single periods scatter by 3e-6 relative through
-    # the interpolated crossings, so 1e-5 bounds the difference of the means with a margin
-    # (generalized-alpha's own period error, ~(omega h)^2, is 6e-8 here).
-    result, onsets, period = swing_period(10.0, method="generalized-alpha", step="auto")
+def test_automatic_fixed_step_of_the_pendulum_holds_contact_and_period():
+    # The issue's 10 s run: at the default 1e-5 s it took 43.9 s.  The automatic fixed step
+    # is a tenth of the contact period (3.5e-5 s), where the journal stays on the wall (one
+    # onset, the initial contact) and the swing period is DOPRI5's.  Measured: 0.9113776 s
+    # against DOPRI5's 0.9113779 s (3e-7 relative); single periods scatter by 3e-6 relative
+    # through the interpolated crossings, so 1e-5 bounds the difference of the means with a
+    # margin (generalized-alpha's own period error, ~(omega h)^2, is 6e-8 here).
+    result, onsets, period = swing_period(10.0, method="generalized-alpha", step="auto", joint_steps=False)
     assert result.success, result.message
     law = exuclear.make_joint(journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3, length=15e-3, cr=0.9).law
     assert result.step == pytest.approx(contact_period(law, MASS, MASS * 9.81) / STEPS_PER_CONTACT_PERIOD, rel=1e-12)
@@ -149,16 +149,37 @@ def test_automatic_step_of_the_pendulum_holds_contact_and_period():
     assert period == pytest.approx(ref_period, rel=1e-5)
 
 
+def test_automatic_joint_steps_of_the_pendulum_hold_contact_and_the_integrators_period():
+    # step="auto" with an implicit method: the joint controls the steps, the largest
+    # end_time / 1000 = 1e-2 s (issue 20).  The journal stays on the wall (one onset), in
+    # 5991 steps against the fixed rule's 284640 (measured), and the period is DOPRI5's up
+    # to the integrator's own period elongation at that step, (omega h)^2 / 12 for the
+    # average-acceleration Newmark rule that generalized-alpha approaches (4.0e-4 here;
+    # measured 3.3e-4)
+    result, onsets, period = swing_period(10.0, method="generalized-alpha", step="auto")
+    assert result.success, result.message
+    assert result.step == pytest.approx(10.0 / MIN_STEPS_PER_RUN)
+    assert onsets == 1 and result.notes == ()
+    _reference, _onsets, ref_period = swing_period(3.0, method="dopri5")
+    elongation = (2.0 * math.pi / ref_period * result.step) ** 2 / 12.0
+    assert 0.0 <= period / ref_period - 1.0 <= 1.5 * elongation
+
+
 def test_automatic_step_rules():
     mbs, _ = pendulum()
     # explicit adaptive methods control their step by error: the largest step stays the default
     assert automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, step="auto")) == exuclear.SolverSettings(
         end_time=1.0).step
-    # rk44 is fixed-step: the contact period rules it as it does the implicit methods
-    alpha = automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto"))
+    # rk44 is fixed-step: the contact period rules it as it does fixed implicit steps
+    alpha = automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto",
+                                                        joint_steps=False))
+    assert alpha < 1.0 / MIN_STEPS_PER_RUN
     assert automatic_step(mbs, exuclear.SolverSettings(end_time=1.0, method="rk44", step="auto")) == alpha
+    # implicit steps the joints control: the largest step is end_time / MIN_STEPS_PER_RUN
+    steered = exuclear.SolverSettings(end_time=1.0, method="generalized-alpha", step="auto")
+    assert steered.steered and automatic_step(mbs, steered) == pytest.approx(1.0 / MIN_STEPS_PER_RUN)
     # a run shorter than MIN_STEPS_PER_RUN steps of the contact rule is bounded by its duration
-    short = exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha", step="auto")
+    short = exuclear.SolverSettings(end_time=1e-3, method="generalized-alpha", step="auto", joint_steps=False)
     assert automatic_step(mbs, short) == pytest.approx(1e-3 / MIN_STEPS_PER_RUN)
     # without a clearance joint: end_time / MIN_STEPS_PER_RUN
     free = exu.SystemContainer().AddSystem()

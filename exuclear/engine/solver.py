@@ -21,7 +21,7 @@ from typing import Any
 import exudyn as exu
 
 from ..settings import DEFAULT_STEP, METHODS, SolverSettings
-from ..timescales import step_from_contact_periods
+from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
 from ._diagnostics import chatter_note, check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
 from .checks import check_system
 from .handle import ClearanceJointHandle, joints_of
@@ -58,6 +58,11 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.relativeTolerance = settings.rtol
         ti.absoluteTolerance = settings.atol
         ti.minimumStepSize = settings.min_step
+    elif settings.steered:
+        # the joints' step control (README, "The joint steers the step"): a joint's post-Newton
+        # function rejects a step its contact cannot resolve, with the step to redo it at
+        ti.adaptiveStep = True  # down to Exudyn's minimumStepSize, 1e-8 s
+        ti.discontinuous.useRecommendedStepSize = True
     elif settings.impact_step is None:
         ti.adaptiveStep = False  # fixed step: a rejected Newton step fails the run loudly
     else:
@@ -190,7 +195,9 @@ def _joints_in_contact(joints: list[ClearanceJointHandle]) -> str:
 def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
     """The step [s] that ``SolverSettings(step="auto")`` stands for in the assembled ``mbs``.
 
-    Fixed-step methods (implicit, RK44): a tenth of the shortest contact period of the
+    Implicit methods whose steps the joints control (``settings.steered``): the largest
+    step ``end_time / 1000`` (:data:`~exuclear.timescales.MIN_STEPS_PER_RUN`).  Fixed-step
+    methods (implicit, RK44): a tenth of the shortest contact period of the
     model's clearance joints, and no more than ``end_time / 1000``
     (:func:`exuclear.timescales.step_from_contact_periods`).  A joint's period is its
     two bodies' reduced mass on the tangent stiffness of its law under the weight of
@@ -204,6 +211,8 @@ def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
     """
     if settings.explicit and settings.adaptive:
         return min(DEFAULT_STEP, settings.end_time)
+    if settings.steered:
+        return settings.end_time / MIN_STEPS_PER_RUN
     periods = []
     for handle in joints_of(mbs):
         period = joint_contact_period(mbs, handle)
@@ -225,7 +234,7 @@ def _with_step(mbs: exu.MainSystem, settings: SolverSettings) -> SolverSettings:
         if value is not None and value > step:
             raise ValueError(f"`{name}` must not exceed the step, but `step` 'auto' chose {step:.3g} s for this model "
                              f"and {name} = {value:g} s; give a smaller `{name}` or `step` in seconds")
-    return replace(settings, step=step)
+    return replace(settings, step=step, joint_steps=settings.steered)
 
 
 def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
