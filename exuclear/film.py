@@ -328,6 +328,44 @@ class ShortBearing(FilmLaw):
         return scale * _between(g_n, arcs) / s ** 5, scale * _between(g_t, arcs) / s ** 4
 
 
+#: Halley's iteration for the long bearing's cavitation boundaries (:func:`_root_in_unit_interval`)
+#: converges cubically: once a step is below ``_ROOT_RTOL`` of the root, what is left is of the
+#: order of its cube, round-off (measured: at most 4e-16 relative).  ``_ROOT_ITERATIONS`` is far
+#: more than needed (4 on average); a step that leaves the bracket is replaced by bisection.
+_ROOT_RTOL = 1e-6
+_ROOT_ITERATIONS = 100
+
+
+def _root_in_unit_interval(k0: float, k1: float, k2: float, k3: float, k4: float, p_one: float) -> float:
+    """The root in ``[0, 1]`` of ``p = k0 + k1 x + k2 x^2 + k3 x^3 + k4 x^4``, given ``p(1) = p_one``
+    of the sign opposite to ``k0``'s (or 0) and one root there: Halley's iteration from the
+    secant's root, kept inside the bracket by bisection (physics.md eq. (62c))."""
+    if p_one == 0.0:
+        return 1.0
+    lo, hi = 0.0, 1.0
+    x = k0 / (k0 - p_one)
+    for _ in range(_ROOT_ITERATIONS):
+        p = (((k4 * x + k3) * x + k2) * x + k1) * x + k0
+        dp = ((4.0 * k4 * x + 3.0 * k3) * x + 2.0 * k2) * x + k1
+        ddp = (12.0 * k4 * x + 6.0 * k3) * x + 2.0 * k2
+        if p == 0.0:
+            break
+        if (p > 0.0) == (k0 > 0.0):
+            lo = x
+        else:
+            hi = x
+        den = dp * dp - 0.5 * p * ddp
+        nxt = x - p * dp / den if den != 0.0 else -1.0
+        halley = lo <= nxt <= hi
+        if not halley:  # the step left the bracket: bisect
+            nxt = 0.5 * (lo + hi)
+        change = abs(nxt - x)
+        x = nxt
+        if halley and change <= _ROOT_RTOL * x:
+            break
+    return x
+
+
 @dataclass(frozen=True)
 class LongBearing(FilmLaw):
     """Sommerfeld's long bearing, half-Sommerfeld (Guembel) cavitation.
@@ -343,9 +381,9 @@ class LongBearing(FilmLaw):
     makes ``integral of h^3 p dtheta`` vanish, which is the limit of a finite bearing open
     to ambient pressure at its ends (exuclear's choice, eq. (62); it keeps the long model
     the large-``B/D`` limit of the Reynolds reference).  **Cavitation**: the positive part
-    of this pressure (Guembel), on the arcs where it is positive, found as roots of a
-    trigonometric polynomial; forces in closed form by parts and Sommerfeld's
-    substitution (eq. (63)).  For rotation alone, ``F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)
+    of this pressure (Guembel), on the one arc where it is positive, whose ends are the two
+    zeros of a trigonometric polynomial (eqs. (62a)-(62c), :meth:`_arc`); forces in closed
+    form by parts and Sommerfeld's substitution (eq. (63)).  For rotation alone, ``F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)
     (1 - eps^2))`` and ``F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2))``.
     """
 
@@ -358,20 +396,70 @@ class LongBearing(FilmLaw):
         sigma = eps_dot / (2.0 + 3.0 * eps * eps)
         # sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
         q0, q1, q2 = 7.0 * eps - 2.0 * eps ** 3, -(4.0 + 6.0 * eps * eps), 2.0 * eps + 3.0 * eps ** 3
-        arcs = _positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
-                              -0.5 * rho * eps)
+        c1, s1, c2, s2, length = self._arc(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps),
+                                           0.5 * sigma * q2, -0.5 * rho * eps, eps, sigma, rho)
+        # g_n, g_t between the arc's ends, from their cosines and sines
+        d_cos, d_sin = c2 - c1, s2 - s1
+        d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)  # cos(2 g2) - cos(2 g1)
+        d_sin2 = 2.0 * (s2 * c2 - s1 * c1)                  # sin(2 g2) - sin(2 g1)
         two_eps_dot = 2.0 * eps_dot
-
-        def g_n(x: float) -> float:  # antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
-            return (rho * (-0.5 * math.cos(2.0 * x) - eps * math.cos(x))
-                    + two_eps_dot * (0.5 * x - 0.25 * math.sin(2.0 * x)))
-
-        def g_t(x: float) -> float:  # antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
-            return (rho * (s * s * x + 0.5 * math.sin(2.0 * x) - eps * math.sin(x))
-                    + two_eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
-
+        # g_n: antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+        in_n = rho * (-0.5 * d_cos2 - eps * d_cos) + two_eps_dot * (0.5 * length - 0.25 * d_sin2)
+        # g_t: antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+        in_t = (rho * (s * s * length + 0.5 * d_sin2 - eps * d_sin)
+                + two_eps_dot * (-0.25 * d_cos2 + eps * d_cos))
         scale = 6.0 * self.viscosity * g.journal_radius ** 3 * g.length / g.clearance ** 2  # eq. (63)
-        return -scale * _between(g_n, arcs) / s ** 3, scale * _between(g_t, arcs) / s ** 4
+        return -scale * in_n / s ** 3, scale * in_t / s ** 4
+
+    @staticmethod
+    def _arc(a0: float, a1: float, b1: float, a2: float, b2: float, eps: float, sigma: float,
+             rho: float) -> tuple[float, float, float, float, float]:
+        """The arc of positive pressure, physics.md eqs. (62a)-(62c): ``(cos g1, sin g1, cos g2,
+        sin g2, g2 - g1)`` of its ends ``g1 < g2`` in Sommerfeld's variable.
+
+        ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` has, unless the squeeze
+        ``sigma`` is 0, exactly two zeros, both simple, one in ``(0, pi)`` and one in
+        ``(pi, 2 pi)``: ``g(0) = -sigma (1 - eps)^2 (4 - eps)`` and ``g(pi) = sigma (1 + eps)^2
+        (4 + eps)`` (eq. (62a)).  The positive part is one arc, from the first zero to the second
+        for ``sigma > 0`` (around the smallest gap), from the second to the first (plus 2 pi) for
+        ``sigma < 0``.  With ``tau = tan(gamma / 2)``, ``(1 + tau^2)^2 g`` is the quartic
+        ``k0 + k1 tau + ... + k4 tau^4`` (eq. (62b)); the sign of ``g`` at ``pi/2`` (``3 pi/2``)
+        tells which quarter circle holds each zero, and there it is the only root in ``[0, 1]`` of
+        the quartic in ``t = |tau|`` or ``u = 1 / |tau|`` (eq. (62c)).  The compiled kernel
+        iterates the two roots side by side; each takes the same steps as here.
+        """
+        if sigma == 0.0:  # rotation alone: g = rho sin (2 - eps^2 - eps cos), zero at 0 and pi
+            if rho > 0.0:
+                return 1.0, 0.0, -1.0, 0.0, math.pi
+            if rho < 0.0:
+                return -1.0, 0.0, 1.0, 0.0, math.pi
+            return 1.0, 0.0, 1.0, 0.0, 0.0  # no film pressure at all
+        # eq. (62b); k0 = g(0) and k4 = g(pi) in their factored forms, whose signs are exact
+        k0 = -sigma * (1.0 - eps) * (1.0 - eps) * (4.0 - eps)
+        k1, k2, k3 = 2.0 * b1 + 4.0 * b2, 2.0 * a0 - 6.0 * a2, 2.0 * b1 - 4.0 * b2
+        k4 = sigma * (1.0 + eps) * (1.0 + eps) * (4.0 + eps)
+        # the zero in (0, pi): in (0, pi/2) (tau = t) where g(pi/2) has the sign of g(pi), else in
+        # [pi/2, pi) (tau = 1 / u)
+        q_plus = k0 + k1 + k2 + k3 + k4  # 4 g(pi/2)
+        first_t = (q_plus > 0.0) != (k0 > 0.0) and q_plus != 0.0
+        x = (_root_in_unit_interval(k0, k1, k2, k3, k4, q_plus) if first_t
+             else _root_in_unit_interval(k4, k3, k2, k1, k0, q_plus))
+        # the ends from tau: cos = (1 - tau^2) / (1 + tau^2), sin = 2 tau / (1 + tau^2), gamma = 2 arctan(tau)
+        d = 1.0 + x * x
+        c1, s1 = ((1.0 - x * x) / d if first_t else (x * x - 1.0) / d), 2.0 * x / d
+        g1 = 2.0 * math.atan(x) if first_t else math.pi - 2.0 * math.atan(x)
+        # the zero in (pi, 2 pi): in (3 pi/2, 2 pi) (tau = -t) where g(3 pi/2) has the sign of g(pi),
+        # else in (pi, 3 pi/2] (tau = -1 / u)
+        q_minus = k0 - k1 + k2 - k3 + k4  # 4 g(3 pi/2)
+        second_t = (q_minus > 0.0) != (k0 > 0.0) and q_minus != 0.0
+        x = (_root_in_unit_interval(k0, -k1, k2, -k3, k4, q_minus) if second_t
+             else _root_in_unit_interval(k4, -k3, k2, -k1, k0, q_minus))
+        d = 1.0 + x * x
+        c2, s2 = ((1.0 - x * x) / d if second_t else (x * x - 1.0) / d), -2.0 * x / d
+        g2 = 2.0 * math.pi - 2.0 * math.atan(x) if second_t else math.pi + 2.0 * math.atan(x)
+        if sigma > 0.0:  # around pi: from the first zero to the second
+            return c1, s1, c2, s2, g2 - g1
+        return c2, s2, c1, s1, 2.0 * math.pi - (g2 - g1)  # around 0: from the second to the first, + 2 pi
 
 
 def _polynomial(coefficients: tuple[float, ...], x: float) -> float:

@@ -278,10 +278,10 @@ def impact_run(model: str, backend: str) -> dict:
 @needs_compiled
 @pytest.mark.parametrize("model", ["short", "long", "finite"])
 def test_compiled_equals_python_on_a_lubricated_impact(model):
-    # the same formulas in the same order: equal to round-off (the cavitation arcs are found
-    # in closed form (short) or by the Durand-Kerner iteration (long) in C++, by numpy's
-    # polynomial roots in Python: 1e-12 relative on the force, 1e-9 after 2000 steps of a
-    # contact)
+    # the same formulas in the same order: equal to round-off (the short model's cavitation
+    # arc is found in closed form in C++, by numpy's polynomial roots in Python; the long
+    # model's by the same Halley iterations in both: 1e-12 relative on the force, 1e-9 after
+    # 2000 steps of a contact)
     compiled, python = impact_run(model, "compiled"), impact_run(model, "python")
     assert (compiled["regime"] == REGIME_CONTACT).any(), "the journal should reach the wall"
     assert (compiled["regime"] == 0).any()
