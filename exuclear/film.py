@@ -345,9 +345,10 @@ def _root_in_unit_interval(k0: float, k1: float, k2: float, k3: float, k4: float
     lo, hi = 0.0, 1.0
     x = k0 / (k0 - p_one)
     for _ in range(_ROOT_ITERATIONS):
-        p = (((k4 * x + k3) * x + k2) * x + k1) * x + k0
-        dp = ((4.0 * k4 * x + 3.0 * k3) * x + 2.0 * k2) * x + k1
-        ddp = (12.0 * k4 * x + 6.0 * k3) * x + 2.0 * k2
+        x2 = x * x  # p, p', p'' in Estrin's order (the compiled kernel's: shorter dependency chains)
+        p = (k0 + k1 * x) + (k2 + k3 * x) * x2 + k4 * (x2 * x2)
+        dp = (k1 + 2.0 * k2 * x) + (3.0 * k3 + 4.0 * k4 * x) * x2
+        ddp = 2.0 * k2 + (6.0 * k3 + 12.0 * k4 * x) * x
         if p == 0.0:
             break
         if (p > 0.0) == (k0 > 0.0):

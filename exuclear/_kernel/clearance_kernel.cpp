@@ -643,9 +643,10 @@ struct QuarticRoot {
     QuarticRoot(double k0, double k1, double k2, double k3, double k4, double p_one)
         : k{k0, k1, k2, k3, k4}, lo(0.0), hi(1.0), x(p_one == 0.0 ? 1.0 : k0 / (k0 - p_one)), done(p_one == 0.0) {}
     void step() {
-        double p = (((k[4] * x + k[3]) * x + k[2]) * x + k[1]) * x + k[0];
-        double dp = ((4.0 * k[4] * x + 3.0 * k[3]) * x + 2.0 * k[2]) * x + k[1];
-        double ddp = (12.0 * k[4] * x + 6.0 * k[3]) * x + 2.0 * k[2];
+        double x2 = x * x;  // p, p', p'' in Estrin's order: shorter chains of dependent operations than Horner's
+        double p = (k[0] + k[1] * x) + (k[2] + k[3] * x) * x2 + k[4] * (x2 * x2);
+        double dp = (k[1] + 2.0 * k[2] * x) + (3.0 * k[3] + 4.0 * k[4] * x) * x2;
+        double ddp = 2.0 * k[2] + (6.0 * k[3] + 12.0 * k[4] * x) * x;
         if (p == 0.0) {
             done = true;
             return;
