@@ -42,8 +42,6 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple
 
-import numpy as np
-
 from .checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
 from .geometry import BearingGeometry
 
@@ -57,11 +55,6 @@ EPS_FILM_DEFAULT = 0.9
 EPS_CAP_DEFAULT = 0.97
 #: A viscosity above this [Pa s] (honey, bitumen) is more likely one given in mPa s.
 VISCOSITY_WARN_ABOVE = 10.0
-#: A root of the pressure's sign function counts as real when its modulus is within this
-#: of 1 (roots of a degree-4 polynomial on the unit circle; round-off ~1e-15, a tangent
-#: double root splits by ~1e-8).  Spurious candidates are harmless: the sign is tested
-#: at each arc's midpoint.
-_UNIT_CIRCLE_TOL = 1e-6
 
 
 # -- helper quantities ---------------------------------------------------------------------
@@ -155,41 +148,6 @@ def film_kinematics(ex: float, ey: float, vx: float, vy: float, omega_journal: f
         phi_dot = 0.0
     eps_dot = (nx * vx + ny * vy) / clearance
     return FilmKinematics(ecc / clearance, eps_dot, omega_journal + omega_bearing - 2.0 * phi_dot, nx, ny)
-
-
-# -- integrals over the arcs of positive pressure (short and long models) --------------------
-def _positive_arcs(a0: float, a1: float, b1: float, a2: float, b2: float) -> list[tuple[float, float]]:
-    """Arcs ``(g1, g2)``, ``g1 < g2``, of ``gamma`` where the trigonometric polynomial
-    ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` is positive.
-
-    The real zeros are the unit-modulus roots of ``z^2 g(z)`` with ``z = exp(i gamma)``.
-    """
-    coeffs = [0.5 * complex(a2, -b2), 0.5 * complex(a1, -b1), complex(a0), 0.5 * complex(a1, b1),
-              0.5 * complex(a2, b2)]
-    while coeffs and coeffs[0] == 0.0:  # np.roots would do this too; an all-zero g has no arc
-        coeffs.pop(0)
-    angles = sorted(float(np.angle(z)) % (2.0 * math.pi) for z in np.roots(coeffs)
-                    if abs(abs(z) - 1.0) < _UNIT_CIRCLE_TOL) if len(coeffs) > 1 else []
-
-    def g(x: float) -> float:
-        return a0 + a1 * math.cos(x) + b1 * math.sin(x) + a2 * math.cos(2.0 * x) + b2 * math.sin(2.0 * x)
-
-    if not angles:
-        return [(0.0, 2.0 * math.pi)] if g(0.0) > 0.0 else []
-    arcs = []
-    for k, start in enumerate(angles):
-        end = angles[k + 1] if k + 1 < len(angles) else angles[0] + 2.0 * math.pi
-        if end - start > 0.0 and g(0.5 * (start + end)) > 0.0:
-            if arcs and arcs[-1][1] == start:  # a tangent (double) root inside a positive arc
-                arcs[-1] = (arcs[-1][0], end)
-            else:
-                arcs.append((start, end))
-    return arcs
-
-
-def _between(antiderivative, arcs: list[tuple[float, float]]) -> float:
-    """Sum of ``G(g2) - G(g1)`` over the arcs."""
-    return sum(antiderivative(g2) - antiderivative(g1) for g1, g2 in arcs)
 
 
 # -- the three models -----------------------------------------------------------------------------
@@ -313,19 +271,38 @@ class ShortBearing(FilmLaw):
         g = self.geometry
         s = math.sqrt(1.0 - eps * eps)
         rot = eps * omega_eff * s
-        # sign of p in gamma: rot sin(gamma) - 2 eps_dot (cos(gamma) - eps), eq. (59)
-        arcs = _positive_arcs(2.0 * eps_dot * eps, -2.0 * eps_dot, rot, 0.0, 0.0)
-
-        def g_n(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
-            return (rot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x))
-                    - 2.0 * eps_dot * ((0.5 + eps * eps) * x + 0.25 * math.sin(2.0 * x) - 2.0 * eps * math.sin(x)))
-
-        def g_t(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
-            return (rot * (0.5 * x - 0.25 * math.sin(2.0 * x))
-                    - 2.0 * eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
-
+        c1, s1, c2, s2, length = self._arc(2.0 * eps_dot * eps, -2.0 * eps_dot, rot)
+        # g_n, g_t between the arc's ends, from their cosines and sines
+        d_cos, d_sin = c2 - c1, s2 - s1
+        d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)  # cos(2 g2) - cos(2 g1)
+        d_sin2 = 2.0 * (s2 * c2 - s1 * c1)                  # sin(2 g2) - sin(2 g1)
+        # g_n: antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+        in_n = (rot * (-0.25 * d_cos2 + eps * d_cos)
+                - 2.0 * eps_dot * ((0.5 + eps * eps) * length + 0.25 * d_sin2 - 2.0 * eps * d_sin))
+        # g_t: antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+        in_t = rot * (0.5 * length - 0.25 * d_sin2) - 2.0 * eps_dot * (-0.25 * d_cos2 + eps * d_cos)
         scale = self.viscosity * g.length ** 3 * g.journal_radius / (2.0 * g.clearance ** 2)  # eq. (60)
-        return scale * _between(g_n, arcs) / s ** 5, scale * _between(g_t, arcs) / s ** 4
+        s2_ = s * s
+        return scale * in_n / (s2_ * s2_ * s), scale * in_t / (s2_ * s2_)
+
+    @staticmethod
+    def _arc(a0: float, a1: float, b1: float) -> tuple[float, float, float, float, float]:
+        """The arc of positive pressure (eq. (59)): ``(cos g1, sin g1, cos g2, sin g2, g2 - g1)``.
+
+        The pressure's sign in ``gamma`` is ``a0 + a1 cos + b1 sin`` (``a0 = 2 eps_dot eps``,
+        ``a1 = -2 eps_dot``, ``b1 = eps omega_eff s``), positive on one arc around the phase of
+        ``(a1, b1)``, of half-width ``arccos(-a0 / |(a1, b1)|)``; its ends' cosines and sines
+        follow without trigonometric calls, only its length needs ``arccos``.
+        """
+        amplitude = math.sqrt(a1 * a1 + b1 * b1)
+        if a0 >= amplitude:  # positive everywhere (the whole circle), or zero everywhere
+            return 1.0, 0.0, 1.0, 0.0, (2.0 * math.pi if a0 > 0.0 else 0.0)
+        if a0 <= -amplitude:  # negative everywhere
+            return 1.0, 0.0, 1.0, 0.0, 0.0
+        cp, sp = a1 / amplitude, b1 / amplitude    # the phase
+        ch = -a0 / amplitude                       # cos(half)
+        sh = math.sqrt(1.0 - ch * ch)              # sin(half) >= 0
+        return (cp * ch + sp * sh, sp * ch - cp * sh, cp * ch - sp * sh, sp * ch + cp * sh, 2.0 * math.acos(ch))
 
 
 #: Halley's iteration for the long bearing's cavitation boundaries (:func:`_root_in_unit_interval`)
@@ -410,7 +387,8 @@ class LongBearing(FilmLaw):
         in_t = (rho * (s * s * length + 0.5 * d_sin2 - eps * d_sin)
                 + two_eps_dot * (-0.25 * d_cos2 + eps * d_cos))
         scale = 6.0 * self.viscosity * g.journal_radius ** 3 * g.length / g.clearance ** 2  # eq. (63)
-        return -scale * in_n / s ** 3, scale * in_t / s ** 4
+        s2_ = s * s
+        return -scale * in_n / (s2_ * s), scale * in_t / (s2_ * s2_)
 
     @staticmethod
     def _arc(a0: float, a1: float, b1: float, a2: float, b2: float, eps: float, sigma: float,

@@ -578,7 +578,7 @@ void blend_eccentricity(double eps, double eps_dot, double eps_film, double eps_
 // ShortBearing.components, eqs. (58)-(60): the positive part of Ocvirk's pressure.  Its sign in
 // gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot, positive on
 // one arc (phase - half, phase + half) around the phase of (a1, b1), cos(half) = -a0 / |(a1, b1)|
-// (film.py finds the same arc as roots of a polynomial, _positive_arcs).  The antiderivatives
+// (film.py ShortBearing._arc, the same steps).  The antiderivatives
 // g_n, g_t of film.py are evaluated between its ends from their cosines and sines, which follow
 // from (a0, a1, b1) without trigonometric calls; only the arc's length needs acos.
 void short_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
