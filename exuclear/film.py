@@ -372,10 +372,7 @@ class LongBearing(FilmLaw):
         s = math.sqrt(1.0 - eps * eps)
         rho = eps * omega_eff * s / (2.0 + eps * eps)
         sigma = eps_dot / (2.0 + 3.0 * eps * eps)
-        # sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
-        q0, q1, q2 = 7.0 * eps - 2.0 * eps ** 3, -(4.0 + 6.0 * eps * eps), 2.0 * eps + 3.0 * eps ** 3
-        c1, s1, c2, s2, length = self._arc(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps),
-                                           0.5 * sigma * q2, -0.5 * rho * eps, eps, sigma, rho)
+        c1, s1, c2, s2, length = self._arc(eps, rho, sigma)
         # g_n, g_t between the arc's ends, from their cosines and sines
         d_cos, d_sin = c2 - c1, s2 - s1
         d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)  # cos(2 g2) - cos(2 g1)
@@ -391,15 +388,15 @@ class LongBearing(FilmLaw):
         return -scale * in_n / (s2_ * s), scale * in_t / (s2_ * s2_)
 
     @staticmethod
-    def _arc(a0: float, a1: float, b1: float, a2: float, b2: float, eps: float, sigma: float,
-             rho: float) -> tuple[float, float, float, float, float]:
+    def _arc(eps: float, rho: float, sigma: float) -> tuple[float, float, float, float, float]:
         """The arc of positive pressure, physics.md eqs. (62a)-(62c): ``(cos g1, sin g1, cos g2,
-        sin g2, g2 - g1)`` of its ends ``g1 < g2`` in Sommerfeld's variable.
+        sin g2, g2 - g1)`` of its ends ``g1 < g2`` in Sommerfeld's variable, for
+        ``rho = eps omega_eff s / (2 + eps^2)`` and ``sigma = eps_dot / (2 + 3 eps^2)``.
 
-        ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` has, unless the squeeze
-        ``sigma`` is 0, exactly two zeros, both simple, one in ``(0, pi)`` and one in
-        ``(pi, 2 pi)``: ``g(0) = -sigma (1 - eps)^2 (4 - eps)`` and ``g(pi) = sigma (1 + eps)^2
-        (4 + eps)`` (eq. (62a)).  The positive part is one arc, from the first zero to the second
+        The pressure's sign ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` has,
+        unless the squeeze ``sigma`` is 0, exactly two zeros, both simple, one in ``(0, pi)`` and
+        one in ``(pi, 2 pi)``: ``g(0) = -sigma (1 - eps)^2 (4 - eps)`` and ``g(pi) = sigma
+        (1 + eps)^2 (4 + eps)`` (eq. (62a)).  The positive part is one arc, from the first zero to the second
         for ``sigma > 0`` (around the smallest gap), from the second to the first (plus 2 pi) for
         ``sigma < 0``.  With ``tau = tan(gamma / 2)``, ``(1 + tau^2)^2 g`` is the quartic
         ``k0 + k1 tau + ... + k4 tau^4`` (eq. (62b)); the sign of ``g`` at ``pi/2`` (``3 pi/2``)
@@ -413,6 +410,10 @@ class LongBearing(FilmLaw):
             if rho < 0.0:
                 return -1.0, 0.0, 1.0, 0.0, math.pi
             return 1.0, 0.0, 1.0, 0.0, 0.0  # no film pressure at all
+        # sign of p in gamma (eq. (62a)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+        eps3 = eps * eps * eps
+        q0, q2 = 7.0 * eps - 2.0 * eps3, 2.0 * eps + 3.0 * eps3
+        a0, b1, a2, b2 = sigma * (q0 + 0.5 * q2), rho * (2.0 - eps * eps), 0.5 * sigma * q2, -0.5 * rho * eps
         # eq. (62b); k0 = g(0) and k4 = g(pi) in their factored forms, whose signs are exact
         k0 = -sigma * (1.0 - eps) * (1.0 - eps) * (4.0 - eps)
         k1, k2, k3 = 2.0 * b1 + 4.0 * b2, 2.0 * a0 - 6.0 * a2, 2.0 * b1 - 4.0 * b2

@@ -616,7 +616,8 @@ void short_components(const Params& a, double clearance, double eps, double eps_
 }
 
 // LongBearing._arc (film.py): the arc of positive pressure of the long bearing (docs/physics.md section
-// 10.2, eqs. (62a)-(62c)).  Its sign in gamma is g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x, which,
+// 10.2, eqs. (62a)-(62c)).  Its sign in gamma is g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x (a1 =
+// sigma q1 enters only through g(0) and g(pi), below), which,
 // unless the squeeze sigma is 0, has exactly two zeros, both simple: one in (0, pi) and one in (pi, 2 pi)
 // (g(0) = -sigma (1 - eps)^2 (4 - eps), g(pi) = sigma (1 + eps)^2 (4 + eps)).  The positive part is one
 // arc: from the first zero to the second for sigma > 0 (around the smallest gap), from the second to the
@@ -666,13 +667,18 @@ struct QuarticRoot {
     }
 };
 
-// film.py LongBearing._arc: the positive arc of g (coefficients as above), sigma the squeeze factor
-Arc long_arc(double a0, double a1, double b1, double a2, double b2, double eps, double sigma, double rho) {
+// film.py LongBearing._arc: the positive arc at eps, with rho = eps omega_eff s / (2 + eps^2) and the
+// squeeze factor sigma = eps_dot / (2 + 3 eps^2)
+Arc long_arc(double eps, double rho, double sigma) {
     if (sigma == 0.0) {  // rotation alone: g = rho sin (2 - eps^2 - eps cos), zero at 0 and pi
         if (rho > 0.0) return Arc{1.0, 0.0, -1.0, 0.0, M_PI};
         if (rho < 0.0) return Arc{-1.0, 0.0, 1.0, 0.0, M_PI};
         return Arc{1.0, 0.0, 1.0, 0.0, 0.0};  // no film pressure at all
     }
+    // sign of p in gamma (eq. (62a)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+    double eps3 = eps * eps * eps;
+    double q0 = 7.0 * eps - 2.0 * eps3, q2 = 2.0 * eps + 3.0 * eps3;
+    double a0 = sigma * (q0 + 0.5 * q2), b1 = rho * (2.0 - eps * eps), a2 = 0.5 * sigma * q2, b2 = -0.5 * rho * eps;
     // eq. (62b); k0 = g(0) and k4 = g(pi) in their factored forms, whose signs are exact
     double k0 = -sigma * (1.0 - eps) * (1.0 - eps) * (4.0 - eps), k1 = 2.0 * b1 + 4.0 * b2, k2 = 2.0 * a0 - 6.0 * a2,
            k3 = 2.0 * b1 - 4.0 * b2, k4 = sigma * (1.0 + eps) * (1.0 + eps) * (4.0 + eps);
@@ -707,11 +713,7 @@ void long_components(const Params& a, double clearance, double eps, double eps_d
     double s = std::sqrt(1.0 - eps * eps);
     double rho = eps * omega_eff * s / (2.0 + eps * eps);
     double sigma = eps_dot / (2.0 + 3.0 * eps * eps);
-    double eps3 = eps * eps * eps;
-    // sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
-    double q0 = 7.0 * eps - 2.0 * eps3, q1 = -(4.0 + 6.0 * eps * eps), q2 = 2.0 * eps + 3.0 * eps3;
-    Arc arc = long_arc(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
-                       -0.5 * rho * eps, eps, sigma, rho);
+    Arc arc = long_arc(eps, rho, sigma);
     // g_n, g_t of film.py between the arc's ends, from their cosines and sines (no trigonometric calls)
     double d_cos = arc.c2 - arc.c1, d_sin = arc.s2 - arc.s1;
     double d_cos2 = (arc.c2 * arc.c2 - arc.s2 * arc.s2) - (arc.c1 * arc.c1 - arc.s1 * arc.s1);  // cos(2 x2) - cos(2 x1)
