@@ -42,8 +42,6 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple
 
-import numpy as np
-
 from .checks import check_choice, check_nonnegative, check_open, check_positive, warn_unit
 from .geometry import BearingGeometry
 
@@ -57,11 +55,6 @@ EPS_FILM_DEFAULT = 0.9
 EPS_CAP_DEFAULT = 0.97
 #: A viscosity above this [Pa s] (honey, bitumen) is more likely one given in mPa s.
 VISCOSITY_WARN_ABOVE = 10.0
-#: A root of the pressure's sign function counts as real when its modulus is within this
-#: of 1 (roots of a degree-4 polynomial on the unit circle; round-off ~1e-15, a tangent
-#: double root splits by ~1e-8).  Spurious candidates are harmless: the sign is tested
-#: at each arc's midpoint.
-_UNIT_CIRCLE_TOL = 1e-6
 
 
 # -- helper quantities ---------------------------------------------------------------------
@@ -155,41 +148,6 @@ def film_kinematics(ex: float, ey: float, vx: float, vy: float, omega_journal: f
         phi_dot = 0.0
     eps_dot = (nx * vx + ny * vy) / clearance
     return FilmKinematics(ecc / clearance, eps_dot, omega_journal + omega_bearing - 2.0 * phi_dot, nx, ny)
-
-
-# -- integrals over the arcs of positive pressure (short and long models) --------------------
-def _positive_arcs(a0: float, a1: float, b1: float, a2: float, b2: float) -> list[tuple[float, float]]:
-    """Arcs ``(g1, g2)``, ``g1 < g2``, of ``gamma`` where the trigonometric polynomial
-    ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` is positive.
-
-    The real zeros are the unit-modulus roots of ``z^2 g(z)`` with ``z = exp(i gamma)``.
-    """
-    coeffs = [0.5 * complex(a2, -b2), 0.5 * complex(a1, -b1), complex(a0), 0.5 * complex(a1, b1),
-              0.5 * complex(a2, b2)]
-    while coeffs and coeffs[0] == 0.0:  # np.roots would do this too; an all-zero g has no arc
-        coeffs.pop(0)
-    angles = sorted(float(np.angle(z)) % (2.0 * math.pi) for z in np.roots(coeffs)
-                    if abs(abs(z) - 1.0) < _UNIT_CIRCLE_TOL) if len(coeffs) > 1 else []
-
-    def g(x: float) -> float:
-        return a0 + a1 * math.cos(x) + b1 * math.sin(x) + a2 * math.cos(2.0 * x) + b2 * math.sin(2.0 * x)
-
-    if not angles:
-        return [(0.0, 2.0 * math.pi)] if g(0.0) > 0.0 else []
-    arcs = []
-    for k, start in enumerate(angles):
-        end = angles[k + 1] if k + 1 < len(angles) else angles[0] + 2.0 * math.pi
-        if end - start > 0.0 and g(0.5 * (start + end)) > 0.0:
-            if arcs and arcs[-1][1] == start:  # a tangent (double) root inside a positive arc
-                arcs[-1] = (arcs[-1][0], end)
-            else:
-                arcs.append((start, end))
-    return arcs
-
-
-def _between(antiderivative, arcs: list[tuple[float, float]]) -> float:
-    """Sum of ``G(g2) - G(g1)`` over the arcs."""
-    return sum(antiderivative(g2) - antiderivative(g1) for g1, g2 in arcs)
 
 
 # -- the three models -----------------------------------------------------------------------------
@@ -313,19 +271,77 @@ class ShortBearing(FilmLaw):
         g = self.geometry
         s = math.sqrt(1.0 - eps * eps)
         rot = eps * omega_eff * s
-        # sign of p in gamma: rot sin(gamma) - 2 eps_dot (cos(gamma) - eps), eq. (59)
-        arcs = _positive_arcs(2.0 * eps_dot * eps, -2.0 * eps_dot, rot, 0.0, 0.0)
-
-        def g_n(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
-            return (rot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x))
-                    - 2.0 * eps_dot * ((0.5 + eps * eps) * x + 0.25 * math.sin(2.0 * x) - 2.0 * eps * math.sin(x)))
-
-        def g_t(x: float) -> float:  # antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
-            return (rot * (0.5 * x - 0.25 * math.sin(2.0 * x))
-                    - 2.0 * eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
-
+        c1, s1, c2, s2, length = self._arc(2.0 * eps_dot * eps, -2.0 * eps_dot, rot)
+        # g_n, g_t between the arc's ends, from their cosines and sines
+        d_cos, d_sin = c2 - c1, s2 - s1
+        d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)  # cos(2 g2) - cos(2 g1)
+        d_sin2 = 2.0 * (s2 * c2 - s1 * c1)                  # sin(2 g2) - sin(2 g1)
+        # g_n: antiderivative of (rot sin - 2 eps_dot (cos - eps)) (cos - eps)
+        in_n = (rot * (-0.25 * d_cos2 + eps * d_cos)
+                - 2.0 * eps_dot * ((0.5 + eps * eps) * length + 0.25 * d_sin2 - 2.0 * eps * d_sin))
+        # g_t: antiderivative of (rot sin - 2 eps_dot (cos - eps)) sin
+        in_t = rot * (0.5 * length - 0.25 * d_sin2) - 2.0 * eps_dot * (-0.25 * d_cos2 + eps * d_cos)
         scale = self.viscosity * g.length ** 3 * g.journal_radius / (2.0 * g.clearance ** 2)  # eq. (60)
-        return scale * _between(g_n, arcs) / s ** 5, scale * _between(g_t, arcs) / s ** 4
+        s2_ = s * s
+        return scale * in_n / (s2_ * s2_ * s), scale * in_t / (s2_ * s2_)
+
+    @staticmethod
+    def _arc(a0: float, a1: float, b1: float) -> tuple[float, float, float, float, float]:
+        """The arc of positive pressure (eq. (59)): ``(cos g1, sin g1, cos g2, sin g2, g2 - g1)``.
+
+        The pressure's sign in ``gamma`` is ``a0 + a1 cos + b1 sin`` (``a0 = 2 eps_dot eps``,
+        ``a1 = -2 eps_dot``, ``b1 = eps omega_eff s``), positive on one arc around the phase of
+        ``(a1, b1)``, of half-width ``arccos(-a0 / |(a1, b1)|)``; its ends' cosines and sines
+        follow without trigonometric calls, only its length needs ``arccos``.
+        """
+        amplitude = math.sqrt(a1 * a1 + b1 * b1)
+        if a0 >= amplitude:  # positive everywhere (the whole circle), or zero everywhere
+            return 1.0, 0.0, 1.0, 0.0, (2.0 * math.pi if a0 > 0.0 else 0.0)
+        if a0 <= -amplitude:  # negative everywhere
+            return 1.0, 0.0, 1.0, 0.0, 0.0
+        cp, sp = a1 / amplitude, b1 / amplitude    # the phase
+        ch = -a0 / amplitude                       # cos(half)
+        sh = math.sqrt(1.0 - ch * ch)              # sin(half) >= 0
+        return (cp * ch + sp * sh, sp * ch - cp * sh, cp * ch - sp * sh, sp * ch + cp * sh, 2.0 * math.acos(ch))
+
+
+#: Halley's iteration for the long bearing's cavitation boundaries (:func:`_root_in_unit_interval`)
+#: converges cubically: once a step is below ``_ROOT_RTOL`` of the root, what is left is of the
+#: order of its cube, round-off (measured: at most 4e-16 relative).  ``_ROOT_ITERATIONS`` is far
+#: more than needed (4 on average); a step that leaves the bracket is replaced by bisection.
+_ROOT_RTOL = 1e-6
+_ROOT_ITERATIONS = 100
+
+
+def _root_in_unit_interval(k0: float, k1: float, k2: float, k3: float, k4: float, p_one: float) -> float:
+    """The root in ``[0, 1]`` of ``p = k0 + k1 x + k2 x^2 + k3 x^3 + k4 x^4``, given ``p(1) = p_one``
+    of the sign opposite to ``k0``'s (or 0) and one root there: Halley's iteration from the
+    secant's root, kept inside the bracket by bisection (physics.md eq. (62c))."""
+    if p_one == 0.0:
+        return 1.0
+    lo, hi = 0.0, 1.0
+    x = k0 / (k0 - p_one)
+    for _ in range(_ROOT_ITERATIONS):
+        x2 = x * x  # p, p', p'' in Estrin's order (the compiled kernel's: shorter dependency chains)
+        p = (k0 + k1 * x) + (k2 + k3 * x) * x2 + k4 * (x2 * x2)
+        dp = (k1 + 2.0 * k2 * x) + (3.0 * k3 + 4.0 * k4 * x) * x2
+        ddp = 2.0 * k2 + (6.0 * k3 + 12.0 * k4 * x) * x
+        if p == 0.0:
+            break
+        if (p > 0.0) == (k0 > 0.0):
+            lo = x
+        else:
+            hi = x
+        den = dp * dp - 0.5 * p * ddp
+        nxt = x - p * dp / den if den != 0.0 else -1.0
+        halley = lo <= nxt <= hi
+        if not halley:  # the step left the bracket: bisect
+            nxt = 0.5 * (lo + hi)
+        change = abs(nxt - x)
+        x = nxt
+        if halley and change <= _ROOT_RTOL * x:
+            break
+    return x
 
 
 @dataclass(frozen=True)
@@ -343,9 +359,9 @@ class LongBearing(FilmLaw):
     makes ``integral of h^3 p dtheta`` vanish, which is the limit of a finite bearing open
     to ambient pressure at its ends (exuclear's choice, eq. (62); it keeps the long model
     the large-``B/D`` limit of the Reynolds reference).  **Cavitation**: the positive part
-    of this pressure (Guembel), on the arcs where it is positive, found as roots of a
-    trigonometric polynomial; forces in closed form by parts and Sommerfeld's
-    substitution (eq. (63)).  For rotation alone, ``F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)
+    of this pressure (Guembel), on the one arc where it is positive, whose ends are the two
+    zeros of a trigonometric polynomial (eqs. (62a)-(62c), :meth:`_arc`); forces in closed
+    form by parts and Sommerfeld's substitution (eq. (63)).  For rotation alone, ``F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2)
     (1 - eps^2))`` and ``F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2))``.
     """
 
@@ -356,22 +372,74 @@ class LongBearing(FilmLaw):
         s = math.sqrt(1.0 - eps * eps)
         rho = eps * omega_eff * s / (2.0 + eps * eps)
         sigma = eps_dot / (2.0 + 3.0 * eps * eps)
-        # sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
-        q0, q1, q2 = 7.0 * eps - 2.0 * eps ** 3, -(4.0 + 6.0 * eps * eps), 2.0 * eps + 3.0 * eps ** 3
-        arcs = _positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
-                              -0.5 * rho * eps)
+        c1, s1, c2, s2, length = self._arc(eps, rho, sigma)
+        # g_n, g_t between the arc's ends, from their cosines and sines
+        d_cos, d_sin = c2 - c1, s2 - s1
+        d_cos2 = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)  # cos(2 g2) - cos(2 g1)
+        d_sin2 = 2.0 * (s2 * c2 - s1 * c1)                  # sin(2 g2) - sin(2 g1)
         two_eps_dot = 2.0 * eps_dot
-
-        def g_n(x: float) -> float:  # antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
-            return (rho * (-0.5 * math.cos(2.0 * x) - eps * math.cos(x))
-                    + two_eps_dot * (0.5 * x - 0.25 * math.sin(2.0 * x)))
-
-        def g_t(x: float) -> float:  # antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
-            return (rho * (s * s * x + 0.5 * math.sin(2.0 * x) - eps * math.sin(x))
-                    + two_eps_dot * (-0.25 * math.cos(2.0 * x) + eps * math.cos(x)))
-
+        # g_n: antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+        in_n = rho * (-0.5 * d_cos2 - eps * d_cos) + two_eps_dot * (0.5 * length - 0.25 * d_sin2)
+        # g_t: antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+        in_t = (rho * (s * s * length + 0.5 * d_sin2 - eps * d_sin)
+                + two_eps_dot * (-0.25 * d_cos2 + eps * d_cos))
         scale = 6.0 * self.viscosity * g.journal_radius ** 3 * g.length / g.clearance ** 2  # eq. (63)
-        return -scale * _between(g_n, arcs) / s ** 3, scale * _between(g_t, arcs) / s ** 4
+        s2_ = s * s
+        return -scale * in_n / (s2_ * s), scale * in_t / (s2_ * s2_)
+
+    @staticmethod
+    def _arc(eps: float, rho: float, sigma: float) -> tuple[float, float, float, float, float]:
+        """The arc of positive pressure, physics.md eqs. (62a)-(62c): ``(cos g1, sin g1, cos g2,
+        sin g2, g2 - g1)`` of its ends ``g1 < g2`` in Sommerfeld's variable, for
+        ``rho = eps omega_eff s / (2 + eps^2)`` and ``sigma = eps_dot / (2 + 3 eps^2)``.
+
+        The pressure's sign ``g = a0 + a1 cos + b1 sin + a2 cos 2gamma + b2 sin 2gamma`` has,
+        unless the squeeze ``sigma`` is 0, exactly two zeros, both simple, one in ``(0, pi)`` and
+        one in ``(pi, 2 pi)``: ``g(0) = -sigma (1 - eps)^2 (4 - eps)`` and ``g(pi) = sigma
+        (1 + eps)^2 (4 + eps)`` (eq. (62a)).  The positive part is one arc, from the first zero to the second
+        for ``sigma > 0`` (around the smallest gap), from the second to the first (plus 2 pi) for
+        ``sigma < 0``.  With ``tau = tan(gamma / 2)``, ``(1 + tau^2)^2 g`` is the quartic
+        ``k0 + k1 tau + ... + k4 tau^4`` (eq. (62b)); the sign of ``g`` at ``pi/2`` (``3 pi/2``)
+        tells which quarter circle holds each zero, and there it is the only root in ``[0, 1]`` of
+        the quartic in ``t = |tau|`` or ``u = 1 / |tau|`` (eq. (62c)).  The compiled kernel
+        iterates the two roots side by side; each takes the same steps as here.
+        """
+        if sigma == 0.0:  # rotation alone: g = rho sin (2 - eps^2 - eps cos), zero at 0 and pi
+            if rho > 0.0:
+                return 1.0, 0.0, -1.0, 0.0, math.pi
+            if rho < 0.0:
+                return -1.0, 0.0, 1.0, 0.0, math.pi
+            return 1.0, 0.0, 1.0, 0.0, 0.0  # no film pressure at all
+        # sign of p in gamma (eq. (62a)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+        eps3 = eps * eps * eps
+        q0, q2 = 7.0 * eps - 2.0 * eps3, 2.0 * eps + 3.0 * eps3
+        a0, b1, a2, b2 = sigma * (q0 + 0.5 * q2), rho * (2.0 - eps * eps), 0.5 * sigma * q2, -0.5 * rho * eps
+        # eq. (62b); k0 = g(0) and k4 = g(pi) in their factored forms, whose signs are exact
+        k0 = -sigma * (1.0 - eps) * (1.0 - eps) * (4.0 - eps)
+        k1, k2, k3 = 2.0 * b1 + 4.0 * b2, 2.0 * a0 - 6.0 * a2, 2.0 * b1 - 4.0 * b2
+        k4 = sigma * (1.0 + eps) * (1.0 + eps) * (4.0 + eps)
+        # the zero in (0, pi): in (0, pi/2) (tau = t) where g(pi/2) has the sign of g(pi), else in
+        # [pi/2, pi) (tau = 1 / u)
+        q_plus = k0 + k1 + k2 + k3 + k4  # 4 g(pi/2)
+        first_t = (q_plus > 0.0) != (k0 > 0.0) and q_plus != 0.0
+        x = (_root_in_unit_interval(k0, k1, k2, k3, k4, q_plus) if first_t
+             else _root_in_unit_interval(k4, k3, k2, k1, k0, q_plus))
+        # the ends from tau: cos = (1 - tau^2) / (1 + tau^2), sin = 2 tau / (1 + tau^2), gamma = 2 arctan(tau)
+        d = 1.0 + x * x
+        c1, s1 = ((1.0 - x * x) / d if first_t else (x * x - 1.0) / d), 2.0 * x / d
+        g1 = 2.0 * math.atan(x) if first_t else math.pi - 2.0 * math.atan(x)
+        # the zero in (pi, 2 pi): in (3 pi/2, 2 pi) (tau = -t) where g(3 pi/2) has the sign of g(pi),
+        # else in (pi, 3 pi/2] (tau = -1 / u)
+        q_minus = k0 - k1 + k2 - k3 + k4  # 4 g(3 pi/2)
+        second_t = (q_minus > 0.0) != (k0 > 0.0) and q_minus != 0.0
+        x = (_root_in_unit_interval(k0, -k1, k2, -k3, k4, q_minus) if second_t
+             else _root_in_unit_interval(k4, -k3, k2, -k1, k0, q_minus))
+        d = 1.0 + x * x
+        c2, s2 = ((1.0 - x * x) / d if second_t else (x * x - 1.0) / d), -2.0 * x / d
+        g2 = 2.0 * math.pi - 2.0 * math.atan(x) if second_t else math.pi + 2.0 * math.atan(x)
+        if sigma > 0.0:  # around pi: from the first zero to the second
+            return c1, s1, c2, s2, g2 - g1
+        return c2, s2, c1, s1, 2.0 * math.pi - (g2 - g1)  # around 0: from the second to the first, + 2 pi
 
 
 def _polynomial(coefficients: tuple[float, ...], x: float) -> float:

@@ -314,6 +314,68 @@ def test_closed_forms_match_brute_force_quadrature_of_the_positive_pressure(mode
     assert (f_n, f_p) == pytest.approx((q_n, q_p), abs=1e-6 * math.hypot(q_n, q_p))
 
 
+def _long_by_adaptive_quadrature(eps: float, eps_dot: float, omega_eff: float) -> tuple[tuple[float, float], list]:
+    """(F_n, F_p) of the long model straight from eq. (61), and the zeros of its pressure:
+    the numerator's sign changes on a grid in theta, each refined by brentq to round-off, and
+    the positive part integrated between them by adaptive quadrature (the integrand vanishes
+    at the zeros, so their error enters only squared).  None of the model's formulas: no
+    Sommerfeld variable, no quartic, no antiderivatives."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    def numerator(t: float) -> float:   # eq. (61)'s bracket times (1 + eps cos)^2
+        return (eps * omega_eff * math.sin(t) * (2 + eps * math.cos(t)) / (2 + eps ** 2)
+                + eps_dot * (3 * eps - 4 * math.cos(t) - 2 * eps * math.cos(t) ** 2) / (2 + 3 * eps ** 2))
+
+    g = geometry(0.5)   # its clearance (R + C) - R, as the law has it
+    scale = 6 * ETA * g.journal_radius ** 3 * g.length / g.clearance ** 2
+    grid = [2 * math.pi * k / 720 for k in range(721)]
+    zeros = [brentq(numerator, lo, hi, xtol=1e-15, rtol=4 * 2.3e-16)
+             for lo, hi in zip(grid[:-1], grid[1:]) if numerator(lo) * numerator(hi) < 0]
+    ends = [0.0, *zeros, 2 * math.pi]
+    # absolute tolerance: 1e-14 of the largest pressure times the circumference (a force
+    # component can be far smaller than the force, e.g. F_p under pure squeeze)
+    tol = 1e-14 * 2 * math.pi * max(abs(numerator(t)) / (1 + eps * math.cos(t)) ** 2 for t in grid)
+    forces = [0.0, 0.0]
+    for lo, hi in zip(ends[:-1], ends[1:]):
+        if numerator(0.5 * (lo + hi)) > 0:
+            for k, trig in enumerate((math.cos, math.sin)):
+                forces[k] += scale * quad(lambda t, trig=trig: numerator(t) / (1 + eps * math.cos(t)) ** 2 * trig(t), lo, hi,
+                                          epsabs=tol, epsrel=1e-13, limit=200)[0]
+    return (forces[0], forces[1]), zeros
+
+
+#: (eps, eps_dot [1/s], omega_eff [rad/s]): wedge- and squeeze-dominated, pure squeeze both ways,
+#: either spin, eps near 0 and at the blend's cap eps_cap = 0.97 (the largest the joint evaluates)
+LONG_STATES = [(0.5, 1e-4, OMEGA), (0.8, -1e-3, -OMEGA), (0.5, 100.0, 1e-3), (0.6, 50.0, 0.0), (0.3, -100.0, 0.0),
+               (0.4, 30.0, -200.0), (0.7, -80.0, 150.0), (1e-6, 40.0, OMEGA), (0.05, -3.0, OMEGA),
+               (0.97, 20.0, OMEGA), (0.97, -200.0, 50.0), (0.95, 5.0, -OMEGA), (0.9, 300.0, 10.0)]
+
+
+@pytest.mark.parametrize("eps, eps_dot, omega_eff", LONG_STATES)
+def test_long_model_against_adaptive_quadrature_of_sommerfelds_pressure(eps, eps_dot, omega_eff):
+    # the cavitation boundaries of physics.md eqs. (62a)-(62c) and the closed-form integrals of
+    # eq. (63) against eq. (61) integrated directly.  Measured: within 2e-13 at (0.97, -200, 50),
+    # 3e-15 elsewhere (numpy's eigenvalue roots, used before: 1.1e-12 and 1.5e-14); 1e-11 leaves
+    # round-off room near the wall and catches any change of the physics
+    (q_n, q_p), zeros = _long_by_adaptive_quadrature(eps, eps_dot, omega_eff)
+    assert len(zeros) == 2   # exactly two zeros, one in each half circle (the lemma of eq. (62a))
+    assert zeros[0] < math.pi < zeros[1]
+    f_n, f_p = law("long").components(eps, eps_dot, omega_eff)
+    assert (f_n, f_p) == pytest.approx((q_n, q_p), rel=0, abs=1e-11 * math.hypot(q_n, q_p))
+
+
+@pytest.mark.parametrize("eps", [0.2, 0.6, 0.97])
+def test_long_model_squeeze_alone_ends_where_the_closed_form_puts_them(eps):
+    # squeeze alone: eq. (61) vanishes where 2 eps cos^2 + 4 cos - 3 eps = 0, so
+    # cos(theta) = (sqrt(4 + 6 eps^2) - 2) / (2 eps) (physics.md section 10.2): a check of the
+    # quadrature's zeros, which the test above takes as the reference
+    _, zeros = _long_by_adaptive_quadrature(eps, 50.0, 0.0)
+    cos_zero = (math.sqrt(4 + 6 * eps ** 2) - 2) / (2 * eps)
+    assert [math.cos(z) for z in zeros] == pytest.approx([cos_zero, cos_zero], abs=1e-13)
+    assert zeros[0] < math.pi / 2 and zeros[1] > 3 * math.pi / 2   # the film spans the smallest gap, theta = pi
+
+
 def test_film_module_is_pure_physics():
     # STYLE.md: laws never import exudyn; the library never imports matplotlib
     import ast

@@ -281,12 +281,13 @@ def impact_run(model: str, backend: str) -> dict:
 @pytest.mark.parametrize("model", ["short", "long", "finite"])
 def test_compiled_equals_python_on_a_lubricated_impact(model):
     # the same formulas in the same order: equal to round-off (the cavitation arcs are found
-    # in closed form (short) or by the Durand-Kerner iteration (long) in C++, by numpy's
-    # polynomial roots in Python: 1e-12 relative on the force).  Over 2000 steps of a
-    # contact the runs agree to Newton's relative tolerance (1e-8, Exudyn's default): the
-    # joint's finite-difference increment of 1e-9 (exuclear.engine.newton) turns the
-    # kernels' round-off into Jacobians that differ at 1e-7, so Newton stops at iterates
-    # that differ within its tolerance (measured 1.4e-9 relative with an increment of 1e-10)
+    # in closed form (short) and by the same Halley iterations (long) in both kernels: 1e-12
+    # relative on the force).  Over 2000
+    # steps of a contact the runs agree to Newton's relative tolerance (1e-8, Exudyn's
+    # default): the joint's finite-difference increment of 1e-9 (exuclear.engine.newton)
+    # turns the kernels' round-off into Jacobians that differ at 1e-7, so Newton stops at
+    # iterates that differ within its tolerance (measured 1.4e-9 relative with an increment
+    # of 1e-10)
     compiled, python = impact_run(model, "compiled"), impact_run(model, "python")
     assert (compiled["regime"] == REGIME_CONTACT).any(), "the journal should reach the wall"
     assert (compiled["regime"] == 0).any()

@@ -13,7 +13,8 @@ included, as Exudyn's call does) many times at one state; this script times
 
 and a whole run: the steady-load scene of tests/test_lubricated_joint.py per step,
 lubricated against dry (the dry journal resting on the wall).  Medians of repeated
-trials; the machine (2 cores) is shared, so single numbers vary by tens of per cent::
+trials, the cases of a trial timed one after the other; the machine (2 cores) is shared, so
+single numbers vary by tens of per cent::
 
     python -m validation.film_cost
 """
@@ -41,17 +42,26 @@ def joint(model: str | None) -> exuclear.ClearanceJoint:
                                lubrication=lube)
 
 
-def per_evaluation(model: str | None, eps: float) -> float:
-    """Median seconds per force evaluation of a joint at eccentricity ratio ``eps`` (closing at 1 mm/s)."""
+def per_evaluation(cases: list[tuple[str | None, float]]) -> list[tuple[float, float]]:
+    """Per case ``(model, eps)`` (a joint at eccentricity ratio ``eps``, closing at 1 mm/s): the
+    median seconds per force evaluation, and the median over trials of its ratio to the first
+    case's.  The cases are timed side by side, one after the other in every trial, so that a
+    load on the shared machine falls on all of them alike."""
     ck = kernel.COMPILED
-    joint_id = ck.new_joint()
-    try:
+    setups = []
+    for model, eps in cases:
+        joint_id = ck.new_joint()
         p = parameters(joint(model), joint_id, MAIN, 1e-3)
         d, v, w = [eps * C, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 0.0, OMEGA]
         ck.time_force(p, d, v, w, 1.0, 10)  # the run's initial state is taken here
-        return statistics.median(ck.time_force(p, d, v, w, 2.0, EVALUATIONS) for _ in range(TRIALS))
+        setups.append((joint_id, p, d, v, w))
+    try:
+        times = [[ck.time_force(p, d, v, w, 2.0, EVALUATIONS) for _, p, d, v, w in setups] for _ in range(TRIALS)]
     finally:
-        ck.release(joint_id)
+        for joint_id, *_ in setups:
+            ck.release(joint_id)
+    return [(statistics.median(trial[k] for trial in times), statistics.median(trial[k] / trial[0] for trial in times))
+            for k in range(len(cases))]
 
 
 def per_step(model: str | None, steps: int = 5000) -> float:
@@ -86,18 +96,20 @@ def per_step(model: str | None, steps: int = 5000) -> float:
 def main() -> None:
     if kernel.COMPILED is None:
         raise SystemExit(f"the compiled kernel is not available: {kernel.REASON}")
-    dry = per_evaluation(None, 1.0 + 1e-6 / C)
-    rows = [("dry contact (penetration 1 um)", dry)]
+    contact = 1.0 + 1e-6 / C
+    cases = [("dry contact (penetration 1 um)", None, contact)]
     for model in ("short", "long", "finite"):
-        rows.append((f"{model} film, eps 0.5", per_evaluation(model, 0.5)))
-        rows.append((f"{model} film + contact (penetration 1 um)", per_evaluation(model, 1.0 + 1e-6 / C)))
-    print(f"compiled force function, median of {TRIALS} x {EVALUATIONS} evaluations (shared 2-core machine)")
-    for name, seconds in rows:
-        print(f"  {name:42s} {seconds * 1e9:7.1f} ns   {seconds / dry:5.2f} x dry contact")
+        cases.append((f"{model} film, eps 0.5", model, 0.5))
+        cases.append((f"{model} film + contact (penetration 1 um)", model, contact))
+    results = per_evaluation([(model, eps) for _, model, eps in cases])
+    print(f"compiled force function, medians of {TRIALS} trials x {EVALUATIONS} evaluations, the cases side by side "
+          "in each trial (shared 2-core machine)")
+    for (name, _, _), (seconds, ratio) in zip(cases, results):
+        print(f"  {name:42s} {seconds * 1e9:7.1f} ns   {ratio:5.2f} x dry contact")
     dry_step = per_step(None)
     print("steady-load scene, generalized-alpha, 5000 steps, median of 5 runs")
     print(f"  {'dry (journal resting on the wall)':42s} {dry_step * 1e6:7.2f} us/step")
-    for model in ("short", "finite"):
+    for model in ("short", "long", "finite"):
         s = per_step(model)
         print(f"  {model + ' film':42s} {s * 1e6:7.2f} us/step   {s / dry_step:5.2f} x dry")
 

@@ -578,7 +578,7 @@ void blend_eccentricity(double eps, double eps_dot, double eps_film, double eps_
 // ShortBearing.components, eqs. (58)-(60): the positive part of Ocvirk's pressure.  Its sign in
 // gamma is a0 + a1 cos + b1 sin with a0 = 2 eps_dot eps, a1 = -2 eps_dot, b1 = rot, positive on
 // one arc (phase - half, phase + half) around the phase of (a1, b1), cos(half) = -a0 / |(a1, b1)|
-// (film.py finds the same arc as roots of a polynomial, _positive_arcs).  The antiderivatives
+// (film.py ShortBearing._arc, the same steps).  The antiderivatives
 // g_n, g_t of film.py are evaluated between its ends from their cosines and sines, which follow
 // from (a0, a1, b1) without trigonometric calls; only the arc's length needs acos.
 void short_components(const Params& a, double clearance, double eps, double eps_dot, double omega_eff, double& f_n,
@@ -615,100 +615,96 @@ void short_components(const Params& a, double clearance, double eps, double eps_
     f_perp = scale * in_t / (s2_ * s2_);
 }
 
-// film.py _positive_arcs: the arcs (g1, g2), g1 < g2, where g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x
-// is positive.  Its real zeros are the unit-modulus roots of z^2 g(z), z = exp(i x): a polynomial
-// of degree <= 4 whose roots are found here by the Durand-Kerner iteration (film.py: numpy's roots);
-// a root counts when its modulus is within UNIT_CIRCLE_TOL of 1, the sign is tested at each arc's
-// midpoint, and arcs that meet at a tangent (double) root are merged, as film.py does.
-const double UNIT_CIRCLE_TOL = 1e-6;  // film.py _UNIT_CIRCLE_TOL
-// Durand-Kerner: quadratic convergence near simple roots (a step below ROOT_CONVERGED is followed by
-// one more sweep, which lands at round-off), linear near a double root (halving: 1e-8, the accuracy a
-// double root has anyway, after about 30 sweeps); ROOT_ITERATIONS caps the jitter there.
-const int ROOT_ITERATIONS = 60;
-const double ROOT_CONVERGED = 1e-10;
-
-// complex arithmetic on plain doubles: std::complex's operators call the library's NaN- and
-// inf-checking routines (__muldc3, __divdc3), which made the root finding 3 times slower
-struct Cx {
-    double re, im;
+// LongBearing._arc (film.py): the arc of positive pressure of the long bearing (docs/physics.md section
+// 10.2, eqs. (62a)-(62c)).  Its sign in gamma is g = a0 + a1 cos + b1 sin + a2 cos 2x + b2 sin 2x (a1 =
+// sigma q1 enters only through g(0) and g(pi), below), which,
+// unless the squeeze sigma is 0, has exactly two zeros, both simple: one in (0, pi) and one in (pi, 2 pi)
+// (g(0) = -sigma (1 - eps)^2 (4 - eps), g(pi) = sigma (1 + eps)^2 (4 + eps)).  The positive part is one
+// arc: from the first zero to the second for sigma > 0 (around the smallest gap), from the second to the
+// first (plus 2 pi) for sigma < 0.  With tau = tan(gamma / 2), (1 + tau^2)^2 g is the quartic
+// k0 + k1 tau + ... + k4 tau^4 (eq. (62b)); the sign of g at pi/2 (or 3 pi/2) tells which quarter
+// circle holds each zero, and there it is the only root in [0, 1] of the quartic in t = |tau| or
+// u = 1 / |tau|, found by Halley's iteration (QuarticRoot).  A pure function of (eps, eps_dot, omega_eff).
+struct Arc {
+    double c1, s1, c2, s2, length;  // cos and sin of its ends gamma_1 < gamma_2, and gamma_2 - gamma_1
 };
-inline Cx operator+(Cx a, Cx b) { return Cx{a.re + b.re, a.im + b.im}; }
-inline Cx operator-(Cx a, Cx b) { return Cx{a.re - b.re, a.im - b.im}; }
-inline Cx operator*(Cx a, Cx b) { return Cx{a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
-inline Cx operator/(Cx a, Cx b) {
-    double d = b.re * b.re + b.im * b.im;
-    return Cx{(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
-}
-inline double modulus(Cx a) { return std::sqrt(a.re * a.re + a.im * a.im); }
 
-int positive_arcs(double a0, double a1, double b1, double a2, double b2, double (&arcs)[4][2]) {
-    Cx coeffs[5] = {Cx{0.5 * a2, -0.5 * b2}, Cx{0.5 * a1, -0.5 * b1}, Cx{a0, 0.0}, Cx{0.5 * a1, 0.5 * b1},
-                    Cx{0.5 * a2, 0.5 * b2}};  // highest power first
-    int first = 0;
-    while (first < 5 && coeffs[first].re == 0.0 && coeffs[first].im == 0.0) ++first;  // leading zeros dropped
-    int degree = 4 - first;  // (an all-zero g has no arc)
-    auto g = [&](double x) {
-        return a0 + a1 * std::cos(x) + b1 * std::sin(x) + a2 * std::cos(2.0 * x) + b2 * std::sin(2.0 * x);
-    };
-    double angles[4];
-    int n_angles = 0;
-    if (degree >= 1) {
-        Cx z[4];
-        Cx start{0.4, 0.9};  // the customary starting points: powers of a number off both axes
-        for (int k = 0; k < degree; ++k) z[k] = k == 0 ? start : z[k - 1] * start;
-        bool polished = false;
-        for (int it = 0; it < ROOT_ITERATIONS; ++it) {
-            double change = 0.0;
-            for (int k = 0; k < degree; ++k) {
-                Cx p = coeffs[first];
-                for (int j = first + 1; j < 5; ++j) p = p * z[k] + coeffs[j];
-                Cx q = coeffs[first];
-                for (int j = 0; j < degree; ++j) {
-                    if (j != k) q = q * (z[k] - z[j]);
-                }
-                Cx step = p / q;
-                z[k] = z[k] - step;
-                change = std::max(change, modulus(step) / std::max(1.0, modulus(z[k])));
-            }
-            if (change < ROOT_CONVERGED) {
-                if (polished) break;
-                polished = true;  // one more sweep
-            }
+// Halley's iteration converges cubically: once a step is below ROOT_RTOL of the root, what is left is
+// of the order of its cube, round-off (measured: at most 4e-16 relative).  A step that leaves the
+// bracket is replaced by bisection; ROOT_ITERATIONS is far more than needed (4 on average).
+const double ROOT_RTOL = 1e-6;
+const int ROOT_ITERATIONS = 100;
+
+// film.py _root_in_unit_interval: the root in [0, 1] of p = k0 + k1 x + k2 x^2 + k3 x^3 + k4 x^4, given
+// p(1) = p_one of the sign opposite to k0's (or 0), from the secant's root.  One step at a time, so that
+// the arc's two roots iterate side by side (independent: the processor overlaps them).
+struct QuarticRoot {
+    double k[5], lo, hi, x;
+    bool done;
+    QuarticRoot(double k0, double k1, double k2, double k3, double k4, double p_one)
+        : k{k0, k1, k2, k3, k4}, lo(0.0), hi(1.0), x(p_one == 0.0 ? 1.0 : k0 / (k0 - p_one)), done(p_one == 0.0) {}
+    void step() {
+        double x2 = x * x;  // p, p', p'' in Estrin's order: shorter chains of dependent operations than Horner's
+        double p = (k[0] + k[1] * x) + (k[2] + k[3] * x) * x2 + k[4] * (x2 * x2);
+        double dp = (k[1] + 2.0 * k[2] * x) + (3.0 * k[3] + 4.0 * k[4] * x) * x2;
+        double ddp = 2.0 * k[2] + (6.0 * k[3] + 12.0 * k[4] * x) * x;
+        if (p == 0.0) {
+            done = true;
+            return;
         }
-        for (int k = 0; k < degree; ++k) {
-            if (std::fabs(modulus(z[k]) - 1.0) < UNIT_CIRCLE_TOL) {
-                double angle = std::fmod(std::atan2(z[k].im, z[k].re), 2.0 * M_PI);  // Python's % 2 pi: [0, 2 pi)
-                if (angle < 0.0) angle += 2.0 * M_PI;
-                angles[n_angles++] = angle;
-            }
+        if ((p > 0.0) == (k[0] > 0.0)) {
+            lo = x;
+        } else {
+            hi = x;
         }
-        for (int i = 1; i < n_angles; ++i) {  // sorted (insertion: at most four)
-            for (int j = i; j > 0 && angles[j - 1] > angles[j]; --j) std::swap(angles[j - 1], angles[j]);
-        }
+        double den = dp * dp - 0.5 * p * ddp;
+        double next = den != 0.0 ? x - p * dp / den : -1.0;
+        bool halley = next >= lo && next <= hi;
+        if (!halley) next = 0.5 * (lo + hi);  // the step left the bracket: bisect
+        double change = std::fabs(next - x);
+        x = next;
+        done = halley && change <= ROOT_RTOL * x;
     }
-    if (n_angles == 0) {
-        if (g(0.0) > 0.0) {
-            arcs[0][0] = 0.0;
-            arcs[0][1] = 2.0 * M_PI;
-            return 1;
-        }
-        return 0;
+};
+
+// film.py LongBearing._arc: the positive arc at eps, with rho = eps omega_eff s / (2 + eps^2) and the
+// squeeze factor sigma = eps_dot / (2 + 3 eps^2)
+Arc long_arc(double eps, double rho, double sigma) {
+    if (sigma == 0.0) {  // rotation alone: g = rho sin (2 - eps^2 - eps cos), zero at 0 and pi
+        if (rho > 0.0) return Arc{1.0, 0.0, -1.0, 0.0, M_PI};
+        if (rho < 0.0) return Arc{-1.0, 0.0, 1.0, 0.0, M_PI};
+        return Arc{1.0, 0.0, 1.0, 0.0, 0.0};  // no film pressure at all
     }
-    int n_arcs = 0;
-    for (int k = 0; k < n_angles; ++k) {
-        double a = angles[k];
-        double b = k + 1 < n_angles ? angles[k + 1] : angles[0] + 2.0 * M_PI;
-        if (b - a > 0.0 && g(0.5 * (a + b)) > 0.0) {
-            if (n_arcs > 0 && arcs[n_arcs - 1][1] == a) {  // a tangent (double) root inside a positive arc
-                arcs[n_arcs - 1][1] = b;
-            } else {
-                arcs[n_arcs][0] = a;
-                arcs[n_arcs][1] = b;
-                ++n_arcs;
-            }
-        }
+    // sign of p in gamma (eq. (62a)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
+    double eps3 = eps * eps * eps;
+    double q0 = 7.0 * eps - 2.0 * eps3, q2 = 2.0 * eps + 3.0 * eps3;
+    double a0 = sigma * (q0 + 0.5 * q2), b1 = rho * (2.0 - eps * eps), a2 = 0.5 * sigma * q2, b2 = -0.5 * rho * eps;
+    // eq. (62b); k0 = g(0) and k4 = g(pi) in their factored forms, whose signs are exact
+    double k0 = -sigma * (1.0 - eps) * (1.0 - eps) * (4.0 - eps), k1 = 2.0 * b1 + 4.0 * b2, k2 = 2.0 * a0 - 6.0 * a2,
+           k3 = 2.0 * b1 - 4.0 * b2, k4 = sigma * (1.0 + eps) * (1.0 + eps) * (4.0 + eps);
+    // the zero in (0, pi): in (0, pi/2) (tau = t) where g(pi/2) has the sign of g(pi), else in [pi/2, pi) (tau = 1 / u)
+    double q_plus = k0 + k1 + k2 + k3 + k4;  // 4 g(pi/2)
+    bool first_t = (q_plus > 0.0) != (k0 > 0.0) && q_plus != 0.0;
+    QuarticRoot first = first_t ? QuarticRoot(k0, k1, k2, k3, k4, q_plus) : QuarticRoot(k4, k3, k2, k1, k0, q_plus);
+    // the zero in (pi, 2 pi): in (3 pi/2, 2 pi) (tau = -t) where g(3 pi/2) has the sign of g(pi), else in
+    // (pi, 3 pi/2] (tau = -1 / u)
+    double q_minus = k0 - k1 + k2 - k3 + k4;  // 4 g(3 pi/2)
+    bool second_t = (q_minus > 0.0) != (k0 > 0.0) && q_minus != 0.0;
+    QuarticRoot second = second_t ? QuarticRoot(k0, -k1, k2, -k3, k4, q_minus) : QuarticRoot(k4, -k3, k2, -k1, k0, q_minus);
+    for (int it = 0; it < ROOT_ITERATIONS && !(first.done && second.done); ++it) {
+        if (!first.done) first.step();
+        if (!second.done) second.step();
     }
-    return n_arcs;
+    // the ends from tau: cos = (1 - tau^2) / (1 + tau^2), sin = 2 tau / (1 + tau^2), gamma = 2 arctan(tau)
+    double x = first.x, d = 1.0 + x * x;
+    double c1 = first_t ? (1.0 - x * x) / d : (x * x - 1.0) / d, s1 = 2.0 * x / d;
+    double g1 = first_t ? 2.0 * std::atan(x) : M_PI - 2.0 * std::atan(x);
+    x = second.x;
+    d = 1.0 + x * x;
+    double c2 = second_t ? (1.0 - x * x) / d : (x * x - 1.0) / d, s2 = -2.0 * x / d;
+    double g2 = second_t ? 2.0 * M_PI - 2.0 * std::atan(x) : M_PI + 2.0 * std::atan(x);
+    if (sigma > 0.0) return Arc{c1, s1, c2, s2, g2 - g1};  // around pi: from the first zero to the second
+    return Arc{c2, s2, c1, s1, 2.0 * M_PI - (g2 - g1)};   // around 0: from the second to the first, + 2 pi
 }
 
 // LongBearing.components, eqs. (61)-(63): Sommerfeld's pressure, its positive part
@@ -717,26 +713,17 @@ void long_components(const Params& a, double clearance, double eps, double eps_d
     double s = std::sqrt(1.0 - eps * eps);
     double rho = eps * omega_eff * s / (2.0 + eps * eps);
     double sigma = eps_dot / (2.0 + 3.0 * eps * eps);
-    double eps3 = eps * eps * eps;
-    // sign of p in gamma (eq. (62)): rho sin (2 - eps^2 - eps cos) + sigma (q0 + q1 cos + q2 cos^2)
-    double q0 = 7.0 * eps - 2.0 * eps3, q1 = -(4.0 + 6.0 * eps * eps), q2 = 2.0 * eps + 3.0 * eps3;
-    double arcs[4][2];
-    int n_arcs = positive_arcs(sigma * (q0 + 0.5 * q2), sigma * q1, rho * (2.0 - eps * eps), 0.5 * sigma * q2,
-                               -0.5 * rho * eps, arcs);
+    Arc arc = long_arc(eps, rho, sigma);
+    // g_n, g_t of film.py between the arc's ends, from their cosines and sines (no trigonometric calls)
+    double d_cos = arc.c2 - arc.c1, d_sin = arc.s2 - arc.s1;
+    double d_cos2 = (arc.c2 * arc.c2 - arc.s2 * arc.s2) - (arc.c1 * arc.c1 - arc.s1 * arc.s1);  // cos(2 x2) - cos(2 x1)
+    double d_sin2 = 2.0 * (arc.s2 * arc.c2 - arc.s1 * arc.c1);                                  // sin(2 x2) - sin(2 x1)
     double two_eps_dot = 2.0 * eps_dot;
-    auto g_n = [&](double x) {  // antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
-        return (rho * (-0.5 * std::cos(2.0 * x) - eps * std::cos(x))
-                + two_eps_dot * (0.5 * x - 0.25 * std::sin(2.0 * x)));
-    };
-    auto g_t = [&](double x) {  // antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
-        return (rho * (s * s * x + 0.5 * std::sin(2.0 * x) - eps * std::sin(x))
-                + two_eps_dot * (-0.25 * std::cos(2.0 * x) + eps * std::cos(x)));
-    };
-    double in_n = 0.0, in_t = 0.0;
-    for (int k = 0; k < n_arcs; ++k) {
-        in_n += g_n(arcs[k][1]) - g_n(arcs[k][0]);
-        in_t += g_t(arcs[k][1]) - g_t(arcs[k][0]);
-    }
+    // g_n: antiderivative of rho (2 cos + eps) sin + 2 eps_dot sin^2
+    double in_n = rho * (-0.5 * d_cos2 - eps * d_cos) + two_eps_dot * (0.5 * arc.length - 0.25 * d_sin2);
+    // g_t: antiderivative of (cos - eps) (rho (2 cos + eps) + 2 eps_dot sin)
+    double in_t = (rho * (s * s * arc.length + 0.5 * d_sin2 - eps * d_sin)
+                   + two_eps_dot * (-0.25 * d_cos2 + eps * d_cos));
     double scale = 6.0 * a.viscosity * a.r_j * a.r_j * a.r_j * a.length / (clearance * clearance);  // eq. (63)
     double s2_ = s * s;
     f_n = -scale * in_n / (s2_ * s);
