@@ -243,3 +243,37 @@ def test_add_clearance_joint_is_deprecated_and_names_the_call_to_write():
     # the bearing first, and the new name of the penetration limit
     assert f"CreateClearanceJoint(mbs, itemNumbers=[{ground!r}, {body!r}]" in message
     assert "maxPenetration=1e-05" in message and "AddClearanceJoint(mbs, markerNumbers=" in message
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
+def test_helper_connectors_are_off_where_the_loads_do_not_use_the_bearing_spin(backend):
+    # docs/physics.md section 4.1: a planar, dry, frictionless joint needs neither the
+    # bearing's spin nor its extra moment, so its probe and torque connectors are off; its
+    # motion equals that of the same joint with them on (Coulomb with mu = 0: F_T = 0
+    # exactly), through an implicit solver whose Jacobian differentiates them, to the last
+    # bit; only the slip output differs, by the bearing's term (R_B - R_J) omega_B, eq. (8)
+    runs = {}
+    for friction in ("none", "coulomb:0"):
+        mbs, handle, (nb, nj), _, _ = _two_free_bodies(backend, friction=friction, offset=-0.1 * C)
+        active = [mbs.GetObject(n)["activeConnector"] for n in (handle.probeNumber, handle.torqueNumber)]
+        assert active == [friction != "none"] * 2
+        ss = exu.SimulationSettings()
+        ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 3e-4, 300
+        ss.solution.sensors.writePeriod = 1e-6
+        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        runs[friction] = (handle.outputs(), [np.array(mbs.GetNodeOutput(n, exu.OutputVariableType.Coordinates))
+                                             for n in (nb, nj)], mbs, nb)
+    (out_off, q_off, _, _), (out_on, q_on, mbs, nb) = runs["none"], runs["coulomb:0"]
+    assert out_off["normal_force"].max() > 1.0  # an impact happened
+    for a, b in zip(q_off, q_on):
+        assert np.array_equal(a, b)
+    assert np.array_equal(out_off["normal_force"], out_on["normal_force"])
+    omega_b = np.asarray(mbs.GetNodeOutput(nb, exu.OutputVariableType.AngularVelocity))[2]
+    assert out_on["slip_velocity"][-1] - out_off["slip_velocity"][-1] == pytest.approx(omega_b * C, rel=1e-9)
+
+
+def test_helper_connectors_follow_the_physics_between_runs():
+    mbs, handle, _, _, _ = _two_free_bodies("python", friction="none")
+    assert not mbs.GetObject(handle.probeNumber)["activeConnector"]
+    handle.joint = exuclear.make_joint(journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.6, friction="paper")
+    assert mbs.GetObject(handle.probeNumber)["activeConnector"] and mbs.GetObject(handle.torqueNumber)["activeConnector"]

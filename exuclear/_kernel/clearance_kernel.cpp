@@ -87,7 +87,7 @@ enum Field {
     SLICES, LENGTH, AXIS_JOURNAL,
     AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
     FILM_MODEL, VISCOSITY, EPS_FILM, EPS_CAP,
-    RATE_LIMIT,
+    RATE_LIMIT, BEARING_MOTION,
     N_FIELDS
 };
 
@@ -107,7 +107,7 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
     {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
     {"film_model", 3, 4, 1},      {"viscosity", 3, 5, 1},
     {"eps_film", 5, 4, 1},        {"eps_cap", 5, 5, 1},
-    {"rate_limit", 1, 5, 1},
+    {"rate_limit", 1, 5, 1},      {"bearing_motion", 4, 5, 1},
 };
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
@@ -131,6 +131,7 @@ struct Params {
     int film_model;
     double viscosity, eps_film, eps_cap;
     double rate_limit;  // KAPPA of the joint's own step control (0: off)
+    bool bearing_motion;  // the loads use the bearing's spin (layout.py uses_bearing_motion); false: taken as 0
 };
 
 Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
@@ -158,6 +159,7 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.eps_film = field(p, EPS_FILM);
     a.eps_cap = field(p, EPS_CAP);
     a.rate_limit = field(p, RATE_LIMIT);
+    a.bearing_motion = field(p, BEARING_MOTION) != 0.0;
     return a;
 }
 
@@ -966,18 +968,20 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     if (s.kins.size() != n) s.kins.resize(n);  // once per joint: no allocation per evaluation
     Pose q;
     V3 dv, dw, w_j;
+    // the bearing's spin from the probe, where the loads use it (its probe is off otherwise)
+    const V3 w_b = a.bearing_motion ? s.omega_bearing : V3{0.0, 0.0, 0.0};
     if (a.slices == 0) {  // the planar joint: the motion projected on the plane normal to the axis
         q.p = V3{displacement[0], displacement[1], 0.0};
         q.u = V3{0.0, 0.0, 1.0};
         dv = V3{velocity[0], velocity[1], 0.0};
         dw = V3{0.0, 0.0, angularVelocity[2]};
-        w_j = V3{0.0, 0.0, s.omega_bearing[2]};
+        w_j = V3{0.0, 0.0, w_b[2]};
     } else {
         q.p = displacement;
         q.u = journal_axis(rotation, a.axis_journal);                   // eq. (34)
         dv = velocity;
         dw = angularVelocity;
-        w_j = s.omega_bearing;
+        w_j = w_b;
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);

@@ -362,13 +362,15 @@ class JointKernel:
                 pass
 
     # -- bookkeeping -------------------------------------------------------------------
-    def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any
-                    ) -> tuple[V3, V3, list[Kinematics]]:
+    def _kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any,
+                    bearing_motion: bool = True) -> tuple[V3, V3, list[Kinematics]]:
         """The journal's centre and axis, and the kinematics of each contact: the slices
         (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
-        end faces (eqs. (48)-(51)) where there is an axial clearance."""
+        end faces (eqs. (48)-(51)) where there is an axial clearance.  ``bearing_motion``
+        False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion)."""
+        w_j = self.omega_bearing if bearing_motion else (0.0, 0.0, 0.0)
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
-            omega_j = self.omega_bearing[2]
+            omega_j = w_j[2]
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
             kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
                                      omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
@@ -380,7 +382,6 @@ class JointKernel:
         u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)      # eq. (34)
         dv = (velocity[0], velocity[1], velocity[2])
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
-        w_j = self.omega_bearing
         kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
         if self.film is not None:
             self.film_inputs = [slice_film_input(k, p, u, dv, dw, w_j) for k in kins]
@@ -431,7 +432,8 @@ class JointKernel:
         """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in J0, F the
         force on the bearing, T minus the journal's moment about its marker point
         (docs/physics.md eqs. (41)-(45), (54); the planar eqs. (24)-(26))."""
-        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
+        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity,
+                                      read(stiffness, "bearing_motion") != 0.0)
         history = self.history_for(kins, t, u, p[2])
         loads = [0.0] * 9
         for kin, h, c in zip(kins, history, self.contacts):
@@ -473,7 +475,8 @@ class JointKernel:
         """``postNewtonStepUserFunction``: the contacts' history update, once per accepted
         step.  Returns ``[error, recommended step, data...]``."""
         max_penetration, impact_step = read(stiffness, "max_penetration"), read(stiffness, "impact_step")
-        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity)
+        p, u, kins = self._kinematics(displacement, rotation, velocity, angular_velocity,
+                                      read(stiffness, "bearing_motion") != 0.0)
         self.history_for(kins, t, u, p[2])
         advance = t > self.current[0].time
         base = self.current if advance else self.previous  # a repeated step starts again from its start

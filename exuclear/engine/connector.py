@@ -379,7 +379,11 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         (docs/physics.md section 4.1).  None (default): True unless the bearing is the
         ground or a kinematic-tree link behind prismatic joints only.  Give False where
         the model's constraints hold the bearing's rotation (a slider in a prismatic
-        guide): it saves two connector evaluations per force evaluation.
+        guide): it saves two connector evaluations per force evaluation.  Where the
+        joint's loads do not use the bearing's spin (a planar joint without friction and
+        without a film), both connectors are switched off by the joint itself
+        (docs/physics.md section 4.1); a new physics (``joint.joint = ...``) switches
+        them on again where it needs them.
     record : bool
         Record the joint's outputs (:meth:`ClearanceJointHandle.outputs`).
     slices : int, optional

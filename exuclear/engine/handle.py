@@ -19,7 +19,7 @@ from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
-from .layout import MAIN, PROBE, TORQUE, parameters, read
+from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
 from .newton import steer_newton
 
 _TOKENS = itertools.count(1)
@@ -157,6 +157,11 @@ class ClearanceJointHandle:
         for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
                 self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
+        # the probe and torque connectors run only where the loads use the bearing's spin
+        active = uses_bearing_motion(self._joint, self.slices)
+        for number in (self.probeNumber, self.torqueNumber):
+            if number is not None:
+                self.mbs.SetObjectParameter(number, "activeConnector", active)
 
     def is_live(self) -> bool:
         """Whether the joint's connector is still in its system (not removed by ``mbs.Reset()``)."""

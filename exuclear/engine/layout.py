@@ -68,10 +68,11 @@ LAYOUT = (
     Field("viscosity", 3, 5, 1, "eta [Pa s] of the film"),
     Field("eps_film", 5, 4, 1, "eccentricity ratio below which the film acts alone, eq. (70)"),
     Field("eps_cap", 5, 5, 1, "eccentricity ratio the film's argument tends to at the wall, eq. (70)"),
-
-
     Field("rate_limit", 1, 5, 1, "KAPPA of the joint's own step control: the change of the penetration rate a "
                                  "step may hold, as a fraction of the onset velocity (0: off)"),
+    Field("bearing_motion", 4, 5, 1, "1: the loads use the bearing's own spin, from the probe connector; 0: they "
+                                     "do not need it (uses_bearing_motion), the probe and torque connectors are off "
+                                     "and the kernels take the spin as 0"),
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
@@ -167,6 +168,18 @@ def data_columns(lubricated: bool) -> tuple[str, ...]:
 RATE_KAPPA = 0.1
 
 
+def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
+    """Whether the joint's loads depend on the bearing's own spin beyond the relative motion
+    the connector sees (docs/physics.md section 4.1): friction (the slip of eq. (8) and the
+    bearing's moment ``-R_B F_T``), a film (the spins of eqs. (55)-(56), the film's moments)
+    or slices (the frame's rotation in the penetration rate, eq. (38)).  A planar, dry,
+    frictionless joint needs it nowhere: its penetration rate is the relative velocity along
+    ``n`` in any frame (eq. (7)) and its normal force passes through both centres, so its
+    probe and torque connectors are switched off (they would only cost Jacobian columns);
+    its recorded ``slip_velocity`` then leaves out the bearing's term ``omega_B (R_B - R_J)``."""
+    return slices > 0 or joint.film is not None or type(joint.friction) is not NoFriction
+
+
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, rate_limit: float = RATE_KAPPA, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
@@ -185,7 +198,8 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
               "rate_limit": rate_limit,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
-              "slices": slices, "length": g.length, "axis_journal": axis_journal}
+              "slices": slices, "length": g.length, "axis_journal": axis_journal,
+              "bearing_motion": float(uses_bearing_motion(joint, slices))}
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,
                       eps_film=joint.film.eps_film, eps_cap=joint.film.eps_cap)
