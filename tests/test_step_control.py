@@ -147,3 +147,78 @@ def test_a_non_finite_state_stops_the_run_naming_the_joint(backend):
         functions["post_newton"](*bad)
     reason, when = joint.failure()
     assert "non-finite" in reason and when == pytest.approx(1e-6)
+
+
+# -- free flight lets the step grow (JointKernel.step_growth) ---------------------------------
+
+def test_time_to_wall_is_the_first_root_of_the_gap():
+    from exuclear.engine._python_kernel import time_to_wall
+    # delta + delta_dot tau + delta_ddot tau^2 / 2 = 0 with a gap of 1 (delta = -1)
+    assert time_to_wall(-1.0, 2.0, 0.0) == pytest.approx(0.5)          # straight at the wall
+    assert time_to_wall(-1.0, 0.0, 2.0) == pytest.approx(1.0)          # from rest, pulled at it
+    assert time_to_wall(-1.0, -1.0, 4.0) == pytest.approx(1.0)         # moving away, turned back
+    assert time_to_wall(-1.0, 1.0, -0.4) == pytest.approx((1.0 - 0.2 ** 0.5) / 0.4)  # slowed, reaches it
+    assert time_to_wall(-1.0, 1.0, -0.6) == float("inf")               # slowed, turns before it
+    assert time_to_wall(-1.0, -1.0, -1.0) == float("inf")              # moving away, pushed away
+
+
+def _steps_and_contacts(backend, joints=1):
+    """The journal impact followed by its free flight across the bearing (2 ms in steps of at
+    most 1 ms); with ``joints=2`` a second journal rests pressed on its own bearing's wall all
+    along.  Returns the accepted steps [(t, h)] and the first journal's impacts."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[1e-4, 0, 0],
+                                       initialVelocities=[0.3, 0, 0]))
+    pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
+    law = dict(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, law="wang-liu", cr=0.9, backend=backend)
+    joint = exuclear.CreateClearanceJoint(mbs, name="pin", itemNumbers=[ground, pin], position=[0, 0, 0],
+                                          axis=[0, 0, 1], **law)
+    if joints == 2:
+        from exudyn.itemInterface import Force, MarkerNodePosition
+        rest = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[1, 0, 0], initialCoordinates=[0, -1e-4, 0]))
+        body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=rest, mass=0.04, inertia=2e-6))
+        mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=rest)), loadVector=[0, -10.0, 0]))
+        exuclear.CreateClearanceJoint(mbs, name="rest", itemNumbers=[ground, body], position=[1, 0, 0],
+                                      axis=[0, 0, 1], **law)
+    steps = []
+    mbs.SetPostStepUserFunction(lambda m, t: steps.append((t, m.sys["dynamicSolver"].it.currentStepSize)) or True)
+    mbs.Assemble()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        solve(mbs, 2, end_time=2e-3)
+    return steps, joint.impacts()
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_free_flight_grows_the_step_back_and_the_next_impact_keeps_its_speed(backend):
+    # after the impact the journal crosses the 0.2 mm of its bearing at 0.269 m/s in 0.74 ms;
+    # from the impact's microsecond steps Exudyn's own rule (double after 10 steps) needs some
+    # 70 steps to reach 0.1 ms, the joint's free flight tenfold per step (GROWTH_LIMIT) a few
+    steps, impacts = _steps_and_contacts(backend)
+    assert len(impacts) >= 2
+    first_end = impacts[0].onset_time + impacts[0].duration
+    flight = [t for t, _h in steps if first_end < t < impacts[1].onset_time]
+    assert len(flight) <= 20
+    # the free flight holds its speed (no gravity): the second impact comes at the departure speed
+    assert impacts[1].onset_velocity == pytest.approx(DEPARTURE, rel=RTOL)
+
+
+def test_both_kernels_grow_the_same_steps():
+    if kernel.COMPILED is None:
+        pytest.skip("no compiled kernel")
+    (s_c, _), (s_p, _) = _steps_and_contacts("compiled"), _steps_and_contacts("python")
+    assert len(s_c) == len(s_p)
+    assert max(abs(a[0] - b[0]) for a, b in zip(s_c, s_p)) <= 1e-12
+
+
+def test_one_joint_in_contact_keeps_the_others_free_flight_from_growing_the_step():
+    # the second journal rests on its wall all along: the step grows by Exudyn's own rule
+    # only (at most twice the step before), never by the first joint's free flight
+    steps, impacts = _steps_and_contacts(exuclear.DEFAULT_BACKEND, joints=2)
+    first_end = impacts[0].onset_time + impacts[0].duration
+    h = [h for t, h in steps if t > first_end]
+    assert max(b / a for a, b in zip(h, h[1:])) <= 2.0 * (1 + 1e-9)
+    single, _ = _steps_and_contacts(exuclear.DEFAULT_BACKEND)
+    h1 = [h for t, h in single if t > first_end]
+    assert max(b / a for a, b in zip(h1, h1[1:])) > 2.0

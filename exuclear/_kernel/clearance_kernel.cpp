@@ -33,6 +33,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -872,6 +873,7 @@ struct StepControl {
     double min_step = 0.0;    // the solver's minimum step [s]
     bool rate = true;         // false: an explicit solver's error control sets the step (no rate criterion)
     std::string label;        // the joint's name, for messages (from the run-start callback)
+    int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
@@ -900,6 +902,7 @@ struct JointState {
     std::string failure;
     double failure_time = 0.0;
     StepControl control;
+    const void* group = nullptr;  // the system whose step group the joint reports to (report_growth)
     py::object run_start;  // Python callable, once per run start: (can_shorten, min_step, label, rate); None: none
 };
 
@@ -937,6 +940,7 @@ void start_run(JointState& s) {
         s.control.min_step = r[1].cast<double>();
         s.control.label = r[2].cast<std::string>();
         s.control.rate = r[3].cast<bool>();
+        s.control.group_size = r[4].cast<int>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
     }
@@ -1117,9 +1121,11 @@ const int N_FILM_DATA = 3;
 // ---- the joint's own step control (_python_kernel.py JointKernel.step_control) -------------
 // The fraction of a step a contact may have begun before the step's end without a redo: a
 // contact that began deeper inside the step is redone so that it begins in the step's last
-// ONSET_TARGET (its force then acts from about its onset on, as in the exact path).
-const double ONSET_TAIL = 0.5;
-const double ONSET_TARGET = 0.2;
+// ONSET_TARGET (its force then acts from about its onset on, as in the exact path): an implicit
+// method charges the force at the step's end over the whole step (_python_kernel.py has the
+// numbers that set these values).
+const double ONSET_TAIL = 0.02;
+const double ONSET_TARGET = 0.01;
 // A contact that began in the step's first ONSET_FLOOR (touching at its start) is resolved
 // from its start: it is not redone (that would shrink the step towards zero); the rate
 // criterion resolves the rest.
@@ -1135,6 +1141,13 @@ const double MAX_CUT = 0.1;
 // ... and never below this many times the solver's minimum step, near which Exudyn's Newton
 // iteration fails (its residual falls to round-off): there the step is accepted and reported.
 const double MIN_STEP_MARGIN = 10.0;
+// Free flight lets the step grow (_python_kernel.py JointKernel.step_growth): after an accepted
+// step in which none of the joint's contacts touched, the next step may last until the journal
+// would reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step, and
+// only where that is GROWTH_MIN times the step or more (Exudyn's own rule doubles a step after
+// 10 steps of at most 7 Newton iterations).
+const double GROWTH_LIMIT = 10.0;
+const double GROWTH_MIN = 2.0;
 // A penetration beyond the joint's limit redoes the step with this fraction of it ...
 const double PENETRATION_CUT = 0.25;
 // ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
@@ -1246,6 +1259,82 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
     return 0.0;
 }
 
+// _python_kernel.py time_to_wall: the smallest positive root of delta + delta_dot tau + delta_ddot tau^2 / 2
+double time_to_wall(double delta, double delta_dot, double delta_ddot) {
+    if (delta_ddot == 0.0) return delta_dot > 0.0 ? -delta / delta_dot : INF;
+    double disc = delta_dot * delta_dot - 2.0 * delta_ddot * delta;
+    if (disc < 0.0) return INF;  // moving away and slowing down towards the wall: it turns before it
+    double q = delta_dot + std::copysign(std::sqrt(disc), delta_dot != 0.0 ? delta_dot : 1.0);
+    double r1 = q != 0.0 ? -2.0 * delta / q : INF, r2 = -q / delta_ddot;
+    double best = INF;
+    if (r1 > 0.0) best = r1;
+    if (r2 > 0.0 && r2 < best) best = r2;
+    return best;
+}
+
+// JointKernel.step_growth: the next step the joint's free flight allows after the accepted step
+// from base to end, the step before it starting at `before` (0: it asks for none).
+double step_growth(const Params& a, const std::vector<History>& before, const std::vector<History>& base,
+                   const std::vector<History>& end, double t) {
+    const StepControl& c = state(a.id).control;
+    double h = t - base[0].time;
+    if (!(c.can_shorten && c.rate && a.rate_limit > 0.0 && !(a.impact_step > 0.0) && a.film_model == FILM_NONE &&
+          h > 0.0)) {
+        return 0.0;
+    }
+    double allow = GROWTH_LIMIT * h;
+    for (size_t i = 0; i < end.size(); ++i) {
+        const History& e = end[i];
+        if (before[i].in_contact || base[i].in_contact || e.in_contact) return 0.0;
+        double to_wall = time_to_wall(e.delta, e.delta_dot, (e.delta_dot - base[i].delta_dot) / h);
+        allow = to_wall < allow ? to_wall : allow;
+    }
+    return allow >= GROWTH_MIN * h ? allow : 0.0;
+}
+
+// The step group of a system (JointKernel.report_growth): the time of the step its joints report
+// on, the smallest allowance reported for it, which joints did, and how many joints belong to it.
+struct StepGroup {
+    double t = -INF;
+    double allow = INF;
+    std::vector<long> reported;
+    long members = 0;
+};
+std::unordered_map<const void*, StepGroup> g_groups;  // by the address of the joints' MainSystem
+
+void leave_group(JointState& s) {
+    if (s.group == nullptr) return;
+    auto it = g_groups.find(s.group);
+    if (it != g_groups.end() && --it->second.members <= 0) g_groups.erase(it);
+    s.group = nullptr;
+}
+
+// JointKernel.report_growth: the last of a system's joints to report on a step lets the solver's
+// next step grow to the smallest allowance, through the run-start callback's grow().
+void report_growth(JointState& s, long id, const void* system, double t, double allow, double h) {
+    if (!s.run_start || s.run_start.is_none()) return;
+    if (s.group != system) {
+        leave_group(s);
+        s.group = system;
+        g_groups[system].members++;
+    }
+    StepGroup& g = g_groups[system];
+    if (g.t != t) {
+        g.t = t;
+        g.allow = INF;
+        g.reported.clear();
+    }
+    g.allow = allow < g.allow ? allow : g.allow;
+    if (std::find(g.reported.begin(), g.reported.end(), id) == g.reported.end()) g.reported.push_back(id);
+    if (static_cast<int>(g.reported.size()) == s.control.group_size && g.allow >= GROWTH_MIN * h) {
+        try {
+            s.run_start.attr("grow")(g.allow);
+        } catch (py::error_already_set&) {  // never end a run for a longer step: Exudyn's own rule
+            PyErr_Clear();
+        }
+    }
+}
+
 // Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
 void write_data(const History& h, StdVector& out, int first = 0) {
     double values[N_DATA] = {h.time, h.delta == -INF ? 0.0 : h.delta, h.delta_dot, h.ex, h.ey, h.f_n, h.f_t, h.v_t,
@@ -1257,8 +1346,9 @@ void write_data(const History& h, StdVector& out, int first = 0) {
 
 // JointKernel.post_newton: the contacts' history update, once per accepted step.
 // Returns [error, recommended step, data...].
-StdVector joint_post_newton(const Params& a, double t, const StdVector& data, const V3& displacement,
-                            const V3& rotation, const V3& velocity, const V3& angularVelocity) {
+StdVector joint_post_newton(const Params& a, const void* system, double t, const StdVector& data,
+                            const V3& displacement, const V3& rotation, const V3& velocity,
+                            const V3& angularVelocity) {
     StdVector out{0.0, -1.0};
     JointState& s = state(a.id);
     s.post_newton_calls++;
@@ -1294,8 +1384,12 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
     for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
         set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
     }
+    // the step before this one: free flight must have lasted both (a repeated step: unknown)
+    double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
+    double h = t - base[0].time;
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
+    report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         out.reserve(2 + N_DATA + N_FILM_DATA);
         write_data(s.cur[0], out);
@@ -1322,8 +1416,8 @@ StdVector joint_post_newton(const Params& a, double t, const StdVector& data, co
     return out;
 }
 
-StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displacement, V3 rotation, V3 velocity,
-                      V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
+StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 displacement, V3 rotation,
+                      V3 velocity, V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
     if (a.role == PROBE) {
         record_bearing_spin(a, angularVelocity);
@@ -1331,7 +1425,7 @@ StdVector post_newton(const MainSystem&, double t, int, StdVector data, V3 displ
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
-    return joint_post_newton(a, t, data, displacement, rotation, velocity, angularVelocity);
+    return joint_post_newton(a, &mbs, t, data, displacement, rotation, velocity, angularVelocity);
 }
 
 // ---- dispatch counter for the self-test -----------------------------------------------------
@@ -1388,6 +1482,7 @@ PYBIND11_MODULE(_ckernel, m) {
         return static_cast<long>(g_joints.size() - 1);
     }, "a new joint's id in the kernel's table");
     m.def("release", [](long id) {
+        leave_group(state(id));
         state(id) = JointState();
         g_joints[static_cast<size_t>(id)].in_use = false;
         g_free.push_back(id);
@@ -1397,6 +1492,7 @@ PYBIND11_MODULE(_ckernel, m) {
         JointState& s = state(id);
         py::object run_start = s.run_start;
         long runs = s.control.runs;
+        leave_group(s);
         s = JointState();
         s.run_start = run_start;
         s.control.runs = runs;
@@ -1412,6 +1508,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["min_step"] = c.min_step;
         d["rate"] = c.rate;
         d["label"] = c.label;
+        d["group_size"] = c.group_size;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
         d["unresolved_time"] = c.unresolved_time;

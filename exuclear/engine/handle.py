@@ -389,16 +389,17 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 
 class _RunStart:
     """The kernel's run-start callback: whether the solver can shorten steps, its minimum
-    step and the joint's label.  It holds its system weakly and finds its handle by token:
-    the kernel's table outlives no handle through it."""
+    step, the joint's label and how many clearance joints the system has (the kernel's step
+    group); its ``grow(step)`` lets the solver's next step grow.  It holds its system weakly
+    and finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool]:
+    def __call__(self) -> tuple[bool, float, str, bool, int]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True
+            return True, 0.0, "", True, 1
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
         if handle is not None and handle.steer_newton:
@@ -409,7 +410,21 @@ class _RunStart:
             except Exception:  # a body whose mass is not read: no Jacobian per step
                 period = math.nan
             handle.newton_changes = steer_newton(mbs, period)
-        return can_shorten, min_step, label(handle) if handle is not None else "", rate
+        return can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs))
+
+    def grow(self, step: float) -> None:
+        """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):
+        lengthen the solver's next step to it, within the solver's largest step.  Exudyn's
+        implicit solver takes ``it.currentStepSize`` for its next step (and redoes a rejected
+        one shorter, or doubles it after its recovery steps, from there)."""
+        mbs = self._mbs()
+        try:
+            it = mbs.sys["dynamicSolver"].it
+            step = min(step, it.maxStepSize)
+            if step > it.currentStepSize:
+                it.currentStepSize = step
+        except Exception:  # no SolveDynamic solver (a solver run by hand): Exudyn's own rule
+            pass
 
     def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:
         return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), None)
