@@ -213,7 +213,8 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     divided by ``factor`` (an error-controlled method at a tighter tolerance, its step
     limit with it).  Explicit fixed-step (RK44): the step divided.  Implicit methods
     (generalized-alpha, trapezoidal): the step and, with impact-aware steps, the
-    ``impact_step`` divided.  The output interval and everything else are kept.
+    ``impact_step`` divided; with steps the joints control (``joint_steps``), their
+    ``rate_limit`` divided.  The output interval and everything else are kept.
 
     ``step="auto"`` has no number to divide until the model is built: give the settings
     with the step the run chose (``result.step``); :func:`check_convergence` does so.
@@ -241,6 +242,8 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
         changes.update(rtol=settings.rtol / factor, atol=settings.atol / factor)
     elif not settings.explicit and settings.impact_step is not None:
         changes["impact_step"] = settings.impact_step / factor
+    elif settings.steered:  # the joints' step control is the accuracy of these steps
+        changes["rate_limit"] = settings.rate_limit / factor
     return replace(settings, **changes)
 
 

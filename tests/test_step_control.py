@@ -222,3 +222,39 @@ def test_one_joint_in_contact_keeps_the_others_free_flight_from_growing_the_step
     single, _ = _steps_and_contacts(exuclear.DEFAULT_BACKEND)
     h1 = [h for t, h in single if t > first_end]
     assert max(b / a for a, b in zip(h1, h1[1:])) > 2.0
+
+
+# -- the rate criterion's KAPPA, per joint and per simulate run -------------------------------
+
+def test_rate_limit_is_a_checked_joint_parameter():
+    from exuclear.engine.layout import read
+    mbs, _node, joint = impact()
+    assert joint.rate_limit == exuclear.settings.RATE_LIMIT_DEFAULT == 0.1
+    joint.rate_limit = 0.02
+    assert read(mbs.GetObjectParameter(joint.objectNumber, "stiffness"), "rate_limit") == 0.02
+    with pytest.raises(ValueError, match="`rate_limit` must be non-negative"):
+        joint.rate_limit = -0.1
+
+
+def test_a_smaller_rate_limit_takes_more_steps_in_the_impact():
+    # the criterion's cost: KAPPA 0.01 asks for ten times the steps per reversal of 0.1
+    rejected = {}
+    for kappa in (0.1, 0.01):
+        mbs, _node, joint = impact()
+        joint.rate_limit = kappa
+        solve(mbs, 2)
+        rejected[kappa] = joint.counts["rejected_steps"]
+    assert rejected[0.01] > 2 * rejected[0.1]
+
+
+def test_simulate_sets_the_runs_rate_limit_and_restores_the_joints_own():
+    mbs, node, joint = impact()
+    joint.rate_limit = 0.05
+    settings = exuclear.SolverSettings(end_time=2e-4, method="generalized-alpha", step=1e-4, joint_steps=True,
+                                       rate_limit=0.01)
+    result = exuclear.simulate(mbs, settings)
+    assert result.success, result.message
+    assert joint.counts["rejected_steps"] > 20  # the run's 0.01 (0.05 takes some 8)
+    assert joint.rate_limit == 0.05
+    # and the convergence check tightens it with the steps
+    assert exuclear.convergence.refined_settings(settings).rate_limit == pytest.approx(0.0025)

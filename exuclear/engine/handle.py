@@ -14,7 +14,9 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
+from ..checks import check_nonnegative
 from ..history import ContactState, ImpactRecord, merge_overlapping
+from ..settings import RATE_LIMIT_DEFAULT
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
@@ -76,6 +78,7 @@ class ClearanceJointHandle:
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
         self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
         self._impact_step = 0.0
+        self._rate_limit = RATE_LIMIT_DEFAULT
         #: Whether the joint sets the Newton settings of the implicit runs it starts
         #: (:mod:`exuclear.engine.newton`); ``newton_changes``: what it set in the last run.
         self.steer_newton = True
@@ -147,10 +150,24 @@ class ClearanceJointHandle:
         self._impact_step = float(impact_step)
         self._write_parameters()
 
+    @property
+    def rate_limit(self) -> float:
+        """KAPPA of the joint's own step control (README, "The joint steers the step"): a step
+        in contact may change the penetration rate by at most this fraction of
+        ``max(|v0|, v_min)``; default :data:`exuclear.settings.RATE_LIMIT_DEFAULT` (0.1, about
+        20 steps per velocity reversal); smaller is more accurate and costs steps; 0 turns the
+        criterion off.  Takes effect in the next run."""
+        return self._rate_limit
+
+    @rate_limit.setter
+    def rate_limit(self, value: float) -> None:
+        self._rate_limit = check_nonnegative("rate_limit", value)
+        self._write_parameters()
+
     def parameters(self, role: int = MAIN) -> list[list[float]]:
         """The parameter matrix of the connector of ``role`` (:data:`exuclear.engine.layout.LAYOUT`)."""
         return parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
-                          compiled=self._backend.compiled, slices=self.slices, axis_journal=self.axis_journal,
+                          self._rate_limit, compiled=self._backend.compiled, slices=self.slices, axis_journal=self.axis_journal,
                           shoulders=self.shoulders, token=self.token)
 
     def _write_parameters(self) -> None:

@@ -26,6 +26,7 @@ import numpy as np
 from ..contact import ContactLaw
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
+from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import ShoulderGeometry
 
 MAIN, PROBE, TORQUE = 0, 1, 2
@@ -158,14 +159,9 @@ def data_columns(lubricated: bool) -> tuple[str, ...]:
     return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
 
 
-#: Default KAPPA of the joint's own step control (``rate_limit``): a step in contact may
-#: change the penetration rate by at most this fraction of max(|v0|, v_min), v0 the
-#: contact's onset velocity.  An impact reverses the rate, a change of (1 + e) v0, so 0.1
-#: asks for about 20 steps per reversal, with neither the bodies' masses nor the law's
-#: stiffness in the criterion.  Measured on the journal impact (0.2 ms, generalized-alpha,
-#: 1 to 20 steps given): departure velocity 1.3 % to 2.4 % off the paper's 0.269 m/s at
-#: 0.5, 1.3 % at 0.25, within 0.8 % at 0.1 (tests/test_step_control.py asks 1 %).
-RATE_KAPPA = 0.1
+#: Default KAPPA of the joint's own step control (``rate_limit``; the number and its
+#: measurements are :data:`exuclear.settings.RATE_LIMIT_DEFAULT`).
+RATE_KAPPA = RATE_LIMIT_DEFAULT
 
 
 def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:

@@ -266,9 +266,12 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
                 f"method {settings.method!r} is explicit and Exudyn's explicit solvers ignore constraints, but objects "
                 f"{', '.join(constrained)} are constraints; use 'generalized-alpha' or 'trapezoidal', "
                 "or a minimal-coordinate model")
+    rate_limits = [handle.rate_limit for handle in joints]
     for handle in joints:
         handle.reset()
         handle.set_impact_step(settings.impact_step or 0.0)
+        if not settings.explicit:
+            handle.rate_limit = settings.rate_limit
     ss = simulation_settings(settings)
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
@@ -286,8 +289,9 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         except Exception as err:  # Exudyn raises its own error types on solver failure
             ok, message = False, f"{type(err).__name__}: {err}"
     wall = time.perf_counter() - start
-    for handle in joints:
+    for handle, rate_limit in zip(joints, rate_limits):
         handle.set_impact_step(0.0)  # a later mbs.SolveDynamic must not inherit it
+        handle.rate_limit = rate_limit
     if watchdog.interrupted:
         raise KeyboardInterrupt(f"simulation interrupted at t = {mbs.systemData.GetTime():.6g} s")
     it = mbs.sys["dynamicSolver"].it
