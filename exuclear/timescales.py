@@ -36,8 +36,6 @@ MIN_STEPS_PER_RUN = 1000
 PENETRATION_RTOL = 1e-12
 #: Iterations of that bisection at most: from c = 1 mm to 1e-12 of a 1e-15 m root takes 80.
 PENETRATION_MAX_ITER = 200
-#: Absolute tolerance of that bisection: none beyond the relative one (it needs one > 0).
-_PENETRATION_XTOL = 1e-300
 
 #: Relative perturbation of the penetration for the tangent stiffness (central difference).
 _STIFFNESS_EPS = 1e-6
@@ -46,26 +44,32 @@ _STIFFNESS_EPS = 1e-6
 def penetration_at(law: ContactLaw, force: float) -> float:
     """Penetration [m] at which the elastic force ``F_e`` equals ``force`` [N] > 0.
 
-    Bisection (:func:`scipy.optimize.bisect`) on ``(0, c]`` to :data:`PENETRATION_RTOL`
-    (the elastic forces grow monotonically); beyond the clearance the returned value is
-    ``c``, which no steady contact reaches.  Bisection, not a faster method, because the
-    implicit line-contact laws have no force (NaN) beyond their largest penetration,
-    which may lie below ``c``: there the excess force is taken as ``+inf`` (above any
-    force), which bisection, working with signs only, handles as it should.
+    Bisection on ``(0, c]`` to :data:`PENETRATION_RTOL` (the elastic forces grow
+    monotonically); beyond the clearance the returned value is ``c``, which no steady
+    contact reaches.  Bisection, not a faster method, because the implicit line-contact
+    laws have no force (NaN) beyond their largest penetration, which may lie below ``c``:
+    there the excess force is taken as ``+inf`` (above any force), which bisection,
+    working with signs only, handles as it should.  Written here, not taken from
+    :func:`scipy.optimize.bisect`: every joint's first run asks for it (the contact period
+    of :mod:`exuclear.engine.newton`), and importing ``scipy.optimize`` took 0.25 s, five
+    times the whole first run of the zoo's planar double pendulum over 1 s (measured).
     """
-    from scipy.optimize import bisect
-
     if not force > 0.0:
         raise ValueError(f"`force` must be positive, got {force}")
     hi = law.geometry.clearance
     if law.elastic_force(hi) <= force:
         return hi
-
-    def excess(delta: float) -> float:
-        f = law.elastic_force(delta) - force
-        return math.inf if math.isnan(f) else f  # beyond the law's largest penetration
-
-    return bisect(excess, 0.0, hi, xtol=_PENETRATION_XTOL, rtol=PENETRATION_RTOL, maxiter=PENETRATION_MAX_ITER)
+    lo = 0.0
+    for _ in range(PENETRATION_MAX_ITER):
+        mid = 0.5 * (lo + hi)
+        f = law.elastic_force(mid)
+        if math.isnan(f) or f >= force:  # NaN: beyond the law's largest penetration
+            hi = mid
+        else:
+            lo = mid
+        if hi - lo <= PENETRATION_RTOL * hi:
+            break
+    return 0.5 * (lo + hi)
 
 
 def contact_stiffness(law: ContactLaw, delta: float) -> float:
