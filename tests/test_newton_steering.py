@@ -17,10 +17,11 @@ import exudyn as exu
 import pytest
 
 from exuclear.engine._diagnostics import joint_contact_period
-from exuclear.engine.newton import JACOBIAN_PER_STEP_ABOVE, RELATIVE_EPSILON
+from exuclear.engine.newton import CONTRACTIVITY, JACOBIAN_PER_STEP_ABOVE, RELATIVE_EPSILON
 from validation.exudyn_examples import double_pendulum_2d, double_pendulum_3d, kinematic_tree_chain
 
 EXUDYN_EPSILON = exu.SimulationSettings().timeIntegration.newton.numericalDifferentiation.relativeEpsilon
+EXUDYN_CONTRACTIVITY = exu.SimulationSettings().timeIntegration.newton.modifiedNewtonContractivity  # 0.5
 RECOVERY_ITERATIONS = exu.SimulationSettings().timeIntegration.adaptiveStepRecoveryIterations  # 7
 
 
@@ -38,11 +39,14 @@ def test_the_solver_copy_is_set_and_the_users_settings_are_not():
     solver = model.mbs.sys["dynamicSolver"]
     assert solver.newton.numericalDifferentiation.relativeEpsilon == RELATIVE_EPSILON
     assert solver.newton.modifiedNewtonJacUpdatePerStep
+    assert solver.newton.modifiedNewtonContractivity == CONTRACTIVITY
     user = model.simulation_settings.timeIntegration.newton
     assert user.numericalDifferentiation.relativeEpsilon == EXUDYN_EPSILON
     assert not user.modifiedNewtonJacUpdatePerStep
+    assert user.modifiedNewtonContractivity == EXUDYN_CONTRACTIVITY
     assert model.joint.newton_changes == {
         "numericalDifferentiation.relativeEpsilon": (EXUDYN_EPSILON, RELATIVE_EPSILON),
+        "modifiedNewtonContractivity": (EXUDYN_CONTRACTIVITY, CONTRACTIVITY),
         "modifiedNewtonJacUpdatePerStep": (False, True)}
 
 
@@ -59,7 +63,8 @@ def test_a_jacobian_per_step_only_where_the_step_exceeds_half_the_contact_period
     model = _run(double_pendulum_3d.build, 0.02)
     step = model.mbs.sys["dynamicSolver"].it.maxStepSize
     assert step < JACOBIAN_PER_STEP_ABOVE * joint_contact_period(model.mbs, model.joint)
-    assert list(model.joint.newton_changes) == ["numericalDifferentiation.relativeEpsilon"]
+    assert list(model.joint.newton_changes) == ["numericalDifferentiation.relativeEpsilon",
+                                                "modifiedNewtonContractivity"]
 
 
 def test_an_explicit_solver_is_left_alone():
