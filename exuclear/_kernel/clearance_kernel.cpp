@@ -1148,6 +1148,9 @@ const double MIN_STEP_MARGIN = 10.0;
 // 10 steps of at most 7 Newton iterations).
 const double GROWTH_LIMIT = 10.0;
 const double GROWTH_MIN = 2.0;
+// ... and only where every contact's gap exceeds GROWTH_GAP of the clearance (a journal resting
+// on the wall hovers, opening by nanometres: _python_kernel.py has the measurement)
+const double GROWTH_GAP = 1e-2;
 // A penetration beyond the joint's limit redoes the step with this fraction of it ...
 const double PENETRATION_CUT = 0.25;
 // ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
@@ -1283,9 +1286,10 @@ double step_growth(const Params& a, const std::vector<History>& before, const st
         return 0.0;
     }
     double allow = GROWTH_LIMIT * h;
+    const double gap = GROWTH_GAP * (a.r_b - a.r_j);
     for (size_t i = 0; i < end.size(); ++i) {
         const History& e = end[i];
-        if (before[i].in_contact || base[i].in_contact || e.in_contact) return 0.0;
+        if (before[i].in_contact || base[i].in_contact || e.in_contact || -e.delta < gap) return 0.0;
         double to_wall = time_to_wall(e.delta, e.delta_dot, (e.delta_dot - base[i].delta_dot) / h);
         allow = to_wall < allow ? to_wall : allow;
     }
