@@ -439,7 +439,7 @@ def _convergence(entry: Entry, model: ZooModel, result: Any, time_limit: float) 
     """``exuclear.check_convergence`` of the simulate run against a 4x refined run."""
     if result is None or not result.success:
         return "not checked: the simulate run did not finish"
-    settings = replace(model.solver_settings, step=result.step)
+    settings = replace(model.solver_settings, step=result.step, joint_steps=model.solver_settings.steered)
 
     def run(s: exuclear.SolverSettings) -> exuclear.RunRecord:
         m = entry(True, model.solver_settings.end_time)
