@@ -40,7 +40,9 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -224,7 +226,9 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     times ``factor`` (the step, and the largest step of adaptive solvers, divided),
     ``minimumStepSize`` divided, and with ``automaticStepSize`` (explicit adaptive
     solvers; implicit ones ignore these) ``relativeTolerance``, ``absoluteTolerance`` and
-    a given ``initialStepSize`` divided.
+    a given ``initialStepSize`` divided.  The clearance joints' own step control is not in
+    these settings: :func:`check_convergence` runs the tighter run inside
+    :func:`refined_joints`, which divides the joints' ``rate_limit`` for that run.
     """
     if check_positive("factor", factor) <= 1.0:
         raise ValueError(f"`factor` must exceed 1 (the reference must be tighter), got {factor}")
@@ -245,6 +249,30 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     elif settings.steered:  # the joints' step control is the accuracy of these steps
         changes["rate_limit"] = settings.rate_limit / factor
     return replace(settings, **changes)
+
+
+#: The factor by which the clearance joints of a run started inside :func:`refined_joints`
+#: divide their step control's ``rate_limit`` (1 outside): the joints' own part of a plain
+#: ``mbs.SolveDynamic``'s steps, which ``exu.SimulationSettings`` do not hold.
+_JOINT_REFINEMENT: ContextVar[float] = ContextVar("exuclear_joint_refinement", default=1.0)
+
+
+@contextmanager
+def refined_joints(factor: float) -> Iterator[None]:
+    """Within this block, every clearance joint starting a run divides its ``rate_limit`` by
+    ``factor`` for that run (the joint's own attribute is left as it is).
+    :func:`check_convergence` runs its tighter plain ``mbs.SolveDynamic`` inside it, so that
+    the steps the joints control are refined with the solver's."""
+    token = _JOINT_REFINEMENT.set(check_positive("factor", factor))
+    try:
+        yield
+    finally:
+        _JOINT_REFINEMENT.reset(token)
+
+
+def joint_refinement() -> float:
+    """The factor of the enclosing :func:`refined_joints` block (1 outside any)."""
+    return _JOINT_REFINEMENT.get()
 
 
 def _exudyn_settings(settings: object) -> bool:
@@ -731,7 +759,11 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
                              "with RunRecord.from_handles(result, ...), whose result.step it is")
         settings = replace(settings, step=first.step, joint_steps=settings.steered)
     reference_settings = refined_settings(settings, factor)
-    second = run(reference_settings)
+    if _exudyn_settings(settings):  # a plain mbs.SolveDynamic: the joints' own steps with the solver's
+        with refined_joints(factor):
+            second = run(reference_settings)
+    else:  # exuclear.simulate sets the joints' rate_limit from the settings
+        second = run(reference_settings)
     if not isinstance(second, RunRecord):
         raise ValueError(f"run(tighter settings) must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
                          f"{type(second).__name__}")

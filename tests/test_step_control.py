@@ -258,3 +258,22 @@ def test_simulate_sets_the_runs_rate_limit_and_restores_the_joints_own():
     assert joint.rate_limit == 0.05
     # and the convergence check tightens it with the steps
     assert exuclear.convergence.refined_settings(settings).rate_limit == pytest.approx(0.0025)
+
+
+def test_a_convergence_checks_tighter_plain_run_refines_the_joints_steps():
+    # check_convergence on a plain mbs.SolveDynamic runs its tighter run inside
+    # refined_joints(factor): the joints' rate_limit is divided for that run only, the same
+    # steps as a joint given rate_limit / factor
+    from exuclear.convergence import refined_joints
+    rejected = []
+    for kappa, factor in ((0.1, 10.0), (0.01, None)):
+        mbs, _node, joint = impact()
+        joint.rate_limit = kappa
+        if factor is None:
+            solve(mbs, 2)
+        else:
+            with refined_joints(factor):
+                solve(mbs, 2)
+            assert joint.rate_limit == kappa  # the joint's own value is kept
+        rejected.append(joint.counts["rejected_steps"])
+    assert rejected[0] == rejected[1] > 20

@@ -874,6 +874,7 @@ struct StepControl {
     bool rate = true;         // false: an explicit solver's error control sets the step (no rate criterion)
     std::string label;        // the joint's name, for messages (from the run-start callback)
     int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
+    double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
@@ -941,6 +942,7 @@ void start_run(JointState& s) {
         s.control.label = r[2].cast<std::string>();
         s.control.rate = r[3].cast<bool>();
         s.control.group_size = r[4].cast<int>();
+        s.control.rate_scale = r[5].cast<double>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
     }
@@ -1209,7 +1211,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         if (c.over_limit == 1) tell(s);
     }
     // an explicit impact_step overrides the rate criterion (the caller resolves contacts so)
-    double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit : 0.0;
+    double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit * c.rate_scale : 0.0;
     if (!(kappa > 0.0)) return 0.0;
     double h_rec = INF;
     double h_need = INF;  // the rate criterion's estimate without the cap: the advice of a note
@@ -1513,6 +1515,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["rate"] = c.rate;
         d["label"] = c.label;
         d["group_size"] = c.group_size;
+        d["rate_scale"] = c.rate_scale;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
         d["unresolved_time"] = c.unresolved_time;

@@ -132,6 +132,7 @@ class StepControl:
         self.can_shorten, self.min_step, self.label, self.runs = True, 0.0, "", runs
         self.rate = True  # False: an explicit solver's error control sets the step (no rate criterion)
         self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
+        self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
         self.rejected = 0
         self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
         self.unresolved_advice = math.inf
@@ -141,8 +142,8 @@ class StepControl:
 
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
-            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rejected", "unresolved", "unresolved_time",
-            "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
+            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "rejected", "unresolved",
+            "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 
 def _same(x: float, y: float) -> bool:
@@ -327,7 +328,7 @@ class JointKernel:
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
         self.joint = joint
-        #: called once per run start: ``(can_shorten, min_step, label, rate, group_size)``; None:
+        #: called once per run start: ``(can_shorten, min_step, label, rate, group_size, rate_scale)``; None:
         #: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
         #: next step grow (:meth:`report_growth`).
         self.run_start: Callable[[], tuple[bool, float, str, bool, int]] | None = None
@@ -374,7 +375,7 @@ class JointKernel:
         self.control = c = StepControl(self.control.runs + 1)
         if self.run_start is not None:
             try:
-                c.can_shorten, c.min_step, c.label, c.rate, c.group_size = self.run_start()
+                c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale = self.run_start()
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
@@ -614,6 +615,7 @@ class JointKernel:
             c.deepest = max(c.deepest, deepest)
             if c.over_limit == 1:
                 self.tell()
+        kappa *= c.rate_scale
         if not c.rate or impact_step > 0.0:  # an explicit impact_step overrides the rate criterion
             kappa = 0.0
         if not kappa > 0.0:

@@ -15,6 +15,7 @@ import exudyn as exu
 import numpy as np
 
 from ..checks import check_nonnegative
+from ..convergence import joint_refinement
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..settings import RATE_LIMIT_DEFAULT
 from ..joint import ClearanceJoint
@@ -406,17 +407,19 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 
 class _RunStart:
     """The kernel's run-start callback: whether the solver can shorten steps, its minimum
-    step, the joint's label and how many clearance joints the system has (the kernel's step
-    group); its ``grow(step)`` lets the solver's next step grow.  It holds its system weakly
+    step, the joint's label, how many clearance joints the system has (the kernel's step
+    group) and the factor on its ``rate_limit`` for the run (below 1 inside
+    :func:`exuclear.convergence.refined_joints`); its ``grow(step)`` lets the solver's next
+    step grow.  It holds its system weakly
     and finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool, int]:
+    def __call__(self) -> tuple[bool, float, str, bool, int, float]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1
+            return True, 0.0, "", True, 1, 1.0
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
         if handle is not None and handle.steer_newton:
@@ -427,7 +430,9 @@ class _RunStart:
             except Exception:  # a body whose mass is not read: no Jacobian per step
                 period = math.nan
             handle.newton_changes = steer_newton(mbs, period)
-        return can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs))
+        # inside check_convergence's tighter plain run the joints refine their own steps too
+        rate_scale = 1.0 / joint_refinement()
+        return can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)), rate_scale
 
     def grow(self, step: float) -> None:
         """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):

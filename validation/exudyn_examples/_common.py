@@ -435,6 +435,41 @@ def verdict(run: _Run, pen_ratio: float, ref_pen_ratio: float | None, joint: Any
     return "right"
 
 
+def _own_convergence(entry: Entry, model: ZooModel, own: _Run, end_time: float | None, time_limit: float) -> str:
+    """``exuclear.check_convergence`` of the own-settings run (a plain ``mbs.SolveDynamic``)
+    against the same model at 4x the steps, its joints' step control refined with them."""
+    if not own.reached:
+        return "not checked: the own-settings run did not finish"
+
+    def run(settings: exu.SimulationSettings) -> exuclear.RunRecord:
+        m = entry(True, end_time)
+        with _TimeLimit(m.mbs, time_limit) as limit:
+            try:
+                ok, message = bool(m.mbs.SolveDynamic(settings, solverType=m.solver_type)), ""
+            except Exception as err:  # Exudyn raises its own error types on solver failure
+                ok, message = False, _first_line(err)
+        if limit.hit:
+            raise TimeoutError(f"time limit ({time_limit:g} s wall) of the refined run at t = "
+                               f"{m.mbs.systemData.GetTime():.4g} s")
+        return exuclear.RunRecord.from_mbs(m.mbs, {"joint": m.joint}, success=ok, message=message)
+
+    baseline = exuclear.RunRecord.from_mbs(model.mbs, {"joint": model.joint})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        check = exuclear.check_convergence(run, model.simulation_settings, baseline=baseline)
+    return _convergence_verdict(check)
+
+
+def _convergence_verdict(check: Any) -> str:
+    """One line of a convergence check: how far the path agrees, else whether the statistics do."""
+    if check.path_agrees:
+        return f"path agrees (max |de|/c {check.joints['joint'].max_de:.2g})"
+    if not check.complete:
+        return "refined run stopped early"
+    stats = "statistics agree" if check.statistics_agree() else "statistics differ"
+    return f"path agrees until t = {check.horizon:.3g} s of {check.end:.3g} s; {stats}"
+
+
 def _convergence(entry: Entry, model: ZooModel, result: Any, time_limit: float) -> str:
     """``exuclear.check_convergence`` of the simulate run against a 4x refined run."""
     if result is None or not result.success:
@@ -457,12 +492,7 @@ def _convergence(entry: Entry, model: ZooModel, result: Any, time_limit: float) 
             check = exuclear.check_convergence(run, settings, baseline=baseline)
     except TimeoutError as err:
         return f"not checked: {err}"
-    if check.path_agrees:
-        return f"path agrees (max |de|/c {check.joints['joint'].max_de:.2g})"
-    if not check.complete:
-        return "refined run stopped early"
-    stats = "statistics agree" if check.statistics_agree() else "statistics differ"
-    return f"path agrees until t = {check.horizon:.3g} s of {check.end:.3g} s; {stats}"
+    return _convergence_verdict(check)
 
 
 def run_model(name: str, quick: bool = False, convergence: bool = True, end_time: float | None = None) -> dict[str, Any]:
@@ -479,6 +509,7 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
         probe_ideal = np.asarray(ideal.probe(ideal.mbs), dtype=float) if ideal_run.reached else None
 
         own, model = _median_wall(lambda: entry(True, end_time), repeats, limit)
+        own_model = model
         c = model.clearance
         pen, force = joint_peaks(model.joint)
         row.update(clearance_um=c * 1e6, own_reached=own.reached, own_time=own.time_reached, own_message=own.message,
@@ -500,12 +531,15 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
         row["sim_ratio"] = sim.wall / ideal_run.wall if ideal_run.reached and sim.reached else math.nan
         row["verdict"] = verdict(own, pen / c, spen / c if sim.reached else None, model.joint)
         if quick or not convergence:
-            row["convergence"] = "not checked: --quick" if quick else "not checked: --no-convergence"
+            row["own_convergence"] = row["convergence"] = ("not checked: --quick" if quick else
+                                                           "not checked: --no-convergence")
         else:
-            try:
-                row["convergence"] = _convergence(entry, model, result, limit)
-            except Exception as err:  # the check is an extra: its failure is recorded
-                row["convergence"] = f"not checked: {type(err).__name__}: {_first_line(err)}"
+            for key, check in (("own_convergence", lambda: _own_convergence(entry, own_model, own, end_time, limit)),
+                               ("convergence", lambda: _convergence(entry, model, result, limit))):
+                try:
+                    row[key] = check()
+                except Exception as err:  # the check is an extra: its failure is recorded
+                    row[key] = f"not checked: {type(err).__name__}: {_first_line(err)}"
     except Exception as err:  # a failing model is a row, never a stop
         row["verdict"] = "runner error"
         row["error"] = f"{type(err).__name__}: {_first_line(err)} ({traceback.extract_tb(err.__traceback__)[-1].name})"
@@ -515,7 +549,7 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
 #: Columns of the printed table (all columns go to zoo.csv).
 TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_pen_c",
                  "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
-                 "sim_ratio", "verdict", "sim_verdict", "convergence"]
+                 "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence"]
 
 
 def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
