@@ -249,6 +249,14 @@ BAD_INPUTS: tuple[BadInput, ...] = (
              "ValueError", says="`spectral_radius`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',
              "ValueError"),
+    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", rate_limit=0.02)',
+             "ValueError", says="`rate_limit`"),
+    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
+                                          'rate_limit=-0.1)',
+             "ValueError", says="`rate_limit`"),
+    BadInput("API", "inconsistent input", 'setattr(exuclear.CreateClearanceJoint(**on_marker(), **PAPER, cr=0.9), '
+                                          '"rate_limit", -1)',
+             "ValueError", says="`rate_limit`"),
     BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(system()[0], 0, 0, **PAPER, cr=0.9)",
              "ValueError"),
     BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, "
