@@ -1352,10 +1352,21 @@ void write_data(const History& h, StdVector& out, int first = 0) {
 
 // JointKernel.post_newton: the contacts' history update, once per accepted step.
 // Returns [error, recommended step, data...].
+// The reply of a post-Newton function, [error = 0, recommended step = -1], with room for the
+// data node's n entries after it: one allocation per call (Exudyn counts a run's allocations
+// and warns where they come every step).
+StdVector reply(size_t n) {
+    StdVector out;
+    out.reserve(2 + n);
+    out.push_back(0.0);
+    out.push_back(-1.0);
+    return out;
+}
+
 StdVector joint_post_newton(const Params& a, const void* system, double t, const StdVector& data,
                             const V3& displacement, const V3& rotation, const V3& velocity,
                             const V3& angularVelocity) {
-    StdVector out{0.0, -1.0};
+    StdVector out = reply(data.size());
     JointState& s = state(a.id);
     s.post_newton_calls++;
     Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
@@ -1397,7 +1408,6 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     s.cur.swap(s.next);
     report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
-        out.reserve(2 + N_DATA + N_FILM_DATA);
         write_data(s.cur[0], out);
         if (a.film_model != FILM_NONE) {
             out.push_back(s.cur[0].film_fx);
@@ -1406,7 +1416,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         }
         return out;
     }
-    out.reserve(2 + 4 + n * (N_DATA - 1));  // layout.spatial_data_columns
+    // layout.spatial_data_columns, as many entries as the data node has (reserved by reply)
     out.push_back(t);
     out.push_back(q.u[0]);
     out.push_back(q.u[1]);
@@ -1427,7 +1437,7 @@ StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 d
     Params a = decode(parameters);
     if (a.role == PROBE) {
         record_bearing_spin(a, angularVelocity);
-        StdVector out{0.0, -1.0};
+        StdVector out = reply(data.size());
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
