@@ -596,4 +596,8 @@ def blend_eccentricity(eps: float, eps_dot: float, eps_film: float = EPS_FILM_DE
         return eps, eps_dot
     width = eps_cap - eps_film
     x = (eps - eps_film) / width
-    return eps_film + width * math.tanh(x), eps_dot / math.cosh(x) ** 2
+    # tanh(x) = (1 - q) / (1 + q) and 1 / cosh^2(x) = 4 q / (1 + q)^2 with q = exp(-2 x): one
+    # exponential, as the compiled kernel, and no overflow far beyond the wall (cosh(x)^2
+    # overflowed above x = 355, where a long explicit step had carried the journal)
+    q = math.exp(-2.0 * x)
+    return eps_film + width * ((1.0 - q) / (1.0 + q)), eps_dot * (4.0 * q / ((1.0 + q) * (1.0 + q)))
