@@ -235,8 +235,9 @@ OUTPUTS_PER_RUN = 2000
 def solver_settings_like(settings: exu.SimulationSettings, solver_type: exu.DynamicSolverType,
                          **changes: Any) -> exuclear.SolverSettings:
     """The :class:`exuclear.SolverSettings` of an example's settings, for ``exuclear.simulate``:
-    its end time, method and spectral radius; ``step="auto"`` (ten steps per contact
-    period); exuclear's Newton tolerances (an absolute 1e-6 instead of Exudyn's 1e-10,
+    its end time, method and spectral radius; ``step="auto"`` (an implicit method: steps
+    the joints control, at most ``end_time / 1000``; fixed-step methods: ten steps per
+    contact period); exuclear's Newton tolerances (an absolute 1e-6 instead of Exudyn's 1e-10,
     because stiff contact leaves a round-off floor under the residual, see
     :data:`exuclear.settings.NEWTON_ATOL_DEFAULT`)."""
     if solver_type not in METHOD_OF_SOLVER:
@@ -285,7 +286,8 @@ QUICK_TIME_LIMIT = 60.0
 #: sizes needs contact forces far above the bodies' weights and inertia loads (issue 20:
 #: 0.35 c and 6.6 kN on a 1 kg bar, where a converged run stays below 0.05 c), i.e. a step
 #: that overshoots the contact; or when it exceeds REFERENCE_FACTOR times the penetration
-#: of exuclear.simulate at its automatic step (ten steps per contact period).
+#: of exuclear.simulate at its automatic step (steps the joints control; explicit
+#: fixed-step methods: ten steps per contact period).
 PENETRATION_WRONG = 0.1
 REFERENCE_FACTOR = 3.0
 
