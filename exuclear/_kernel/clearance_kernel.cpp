@@ -875,6 +875,7 @@ struct StepControl {
     std::string label;        // the joint's name, for messages (from the run-start callback)
     int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
     double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
+    double growth_cap = INF;  // the longest step free flight may grow to [s] (handle.py GROWTH_CONTACT_PERIODS)
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
@@ -943,6 +944,7 @@ void start_run(JointState& s) {
         s.control.rate = r[3].cast<bool>();
         s.control.group_size = r[4].cast<int>();
         s.control.rate_scale = r[5].cast<double>();
+        s.control.growth_cap = r[6].cast<double>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
     }
@@ -1143,11 +1145,11 @@ const double MAX_CUT = 0.1;
 // ... and never below this many times the solver's minimum step, near which Exudyn's Newton
 // iteration fails (its residual falls to round-off): there the step is accepted and reported.
 const double MIN_STEP_MARGIN = 10.0;
-// Free flight lets the step grow (_python_kernel.py JointKernel.step_growth): after an accepted
-// step in which none of the joint's contacts touched, the next step may last until the journal
-// would reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step, and
-// only where that is GROWTH_MIN times the step or more (Exudyn's own rule doubles a step after
-// 10 steps of at most 7 Newton iterations).
+// Free flight lets the step grow (_python_kernel.py JointKernel.step_growth): after two accepted
+// steps in which none of the joint's contacts touched, the next step may last until the journal
+// would reach the wall at its present penetration rate and its change, up to GROWTH_LIMIT times
+// the step, and only where that is GROWTH_MIN times the step or more (Exudyn's own rule doubles
+// a step after 10 steps of at most 7 Newton iterations).
 const double GROWTH_LIMIT = 10.0;
 const double GROWTH_MIN = 2.0;
 // ... and only where every contact's gap exceeds GROWTH_GAP of the clearance (a journal resting
@@ -1287,7 +1289,7 @@ double step_growth(const Params& a, const std::vector<History>& before, const st
           h > 0.0)) {
         return 0.0;
     }
-    double allow = GROWTH_LIMIT * h;
+    double allow = GROWTH_LIMIT * h < c.growth_cap ? GROWTH_LIMIT * h : c.growth_cap;
     const double gap = GROWTH_GAP * (a.r_b - a.r_j);
     for (size_t i = 0; i < end.size(); ++i) {
         const History& e = end[i];
@@ -1526,6 +1528,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["label"] = c.label;
         d["group_size"] = c.group_size;
         d["rate_scale"] = c.rate_scale;
+        d["growth_cap"] = c.growth_cap;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
         d["unresolved_time"] = c.unresolved_time;

@@ -88,9 +88,10 @@ MAX_CUT = 0.1
 #: ... and never below this many times the solver's minimum step, near which Exudyn's Newton
 #: iteration fails (its residual falls to round-off): there the step is accepted and reported.
 MIN_STEP_MARGIN = 10.0
-#: Free flight lets the step grow (:meth:`JointKernel.step_growth`): after an accepted step in
+#: Free flight lets the step grow (:meth:`JointKernel.step_growth`): after two accepted steps in
 #: which none of the joint's contacts touched, the next step may last until the journal would
-#: reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step.  Exudyn's
+#: reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step (and, on
+#: the handle's side, ten of the joint's contact periods: handle.GROWTH_CONTACT_PERIODS).  Exudyn's
 #: own rule doubles a step after 10 steps of at most 7 Newton iterations: from an impact's
 #: microsecond steps back to a model's millisecond step that is 70 steps at best, and none
 #: where the model's Newton takes more (measured on the zoo, README).  The limit keeps Newton's
@@ -133,6 +134,7 @@ class StepControl:
         self.rate = True  # False: an explicit solver's error control sets the step (no rate criterion)
         self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
         self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
+        self.growth_cap = math.inf  # the longest step free flight may grow to [s] (handle.GROWTH_CONTACT_PERIODS)
         self.rejected = 0
         self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
         self.unresolved_advice = math.inf
@@ -142,8 +144,8 @@ class StepControl:
 
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
-            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "rejected", "unresolved",
-            "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
+            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap", "rejected",
+            "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 
 def _same(x: float, y: float) -> bool:
@@ -328,10 +330,10 @@ class JointKernel:
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
         self.joint = joint
-        #: called once per run start: ``(can_shorten, min_step, label, rate, group_size, rate_scale)``; None:
-        #: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
+        #: called once per run start: ``(can_shorten, min_step, label, rate, group_size, rate_scale,
+        #: growth_cap)``; None: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
         #: next step grow (:meth:`report_growth`).
-        self.run_start: Callable[[], tuple[bool, float, str, bool, int]] | None = None
+        self.run_start: Callable[[], tuple[bool, float, str, bool, int, float, float]] | None = None
         self.control = StepControl()
         self.reset()
 
@@ -375,7 +377,8 @@ class JointKernel:
         self.control = c = StepControl(self.control.runs + 1)
         if self.run_start is not None:
             try:
-                c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale = self.run_start()
+                (c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale,
+                 c.growth_cap) = self.run_start()
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
@@ -531,22 +534,22 @@ class JointKernel:
                     states: tuple[ContactState, ...], t: float, kappa: float, impact_step: float = 0.0) -> float:
         """The next step this joint allows after the accepted step ``[base.time, t]``, where it
         would let it grow beyond Exudyn's own rule; 0 where it asks for none.  Only in free
-        flight (no contact touched in this step or in the one ``before`` it, every gap above
-        GROWTH_GAP of the clearance, no film: a journal that rests on the wall opens its
+        flight: no contact touched in this step or in the one ``before`` it, every gap above
+        GROWTH_GAP of the clearance, no film (a journal that rests on the wall opens its
         contact for single steps, and a longer step there shakes it off, measured on the zoo's
-        double pendulum): the time until the journal would
-        reach the wall with the penetration rate and its change over the step
-        (:func:`time_to_wall`; a step that ends beyond the wall all the same is redone by the
-        onset rule of :meth:`step_control`, and a step that ends before it cannot hold a whole
-        contact), at most GROWTH_LIMIT times the step, and only where that is GROWTH_MIN times
-        the step or more.  Only where the joint's own step control runs (an implicit solver
-        that shortens steps, no ``impact_step``)."""
+        double pendulum).  The allowance is the time until the journal would reach the wall
+        with the penetration rate and its change over the step (:func:`time_to_wall`; a step
+        that ends beyond the wall all the same is redone by the onset rule of
+        :meth:`step_control`, and a step that ends before it cannot hold a whole contact), at
+        most GROWTH_LIMIT times the step, and only where that is GROWTH_MIN times the step or
+        more, and at most the run-start callback's ``growth_cap``.  Only where the joint's own
+        step control runs (an implicit solver that shortens steps, no ``impact_step``)."""
         c = self.control
         h = t - base[0].time
         if not (c.can_shorten and c.rate and kappa > 0.0 and impact_step <= 0.0 and self.film is None and h > 0.0
                 and before is not None):
             return 0.0
-        allow = GROWTH_LIMIT * h
+        allow = min(GROWTH_LIMIT * h, self.control.growth_cap)
         gap = GROWTH_GAP * self._joint.geometry.clearance
         for a, b, s in zip(before, base, states):
             if a.in_contact or b.in_contact or s.in_contact or -s.delta < gap:

@@ -419,19 +419,19 @@ GROWTH_CONTACT_PERIODS = 10.0
 class _RunStart:
     """The kernel's run-start callback: whether the solver can shorten steps, its minimum
     step, the joint's label, how many clearance joints the system has (the kernel's step
-    group) and the factor on its ``rate_limit`` for the run (below 1 inside
-    :func:`exuclear.convergence.refined_joints`); its ``grow(step)`` lets the solver's next
-    step grow.  It holds its system weakly
+    group), the factor on its ``rate_limit`` for the run (below 1 inside
+    :func:`exuclear.convergence.refined_joints`) and the longest step its free flight may
+    grow to (:data:`GROWTH_CONTACT_PERIODS`); its ``grow(step)`` lets the solver's next step
+    grow.  It holds its system weakly
     and finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
-        self._growth_cap = math.inf
 
-    def __call__(self) -> tuple[bool, float, str, bool, int, float]:
+    def __call__(self) -> tuple[bool, float, str, bool, int, float, float]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1, 1.0
+            return True, 0.0, "", True, 1, 1.0, math.inf
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
         period = math.nan
@@ -444,21 +444,21 @@ class _RunStart:
                 period = math.nan
             if handle.steer_newton:
                 handle.newton_changes = steer_newton(mbs, period)
-        self._growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
+        growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # inside check_convergence's tighter plain run the joints refine their own steps too
         rate_scale = 1.0 / joint_refinement()
-        return can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)), rate_scale
+        return (can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
+                rate_scale, growth_cap)
 
     def grow(self, step: float) -> None:
         """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):
-        lengthen the solver's next step to it, within the solver's largest step and
-        :data:`GROWTH_CONTACT_PERIODS` of the joint's contact period.  Exudyn's
+        lengthen the solver's next step to it, within the solver's largest step.  Exudyn's
         implicit solver takes ``it.currentStepSize`` for its next step (and redoes a rejected
         one shorter, or doubles it after its recovery steps, from there)."""
         mbs = self._mbs()
         try:
             it = mbs.sys["dynamicSolver"].it
-            step = min(step, it.maxStepSize, self._growth_cap)
+            step = min(step, it.maxStepSize)
             if step > it.currentStepSize:
                 it.currentStepSize = step
         except Exception:  # no SolveDynamic solver (a solver run by hand): Exudyn's own rule
