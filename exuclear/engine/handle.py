@@ -411,8 +411,9 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 #: where a longer one took more Newton solves at steps far too long.  Averages over three
 #: restitutions (0.89 to 0.91), zoo models: exuclear.simulate's double pendulum, whose
 #: largest step is 20 contact periods, 9964 -> 6162 steps; the own-settings runs, whose
-#: steps are at most 8 periods, unchanged but for the beam pendulum (59 periods; +3 % wall
-#: time); at 4 periods the piston engine took 34 % more steps.
+#: steps are at most 8 periods (but the beam pendulum's, 59), within the scatter that any
+#: change of a bounce gives these chaotic models (the piston engine: 4694 and 10472 steps
+#: at restitutions 0.90 and 0.91).
 GROWTH_CONTACT_PERIODS = 10.0
 
 
