@@ -17,8 +17,8 @@ import numpy as np
 from ..checks import check_nonnegative
 from ..convergence import joint_refinement
 from ..history import ContactState, ImpactRecord, merge_overlapping
-from ..settings import RATE_LIMIT_DEFAULT
 from ..joint import ClearanceJoint
+from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
