@@ -12,7 +12,10 @@ from ..history import ContactState
 from ._python_kernel import data_values, spatial_data_values
 from .layout import FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
-#: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).
+#: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).  A planar joint
+#: without friction or film runs without its bearing-spin probe (nothing in its loads needs
+#: the spin, docs/physics.md section 4.1): its ``slip_velocity`` leaves out the bearing's term
+#: ``(R_B - R_J) omega_B`` of eq. (8).
 OUTPUT_COLUMNS = ("penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                   "slip_velocity", "v0", "in_contact")
 #: A spatial joint's outputs: the journal's tilt (axis components x, y in the bearing's
