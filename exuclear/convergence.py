@@ -759,10 +759,9 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
                              "with RunRecord.from_handles(result, ...), whose result.step it is")
         settings = replace(settings, step=first.step, joint_steps=settings.steered)
     reference_settings = refined_settings(settings, factor)
-    if _exudyn_settings(settings):  # a plain mbs.SolveDynamic: the joints' own steps with the solver's
-        with refined_joints(factor):
-            second = run(reference_settings)
-    else:  # exuclear.simulate sets the joints' rate_limit from the settings
+    # a plain mbs.SolveDynamic refines the joints' own steps with the solver's (exuclear.simulate
+    # sets the joints' rate_limit from the refined settings)
+    with refined_joints(factor if _exudyn_settings(settings) else 1.0):
         second = run(reference_settings)
     if not isinstance(second, RunRecord):
         raise ValueError(f"run(tighter settings) must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
