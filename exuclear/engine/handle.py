@@ -423,8 +423,8 @@ class _RunStart:
     group), the factor on its ``rate_limit`` for the run (below 1 inside
     :func:`exuclear.convergence.refined_joints`) and the longest step its free flight may
     grow to (:data:`GROWTH_CONTACT_PERIODS`); its ``grow(step)`` lets the solver's next step
-    grow.  It holds its system weakly
-    and finds its handle by token: the kernel's table outlives no handle through it."""
+    grow.  It holds its system weakly and finds its handle by token: the kernel's table
+    outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token

@@ -159,11 +159,6 @@ def data_columns(lubricated: bool) -> tuple[str, ...]:
     return DATA_COLUMNS + FILM_DATA_COLUMNS if lubricated else DATA_COLUMNS
 
 
-#: Default KAPPA of the joint's own step control (``rate_limit``; the number and its
-#: measurements are :data:`exuclear.settings.RATE_LIMIT_DEFAULT`).
-RATE_KAPPA = RATE_LIMIT_DEFAULT
-
-
 def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
     """Whether the joint's loads depend on the bearing's own spin beyond the relative motion
     the connector sees (docs/physics.md section 4.1): friction (the slip of eq. (8) and the
@@ -177,7 +172,7 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
-               impact_step: float = 0.0, rate_limit: float = RATE_KAPPA, compiled: bool = True, slices: int = 0,
+               impact_step: float = 0.0, rate_limit: float = RATE_LIMIT_DEFAULT, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
                shoulders: ShoulderGeometry | None = None, token: int = 0) -> list[list[float]]:
     """The ``stiffness`` matrix that carries ``joint`` to the kernels (:data:`LAYOUT`);
