@@ -147,6 +147,13 @@ class SolverSettings:
         the equations: N, N m).  Defaults :data:`NEWTON_RTOL_DEFAULT`,
         :data:`NEWTON_ATOL_DEFAULT`: an absolute tolerance looser than Exudyn's 1e-10,
         because stiff contact puts a round-off floor under the residual.
+    newton_contractivity : float, optional
+        Implicit methods only: Exudyn's ``newton.modifiedNewtonContractivity``, in (0, 1]:
+        the modified Newton method computes a new Jacobian where an iteration reduces the
+        residual by less than this factor.  Default None: the joints' choice (at most
+        :data:`exuclear.engine.newton.CONTRACTIVITY`, 0.2).  Smaller values take more
+        Jacobians and fewer iterations: worth it where Jacobians are cheap and the motion
+        turns the Jacobian fast (the redundant slider-crank's defaults, measured there).
     verbose : int
         Exudyn's verbose mode: 0 silent; 1 prints progress (time reached, time to go)
         every few seconds of a long run.
@@ -166,6 +173,7 @@ class SolverSettings:
     recovery_steps: int = 100
     newton_rtol: float = NEWTON_RTOL_DEFAULT
     newton_atol: float = NEWTON_ATOL_DEFAULT
+    newton_contractivity: float | None = None
     verbose: int = 0
 
     def __post_init__(self) -> None:
@@ -191,6 +199,14 @@ class SolverSettings:
             if value != (NEWTON_RTOL_DEFAULT if name == "newton_rtol" else NEWTON_ATOL_DEFAULT) and self.explicit:
                 raise ValueError(f"`{name}` applies to the implicit methods (their Newton iteration); "
                                  f"{self.method!r} is explicit: use rtol, atol, got {value}")
+        if self.newton_contractivity is not None:
+            value = check_real("newton_contractivity", self.newton_contractivity)
+            if not 0.0 < value <= 1.0:
+                raise ValueError(f"`newton_contractivity` must lie in (0, 1] (Exudyn's modifiedNewtonContractivity), "
+                                 f"got {value}")
+            if self.explicit:
+                raise ValueError(f"`newton_contractivity` applies to the implicit methods (their Newton iteration); "
+                                 f"{self.method!r} is explicit, got {value}")
         if isinstance(self.verbose, bool) or not isinstance(self.verbose, int) or self.verbose < 0:
             raise ValueError(f"`verbose` must be a non-negative integer (Exudyn's verbose mode), got {self.verbose!r}")
         if self.impact_step is not None:

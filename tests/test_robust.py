@@ -72,6 +72,28 @@ def test_newton_tolerances_are_mapped_and_refused_for_explicit_methods():
         exuclear.SolverSettings(end_time=1, method="generalized-alpha", newton_atol=0.0)
 
 
+def test_newton_contractivity_is_mapped_checked_and_only_lowered_by_the_joint():
+    ss = exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1, method="generalized-alpha",
+                                                                     newton_contractivity=0.01))
+    assert ss.timeIntegration.newton.modifiedNewtonContractivity == 0.01
+    default = exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1, method="generalized-alpha"))
+    assert default.timeIntegration.newton.modifiedNewtonContractivity == exu.SimulationSettings(
+    ).timeIntegration.newton.modifiedNewtonContractivity  # None: Exudyn's value, which the joint lowers to 0.2
+    for bad in (0.0, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="newton_contractivity"):
+            exuclear.SolverSettings(end_time=1, method="generalized-alpha", newton_contractivity=bad)
+    with pytest.raises(ValueError, match="applies to the implicit methods"):
+        exuclear.SolverSettings(end_time=1, method="dopri5", newton_contractivity=0.1)
+    # the user's own smaller value survives the joint's Newton steering (engine/newton.py)
+    mbs, handle = pendulum()
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 0.01, 10
+    ss.timeIntegration.newton.modifiedNewtonContractivity = 0.05
+    mbs.SolveDynamic(ss)
+    assert "modifiedNewtonContractivity" not in handle.newton_changes
+    assert mbs.sys["dynamicSolver"].newton.modifiedNewtonContractivity == 0.05
+
+
 def test_numerical_chatter_is_reported():
     # steps of 1e-3 s are 2.9 contact periods: the journal leaves the wall again and again
     mbs, handle = pendulum()

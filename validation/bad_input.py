@@ -245,6 +245,10 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=0.1, '
                                           'method="generalized-alpha", step="auto"))', "ValueError",
              says="chosen from the model"),
+    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
+                                          'newton_contractivity=0.0)', "ValueError", says="`newton_contractivity`"),
+    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", '
+                                          'newton_contractivity=0.1)', "ValueError", says="`newton_contractivity`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)',
              "ValueError", says="`spectral_radius`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',

@@ -76,6 +76,8 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
     if not settings.explicit:
         ti.newton.relativeTolerance = settings.newton_rtol
         ti.newton.absoluteTolerance = settings.newton_atol
+        if settings.newton_contractivity is not None:  # the joints only ever lower it (engine.newton)
+            ti.newton.modifiedNewtonContractivity = settings.newton_contractivity
         ti.generalizedAlpha.spectralRadius = settings.spectral_radius
         ti.generalizedAlpha.computeInitialAccelerations = True
     ss.solution.file.write = False  # results come from sensors kept in memory
