@@ -65,8 +65,8 @@ def crank_rows(repeats: int) -> list[tuple[str, str, str]]:
         versus = (f"fastest SciPy at that error: {fastest.setting}, {fastest.wall:.3f} s = "
                   f"{fastest.wall / point.wall:.2f}x ours" if fastest else "no SciPy run reached that error")
         what = (f"{formulation} slider-crank, former impact-aware steps {changes['step']:g} s / "
-                f"{changes['impact_step']:g} s" if changes else f"default {formulation} slider-crank ({defaults.method}"
-                f"{', joint-steered steps <= %g s' % defaults.step if defaults.steered else ''})")
+                f"{changes['impact_step']:g} s, the joint's Newton contractivity" if changes
+                else f"default {formulation} slider-crank ({defaults.method})")
         rows.append((f"{what}, 2 rev.", target,
                      f"{point.wall:.3f} s, error {point.error:.1e} c, {point.steps} steps; {versus}"))
     return rows
