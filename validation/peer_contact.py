@@ -21,11 +21,12 @@ Markdown table: departure velocity (the paper's 0.269 m/s at cr 0.9; this law gi
 of ``--repeats`` runs, ours and the peer's alternated, so that a load on the machine falls
 on both alike) with the median ratio ours / peer.  Run nothing else meanwhile::
 
-    python -m validation.peer_contact [--repeats N]
+    python -m validation.peer_contact [--repeats N] [--parts]
 """
 from __future__ import annotations
 
 import argparse
+import functools
 import statistics
 import sys
 import time
@@ -96,11 +97,19 @@ class Run:
     wall: float  # [s], the SolveDynamic call alone
 
 
-def build_ours() -> tuple[exu.MainSystem, int, int]:
-    """The scene with exuclear's joint: (system, journal node, force sensor)."""
+def build_ours(removed: tuple[str, ...] = ()) -> tuple[exu.MainSystem, int, int]:
+    """The scene with exuclear's joint: (system, journal node, force sensor); ``removed``
+    switches parts off for :func:`parts` (``"sensors"``: the force sensor and the joint's own
+    record, then neither stored nor written; a user-function name: that function)."""
     scene = jb_model.build(PARAMS)
     sensor = scene.mbs.AddSensor(SensorObject(objectNumber=scene.joint.objectNumber, storeInternal=True,
                                               outputVariableType=exu.OutputVariableType.ForceLocal))
+    for item in removed:
+        if item == "sensors":
+            for number in (sensor, scene.joint.sensorNumber):
+                scene.mbs.SetSensorParameter(number, "storeInternal", False)
+        else:
+            scene.mbs.SetObjectParameter(scene.joint.objectNumber, item, 0)
     scene.mbs.Assemble()
     return scene.mbs, scene.nodes["journal"], sensor
 
@@ -165,7 +174,8 @@ def solve(build: Callable[[], tuple[exu.MainSystem, int, int]], settings: exucle
     wall = time.perf_counter() - start
     if not ok:
         message = f"failed at t = {mbs.systemData.GetTime():.3g} s ({message or 'solver reported failure'})"
-    force = np.linalg.norm(mbs.GetSensorStoredData(sensor)[:, 1:4], axis=1)
+    stored = mbs.GetSensor(sensor)["storeInternal"]  # not where parts() switched the sensors off
+    force = np.linalg.norm(mbs.GetSensorStoredData(sensor)[:, 1:4], axis=1) if stored else np.zeros(0)
     return Run(ok, message, departure=-float(mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]),
                peak_force=float(force.max()) if force.size else float("nan"),
                steps=int(mbs.sys["dynamicSolver"].it.currentStepIndex) - 1, wall=wall)
@@ -181,6 +191,27 @@ def compare(settings: exuclear.SolverSettings, repeats: int) -> tuple[Run, Run, 
     return ours, peer, statistics.median(o.wall / p.wall for o, p in pairs)
 
 
+#: What ``--parts`` switches off in our run, one after another (RK44, the same 800 steps each).
+PARTS = (("ours, as above", ()),
+         ("its two sensors neither stored nor written", ("sensors",)),
+         ("without the post-Newton function too", ("sensors", "postNewtonStepUserFunction")),
+         ("a bare connector: no user function at all", ("sensors", "postNewtonStepUserFunction",
+                                                        "springForceTorqueUserFunction")))
+
+
+def parts(repeats: int) -> str:
+    """Where our run's time goes under RK44 (800 steps, four stages each): the median wall time
+    with the parts of :data:`PARTS` removed, against the peer's, as a Markdown table."""
+    settings = dict(SOLVERS)["RK44"]
+    peer = statistics.median(solve(build_peer, settings).wall for _ in range(repeats))
+    rows = []
+    for label, removed in PARTS:
+        wall = statistics.median(solve(functools.partial(build_ours, removed), settings).wall for _ in range(repeats))
+        rows.append([label, f"{wall * 1e3:.2f}", f"{wall / peer:.2f}"])
+    rows.append(["the peer (its force sensor kept)", f"{peer * 1e3:.2f}", "1.00"])
+    return markdown_table(["RK44, 5e-7 s, 800 steps", "wall [ms]", "/ peer"], rows)
+
+
 def _values(run: Run) -> list[str]:
     """Departure, peak force, steps, wall time [ms] of one run; "failed" (its message below the table)."""
     if not run.ok:
@@ -192,6 +223,8 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m validation.peer_contact", description=__doc__.split("\n")[0])
     ap.add_argument("--repeats", type=int, default=5, help="runs per element and solver; the median is quoted "
                                                            "(default 5)")
+    ap.add_argument("--parts", action="store_true", help="also time our run with its sensors, its post-Newton "
+                                                          "function and its force function removed in turn (RK44)")
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be at least 1")
@@ -212,6 +245,8 @@ def main(argv: list[str] | None = None) -> int:
     print(markdown_table(header, rows))
     for line in failures:
         print(line)
+    if args.parts:
+        print("\n" + parts(args.repeats))
     return 0
 
 
