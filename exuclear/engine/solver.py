@@ -20,7 +20,7 @@ from typing import Any
 
 import exudyn as exu
 
-from ..settings import DEFAULT_STEP, METHODS, SolverSettings
+from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, SolverSettings
 from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
 from ._diagnostics import chatter_note, check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
 from .checks import check_system
@@ -76,6 +76,7 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
     if not settings.explicit:
         ti.newton.relativeTolerance = settings.newton_rtol
         ti.newton.absoluteTolerance = settings.newton_atol
+        ss.linearSolver.solverType = getattr(exu.LinearSolverType, LINEAR_SOLVERS[settings.linear_solver])
         if settings.newton_contractivity is not None:  # the joints only ever lower it (engine.newton)
             ti.newton.modifiedNewtonContractivity = settings.newton_contractivity
         ti.generalizedAlpha.spectralRadius = settings.spectral_radius

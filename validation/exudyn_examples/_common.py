@@ -235,9 +235,9 @@ OUTPUTS_PER_RUN = 2000
 def solver_settings_like(settings: exu.SimulationSettings, solver_type: exu.DynamicSolverType,
                          **changes: Any) -> exuclear.SolverSettings:
     """The :class:`exuclear.SolverSettings` of an example's settings, for ``exuclear.simulate``:
-    its end time, method and spectral radius; ``step="auto"`` (an implicit method: steps
+    its end time, method, spectral radius and linear solver; ``step="auto"`` (an implicit method: steps
     the joints control, at most ``end_time / 1000``; fixed-step methods: ten steps per
-    contact period); exuclear's Newton tolerances (an absolute 1e-6 instead of Exudyn's 1e-10,
+    contact period); exuclear's Newton tolerances (an absolute 1e-8 instead of Exudyn's 1e-10,
     because stiff contact leaves a round-off floor under the residual, see
     :data:`exuclear.settings.NEWTON_ATOL_DEFAULT`)."""
     if solver_type not in METHOD_OF_SOLVER:
@@ -247,6 +247,8 @@ def solver_settings_like(settings: exu.SimulationSettings, solver_type: exu.Dyna
     kw: dict[str, Any] = {"end_time": end, "method": method, "step": "auto", "output_step": end / OUTPUTS_PER_RUN}
     if not METHODS[method][1]:
         kw["spectral_radius"] = settings.timeIntegration.generalizedAlpha.spectralRadius
+        sparse = settings.linearSolver.solverType == exu.LinearSolverType.EigenSparse
+        kw["linear_solver"] = "sparse" if sparse else "dense"
     kw.update(changes)
     return exuclear.SolverSettings(**kw)
 
