@@ -94,6 +94,32 @@ def test_newton_contractivity_is_mapped_checked_and_only_lowered_by_the_joint():
     assert mbs.sys["dynamicSolver"].newton.modifiedNewtonContractivity == 0.05
 
 
+def test_linear_solver_is_mapped_and_checked():
+    sparse = exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1, method="generalized-alpha",
+                                                                        linear_solver="sparse"))
+    assert sparse.linearSolver.solverType == exu.LinearSolverType.EigenSparse
+    dense = exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=1, method="trapezoidal"))
+    assert dense.linearSolver.solverType == exu.LinearSolverType.EXUdense  # Exudyn's default
+    with pytest.raises(ValueError, match="unknown `linear_solver` 'lu'"):
+        exuclear.SolverSettings(end_time=1, method="generalized-alpha", linear_solver="lu")
+    with pytest.raises(ValueError, match="applies to the implicit methods"):
+        exuclear.SolverSettings(end_time=1, method="rk44", linear_solver="sparse")
+
+
+def test_the_sparse_solver_gives_the_dense_solvers_motion():
+    # the same Newton iterations solved by another linear solver: the same resting pendulum to
+    # round-off (its contact force balances the weight, 1e-6 relative is far above round-off)
+    runs = []
+    for linear_solver in ("dense", "sparse"):
+        mbs, handle = pendulum()
+        result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", step=1e-4,
+                                                                linear_solver=linear_solver))
+        assert result.success, result.message
+        runs.append(handle.state())
+    assert runs[1].delta == pytest.approx(runs[0].delta, rel=1e-6)
+    assert runs[1].normal_force == pytest.approx(runs[0].normal_force, rel=1e-6)
+
+
 def test_numerical_chatter_is_reported():
     # steps of 1e-3 s are 2.9 contact periods: the journal leaves the wall again and again
     mbs, handle = pendulum()

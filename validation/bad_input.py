@@ -249,6 +249,8 @@ BAD_INPUTS: tuple[BadInput, ...] = (
                                           'newton_contractivity=0.0)', "ValueError", says="`newton_contractivity`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", '
                                           'newton_contractivity=0.1)', "ValueError", says="`newton_contractivity`"),
+    BadInput("API", "unknown name", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
+                                    'linear_solver="lu")', "ValueError", says="`linear_solver`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)',
              "ValueError", says="`spectral_radius`"),
     BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',
