@@ -18,7 +18,7 @@ from ..checks import check_nonnegative
 from ..convergence import joint_refinement
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
-from ..settings import RATE_LIMIT_DEFAULT
+from ..settings import NEWTON_ATOL_DEFAULT, NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
@@ -518,7 +518,7 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
 
 #: Newton tolerances at which a stiff contact's residual converges (the defaults of
 #: exuclear.SolverSettings): below them Newton stalls at the contact's round-off.
-CONTACT_NEWTON_RTOL, CONTACT_NEWTON_ATOL = 1e-8, 1e-6
+CONTACT_NEWTON_RTOL, CONTACT_NEWTON_ATOL = NEWTON_RTOL_DEFAULT, NEWTON_ATOL_DEFAULT
 #: A journal this close to the wall (fraction of c) when Exudyn gives up is touching it:
 #: the zoo's piston engine stopped 3e-10 m (1e-5 c) from the wall, grazing.
 TOUCHING_GAP = 1e-3
