@@ -161,6 +161,11 @@ class Reply(NamedTuple):
     message: str
 
 
+def settings_input(mistake: str, arguments: str, says: str = "") -> BadInput:
+    """``exuclear.SolverSettings(end_time=0.1, <arguments>)``, which must raise ``ValueError``."""
+    return BadInput("API", mistake, f"exuclear.SolverSettings(end_time=0.1, {arguments})", "ValueError", says=says)
+
+
 _SC = "python -m exuclear.models.slider_crank"
 _JB = "python -m exuclear.models.journal_bearing"
 
@@ -245,21 +250,15 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'exuclear.engine.simulation_settings(exuclear.SolverSettings(end_time=0.1, '
                                           'method="generalized-alpha", step="auto"))', "ValueError",
              says="chosen from the model"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
-                                          'newton_contractivity=0.0)', "ValueError", says="`newton_contractivity`"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", '
-                                          'newton_contractivity=0.1)', "ValueError", says="`newton_contractivity`"),
-    BadInput("API", "unknown name", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
-                                    'linear_solver="lu")', "ValueError", says="`linear_solver`"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)',
-             "ValueError", says="`spectral_radius`"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", impact_step=1e-6)',
-             "ValueError"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="dopri5", rate_limit=0.02)',
-             "ValueError", says="`rate_limit`"),
-    BadInput("API", "inconsistent input", 'exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", '
-                                          'rate_limit=-0.1)',
-             "ValueError", says="`rate_limit`"),
+    # settings that belong to the other family of methods, or out of their range
+    *(settings_input(mistake, arguments, says) for mistake, arguments, says in (
+        ("inconsistent input", 'method="generalized-alpha", newton_contractivity=0.0', "`newton_contractivity`"),
+        ("inconsistent input", 'method="dopri5", newton_contractivity=0.1', "`newton_contractivity`"),
+        ("unknown name", 'method="generalized-alpha", linear_solver="lu"', "`linear_solver`"),
+        ("inconsistent input", 'method="dopri5", spectral_radius=0.5', "`spectral_radius`"),
+        ("inconsistent input", 'method="dopri5", impact_step=1e-6', ""),
+        ("inconsistent input", 'method="dopri5", rate_limit=0.02', "`rate_limit`"),
+        ("inconsistent input", 'method="generalized-alpha", rate_limit=-0.1', "`rate_limit`"))),
     BadInput("API", "inconsistent input", 'setattr(exuclear.CreateClearanceJoint(**on_marker(), **PAPER, cr=0.9), '
                                           '"rate_limit", -1)',
              "ValueError", says="`rate_limit`"),
