@@ -153,10 +153,12 @@ class SolverSettings:
         the paper's scenes (~40 us, docs/physics.md section 8).
     newton_rtol, newton_atol : float
         Implicit methods only: Newton's relative tolerance (the residual's reduction from
-        the step's first iterate) and absolute tolerance (residual norm, in the units of
-        the equations: N, N m).  Defaults :data:`NEWTON_RTOL_DEFAULT`,
-        :data:`NEWTON_ATOL_DEFAULT`: an absolute tolerance looser than Exudyn's 1e-10,
-        because stiff contact puts a round-off floor under the residual.
+        the step's first iterate) and absolute tolerance (one norm over the residuals of
+        all equations, in their units: forces N, N m, and constraint equations m, rad).
+        Defaults :data:`NEWTON_RTOL_DEFAULT`, :data:`NEWTON_ATOL_DEFAULT` (both 1e-8): an
+        absolute tolerance looser than Exudyn's 1e-10, because stiff contact puts a
+        round-off floor under the residual, and no looser, because constraints would then
+        be left unmet by the size of a contact's penetration.
     newton_contractivity : float, optional
         Implicit methods only: Exudyn's ``newton.modifiedNewtonContractivity``, in (0, 1]:
         the modified Newton method computes a new Jacobian where an iteration reduces the
