@@ -128,9 +128,11 @@ class SolverSettings:
         Interval of recorded outputs [s]; default 1e-5 s.
     impact_step : float, optional
         Implicit methods only: impact-aware steps.  ``step`` is then the largest step;
-        whenever a clearance joint's contact begins within a step, the step is redone
-        with ``impact_step`` [s], and the step doubles again after every
-        ``recovery_steps`` accepted steps, up to ``step``.  Default None: fixed steps.
+        whenever a clearance joint's contact begins within a step (or the run begins in
+        an impact), the step is redone with ``impact_step`` [s], and the step doubles
+        again after every ``recovery_steps`` accepted steps, up to ``step``; in free flight
+        the joints let it grow faster, up to the time the journal needs to reach the wall
+        (README, "The joint steers the step").  Default None: fixed steps.
     joint_steps : bool, optional
         Implicit methods only: adaptive steps controlled by the clearance joints
         (README, "The joint steers the step"): ``step`` is the largest step; a joint

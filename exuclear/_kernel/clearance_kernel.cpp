@@ -1149,7 +1149,8 @@ const double MIN_STEP_MARGIN = 10.0;
 // steps in which none of the joint's contacts touched, the next step may last until the journal
 // would reach the wall at its present penetration rate and its change, up to GROWTH_LIMIT times
 // the step, and only where that is GROWTH_MIN times the step or more (Exudyn's own rule doubles
-// a step after 10 steps of at most 7 Newton iterations).
+// a step after 10 steps of at most 7 Newton iterations; with an impact_step, every
+// recovery_steps steps).
 const double GROWTH_LIMIT = 10.0;
 const double GROWTH_MIN = 2.0;
 // ... and only where every contact's gap exceeds GROWTH_GAP of the clearance (a journal resting
@@ -1285,8 +1286,7 @@ double step_growth(const Params& a, const std::vector<History>& before, const st
                    const std::vector<History>& end, double t) {
     const StepControl& c = state(a.id).control;
     double h = t - base[0].time;
-    if (!(c.can_shorten && c.rate && a.rate_limit > 0.0 && !(a.impact_step > 0.0) && a.film_model == FILM_NONE &&
-          h > 0.0)) {
+    if (!(c.can_shorten && c.rate && a.rate_limit > 0.0 && a.film_model == FILM_NONE && h > 0.0)) {
         return 0.0;
     }
     double allow = GROWTH_LIMIT * h < c.growth_cap ? GROWTH_LIMIT * h : c.growth_cap;
@@ -1378,9 +1378,12 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     if (!all_finite(s)) fail(s, t, DIVERGED);
     size_t n = s.kins.size();
     if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
+        bool run_start = base[0].time == s.initial[0].time;  // the step from the run's initial state
         for (size_t i = 0; i < n; ++i) {
-            if (!base[i].in_contact && s.kins[i].delta > 0.0) {
-                out[0] = REDO_STEP_ERROR;  // a contact begins in a long step: redo it with impact_step
+            // a contact begins in a long step, or the run begins in an impact: redo it with impact_step
+            if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
+                (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
+                out[0] = REDO_STEP_ERROR;
                 out[1] = a.impact_step;
                 out.insert(out.end(), data.begin(), data.end());
                 return out;

@@ -514,16 +514,20 @@ class JointKernel:
         base = self.current if advance else self.previous  # a repeated step starts again from its start
         if not all(_finite(k) for k in kins):
             self._fail(_DIVERGED, t)
+        # a contact begins in a long step, or the run begins in an impact: redo it with impact_step
+        start = base[0].time == self.initial[0].time
+        v_min = self._joint.law.v_min
         if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and any(
-                not b.in_contact and k.delta > 0.0 for k, b in zip(kins, base)):
-            return [REDO_STEP_ERROR, impact_step, *data]  # a contact begins in a long step: redo it
+                (not b.in_contact and k.delta > 0.0) or (start and b.in_contact and abs(b.v0) > v_min)
+                for k, b in zip(kins, base)):
+            return [REDO_STEP_ERROR, impact_step, *data]
         redo = self.step_control(kins, base, t, max_penetration, read(stiffness, "rate_limit"), impact_step)
         if redo > 0.0:
             return [REDO_STEP_ERROR, redo, *data]
         states = self._accept_all(base, kins, t)
         # the step before this one: free flight must have lasted both (a repeated step: unknown)
         before = self.previous if advance else None
-        allow = self.step_growth(before, base, states, t, read(stiffness, "rate_limit"), impact_step)
+        allow = self.step_growth(before, base, states, t, read(stiffness, "rate_limit"))
         if advance:
             self.previous = self.current
         self.current = states
@@ -531,7 +535,7 @@ class JointKernel:
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
 
     def step_growth(self, before: tuple[ContactState, ...] | None, base: tuple[ContactState, ...],
-                    states: tuple[ContactState, ...], t: float, kappa: float, impact_step: float = 0.0) -> float:
+                    states: tuple[ContactState, ...], t: float, kappa: float) -> float:
         """The next step this joint allows after the accepted step ``[base.time, t]``, where it
         would let it grow beyond Exudyn's own rule; 0 where it asks for none.  Only in free
         flight: no contact touched in this step or in the one ``before`` it, every gap above
@@ -542,11 +546,13 @@ class JointKernel:
         that ends beyond the wall all the same is redone by the onset rule of
         :meth:`step_control`, and a step that ends before it cannot hold a whole contact), at
         most GROWTH_LIMIT times the step, and only where that is GROWTH_MIN times the step or
-        more, and at most the run-start callback's ``growth_cap``.  Only where the joint's own
-        step control runs (an implicit solver that shortens steps, no ``impact_step``)."""
+        more, and at most the run-start callback's ``growth_cap``.  Only where the joint can
+        steer the steps (an implicit solver that shortens steps); with an ``impact_step`` too,
+        whose redo rule then catches a grown step that ends beyond the wall (the redundant
+        slider-crank: 18257 -> 15272 steps, 4.9e-3 -> 3.6e-3 c, README "Speed")."""
         c = self.control
         h = t - base[0].time
-        if not (c.can_shorten and c.rate and kappa > 0.0 and impact_step <= 0.0 and self.film is None and h > 0.0
+        if not (c.can_shorten and c.rate and kappa > 0.0 and self.film is None and h > 0.0
                 and before is not None):
             return 0.0
         allow = min(GROWTH_LIMIT * h, self.control.growth_cap)
