@@ -28,7 +28,6 @@ import numpy as np
 import exuclear
 from exuclear.models import journal_bearing as jb_model
 from exuclear.models import slider_crank as sc_model
-from exuclear.settings import RATE_LIMIT_DEFAULT
 from validation import work_precision as wp
 
 #: SciPy solvers and tolerances searched for the fastest run at a given error.
@@ -36,11 +35,9 @@ SCIPY_POINTS = tuple((method, rtol) for method in ("LSODA", "RK45", "DOP853", "R
                      for rtol in (1e-5, 1e-6, 1e-7, 1e-8, 1e-9))
 
 
-#: The redundant slider-crank's former defaults (until 2026-11-26): impact-aware fixed steps,
-#: 2e-5 s and 1e-6 s from each contact onset, Newton as the joint sets it.  The row shows
-#: what the joint-steered defaults (models/slider_crank.py, REDUNDANT_DEFAULTS) changed.
-IMPACT_AWARE = {"joint_steps": None, "impact_step": 1e-6, "step": 2e-5, "rate_limit": RATE_LIMIT_DEFAULT,
-                "newton_contractivity": None}
+#: The redundant slider-crank at its defaults but Newton as the joint sets it (contractivity
+#: 0.2 instead of the defaults' 0.01): what ``newton_contractivity`` saves there.
+JOINT_CONTRACTIVITY = {"newton_contractivity": None}
 
 
 def _median(run, repeats: int) -> float:
@@ -56,7 +53,7 @@ def crank_rows(repeats: int) -> list[tuple[str, str, str]]:
     for formulation, target, changes in (
             ("minimal", "<= 0.1 s and >= 2x faster than the fastest SciPy", {}),
             ("redundant", "<= 0.35 s (issue 11); <= 0.25 s at <= 1 % c (issue 20)", {}),
-            ("redundant", "the former default, for comparison", IMPACT_AWARE)):
+            ("redundant", "-, for comparison", JOINT_CONTRACTIVITY)):
         config = wp.Config(f"{formulation} default", "exuclear", (), formulation=formulation)
         defaults = sc_model.default_settings(replace(params, formulation=formulation))
         point = wp.crank_point("crank", config, {"method": defaults.method, **changes}, ref, repeats)
@@ -64,8 +61,7 @@ def crank_rows(repeats: int) -> list[tuple[str, str, str]]:
         fastest = min(rivals, key=lambda p: p.wall) if rivals else None
         versus = (f"fastest SciPy at that error: {fastest.setting}, {fastest.wall:.3f} s = "
                   f"{fastest.wall / point.wall:.2f}x ours" if fastest else "no SciPy run reached that error")
-        what = (f"{formulation} slider-crank, former impact-aware steps {changes['step']:g} s / "
-                f"{changes['impact_step']:g} s, the joint's Newton contractivity" if changes
+        what = (f"{formulation} slider-crank, defaults with the joint's Newton contractivity" if changes
                 else f"default {formulation} slider-crank ({defaults.method})")
         rows.append((f"{what}, 2 rev.", target,
                      f"{point.wall:.3f} s, error {point.error:.1e} c, {point.steps} steps; {versus}"))
