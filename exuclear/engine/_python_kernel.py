@@ -514,12 +514,7 @@ class JointKernel:
         base = self.current if advance else self.previous  # a repeated step starts again from its start
         if not all(_finite(k) for k in kins):
             self._fail(_DIVERGED, t)
-        # a contact begins in a long step, or the run begins in an impact: redo it with impact_step
-        start = base[0].time == self.initial[0].time
-        v_min = self._joint.law.v_min
-        if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and any(
-                (not b.in_contact and k.delta > 0.0) or (start and b.in_contact and abs(b.v0) > v_min)
-                for k, b in zip(kins, base)):
+        if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and self._impact_begins(kins, base):
             return [REDO_STEP_ERROR, impact_step, *data]
         redo = self.step_control(kins, base, t, max_penetration, read(stiffness, "rate_limit"), impact_step)
         if redo > 0.0:
@@ -533,6 +528,15 @@ class JointKernel:
         self.current = states
         self.report_growth(mbs, t, allow, t - base[0].time)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
+
+    def _impact_begins(self, kins: list[Kinematics], base: tuple[ContactState, ...]) -> bool:
+        """Whether an impact begins in the step from ``base``, which an ``impact_step`` then
+        redoes: a contact begins in it, or it is the run's first step and the run begins in
+        an impact (``|v0| > v_min``)."""
+        start = base[0].time == self.initial[0].time
+        v_min = self._joint.law.v_min
+        return any((not b.in_contact and k.delta > 0.0) or (start and b.in_contact and abs(b.v0) > v_min)
+                   for k, b in zip(kins, base))
 
     def step_growth(self, before: tuple[ContactState, ...] | None, base: tuple[ContactState, ...],
                     states: tuple[ContactState, ...], t: float, kappa: float) -> float:
@@ -555,7 +559,7 @@ class JointKernel:
         if not (c.can_shorten and c.rate and kappa > 0.0 and self.film is None and h > 0.0
                 and before is not None):
             return 0.0
-        allow = min(GROWTH_LIMIT * h, self.control.growth_cap)
+        allow = min(GROWTH_LIMIT * h, c.growth_cap)
         gap = GROWTH_GAP * self._joint.geometry.clearance
         for a, b, s in zip(before, base, states):
             if a.in_contact or b.in_contact or s.in_contact or -s.delta < gap:

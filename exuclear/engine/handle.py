@@ -516,9 +516,6 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
     return notes + stopped
 
 
-#: Newton tolerances at which a stiff contact's residual converges (the defaults of
-#: exuclear.SolverSettings): below them Newton stalls at the contact's round-off.
-CONTACT_NEWTON_RTOL, CONTACT_NEWTON_ATOL = NEWTON_RTOL_DEFAULT, NEWTON_ATOL_DEFAULT
 #: A journal this close to the wall (fraction of c) when Exudyn gives up is touching it:
 #: the zoo's piston engine stopped 3e-10 m (1e-5 c) from the wall, grazing.
 TOUCHING_GAP = 1e-3
@@ -540,10 +537,11 @@ def _stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
     if finished or t >= end or not (state.in_contact or -state.delta < TOUCHING_GAP * c):
         return []
     advice = []
-    if rtol < CONTACT_NEWTON_RTOL or atol < CONTACT_NEWTON_ATOL:
+    # exuclear.SolverSettings' Newton tolerances: below them Newton stalls at the contact's round-off
+    if rtol < NEWTON_RTOL_DEFAULT or atol < NEWTON_ATOL_DEFAULT:
         advice.append(f"Newton tolerances no tighter than the contact's round-off allows (timeIntegration.newton."
-                      f"relativeTolerance >= {CONTACT_NEWTON_RTOL:g}, now {rtol:g}; absoluteTolerance >= "
-                      f"{CONTACT_NEWTON_ATOL:g}, now {atol:g})")
+                      f"relativeTolerance >= {NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= "
+                      f"{NEWTON_ATOL_DEFAULT:g}, now {atol:g})")
     if not adaptive:
         advice.append("timeIntegration.adaptiveStep = True, so that the joint can shorten the steps")
     advice.append("a shorter step")
