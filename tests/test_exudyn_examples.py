@@ -136,6 +136,34 @@ def test_clearance_model_with_the_examples_own_settings(name):
     assert pen <= PENETRATION_WRONG * model.clearance, f"penetration {pen / model.clearance:.3g} c"
 
 
+#: Issue 20, item 4: friction converges in implicit runs at the joint's own steps, for every
+#: friction law (exuclear.friction: Coulomb and the paper's modified Coulomb law), in a 2D
+#: and a 3D rigid-body model with their examples' own settings (generalized-alpha and
+#: trapezoidal at 1e-3 s).  0.3 s: the first impacts and some 0.25 s of sliding.
+FRICTION_RUNS = [pytest.param(model, law, id=f"{model}-{law}")
+                 for model in ("double_pendulum_2d", "rigid_body_tutorial3") for law in ("coulomb:0.2", "paper")]
+
+
+@pytest.mark.parametrize(("name", "friction"), FRICTION_RUNS)
+def test_every_friction_law_runs_with_the_examples_own_settings(name, friction):
+    entry = REGISTRY[name]
+    model = entry.build(True, 0.3, **{**entry.fixed, "friction": friction})
+    assert model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    assert model.mbs.systemData.GetTime() == pytest.approx(0.3, rel=1e-9)
+    assert not model.joint.notes
+    pen, _force = joint_peaks(model.joint)
+    assert pen <= PENETRATION_WRONG * model.clearance
+    out = model.joint.outputs()
+    law = exuclear.friction.friction_law(friction)
+    sliding = (out["normal_force"] > 0.0) & (np.abs(out["slip_velocity"]) > 1e-4)
+    assert sliding.sum() >= 10, "the journal should slide along its wall"
+    # the recorded friction force is the law's at the recorded slip: F_T = mu(v_T) F_N
+    # (docs/physics.md eq. (20)), against the slip
+    mu = np.array([law.coefficient(v) for v in out["slip_velocity"][sliding]])
+    np.testing.assert_allclose(np.abs(out["tangential_force"][sliding]), np.abs(mu) * out["normal_force"][sliding],
+                               rtol=1e-9)
+
+
 def test_registry_is_complete():
     """Every model module imported, and each entry says what it follows and replaces."""
     from validation.exudyn_examples import IMPORT_ERRORS

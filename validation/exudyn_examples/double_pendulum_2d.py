@@ -66,7 +66,7 @@ def _energy(nodes: list[int]) -> Any:
 def build(clearance: bool, end_time: float | None = None, **joint_options: Any) -> ZooModel:
     mbs = exu.SystemContainer().AddSystem()
     nodes = [mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[x, 0, 0])) for x in (0.0, LENGTH)]
-    links = [mbs.AddObject(ObjectRigidBody2D(physicsMass=MASS, physicsInertia=INERTIA, nodeNumber=n)) for n in nodes]
+    links = [mbs.AddObject(ObjectRigidBody2D(mass=MASS, inertia=INERTIA, nodeNumber=n)) for n in nodes]
     ground = mbs.AddObject(ObjectGround())
     half = 0.5 * LENGTH
     m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[-half, 0, 0]))
