@@ -14,11 +14,18 @@ from __future__ import annotations
 import warnings
 
 import exudyn as exu
+import numpy as np
 import pytest
 
 from exuclear.engine._diagnostics import joint_contact_period
-from exuclear.engine.newton import CONTRACTIVITY, JACOBIAN_PER_STEP_ABOVE, RELATIVE_EPSILON
-from validation.exudyn_examples import double_pendulum_2d, double_pendulum_3d, kinematic_tree_chain
+from exuclear.engine.newton import (
+    CONTRACTIVITY,
+    JACOBIAN_PER_STEP_ABOVE,
+    JACOBIAN_VOTES_KEY,
+    RELATIVE_EPSILON,
+    vote_jacobian,
+)
+from validation.exudyn_examples import REGISTRY, double_pendulum_2d, double_pendulum_3d, kinematic_tree_chain
 
 EXUDYN_EPSILON = exu.SimulationSettings().timeIntegration.newton.numericalDifferentiation.relativeEpsilon
 EXUDYN_CONTRACTIVITY = exu.SimulationSettings().timeIntegration.newton.modifiedNewtonContractivity  # 0.5
@@ -47,7 +54,8 @@ def test_the_solver_copy_is_set_and_the_users_settings_are_not():
     assert model.joint.newton_changes == {
         "numericalDifferentiation.relativeEpsilon": (EXUDYN_EPSILON, RELATIVE_EPSILON),
         "modifiedNewtonContractivity": (EXUDYN_CONTRACTIVITY, CONTRACTIVITY),
-        "modifiedNewtonJacUpdatePerStep": (False, True)}
+        "modifiedNewtonJacUpdatePerStep": (False, "while the step exceeds "
+                                                  f"{JACOBIAN_PER_STEP_ABOVE * joint_contact_period(model.mbs, model.joint):.3g} s")}
 
 
 def test_steer_newton_false_leaves_the_solver_as_the_user_set_it():
@@ -65,6 +73,57 @@ def test_a_jacobian_per_step_only_where_the_step_exceeds_half_the_contact_period
     assert step < JACOBIAN_PER_STEP_ABOVE * joint_contact_period(model.mbs, model.joint)
     assert list(model.joint.newton_changes) == ["numericalDifferentiation.relativeEpsilon",
                                                 "modifiedNewtonContractivity"]
+
+
+def test_the_jacobian_per_step_follows_the_steps_the_joint_accepts():
+    # the planar double pendulum with the paper's friction: its sliding contact keeps the
+    # steps near a quarter of the elbow's contact period (the rate criterion), its impacts
+    # and flights far shorter, between steps of the example's 1e-3 s
+    model = REGISTRY["double_pendulum_2d_friction"](True, 0.5)
+    threshold = JACOBIAN_PER_STEP_ABOVE * joint_contact_period(model.mbs, model.joint)
+    rows = []
+
+    def record(mbs, t):  # after the accepted step and its post-Newton call
+        solver = mbs.sys["dynamicSolver"]
+        rows.append((solver.it.lastStepSize, solver.newton.modifiedNewtonJacUpdatePerStep))
+        return True
+
+    model.mbs.SetPostStepUserFunction(record)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    steps = np.array([h for h, _ in rows])
+    on = np.array([flag for _, flag in rows])
+    assert on[steps > threshold * (1.0 + 1e-9)].all()  # a step longer than T_c / 2: a Jacobian for the next
+    assert (~on).sum() > 0.5 * len(rows)  # most steps here are short and run on the Jacobian they have
+    assert model.joint._backend.step_control()["jacobian_step"] == pytest.approx(threshold)
+
+
+def test_a_jacobian_per_step_while_any_joint_asks_for_it():
+    class Solver:
+        class newton:  # noqa: N801 - Exudyn's attribute name
+            modifiedNewtonJacUpdatePerStep = False
+
+    class System:
+        variables = {JACOBIAN_VOTES_KEY: [Solver, False, {}]}
+
+    vote_jacobian(System, 1, True)
+    vote_jacobian(System, 2, False)
+    assert Solver.newton.modifiedNewtonJacUpdatePerStep
+    vote_jacobian(System, 1, False)
+    assert not Solver.newton.modifiedNewtonJacUpdatePerStep
+    vote_jacobian(System, 2, True)
+    assert Solver.newton.modifiedNewtonJacUpdatePerStep
+
+
+def test_a_users_own_jacobian_per_step_is_kept():
+    model = double_pendulum_2d.build(True, 0.2)
+    model.simulation_settings.timeIntegration.newton.modifiedNewtonJacUpdatePerStep = True
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    assert model.mbs.sys["dynamicSolver"].newton.modifiedNewtonJacUpdatePerStep
+    assert "modifiedNewtonJacUpdatePerStep" not in model.joint.newton_changes
 
 
 def test_an_explicit_solver_is_left_alone():

@@ -876,6 +876,8 @@ struct StepControl {
     int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
     double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
     double growth_cap = INF;  // the longest step free flight may grow to [s] (handle.py GROWTH_CONTACT_PERIODS)
+    double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
+    bool jacobian_on = false;    // whether it asks now
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
@@ -945,7 +947,25 @@ void start_run(JointState& s) {
         s.control.group_size = r[4].cast<int>();
         s.control.rate_scale = r[5].cast<double>();
         s.control.growth_cap = r[6].cast<double>();
+        s.control.jacobian_step = r[7].cast<double>();
+        s.control.jacobian_on = r[8].cast<bool>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
+        PyErr_Clear();
+    }
+}
+
+// JointKernel.steer_jacobian: ask for a Jacobian per step while the step the joint accepts is
+// longer than the run-start callback's jacobian_step (newton.py), and for the step after one it
+// redoes or grows (step INF: a step of another length), through its jacobian_per_step(): a call
+// where the ask changes, not per step.
+void steer_jacobian(JointState& s, double step) {
+    bool wanted = step > s.control.jacobian_step;
+    if (wanted == s.control.jacobian_on) return;
+    s.control.jacobian_on = wanted;
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        s.run_start.attr("jacobian_per_step")(wanted);
+    } catch (py::error_already_set&) {  // never end a run for a Jacobian: the setting stays as it was
         PyErr_Clear();
     }
 }
@@ -1335,6 +1355,7 @@ void report_growth(JointState& s, long id, const void* system, double t, double 
     g.allow = allow < g.allow ? allow : g.allow;
     if (std::find(g.reported.begin(), g.reported.end(), id) == g.reported.end()) g.reported.push_back(id);
     if (static_cast<int>(g.reported.size()) == s.control.group_size && g.allow >= GROWTH_MIN * h) {
+        steer_jacobian(s, INF);  // the grown step: a Jacobian for it
         try {
             s.run_start.attr("grow")(g.allow);
         } catch (py::error_already_set&) {  // never end a run for a longer step: Exudyn's own rule
@@ -1383,6 +1404,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
             // a contact begins in a long step, or the run begins in an impact: redo it with impact_step
             if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
                 (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
+                steer_jacobian(s, INF);  // a step of another length: a Jacobian for it
                 out[0] = REDO_STEP_ERROR;
                 out[1] = a.impact_step;
                 out.insert(out.end(), data.begin(), data.end());
@@ -1392,6 +1414,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     }
     double redo = step_control(a, s, base, t);
     if (redo > 0.0) {
+        steer_jacobian(s, INF);
         out[0] = REDO_STEP_ERROR;
         out[1] = redo;
         out.insert(out.end(), data.begin(), data.end());
@@ -1411,6 +1434,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     double h = t - base[0].time;
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
+    steer_jacobian(s, h);
     report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         write_data(s.cur[0], out);
@@ -1532,6 +1556,8 @@ PYBIND11_MODULE(_ckernel, m) {
         d["group_size"] = c.group_size;
         d["rate_scale"] = c.rate_scale;
         d["growth_cap"] = c.growth_cap;
+        d["jacobian_step"] = c.jacobian_step;
+        d["jacobian_on"] = c.jacobian_on;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
         d["unresolved_time"] = c.unresolved_time;

@@ -135,6 +135,8 @@ class StepControl:
         self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
         self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
         self.growth_cap = math.inf  # the longest step free flight may grow to [s] (handle.GROWTH_CONTACT_PERIODS)
+        self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
+        self.jacobian_on = False  # whether it asks now
         self.rejected = 0
         self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
         self.unresolved_advice = math.inf
@@ -144,7 +146,8 @@ class StepControl:
 
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
-            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap", "rejected",
+            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
+            "jacobian_step", "jacobian_on", "rejected",
             "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 
@@ -378,7 +381,7 @@ class JointKernel:
         if self.run_start is not None:
             try:
                 (c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale,
-                 c.growth_cap) = self.run_start()
+                 c.growth_cap, c.jacobian_step, c.jacobian_on) = self.run_start()
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
@@ -515,9 +518,11 @@ class JointKernel:
         if not all(_finite(k) for k in kins):
             self._fail(_DIVERGED, t)
         if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and self._impact_begins(kins, base):
+            self.steer_jacobian(math.inf)  # a step of another length: a Jacobian for it
             return [REDO_STEP_ERROR, impact_step, *data]
         redo = self.step_control(kins, base, t, max_penetration, read(stiffness, "rate_limit"), impact_step)
         if redo > 0.0:
+            self.steer_jacobian(math.inf)
             return [REDO_STEP_ERROR, redo, *data]
         states = self._accept_all(base, kins, t)
         # the step before this one: free flight must have lasted both (a repeated step: unknown)
@@ -526,8 +531,27 @@ class JointKernel:
         if advance:
             self.previous = self.current
         self.current = states
+        self.steer_jacobian(t - base[0].time)
         self.report_growth(mbs, t, allow, t - base[0].time)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
+
+    def steer_jacobian(self, step: float) -> None:
+        """Ask for a Jacobian per step while the step the joint accepts is longer than the
+        run-start callback's ``jacobian_step`` (:mod:`exuclear.engine.newton`), and for the step
+        after one it redoes or grows (``step`` inf: a step of another length, whose Newton
+        matrix's mass term ``M / (beta h^2)`` an older Jacobian does not hold), through its
+        ``jacobian_per_step``: a call where the ask changes, not per step."""
+        c = self.control
+        wanted = step > c.jacobian_step
+        if wanted == c.jacobian_on:
+            return
+        c.jacobian_on = wanted
+        ask = getattr(self.run_start, "jacobian_per_step", None)
+        if ask is not None:
+            try:
+                ask(wanted)
+            except Exception:  # never end a run for a Jacobian: the setting stays as it was
+                pass
 
     def _impact_begins(self, kins: list[Kinematics], base: tuple[ContactState, ...]) -> bool:
         """Whether an impact begins in the step from ``base``, which an ``impact_step`` then
@@ -583,6 +607,7 @@ class JointKernel:
         group[1] = min(group[1], allow)
         group[2].add(id(self))
         if len(group[2]) == self.control.group_size and group[1] >= GROWTH_MIN * h:
+            self.steer_jacobian(math.inf)  # the grown step: a Jacobian for it
             grow(group[1])
 
     def step_control(self, kins: list[Kinematics], base: tuple[ContactState, ...], t: float,

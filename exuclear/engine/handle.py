@@ -23,7 +23,7 @@ from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from . import outputs as _outputs
 from .backends import make_backend
 from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
-from .newton import steer_newton
+from .newton import steer_newton, vote_jacobian
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -422,20 +422,22 @@ class _RunStart:
     step, the joint's label, how many clearance joints the system has (the kernel's step
     group), the factor on its ``rate_limit`` for the run (below 1 inside
     :func:`exuclear.convergence.refined_joints`) and the longest step its free flight may
-    grow to (:data:`GROWTH_CONTACT_PERIODS`); its ``grow(step)`` lets the solver's next step
-    grow.  It holds its system weakly and finds its handle by token: the kernel's table
-    outlives no handle through it."""
+    grow to (:data:`GROWTH_CONTACT_PERIODS`), the step above which it asks for a Jacobian per
+    step (:func:`~exuclear.engine.newton.steer_newton`, inf: never) and whether it asks at the
+    run's first step; its ``grow(step)`` lets the solver's next step grow, its
+    ``jacobian_per_step(wanted)`` passes the joint's ask on.  It holds its system weakly and
+    finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool, int, float, float]:
+    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, bool]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1, 1.0, math.inf
+            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, False
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
-        period = math.nan
+        period, jacobian_step, jacobian_on = math.nan, math.inf, False
         if handle is not None:
             from ._diagnostics import joint_contact_period  # the diagnostics import this module
 
@@ -444,12 +446,20 @@ class _RunStart:
             except Exception:  # a body whose mass is not read: no Jacobian per step, no cap on growth
                 period = math.nan
             if handle.steer_newton:
-                handle.newton_changes = steer_newton(mbs, period)
+                handle.newton_changes, jacobian_step = steer_newton(mbs, period, self._token)
+                jacobian_on = jacobian_step < math.inf  # steer_newton asked for it at the first step
         growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # inside check_convergence's tighter plain run the joints refine their own steps too
         rate_scale = 1.0 / joint_refinement()
         return (can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                rate_scale, growth_cap)
+                rate_scale, growth_cap, jacobian_step, jacobian_on)
+
+    def jacobian_per_step(self, wanted: bool) -> None:
+        """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel, where
+        the step it accepts or redoes crosses the run-start's ``jacobian_step``)."""
+        mbs = self._mbs()
+        if mbs is not None:
+            vote_jacobian(mbs, self._token, wanted)
 
     def grow(self, step: float) -> None:
         """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):
