@@ -85,16 +85,20 @@ def test_the_jacobian_per_step_follows_the_steps_the_joint_accepts():
 
     def record(mbs, t):  # after the accepted step and its post-Newton call
         solver = mbs.sys["dynamicSolver"]
-        rows.append((solver.it.lastStepSize, solver.newton.modifiedNewtonJacUpdatePerStep))
+        touching = model.joint._backend.states()[0].in_contact
+        rows.append((solver.it.lastStepSize, solver.newton.modifiedNewtonJacUpdatePerStep, touching))
         return True
 
     model.mbs.SetPostStepUserFunction(record)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
-    steps = np.array([h for h, _ in rows])
-    on = np.array([flag for _, flag in rows])
+    steps = np.array([h for h, _, _ in rows])
+    on = np.array([flag for _, flag, _ in rows])
+    touching = np.array([t for _, _, t in rows])
     assert on[steps > threshold * (1.0 + 1e-9)].all()  # a step longer than T_c / 2: a Jacobian for the next
+    switched = np.flatnonzero(touching[1:] != touching[:-1]) + 1
+    assert len(switched) > 0 and on[switched].all()  # a contact opened or closed: a Jacobian for the next
     assert (~on).sum() > 0.5 * len(rows)  # most steps here are short and run on the Jacobian they have
     assert model.joint._backend.step_control()["jacobian_step"] == pytest.approx(threshold)
 

@@ -955,9 +955,9 @@ void start_run(JointState& s) {
 }
 
 // JointKernel.steer_jacobian: ask for a Jacobian per step while the step the joint accepts is
-// longer than the run-start callback's jacobian_step (newton.py), and for the step after one it
-// redoes or grows (step INF: a step of another length), through its jacobian_per_step(): a call
-// where the ask changes, not per step.
+// longer than the run-start callback's jacobian_step (newton.py), and for the step after one in
+// which a contact opened or closed or that it redoes or grows (step INF), through its
+// jacobian_per_step(): a call where the ask changes, not per step.
 void steer_jacobian(JointState& s, double step) {
     bool wanted = step > s.control.jacobian_step;
     if (wanted == s.control.jacobian_on) return;
@@ -1432,9 +1432,11 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     // the step before this one: free flight must have lasted both (a repeated step: unknown)
     double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
     double h = t - base[0].time;
+    bool switched = false;  // a contact opened or closed in this step: its stiffness came or went
+    for (size_t i = 0; i < n; ++i) switched = switched || base[i].in_contact != s.next[i].in_contact;
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
-    steer_jacobian(s, h);
+    steer_jacobian(s, switched ? INF : h);
     report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         write_data(s.cur[0], out);

@@ -531,15 +531,17 @@ class JointKernel:
         if advance:
             self.previous = self.current
         self.current = states
-        self.steer_jacobian(t - base[0].time)
+        switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
+        self.steer_jacobian(math.inf if switched else t - base[0].time)
         self.report_growth(mbs, t, allow, t - base[0].time)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
 
     def steer_jacobian(self, step: float) -> None:
         """Ask for a Jacobian per step while the step the joint accepts is longer than the
         run-start callback's ``jacobian_step`` (:mod:`exuclear.engine.newton`), and for the step
-        after one it redoes or grows (``step`` inf: a step of another length, whose Newton
-        matrix's mass term ``M / (beta h^2)`` an older Jacobian does not hold), through its
+        after one in which a contact opened or closed (its stiffness came or went) or that it
+        redoes or grows (a step of another length, whose Newton matrix's mass term
+        ``M / (beta h^2)`` an older Jacobian does not hold): ``step`` inf.  Through the callback's
         ``jacobian_per_step``: a call where the ask changes, not per step."""
         c = self.control
         wanted = step > c.jacobian_step

@@ -35,20 +35,23 @@ For the run it starts (the solver's own copy of the settings; the user's
   Jacobians cost more than they save (7.1 s against 5.2 s there).  The joint's kernel
   switches it with the steps (:func:`vote_jacobian`; Exudyn reads the setting at the start
   of each step): on after a step it accepts longer than ``T_c / 2``, off after one at most
-  that long, and on for the step after one it redoes or lets grow (a step of another length,
-  whose mass term an older Jacobian does not hold: a first version without this ask, which
-  also began its runs without a Jacobian per step, left the beam pendulum's steps at 1e-7 s
-  after its impacts, 120831 steps instead of 27213).  A sliding contact that
-  the joint's rate criterion holds at steps below ``T_c / 2`` (friction) then runs on the
+  that long, and on for the step after one in which a contact opened or closed (its
+  stiffness came or went) and after one it redoes or lets grow (a step of another length,
+  whose mass term an older Jacobian does not hold: a first version without these asks,
+  which also began its runs without a Jacobian per step, left the beam pendulum's steps at
+  1e-7 s after its impacts, 120831 steps instead of 27213).  A sliding contact that the
+  joint's rate criterion holds at steps below ``T_c / 2`` (friction) then runs on the
   Jacobian it has.  Measured against the same rule held for the whole run
   (``python -m validation.jacobian_steps``, sums over the restitutions 0.89, 0.9 and 0.91, own
-  settings / ``exuclear.simulate``): rigid-body tutorial with friction 0.70 / 0.72 of the
-  wall time, double pendulum with friction 0.77 / 0.73, four-bar 0.89 / 0.86, the piston
-  engine 0.91 / 1.36 (a chaotic model: through ``simulate`` it chatters more, 520 to 782
-  impacts against 302 to 600).  The results move within what a chaotic model's Newton
-  round-off moves them by: the rigid-body tutorial with friction against its 4x refined run,
-  over seven restitutions 0.88 to 0.92, has a distance of the |e|/c spectra of median 0.155
-  before and 0.186 after (smaller in 4 of the 7 pairs); the four-bar's moves by at most 0.006.
+  settings / ``exuclear.simulate``): rigid-body tutorial with friction 0.69 / 0.71 of the
+  wall time, double pendulum with friction 0.78 / 0.70, four-bar 0.88 / 0.85, the piston
+  engine 0.91 / 1.19 (a chaotic model whose contact chatters numerically with either rule:
+  its 4x refined run has some 100 to 150 impacts, its runs 151 to 975).  The results move
+  within what these models' chaos moves them by: over seven restitutions 0.88 to 0.92 (its
+  ``--convergence``), the distance of the rigid-body tutorial with friction's |e|/c spectrum
+  to its 4x refined run's is 0.08 to 0.28 before (median 0.155) and 0.12 to 0.28 now
+  (median 0.158, smaller in 4 of the 7 pairs), the four-bar's 0.010 to 0.057 before and
+  0.013 to 0.070 now (all within the check's 0.1).
   With several joints, the Jacobian comes per step while any of them asks for it.
 
 - ``modifiedNewtonContractivity`` to at most :data:`CONTRACTIVITY`: Exudyn's modified
