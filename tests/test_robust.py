@@ -27,7 +27,7 @@ from exuclear.timescales import MIN_STEPS_PER_RUN, STEPS_PER_CONTACT_PERIOD, con
 LENGTH, MASS, CLEARANCE = 0.3, 0.6, 10e-6
 
 
-def pendulum(theta0=0.5, mass=MASS, y_offset=0.0, velocity=0.0):
+def pendulum(theta0=0.5, mass=MASS, y_offset=0.0, velocity=0.0, backend=None):
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     x, y = LENGTH / 2 * math.sin(theta0), -CLEARANCE - LENGTH / 2 * math.cos(theta0) + y_offset
@@ -38,7 +38,7 @@ def pendulum(theta0=0.5, mass=MASS, y_offset=0.0, velocity=0.0):
     markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0])),
                mbs.AddMarker(MarkerBodyRigid(bodyNumber=bar, localPosition=[0, LENGTH / 2, 0]))]
     handle = exuclear.AddClearanceJoint(mbs, markers, journal_radius=10e-3 - CLEARANCE, bearing_radius=10e-3,
-                                        length=15e-3, cr=0.9, name="pin")
+                                        length=15e-3, cr=0.9, name="pin", backend=backend)
     mbs.Assemble()
     return mbs, handle
 
@@ -128,6 +128,44 @@ def test_numerical_chatter_is_reported():
         result = exuclear.simulate(mbs, settings)
     assert result.success and handle.history.onsets > 10
     assert len(result.notes) == 1 and "'pin'" in result.notes[0]
+
+
+def _plain_run(step, backend=None):
+    """The resting pendulum through a plain mbs.SolveDynamic (Exudyn's generalized-alpha,
+    adaptive steps of at most ``step``) with impact-aware steps of 1e-6 s from each onset,
+    as exuclear.simulate sets them; its joint's notes and kernel counters."""
+    mbs, handle = pendulum(backend=backend)
+    handle.set_impact_step(1e-6)
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 1.0, round(1.0 / step)
+    ss.timeIntegration.verboseMode = 0
+    ss.solution.file.write = False
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", AccuracyWarning)
+        mbs.SolveDynamic(ss)
+        notes = handle.notes
+    return handle, notes, [str(w.message) for w in caught], handle._backend.step_control()
+
+
+def test_numerical_chatter_of_a_plain_run_is_told():
+    # the same chatter on the main path: the joint counts the contacts that end in a step
+    # longer than a tenth of its contact period and says so after the run, naming itself
+    handle, notes, warned, control = _plain_run(1e-3)
+    assert handle.history.onsets > 10 and control["long_separations"] > 0
+    assert len(notes) == 1 and "'pin'" in notes[0] and "numerical chatter" in notes[0]
+    assert warned == notes
+    period = contact_period(handle.joint.law, MASS, MASS * 9.81)
+    assert control["separation_step"] == pytest.approx(period / STEPS_PER_CONTACT_PERIOD)
+    # a quarter of the contact period resolves the contact: one onset, nothing to say
+    handle, notes, warned, control = _plain_run(1e-4)
+    assert handle.history.onsets == 1 and notes == [] and warned == [] and control["separations"] == 0
+
+
+@pytest.mark.skipif(exuclear.engine.kernel.COMPILED is None, reason="no compiled kernel")
+def test_both_kernels_count_the_same_separations():
+    counts = [tuple(_plain_run(1e-3, backend)[3][k] for k in ("separations", "long_separations"))
+              for backend in ("compiled", "python")]
+    assert counts[0] == counts[1] and counts[0][1] > 0
 
 
 def test_resolved_contact_gives_no_chatter_note():

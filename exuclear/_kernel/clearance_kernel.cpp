@@ -878,6 +878,10 @@ struct StepControl {
     double growth_cap = INF;  // the longest step free flight may grow to [s] (handle.py GROWTH_CONTACT_PERIODS)
     double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
     bool jacobian_on = false;    // whether it asks now
+    double separation_step = INF;  // a contact that ends in a longer step is not resolved [s] (handle.py)
+    long separations = 0;          // contacts that ended in the run
+    long long_separations = 0;     // ... in a step longer than separation_step: maybe numerical chatter
+    long last_ended = 0, last_long = 0;  // what the last accepted step added (taken back if it is redone)
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
@@ -949,6 +953,7 @@ void start_run(JointState& s) {
         s.control.growth_cap = r[6].cast<double>();
         s.control.jacobian_step = r[7].cast<double>();
         s.control.jacobian_on = r[8].cast<bool>();
+        s.control.separation_step = r[9].cast<double>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
     }
@@ -1373,6 +1378,20 @@ void write_data(const History& h, StdVector& out, int first = 0) {
 }
 
 
+// JointKernel.count_separations: the contacts that ended in an accepted step of length h, and
+// those of them in a step longer than separation_step; a step accepted again from the same
+// start (redone after another item rejected it) replaces its first count.
+void count_separations(StepControl& c, bool advance, long ended, double h) {
+    if (!advance) {
+        c.separations -= c.last_ended;
+        c.long_separations -= c.last_long;
+    }
+    c.last_ended = ended;
+    c.last_long = h > c.separation_step * (1.0 + STEP_SLACK) ? ended : 0;
+    c.separations += c.last_ended;
+    c.long_separations += c.last_long;
+}
+
 // JointKernel.post_newton: the contacts' history update, once per accepted step.
 // Returns [error, recommended step, data...].
 // The reply of a post-Newton function, [error = 0, recommended step = -1], with room for the
@@ -1433,7 +1452,12 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
     double h = t - base[0].time;
     bool switched = false;  // a contact opened or closed in this step: its stiffness came or went
-    for (size_t i = 0; i < n; ++i) switched = switched || base[i].in_contact != s.next[i].in_contact;
+    long ended = 0;         // contacts that ended in this step
+    for (size_t i = 0; i < n; ++i) {
+        switched = switched || base[i].in_contact != s.next[i].in_contact;
+        if (base[i].in_contact && !s.next[i].in_contact) ended++;
+    }
+    count_separations(s.control, advance, ended, h);
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
     steer_jacobian(s, switched ? INF : h);
@@ -1560,6 +1584,9 @@ PYBIND11_MODULE(_ckernel, m) {
         d["growth_cap"] = c.growth_cap;
         d["jacobian_step"] = c.jacobian_step;
         d["jacobian_on"] = c.jacobian_on;
+        d["separation_step"] = c.separation_step;
+        d["separations"] = c.separations;
+        d["long_separations"] = c.long_separations;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
         d["unresolved_time"] = c.unresolved_time;

@@ -2,16 +2,9 @@
 
 Before: a model that cannot run names its likely cause (issue 15): a body of a
 clearance joint without mass, a journal that starts outside its bearing, a non-finite
-initial coordinate or velocity.  After: contact chatter that is a numerical artefact, and
-the tilt of a spatial joint that started aligned (below).
-
-Chatter.  An implicit method without error control (Exudyn's generalized-alpha) that
-takes steps of more than a tenth of a joint's contact period
-(:func:`exuclear.timescales.contact_period`) while a contact opens does not resolve the
-opening: the contact mode rings and the journal leaves the wall without a physical
-cause.  A resting pendulum at steps of 1e-3 s leaves the wall 68 times in 2 s where
-DOPRI5 and physics give one contact.  Separations taken at such steps are counted per
-joint from the contact records and the accepted step times, and the run says so.
+initial coordinate or velocity.  After: the tilt of a spatial joint that started aligned
+(below).  Contact chatter that is a numerical artefact is counted by the joint's kernel in
+any implicit run, ``mbs.SolveDynamic`` as well (:func:`exuclear.engine.handle._separation_step`).
 
 Tilt of an aligned journal (issue 21, docs/physics.md section 9.8).  A spatial joint's
 journal that starts exactly aligned stays in its plane only as long as round-off does:
@@ -22,7 +15,6 @@ in which such a journal tilted beyond a fraction of ``c / L`` says so.
 """
 from __future__ import annotations
 
-import bisect
 import math
 import warnings
 from collections.abc import Sequence
@@ -31,7 +23,7 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
-from ..timescales import STEPS_PER_CONTACT_PERIOD, contact_period, reduced_mass
+from ..timescales import contact_period, reduced_mass
 from .connector import ClearanceJointHandle
 
 #: Largest number of ODE2 coordinates for which :func:`unheld_motion` runs: it takes the
@@ -335,29 +327,6 @@ def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> fl
     frame = a_b @ np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
     local = frame.T @ (p_j - p_b)
     return float(math.hypot(local[0], local[1]) - handle.joint.geometry.clearance)
-
-
-def chatter_note(mbs: exu.MainSystem, handle: ClearanceJointHandle, step_times: Sequence[float]) -> str:
-    """A sentence if the joint's contacts opened at steps longer than a tenth of its
-    contact period (module docstring), else ``""``."""
-    period = joint_contact_period(mbs, handle)
-    if not period > 0.0 or len(step_times) < 2:
-        return ""
-    limit = period / STEPS_PER_CONTACT_PERIOD
-    unresolved = 0
-    records = handle.impacts()
-    for record in records:
-        end = record.onset_time + record.duration
-        k = bisect.bisect_left(step_times, end * (1.0 - 1e-12))  # the accepted step that ends at or after it
-        if 0 < k < len(step_times) and step_times[k] - step_times[k - 1] > limit * (1.0 + 1e-9):
-            unresolved += 1
-    if unresolved == 0:
-        return ""
-    onsets = handle.history.onsets
-    return (f"joint {handle.name or handle.objectNumber!r}: {unresolved} of its {len(records)} contacts ended at a step "
-            f"longer than a tenth of its contact period ({period:.2g} s, estimated); such separations are not "
-            f"resolved, and the {onsets} contact onsets may be numerical chatter, not physics. Rerun with "
-            f"`step` <= {limit:.2g} s (or an explicit adaptive method where the model allows)")
 
 
 def started_aligned(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> bool:

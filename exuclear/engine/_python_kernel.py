@@ -137,6 +137,10 @@ class StepControl:
         self.growth_cap = math.inf  # the longest step free flight may grow to [s] (handle.GROWTH_CONTACT_PERIODS)
         self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
         self.jacobian_on = False  # whether it asks now
+        self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
+        self.separations = 0  # contacts that ended in the run
+        self.long_separations = 0  # ... in a step longer than separation_step: maybe numerical chatter
+        self.last_ended = self.last_long = 0  # what the last accepted step added (taken back if it is redone)
         self.rejected = 0
         self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
         self.unresolved_advice = math.inf
@@ -147,7 +151,7 @@ class StepControl:
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
             "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
-            "jacobian_step", "jacobian_on", "rejected",
+            "jacobian_step", "jacobian_on", "separation_step", "separations", "long_separations", "rejected",
             "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 
@@ -381,7 +385,7 @@ class JointKernel:
         if self.run_start is not None:
             try:
                 (c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale,
-                 c.growth_cap, c.jacobian_step, c.jacobian_on) = self.run_start()
+                 c.growth_cap, c.jacobian_step, c.jacobian_on, c.separation_step) = self.run_start()
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
@@ -531,10 +535,26 @@ class JointKernel:
         if advance:
             self.previous = self.current
         self.current = states
+        h = t - base[0].time
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
-        self.steer_jacobian(math.inf if switched else t - base[0].time)
+        self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
+        self.steer_jacobian(math.inf if switched else h)
         self.report_growth(mbs, t, allow, t - base[0].time)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
+
+    def count_separations(self, advance: bool, ended: int, h: float) -> None:
+        """Count the contacts that ended in an accepted step of length ``h``, and those of them
+        in a step longer than the run-start callback's ``separation_step`` (numerical chatter,
+        :func:`exuclear.engine.handle._step_notes`); a step accepted again from the same start
+        (redone after another item rejected it) replaces its first count."""
+        c = self.control
+        if not advance:
+            c.separations -= c.last_ended
+            c.long_separations -= c.last_long
+        c.last_ended = ended
+        c.last_long = ended if h > c.separation_step * (1.0 + STEP_SLACK) else 0
+        c.separations += c.last_ended
+        c.long_separations += c.last_long
 
     def steer_jacobian(self, step: float) -> None:
         """Ask for a Jacobian per step while the step the joint accepts is longer than the

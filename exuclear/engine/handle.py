@@ -20,6 +20,7 @@ from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
 from ..settings import NEWTON_ATOL_DEFAULT, NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
+from ..timescales import STEPS_PER_CONTACT_PERIOD
 from . import outputs as _outputs
 from .backends import make_backend
 from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
@@ -417,6 +418,23 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 GROWTH_CONTACT_PERIODS = 10.0
 
 
+def _separation_step(mbs: exu.MainSystem, period: float) -> float:
+    """The longest step [s] in which a contact of a joint of contact ``period`` [s] ends
+    resolved, in the implicit run ``mbs.SolveDynamic`` is starting: a tenth of the period
+    (:data:`~exuclear.timescales.STEPS_PER_CONTACT_PERIOD`); inf where nothing is counted (an
+    explicit solver: its error control, or the joint's rate criterion at fixed steps, resolves
+    separations; an unknown period).  A contact that ends in a longer step of an implicit
+    method rings and leaves the wall without a physical cause (a resting pendulum at steps of
+    1e-3 s, 2.9 of its contact periods, leaves the wall 68 times in 2 s where DOPRI5 and
+    physics give one contact): the joint counts such separations and its notes say so
+    (:func:`_step_notes`)."""
+    try:
+        explicit = "Explicit" in type(mbs.sys["dynamicSolver"]).__name__
+    except Exception:  # no SolveDynamic run: nothing to count against
+        return math.inf
+    return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf
+
+
 class _RunStart:
     """The kernel's run-start callback: whether the solver can shorten steps, its minimum
     step, the joint's label, how many clearance joints the system has (the kernel's step
@@ -431,10 +449,10 @@ class _RunStart:
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, bool]:
+    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, bool, float]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, False
+            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, False, math.inf
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
         period, jacobian_step, jacobian_on = math.nan, math.inf, False
@@ -452,7 +470,7 @@ class _RunStart:
         # inside check_convergence's tighter plain run the joints refine their own steps too
         rate_scale = 1.0 / joint_refinement()
         return (can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                rate_scale, growth_cap, jacobian_step, jacobian_on)
+                rate_scale, growth_cap, jacobian_step, jacobian_on, _separation_step(mbs, period))
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel, where
@@ -494,7 +512,7 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
     contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
     can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
     5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
-    stopped = [] if running else _stopped_note(handle)
+    stopped = [] if running else _stopped_note(handle) + _chatter_note(handle, control)
     if not control["unresolved"] and not control["over_limit"]:
         return stopped
     _can, _min, why, _rate = solver_steps(handle.mbs)
@@ -524,6 +542,21 @@ def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: 
                      "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
                      "automaticStepSize = True for explicit solvers)"))
     return notes + stopped
+
+
+def _chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[tuple[str, str]]:
+    """("chatter", sentence) where contacts of the last run ended in steps longer than a tenth
+    of the joint's contact period (the kernel's ``long_separations``, :func:`_separation_step`):
+    its contact onsets may be numerical chatter."""
+    long, step = control.get("long_separations", 0), control.get("separation_step", math.inf)
+    if not long:
+        return []
+    return [("chatter", f"joint {label(handle)}: {long} of its {control['separations']} contacts ended in a step "
+             f"longer than a tenth of its contact period ({step * STEPS_PER_CONTACT_PERIOD:.2g} s, estimated); such "
+             f"separations are not resolved, and the {handle.history.onsets} contact onsets may be numerical "
+             f"chatter, not physics: use steps of at most {step:.2g} s where contacts open "
+             "(timeIntegration.numberOfSteps, or exuclear.simulate's `step`), or an explicit adaptive method where "
+             "the model allows")]
 
 
 #: A journal this close to the wall (fraction of c) when Exudyn gives up is touching it:

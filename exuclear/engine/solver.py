@@ -22,7 +22,7 @@ import exudyn as exu
 
 from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, SolverSettings
 from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
-from ._diagnostics import chatter_note, check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
+from ._diagnostics import check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
 from .checks import check_system
 from .handle import ClearanceJointHandle, joints_of
 
@@ -117,8 +117,7 @@ class _Watchdog:
     """Pre- and post-step functions for one run: end a step retried without end and an
     adaptive step that collapsed to its minimum; the user's functions are called from them."""
 
-    def __init__(self, mbs: exu.MainSystem, min_step: float, record_steps: bool,
-                 joints: tuple[ClearanceJointHandle, ...] = ()) -> None:
+    def __init__(self, mbs: exu.MainSystem, min_step: float, joints: tuple[ClearanceJointHandle, ...] = ()) -> None:
         self.mbs = mbs
         # a joint whose failure() speaks (a penetration beyond its limit that shorter steps did
         # not remove, accepted by the kernel so that a plain SolveDynamic goes on) ends the run
@@ -127,8 +126,6 @@ class _Watchdog:
         self.user_post = _user_function(mbs.GetPostStepUserFunction())
         self.min_step = min_step
         self.last, self.attempts, self.problem = 0.0, 0, ""
-        # accepted steps' end times, for the chatter check of implicit runs (None: not kept)
-        self.step_times: list[float] | None = [] if record_steps else None
         self.interrupted = False
 
     # Ctrl-C raises KeyboardInterrupt in the next Python code that runs, which during a solve
@@ -151,8 +148,6 @@ class _Watchdog:
         try:
             self.attempts = 0
             step, self.last = t - self.last, t
-            if self.step_times is not None:
-                self.step_times.append(t)
             for failed in self.failed:
                 if failed():
                     return False  # simulate's result says why (the joint's failure)
@@ -279,9 +274,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
     start = time.perf_counter()
-    with _Watchdog(mbs, min_step, record_steps=not settings.explicit, joints=tuple(joints)) as watchdog:
-        if watchdog.step_times is not None:
-            watchdog.step_times.append(ss.timeIntegration.startTime)
+    with _Watchdog(mbs, min_step, joints=tuple(joints)) as watchdog:
         try:
             with warnings.catch_warnings():  # the joints' notes are issued with the result's
                 warnings.simplefilter("ignore", AccuracyWarning)
@@ -318,9 +311,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
                     f"{_solver_advice(message, settings)})")
         return SimulationResult(ok, message, wall, steps, rejected, t_reached, step=settings.step)
-    notes = tuple(step_notes)
-    if not settings.explicit:  # adaptive explicit methods resolve separations by their error control
-        notes += tuple(n for n in (chatter_note(mbs, h, watchdog.step_times) for h in joints) if n)
+    notes = tuple(step_notes)  # with the joints' numerical chatter of implicit runs (handle._chatter_note)
     notes += tuple(n for n in (tilt_note(h, a) for h, a in zip(joints, aligned)) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)
