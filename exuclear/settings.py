@@ -102,8 +102,8 @@ class SolverSettings:
         contact period ``2 pi sqrt(m / k)`` [s]: ``m`` the reduced mass of its two
         bodies, ``k`` the tangent stiffness of its contact law under the weight of ``m``
         (the model's gravity; 9.81 m/s^2 where it has none).  This is the estimate by
-        which :func:`exuclear.simulate` judges chatter, so a run at the automatic step
-        is never flagged for it.  Ten steps per period resolve a contact that opens
+        which the joints judge chatter (in any implicit run), so a run at the automatic
+        step is never flagged for it.  Ten steps per period resolve a contact that opens
         (issue 15's pendulum: steps of 2.3 periods chatter, a quarter period does not).
         The force is a rough estimate, and need be no more: under a Hertz-like law
         ``T_c`` varies as ``F**(-1/6)``, so a load ten times the weight shortens it by
