@@ -473,8 +473,8 @@ class _RunStart:
                 rate_scale, growth_cap, jacobian_step, jacobian_on, _separation_step(mbs, period))
 
     def jacobian_per_step(self, wanted: bool) -> None:
-        """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel, where
-        the step it accepts or redoes crosses the run-start's ``jacobian_step``)."""
+        """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's
+        ``steer_jacobian``, where its ask changes): :func:`~exuclear.engine.newton.vote_jacobian`."""
         mbs = self._mbs()
         if mbs is not None:
             vote_jacobian(mbs, self._token, wanted)
