@@ -259,3 +259,11 @@ def test_lubricated_big_end_is_carried_by_its_film():
     assert (out["regime"] == REGIME_FILM).all()
     assert out["eccentricity_ratio"].max() < model.joint.joint.film.eps_film
     assert out["film_force"].max() > 0.0 and out["normal_force"].max() == 0.0
+
+
+def test_model_names_of_the_validation_scripts_are_checked():
+    from validation.exudyn_examples._common import model_names
+
+    assert model_names("four_bar_3d,piston_engine") == ["four_bar_3d", "piston_engine"]
+    with pytest.raises(ValueError, match=r"unknown model\(s\) pendulum; known: ancf_pendulum"):
+        model_names("four_bar_3d,pendulum")

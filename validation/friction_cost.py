@@ -39,7 +39,7 @@ import numpy as np
 from exuclear.friction import Coulomb, FrictionLaw, ModifiedCoulomb
 from validation._cli import _positive_int
 from validation._tables import markdown_table
-from validation.exudyn_examples._common import REGISTRY, ZooModel, load_models
+from validation.exudyn_examples._common import REGISTRY, ZooModel, model_names
 
 #: The clearance joint's friction settings compared, by label: the paper's dynamic
 #: coefficient with the paper's regularisation, flat; and the paper's falling law.
@@ -132,11 +132,10 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.end_time is not None and not args.end_time > 0.0:
         ap.error(f"--end-time must be positive, got {args.end_time}")
-    load_models()
-    names = [n for n in args.models.split(",") if n]
-    unknown = [n for n in names if n not in REGISTRY]
-    if unknown:
-        ap.error(f"unknown model(s) {', '.join(unknown)}; known: {', '.join(sorted(REGISTRY))}")
+    try:
+        names = model_names(args.models)
+    except ValueError as err:
+        ap.error(str(err))
     rows = []
     for name in names:
         rows += model_rows(name, args.repeat, args.end_time)

@@ -29,7 +29,7 @@ from typing import Any
 import exuclear
 from exuclear.engine import handle
 from validation._tables import markdown_table
-from validation.exudyn_examples._common import REGISTRY, ZooModel, load_models
+from validation.exudyn_examples._common import REGISTRY, ZooModel, model_names
 
 #: The rules compared, in the order they run in each round.
 RULES = ("whole run", "with the steps")
@@ -104,11 +104,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--convergence", action="store_true",
                     help="also the own-settings runs' spectrum distance to their 4x refined runs")
     args = ap.parse_args(argv)
-    load_models()
-    names = [n for n in args.models.split(",") if n]
-    unknown = [n for n in names if n not in REGISTRY]
-    if unknown:
-        ap.error(f"unknown model(s) {', '.join(unknown)}; known: {', '.join(sorted(REGISTRY))}")
+    try:
+        names = model_names(args.models)
+    except ValueError as err:
+        ap.error(str(err))
     paths = [p for p in args.paths.split(",") if p]
     if not paths or any(p not in PATHS for p in paths):
         ap.error(f"--paths: {', '.join(PATHS)}, got {args.paths!r}")

@@ -36,7 +36,7 @@ import numpy as np
 
 from exuclear.engine import _python_kernel
 from validation._tables import markdown_table
-from validation.exudyn_examples._common import REGISTRY, load_models
+from validation.exudyn_examples._common import REGISTRY, model_names
 
 #: A penetration this many times the step start's (at least 1 nm) counts as an overshoot.
 OVERSHOOT = 10.0
@@ -110,11 +110,10 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if not 0.0 <= args.start < args.end:
         ap.error(f"need 0 <= --start < --end, got {args.start} and {args.end}")
-    load_models()
-    names = [n for n in args.models.split(",") if n]
-    unknown = [n for n in names if n not in REGISTRY]
-    if unknown:
-        ap.error(f"unknown model(s) {', '.join(unknown)}; known: {', '.join(sorted(REGISTRY))}")
+    try:
+        names = model_names(args.models)
+    except ValueError as err:
+        ap.error(str(err))
     table, details = [], []
     for name in names:
         row, detail = summary(name, record_evaluations(name, args.end), args.start)

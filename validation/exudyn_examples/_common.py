@@ -153,6 +153,17 @@ def load_models() -> dict[str, Entry]:
     return REGISTRY
 
 
+def model_names(text: str) -> list[str]:
+    """The zoo models named in ``text`` (comma-separated), all modules loaded; ``ValueError``
+    naming the unknown ones and the known ones (the validation scripts' ``--models``)."""
+    load_models()
+    names = [n for n in text.split(",") if n]
+    unknown = [n for n in names if n not in REGISTRY]
+    if unknown:
+        raise ValueError(f"unknown model(s) {', '.join(unknown)}; known: {', '.join(sorted(REGISTRY))}")
+    return names
+
+
 # ---------------------------------------------------------------------------------------
 # helpers for model authors
 # ---------------------------------------------------------------------------------------
