@@ -12,6 +12,7 @@ period).
 from __future__ import annotations
 
 import warnings
+import weakref
 
 import exudyn as exu
 import numpy as np
@@ -109,7 +110,7 @@ def test_a_jacobian_per_step_while_any_joint_asks_for_it():
             modifiedNewtonJacUpdatePerStep = False
 
     class System:
-        variables = {JACOBIAN_VOTES_KEY: [Solver, False, {}]}
+        variables = {JACOBIAN_VOTES_KEY: [weakref.ref(Solver), False, {}]}
 
     vote_jacobian(System, 1, True)
     vote_jacobian(System, 2, False)

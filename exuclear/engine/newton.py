@@ -74,6 +74,7 @@ the user set it.
 from __future__ import annotations
 
 import math
+import weakref
 from typing import Any
 
 import exudyn as exu
@@ -88,8 +89,9 @@ JACOBIAN_PER_STEP_ABOVE = 0.5
 CONTRACTIVITY = 0.2
 
 
-#: ``mbs.variables`` key of the run's Jacobian votes: ``[solver, the user's
-#: modifiedNewtonJacUpdatePerStep, {joint token: a Jacobian per step wanted}]``.
+#: ``mbs.variables`` key of the run's Jacobian votes: ``[weak reference to the solver, the
+#: user's modifiedNewtonJacUpdatePerStep, {joint token: a Jacobian per step wanted}]`` (weak:
+#: the system's variables neither keep a finished run's solver nor stop a deep copy).
 JACOBIAN_VOTES_KEY = "exuclear.jacobian_per_step"
 
 
@@ -116,8 +118,9 @@ def steer_newton(mbs: exu.MainSystem, contact_period: float, token: int = 0) -> 
         changed["modifiedNewtonContractivity"] = (newton.modifiedNewtonContractivity, CONTRACTIVITY)
         newton.modifiedNewtonContractivity = CONTRACTIVITY
     votes = mbs.variables.get(JACOBIAN_VOTES_KEY)
-    if votes is None or votes[0] is not solver:  # the run's first joint: the user's setting is still there
-        votes = mbs.variables[JACOBIAN_VOTES_KEY] = [solver, bool(newton.modifiedNewtonJacUpdatePerStep), {}]
+    if votes is None or votes[0]() is not solver:  # the run's first joint: the user's setting is still there
+        votes = mbs.variables[JACOBIAN_VOTES_KEY] = [weakref.ref(solver), bool(newton.modifiedNewtonJacUpdatePerStep),
+                                                     {}]
     step = JACOBIAN_PER_STEP_ABOVE * contact_period
     if not (newton.useModifiedNewton and not votes[1] and solver.it.maxStepSize > step):  # NaN: False
         return changed, math.inf
@@ -133,7 +136,6 @@ def vote_jacobian(mbs: exu.MainSystem, token: int, wanted: bool) -> None:
     if votes is None:
         return
     votes[2][token] = wanted
-    try:
-        votes[0].newton.modifiedNewtonJacUpdatePerStep = any(votes[2].values())
-    except Exception:  # a solver gone with its run: nothing to steer
-        pass
+    solver = votes[0]()
+    if solver is not None:  # else gone with its run: nothing to steer
+        solver.newton.modifiedNewtonJacUpdatePerStep = any(votes[2].values())
