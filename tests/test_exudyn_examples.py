@@ -146,8 +146,7 @@ FRICTION_RUNS = [pytest.param(model, law, id=f"{model}-{law}")
 
 @pytest.mark.parametrize(("name", "friction"), FRICTION_RUNS)
 def test_every_friction_law_runs_with_the_examples_own_settings(name, friction):
-    entry = REGISTRY[name]
-    model = entry.build(True, 0.3, **{**entry.fixed, "friction": friction})
+    model = REGISTRY[name](True, 0.3, friction=friction)
     assert model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
     assert model.mbs.systemData.GetTime() == pytest.approx(0.3, rel=1e-9)
     assert not model.joint.notes

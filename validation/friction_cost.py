@@ -64,11 +64,10 @@ def build(name: str, friction: str | FrictionLaw | None, end_time: float | None,
     """Zoo model ``name`` with its own settings: the ideal joint (``friction`` None) or the
     clearance joint with ``friction``; ``refine`` times the steps and 1/refine of the joint's
     rate limit."""
-    entry = REGISTRY[name]
     if friction is None:
-        model = entry.build(False, end_time, **entry.fixed)
+        model = REGISTRY[name](False, end_time)
     else:
-        model = entry.build(True, end_time, **{**entry.fixed, "friction": friction})
+        model = REGISTRY[name](True, end_time, friction=friction)
     if refine != 1:
         ti = model.simulation_settings.timeIntegration
         ti.numberOfSteps *= refine

@@ -50,8 +50,7 @@ def rule(name: str) -> Iterator[None]:
 
 
 def build(name: str, cr: float) -> ZooModel:
-    entry = REGISTRY[name]
-    return entry.build(True, None, **{**entry.fixed, "cr": cr})
+    return REGISTRY[name](True, None, cr=cr)
 
 
 def run(name: str, cr: float, path: str, convergence: bool) -> tuple[float, int, int, float]:

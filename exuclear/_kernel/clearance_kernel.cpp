@@ -952,8 +952,8 @@ void start_run(JointState& s) {
         s.control.rate_scale = r[5].cast<double>();
         s.control.growth_cap = r[6].cast<double>();
         s.control.jacobian_step = r[7].cast<double>();
-        s.control.jacobian_on = r[8].cast<bool>();
-        s.control.separation_step = r[9].cast<double>();
+        s.control.jacobian_on = s.control.jacobian_step < INF;  // steer_newton asked for it at the first step
+        s.control.separation_step = r[8].cast<double>();
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
     }

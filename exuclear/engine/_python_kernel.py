@@ -385,7 +385,8 @@ class JointKernel:
         if self.run_start is not None:
             try:
                 (c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale,
-                 c.growth_cap, c.jacobian_step, c.jacobian_on, c.separation_step) = self.run_start()
+                 c.growth_cap, c.jacobian_step, c.separation_step) = self.run_start()
+                c.jacobian_on = c.jacobian_step < math.inf  # steer_newton asked for it at the first step
             except Exception:  # never end a run for a label: keep the defaults
                 pass
 
@@ -539,7 +540,7 @@ class JointKernel:
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
         self.steer_jacobian(math.inf if switched else h)
-        self.report_growth(mbs, t, allow, t - base[0].time)
+        self.report_growth(mbs, t, allow, h)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]
 
     def count_separations(self, advance: bool, ended: int, h: float) -> None:

@@ -441,21 +441,22 @@ class _RunStart:
     group), the factor on its ``rate_limit`` for the run (below 1 inside
     :func:`exuclear.convergence.refined_joints`) and the longest step its free flight may
     grow to (:data:`GROWTH_CONTACT_PERIODS`), the step above which it asks for a Jacobian per
-    step (:func:`~exuclear.engine.newton.steer_newton`, inf: never) and whether it asks at the
-    run's first step; its ``grow(step)`` lets the solver's next step grow, its
+    step (:func:`~exuclear.engine.newton.steer_newton`, inf: never; where finite it asks at the
+    run's first step) and the step above which a contact's end counts as unresolved
+    (:func:`_separation_step`); its ``grow(step)`` lets the solver's next step grow, its
     ``jacobian_per_step(wanted)`` passes the joint's ask on.  It holds its system weakly and
     finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, bool, float]:
+    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, float]:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, False, math.inf
+            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, math.inf
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
-        period, jacobian_step, jacobian_on = math.nan, math.inf, False
+        period, jacobian_step = math.nan, math.inf
         if handle is not None:
             from ._diagnostics import joint_contact_period  # the diagnostics import this module
 
@@ -465,12 +466,11 @@ class _RunStart:
                 period = math.nan
             if handle.steer_newton:
                 handle.newton_changes, jacobian_step = steer_newton(mbs, period, self._token)
-                jacobian_on = jacobian_step < math.inf  # steer_newton asked for it at the first step
         growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # inside check_convergence's tighter plain run the joints refine their own steps too
         rate_scale = 1.0 / joint_refinement()
         return (can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                rate_scale, growth_cap, jacobian_step, jacobian_on, _separation_step(mbs, period))
+                rate_scale, growth_cap, jacobian_step, _separation_step(mbs, period))
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's
@@ -548,7 +548,7 @@ def _chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list
     """("chatter", sentence) where contacts of the last run ended in steps longer than a tenth
     of the joint's contact period (the kernel's ``long_separations``, :func:`_separation_step`):
     its contact onsets may be numerical chatter."""
-    long, step = control.get("long_separations", 0), control.get("separation_step", math.inf)
+    long, step = control["long_separations"], control["separation_step"]
     if not long:
         return []
     return [("chatter", f"joint {label(handle)}: {long} of its {control['separations']} contacts ended in a step "
