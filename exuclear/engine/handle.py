@@ -24,7 +24,7 @@ from ..timescales import STEPS_PER_CONTACT_PERIOD
 from . import outputs as _outputs
 from .backends import make_backend
 from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
-from .newton import steer_newton, vote_jacobian
+from .newton import explicit_solver, steer_newton, vote_jacobian
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -391,7 +391,7 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
     try:
         ti = mbs.sys["simulationSettings"].timeIntegration
         solver = mbs.sys["dynamicSolver"]
-        explicit = "Explicit" in type(solver).__name__
+        explicit = explicit_solver(solver)
     except Exception:  # no SolveDynamic run: the kernel's defaults
         return True, 0.0, "", True
     if explicit:
@@ -429,7 +429,7 @@ def _separation_step(mbs: exu.MainSystem, period: float) -> float:
     physics give one contact): the joint counts such separations and its notes say so
     (:func:`_step_notes`)."""
     try:
-        explicit = "Explicit" in type(mbs.sys["dynamicSolver"]).__name__
+        explicit = explicit_solver(mbs.sys["dynamicSolver"])
     except Exception:  # no SolveDynamic run: nothing to count against
         return math.inf
     return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf

@@ -95,6 +95,11 @@ CONTRACTIVITY = 0.2
 JACOBIAN_VOTES_KEY = "exuclear.jacobian_per_step"
 
 
+def explicit_solver(solver: Any) -> bool:
+    """Whether an Exudyn dynamic solver object is one of the explicit methods (no Newton)."""
+    return "Explicit" in type(solver).__name__
+
+
 def steer_newton(mbs: exu.MainSystem, contact_period: float, token: int = 0) -> tuple[dict[str, tuple[Any, Any]], float]:
     """Set the Newton settings of the implicit solver ``mbs.SolveDynamic`` is starting (module
     docstring) for the joint ``token`` of ``contact_period`` [s] (NaN: unknown, no Jacobian per
@@ -107,7 +112,7 @@ def steer_newton(mbs: exu.MainSystem, contact_period: float, token: int = 0) -> 
         newton = solver.newton
     except Exception:  # no SolveDynamic run, or an explicit solver (no Newton)
         return {}, math.inf
-    if "Explicit" in type(solver).__name__:
+    if explicit_solver(solver):
         return {}, math.inf
     changed: dict[str, tuple[Any, Any]] = {}
     differentiation = newton.numericalDifferentiation
