@@ -59,8 +59,9 @@ OWN_SETTINGS_FAIL = {
                             "penetration runs away (828 c at 1 s), which the joint's AccuracyWarning says",
     "slider_crank_2d": "the example's Newton relativeTolerance 1e-10 (Exudyn's default 1e-8) lies below the "
                        "round-off floor that the stiff contact leaves under the residual: Newton fails in the first "
-                       "loaded contact and the run stops at t = 0.027 s ('SolveDynamic terminated'), with no word "
-                       "from the joint; the step (1e-5 s) resolves the contact: with relativeTolerance 1e-8 or "
+                       "loaded contact and the run stops at t = 0.027 s ('SolveDynamic terminated'); the joint's "
+                       "note names the stop and relativeTolerance >= 1e-8 (test_a_run_exudyn_ends_in_contact_is_told_"
+                       "with_the_tolerance_that_works); the step (1e-5 s) resolves the contact: with relativeTolerance 1e-8 or "
                        "absoluteTolerance 1e-6 the same run reaches 0.1 s at 0.044 c",
 }
 
