@@ -19,8 +19,8 @@ It prints per model and setting the wall time and its ratio to the ideal model's
 accepted steps, the impacts and their median onset speed.  A friction coefficient that falls
 with the slip speed is a negative damping of the sliding motion (the classic source of
 stick-slip and friction-induced vibration): the journal chatters along its wall in impacts
-of a few mm/s, each resolved by the joint's rate criterion, and the 4x refined run has as
-many of them, at the same onset speed.  Run::
+of a few mm/s, each resolved by the joint's rate criterion, and the 4x refined run has more
+of them, not fewer, at onset speeds of the same few mm/s.  Run::
 
     python -m validation.friction_cost [--models double_pendulum_2d,rigid_body_tutorial3] [--repeat 3] [--end-time T]
 
@@ -92,13 +92,12 @@ def run(model: ZooModel) -> tuple[float, int, bool]:
 
 def model_rows(name: str, repeat: int, end_time: float | None) -> list[list[str]]:
     """The table rows of one model: the ideal joint, the friction settings, the refined run."""
-    settings: list[tuple[str, str | FrictionLaw | None, int]] = [("ideal joint", None, 1)]
-    settings += [(label, friction, 1) for label, friction in FRICTIONS.items()]
-    walls: dict[str, list[float]] = {label: [] for label, _, _ in settings}
+    settings: dict[str, str | FrictionLaw | None] = {"ideal joint": None, **FRICTIONS}
+    walls: dict[str, list[float]] = {label: [] for label in settings}
     last: dict[str, tuple[ZooModel, int, bool]] = {}
     for _ in range(repeat):  # side by side, each round every setting once
-        for label, friction, refine in settings:
-            model = build(name, friction, end_time, refine)
+        for label, friction in settings.items():
+            model = build(name, friction, end_time)
             wall, steps, reached = run(model)
             walls[label].append(wall)
             last[label] = (model, steps, reached)

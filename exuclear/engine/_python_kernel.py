@@ -546,7 +546,7 @@ class JointKernel:
     def count_separations(self, advance: bool, ended: int, h: float) -> None:
         """Count the contacts that ended in an accepted step of length ``h``, and those of them
         in a step longer than the run-start callback's ``separation_step`` (numerical chatter,
-        :func:`exuclear.engine.handle._step_notes`); a step accepted again from the same start
+        :func:`exuclear.engine.handle._chatter_note`); a step accepted again from the same start
         (redone after another item rejected it) replaces its first count."""
         c = self.control
         if not advance:
