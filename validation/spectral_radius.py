@@ -63,7 +63,7 @@ def compare(name: str, cr: float, radii: list[float | None], factor: float) -> l
     ``factor`` times the steps with the model's own rho_inf."""
     reference: list[exuclear.RunRecord] = []
 
-    def refined(settings: Any) -> exuclear.RunRecord:  # the own rho_inf's 4x refined run, made once
+    def refined(settings: Any) -> exuclear.RunRecord:  # the own rho_inf's refined run, made once
         if not reference:
             m = REGISTRY[name](True, None, cr=cr)
             ok = bool(m.mbs.SolveDynamic(settings, solverType=m.solver_type))
@@ -72,6 +72,7 @@ def compare(name: str, cr: float, radii: list[float | None], factor: float) -> l
 
     rows = []
     own_settings = REGISTRY[name](True, None, cr=cr).simulation_settings
+    own = own_settings.timeIntegration.generalizedAlpha.spectralRadius
     for rho in radii:
         ideal = solve(REGISTRY[name](False, None), rho)
         model = REGISTRY[name](True, None, cr=cr)
@@ -81,8 +82,7 @@ def compare(name: str, cr: float, radii: list[float | None], factor: float) -> l
         check = exuclear.check_convergence(refined, own_settings, factor=factor, baseline=record)
         joint = check.joints["joint"]
         spectrum = next(s for s in joint.statistics if s.name.startswith("spectrum"))
-        own = own_settings.timeIntegration.generalizedAlpha.spectralRadius
-        rows.append([name, f"{cr:g}", f"{own if rho is None else rho:g}" + (" (own)" if rho is None else ""),
+        rows.append([name, f"{cr:g}", f"{own:g} (own)" if rho is None else f"{rho:g}",
                      f"{wall / ideal:.1f}x", str(steps), f"{joint.impacts} / {joint.impacts_ref}",
                      f"{spectrum.value:.3f}", "yes" if all(s.agrees for s in joint.statistics) else "no"])
     return rows
