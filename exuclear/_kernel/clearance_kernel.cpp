@@ -318,6 +318,44 @@ double elastic_force(const Params& a, double delta) {  // F_e(delta) for delta >
     }
 }
 
+// ---- physics: timescales.py ---------------------------------------------------------------
+// Gauss-Legendre nodes and weights on [0, 1] (timescales.py _GAUSS_NODES, _GAUSS_WEIGHTS), in w
+// with delta = delta_max w^2; and the relative tolerance of the impact's depth (_DEPTH_RTOL).
+const double GAUSS_NODES[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+const double GAUSS_WEIGHTS[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+const double DEPTH_RTOL = 1e-6;
+const int DEPTH_MAX_ITER = 200;  // timescales.py PENETRATION_MAX_ITER
+
+double stored_energy(const Params& a, double delta) {  // timescales.py stored_energy: int_0^delta F_e
+    double total = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        double w = GAUSS_NODES[i];
+        total += GAUSS_WEIGHTS[i] * 2.0 * w * elastic_force(a, delta * w * w);
+    }
+    return delta * total;
+}
+
+// timescales.py impact_duration: pi delta_max / |v|, delta_max where the stored energy equals
+// m v^2 / 2 (c beyond the clearance); the caller passes a positive, finite mass and a speed != 0
+double impact_duration(const Params& a, double mass, double speed) {
+    double energy = 0.5 * mass * speed * speed;
+    double hi = a.r_b - a.r_j;
+    double depth;
+    if (!(stored_energy(a, hi) > energy)) {  // NaN (beyond a line-contact law's range) counts as above
+        depth = hi;
+    } else {
+        double lo = 0.0;
+        for (int i = 0; i < DEPTH_MAX_ITER; ++i) {
+            double mid = 0.5 * (lo + hi);
+            double e = stored_energy(a, mid);
+            if (std::isnan(e) || e >= energy) hi = mid; else lo = mid;
+            if (hi - lo <= DEPTH_RTOL * hi) break;
+        }
+        depth = 0.5 * (lo + hi);
+    }
+    return M_PI * depth / std::fabs(speed);
+}
+
 // contact.py damped_normal_force, eq. (9) for delta > 0: the elastic force f_e with the
 // hysteresis factor D and the onset velocity floored at v_min
 double damped_normal_force(double f_e, double damping_factor, double v_min, double delta_dot, double v0) {
@@ -879,6 +917,7 @@ struct StepControl {
     double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
     bool jacobian_on = false;    // whether it asks now
     double separation_step = INF;  // a contact that ends in a longer step is not resolved [s] (handle.py)
+    double impact_mass = std::numeric_limits<double>::quiet_NaN();  // the joint's impacts' effective mass [kg] (nan: unknown)
     long separations = 0;          // contacts that ended in the run
     long long_separations = 0;     // ... in a step longer than separation_step: maybe numerical chatter
     long last_ended = 0, last_long = 0;  // what the last accepted step added (taken back if it is redone)
@@ -942,20 +981,23 @@ void start_run(JointState& s) {
     s.control = StepControl();
     s.control.runs = runs;
     if (!s.run_start || s.run_start.is_none()) return;
-    try {
-        py::tuple r = s.run_start();
-        s.control.can_shorten = r[0].cast<bool>();
-        s.control.min_step = r[1].cast<double>();
-        s.control.label = r[2].cast<std::string>();
-        s.control.rate = r[3].cast<bool>();
-        s.control.group_size = r[4].cast<int>();
-        s.control.rate_scale = r[5].cast<double>();
-        s.control.growth_cap = r[6].cast<double>();
-        s.control.jacobian_step = r[7].cast<double>();
-        s.control.jacobian_on = s.control.jacobian_step < INF;  // steer_newton asked for it at the first step
-        s.control.separation_step = r[8].cast<double>();
+    try {  // the fields of layout.py RunStart, by name (RUN_START_FIELDS)
+        py::object r = s.run_start();
+        StepControl& c = s.control;
+        c.can_shorten = r.attr("can_shorten").cast<bool>();
+        c.min_step = r.attr("min_step").cast<double>();
+        c.label = r.attr("label").cast<std::string>();
+        c.rate = r.attr("rate").cast<bool>();
+        c.group_size = r.attr("group_size").cast<int>();
+        c.rate_scale = r.attr("rate_scale").cast<double>();
+        c.growth_cap = r.attr("growth_cap").cast<double>();
+        c.jacobian_step = r.attr("jacobian_step").cast<double>();
+        c.separation_step = r.attr("separation_step").cast<double>();
+        c.impact_mass = r.attr("impact_mass").cast<double>();
+        c.jacobian_on = c.jacobian_step < INF;  // steer_newton asked for it at the first step
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
+    } catch (py::cast_error&) {
     }
 }
 
@@ -1159,6 +1201,14 @@ const double ONSET_TARGET = 0.01;
 // from its start: it is not redone (that would shrink the step towards zero); the rate
 // criterion resolves the rest.
 const double ONSET_FLOOR = 0.05;
+// ... and only in a step longer than the impact's duration (impact_duration at the joint's
+// effective mass) over ONSET_IDLE_STEPS: a step that resolves the impact stays as the user chose
+// it (a redo there shortens the compression's steps only, and the errors of compression and
+// restitution no longer cancel; _python_kernel.py has the numbers).
+const double ONSET_IDLE_STEPS = 12.0;
+// Exudyn's implicit solver redoes a rejected step with at most this fraction of it
+// (ReduceStepSize: the smaller of 0.75 h and the recommendation): see onset_step.
+const double SOLVER_STEP_CUT = 0.75;
 // The recommended step's margin below the estimate (the change of the penetration rate is
 // not linear in the step: aim a little short, so that the redone step is accepted).
 const double STEP_SAFETY = 0.8;
@@ -1197,11 +1247,27 @@ std::string fmt(double x) {
 
 bool same(double x, double y) { return std::fabs(x - y) <= STEP_SLACK * std::fabs(y) + 1e-300; }
 
+// _python_kernel.py onset_step: the step that lets a contact begun at `share` of the step h begin in
+// the last ONSET_TARGET of a step: of this one, or of the second of two equal steps (SOLVER_STEP_CUT)
+double onset_step(double h, double share) {
+    double steps = share / (1.0 - ONSET_TARGET) <= SOLVER_STEP_CUT ? 1.0 : 2.0;
+    return h * share / (steps - ONSET_TARGET);
+}
+
+// JointKernel._resolves_impact: whether a step h resolves an impact at v0 (false: mass unknown)
+bool resolves_impact(const Params& a, const StepControl& c, double h, double v0) {
+    double mass = c.impact_mass;
+    if (!(mass > 0.0 && std::isfinite(mass))) return false;
+    return h * ONSET_IDLE_STEPS <= impact_duration(a, mass, v0);
+}
+
 // Whether the step [base.time, t] resolves the joint's contacts; 0: yes (accept it), else the
 // shorter step to redo it with.  A step the solver cannot shorten (its settings forbid it, its
 // minimum step, or the same step came back unshortened) is accepted and counted for the
 // handle's warning, as is a penetration beyond the limit that shorter steps do not remove.
-//   onset: a contact with an impact velocity (|v0| > v_min) that began in the step's first half;
+//   onset: a contact with an impact velocity (|v0| > v_min) that began before the step's last
+//          ONSET_TAIL, in a step longer than the impact needs (ONSET_IDLE_STEPS): redone to begin
+//          at the end of a step (onset_step);
 //   rate:  |delta_dot_end - delta_dot_start| > KAPPA max(|v0|, v_min) in a contact (or one that
 //          began or ended in the step): several steps per velocity reversal, with neither the
 //          mass nor the law in the criterion.  Settled contacts (|v0| at the v_min floor) are
@@ -1251,10 +1317,10 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         bool onset = !b.in_contact;
         double v0 = onset ? onset_velocity(b, k.delta, k.delta_dot) : b.v0;
         bool impact = std::fabs(v0) > a.v_min;
-        if (impact && onset && b.delta != -INF) {
+        if (impact && onset && b.delta != -INF && !resolves_impact(a, c, h, v0)) {
             double share = b.delta / (b.delta - k.delta);  // the onset's fraction of the step
             if (1.0 - share > ONSET_TAIL && share > ONSET_FLOOR) {
-                double h_on = h * share / (1.0 - ONSET_TARGET);
+                double h_on = onset_step(h, share);
                 h_rec = h_on < h_rec ? h_on : h_rec;
             }
         }
@@ -1585,6 +1651,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["jacobian_step"] = c.jacobian_step;
         d["jacobian_on"] = c.jacobian_on;
         d["separation_step"] = c.separation_step;
+        d["impact_mass"] = c.impact_mass;
         d["separations"] = c.separations;
         d["long_separations"] = c.long_separations;
         d["rejected"] = c.rejected;
@@ -1599,6 +1666,9 @@ PYBIND11_MODULE(_ckernel, m) {
         return d;
     });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("impact_duration", [](M6 parameters, double mass, double speed) {
+        return impact_duration(decode(parameters), mass, speed);
+    }, "timescales.impact_duration of the joint whose parameter matrix is given (a test hook)");
     m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
         // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)
         V3 rotation{0.0, 0.0, 0.0};
@@ -1653,4 +1723,29 @@ PYBIND11_MODULE(_ckernel, m) {
     m.attr("N_DATA") = N_DATA;
     m.attr("N_FILM_DATA") = N_FILM_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
+    // the run-start record's fields start_run reads (layout.py RunStart), and the step
+    // control's constants (_python_kernel.py), which tests keep equal to Python's
+    py::list run_start_fields;
+    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap",
+                             "jacobian_step", "separation_step", "impact_mass"}) {
+        run_start_fields.append(name);
+    }
+    m.attr("RUN_START_FIELDS") = run_start_fields;
+    py::dict constants;
+    constants["REDO_STEP_ERROR"] = REDO_STEP_ERROR;
+    constants["STEP_SLACK"] = STEP_SLACK;
+    constants["ONSET_TAIL"] = ONSET_TAIL;
+    constants["ONSET_TARGET"] = ONSET_TARGET;
+    constants["ONSET_FLOOR"] = ONSET_FLOOR;
+    constants["ONSET_IDLE_STEPS"] = ONSET_IDLE_STEPS;
+    constants["SOLVER_STEP_CUT"] = SOLVER_STEP_CUT;
+    constants["STEP_SAFETY"] = STEP_SAFETY;
+    constants["MAX_CUT"] = MAX_CUT;
+    constants["MIN_STEP_MARGIN"] = MIN_STEP_MARGIN;
+    constants["GROWTH_LIMIT"] = GROWTH_LIMIT;
+    constants["GROWTH_MIN"] = GROWTH_MIN;
+    constants["GROWTH_GAP"] = GROWTH_GAP;
+    constants["PENETRATION_CUT"] = PENETRATION_CUT;
+    constants["PENETRATION_RETRIES"] = PENETRATION_RETRIES;
+    m.attr("STEP_CONSTANTS") = constants;
 }

@@ -158,11 +158,18 @@ def _gravity(mbs: exu.MainSystem) -> float:
     return g
 
 
+def joint_mass(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
+    """The effective mass [kg] of a joint's relative motion: its two bodies' reduced mass
+    (nan where a body's mass is not read).  A crude estimate: a body held by other joints
+    moves the journal with more or less than its own mass."""
+    return reduced_mass(*(body_mass(mbs, m) for m in handle.markerNumbers))
+
+
 def joint_contact_period(mbs: exu.MainSystem, handle: ClearanceJointHandle, force: float | None = None) -> float:
-    """Contact period [s] of a joint: its two bodies' reduced mass, pressed by ``force``
-    [N] (default: that mass times the model's gravity, or :data:`STANDARD_GRAVITY`)."""
-    masses = [body_mass(mbs, m) for m in handle.markerNumbers]
-    mass = reduced_mass(*masses)
+    """Contact period [s] of a joint: its two bodies' reduced mass (:func:`joint_mass`),
+    pressed by ``force`` [N] (default: that mass times the model's gravity, or
+    :data:`STANDARD_GRAVITY`)."""
+    mass = joint_mass(mbs, handle)
     if not mass > 0.0 or not math.isfinite(mass):
         return math.nan
     if force is None:

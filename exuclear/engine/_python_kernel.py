@@ -55,7 +55,8 @@ from ..spatial import (
     slice_centres,
     slice_kinematics,
 )
-from .layout import read
+from ..timescales import impact_duration
+from .layout import RunStart, read
 
 #: Error a post-Newton function returns to make Exudyn redo a step: anything above
 #: Exudyn's ``discontinuous.iterationTolerance`` (default 1).
@@ -64,19 +65,34 @@ REDO_STEP_ERROR = 1e3
 STEP_SLACK = 1e-9
 #: The joint's own step control (:meth:`JointKernel.step_control`).  A contact with an impact
 #: velocity that began before the step's last ``ONSET_TAIL`` is redone so that it begins in
-#: the step's last ``ONSET_TARGET`` (its force then acts from about its onset on).  An
-#: implicit method charges the contact force at the step's end over the whole step, where
-#: it acted only since the onset: a contact that began halfway through a long step gave
-#: the step a spurious impulse, the paper's slider-crank its first impact 1.4 % too little
-#: penetration and its path 16 % of c off the reference (0.5 and 0.2 before; at 0.02 and
-#: 0.01, 4 %, and the zoo's double pendulum the same impacts as a run at a quarter of the
-#: step, for 25 % more steps).
+#: the step's last ``ONSET_TARGET`` (its force then acts from about its onset on): an implicit
+#: method charges the contact force at the step's end over the whole step, where it acted
+#: only since the onset, and a contact that began halfway through a step several times
+#: longer than the impact gives the step a spurious impulse (the paper's slider-crank at
+#: 1e-5 s steps: 11.9 % of c off the reference with the rule off, 2.7 % with it on;
+#: ``python -m validation.fine_steps``).
 ONSET_TAIL = 0.02
 ONSET_TARGET = 0.01
 #: A contact that began in the step's first ONSET_FLOOR (touching at its start) is resolved
 #: from its start: it is not redone (that would shrink the step towards zero); the rate
 #: criterion resolves the rest.
 ONSET_FLOOR = 0.05
+#: ... and only where the step is longer than the impact's duration (its estimate
+#: :func:`exuclear.timescales.impact_duration` at the joint's effective mass) divided by
+#: ONSET_IDLE_STEPS: a step that resolves the impact is left as the user chose it.  There a
+#: redo makes the path worse, not better: an implicit method's errors in the compression and
+#: the restitution of an impact cancel at equal steps, and a redo shortens the steps of the
+#: compression only (Exudyn holds a shortened step for its recovery steps).  Measured on the
+#: paper's slider-crank (``python -m validation.fine_steps``): at 2e-6 s (impacts of about 40
+#: steps) the rule took the path from 0.58 % to 1.78 % of c, at 5e-6 s (about 16) from 2.8 %
+#: to 5.3 %; at 1e-5 s (about 8) it brought it from 11.9 % to 2.7 %.  Any threshold from 10 to
+#: 15 steps gives the same paths there.
+ONSET_IDLE_STEPS = 12.0
+#: Exudyn's implicit solver redoes a rejected step with at most this fraction of it, whatever
+#: step is recommended (``CSolverImplicitSecondOrderTimeInt::ReduceStepSize``: the smaller of
+#: 0.75 h and the recommendation): an onset later than that in the step is placed at the end
+#: of the second redone step (:func:`onset_step`), else it would fall at the next step's start.
+SOLVER_STEP_CUT = 0.75
 #: The recommended step's margin below the estimate (the rate's change is not linear in the
 #: step: aim a little short, so that the redone step is accepted).
 STEP_SAFETY = 0.8
@@ -138,6 +154,7 @@ class StepControl:
         self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
         self.jacobian_on = False  # whether it asks now
         self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
+        self.impact_mass = math.nan  # the effective mass of the joint's impacts [kg] (nan: unknown)
         self.separations = 0  # contacts that ended in the run
         self.long_separations = 0  # ... in a step longer than separation_step: maybe numerical chatter
         self.last_ended = self.last_long = 0  # what the last accepted step added (taken back if it is redone)
@@ -151,7 +168,7 @@ class StepControl:
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
             "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
-            "jacobian_step", "jacobian_on", "separation_step", "separations", "long_separations", "rejected",
+            "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
             "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 
@@ -337,10 +354,10 @@ class JointKernel:
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
         self.joint = joint
-        #: called once per run start: ``(can_shorten, min_step, label, rate, group_size, rate_scale,
-        #: growth_cap)``; None: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
+        #: called once per run start, returns the joint's :class:`~exuclear.engine.layout.RunStart`;
+        #: None: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
         #: next step grow (:meth:`report_growth`).
-        self.run_start: Callable[[], tuple[bool, float, str, bool, int, float, float]] | None = None
+        self.run_start: Callable[[], RunStart] | None = None
         self.control = StepControl()
         self.reset()
 
@@ -384,8 +401,9 @@ class JointKernel:
         self.control = c = StepControl(self.control.runs + 1)
         if self.run_start is not None:
             try:
-                (c.can_shorten, c.min_step, c.label, c.rate, c.group_size, c.rate_scale,
-                 c.growth_cap, c.jacobian_step, c.separation_step) = self.run_start()
+                record = self.run_start()
+                for name in RunStart._fields:
+                    setattr(c, name, getattr(record, name))
                 c.jacobian_on = c.jacobian_step < math.inf  # steer_newton asked for it at the first step
             except Exception:  # never end a run for a label: keep the defaults
                 pass
@@ -641,8 +659,9 @@ class JointKernel:
         accepted and counted for the handle's warning, as is a penetration beyond the limit
         that shorter steps do not remove.
 
-        - onset: a contact with an impact velocity (``|v0| > v_min``) that began in the
-          step's first half (``ONSET_TAIL``);
+        - onset: a contact with an impact velocity (``|v0| > v_min``) that began before the
+          step's last ``ONSET_TAIL``, in a step longer than the impact needs
+          (``ONSET_IDLE_STEPS``), is redone to begin at the end of a step (:func:`onset_step`);
         - rate: ``|delta_dot_end - delta_dot_start| > kappa max(|v0|, v_min)`` in a contact
           (or one that began or ended in the step): several steps per velocity reversal,
           with neither the mass nor the law in the criterion.  Settled contacts (``|v0|`` at
@@ -690,10 +709,10 @@ class JointKernel:
             onset = not b.in_contact
             v0 = b.onset_velocity(kin.delta, kin.delta_dot)
             impact = abs(v0) > v_min
-            if impact and onset and b.delta != -math.inf:
+            if impact and onset and b.delta != -math.inf and not self._resolves_impact(h, v0):
                 share = b.delta / (b.delta - kin.delta)  # the onset's fraction of the step
                 if 1.0 - share > ONSET_TAIL and share > ONSET_FLOOR:
-                    h_rec = min(h_rec, h * share / (1.0 - ONSET_TARGET))
+                    h_rec = min(h_rec, onset_step(h, share))
             change = abs(kin.delta_dot - b.delta_dot)
             allowed = kappa * (abs(v0) if impact else v_min)
             if change > allowed:
@@ -721,6 +740,14 @@ class JointKernel:
                 self.tell()  # with its advice
         return 0.0
 
+    def _resolves_impact(self, h: float, v0: float) -> bool:
+        """Whether a step ``h`` resolves an impact at ``v0``: at most the impact's duration
+        divided by ONSET_IDLE_STEPS (False where the joint's effective mass is unknown)."""
+        mass = self.control.impact_mass
+        if not (mass > 0.0 and math.isfinite(mass)):
+            return False
+        return h * ONSET_IDLE_STEPS <= impact_duration(self._joint.law, mass, v0)
+
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the
         one slice for the planar joint, :func:`spatial_data_values` for the spatial joint."""
@@ -728,6 +755,14 @@ class JointKernel:
         if self.planar:
             return data_values(states[0], lubricated)
         return spatial_data_values(t, u, axial, states, self.slices if lubricated else 0)
+
+
+def onset_step(h: float, share: float) -> float:
+    """The step to redo a step ``h`` with, whose contact began at ``share`` of it, so that the
+    contact begins in the last ONSET_TARGET of a step: of this one, or, where Exudyn would not
+    shorten it that little (SOLVER_STEP_CUT), of the second of two equal steps."""
+    steps = 1.0 if share / (1.0 - ONSET_TARGET) <= SOLVER_STEP_CUT else 2.0
+    return h * share / (steps - ONSET_TARGET)
 
 
 def time_to_wall(delta: float, delta_dot: float, delta_ddot: float) -> float:

@@ -23,7 +23,7 @@ from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..timescales import STEPS_PER_CONTACT_PERIOD
 from . import outputs as _outputs
 from .backends import make_backend
-from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .layout import MAIN, PROBE, RUN_START_DEFAULT, TORQUE, RunStart, parameters, read, uses_bearing_motion
 from .newton import explicit_solver, steer_newton, vote_jacobian
 
 _TOKENS = itertools.count(1)
@@ -436,31 +436,34 @@ def _separation_step(mbs: exu.MainSystem, period: float) -> float:
 
 
 class _RunStart:
-    """The kernel's run-start callback: whether the solver can shorten steps, its minimum
-    step, the joint's label, how many clearance joints the system has (the kernel's step
-    group), the factor on its ``rate_limit`` for the run (below 1 inside
-    :func:`exuclear.convergence.refined_joints`) and the longest step its free flight may
-    grow to (:data:`GROWTH_CONTACT_PERIODS`), the step above which it asks for a Jacobian per
-    step (:func:`~exuclear.engine.newton.steer_newton`, inf: never; where finite it asks at the
-    run's first step) and the step above which a contact's end counts as unresolved
-    (:func:`_separation_step`); its ``grow(step)`` lets the solver's next step grow, its
+    """The kernel's run-start callback: returns the joint's
+    :class:`~exuclear.engine.layout.RunStart` record for the run the solver is starting
+    (whether the solver can shorten steps, its minimum step, the joint's label, how many
+    clearance joints the system has, the factor on its ``rate_limit`` for the run, below 1
+    inside :func:`exuclear.convergence.refined_joints`, the longest step its free flight may
+    grow to, :data:`GROWTH_CONTACT_PERIODS`, the step above which it asks for a Jacobian per
+    step, :func:`~exuclear.engine.newton.steer_newton`, where finite it asks at the run's
+    first step, the step above which a contact's end counts as unresolved,
+    :func:`_separation_step`, and the effective mass of its impacts, the reduced mass of its
+    two bodies); its ``grow(step)`` lets the solver's next step grow, its
     ``jacobian_per_step(wanted)`` passes the joint's ask on.  It holds its system weakly and
     finds its handle by token: the kernel's table outlives no handle through it."""
 
     def __init__(self, mbs: exu.MainSystem, token: int) -> None:
         self._mbs, self._token = weakref.ref(mbs), token
 
-    def __call__(self) -> tuple[bool, float, str, bool, int, float, float, float, float]:
+    def __call__(self) -> RunStart:
         mbs = self._mbs()
         if mbs is None:
-            return True, 0.0, "", True, 1, 1.0, math.inf, math.inf, math.inf
+            return RUN_START_DEFAULT
         can_shorten, min_step, _why, rate = solver_steps(mbs)
         handle = self._handle(mbs)
-        period, jacobian_step = math.nan, math.inf
+        period, mass, jacobian_step = math.nan, math.nan, math.inf
         if handle is not None:
-            from ._diagnostics import joint_contact_period  # the diagnostics import this module
+            from ._diagnostics import joint_contact_period, joint_mass  # the diagnostics import this module
 
             try:
+                mass = joint_mass(mbs, handle)
                 period = joint_contact_period(mbs, handle)
             except Exception:  # a body whose mass is not read: no Jacobian per step, no cap on growth
                 period = math.nan
@@ -469,8 +472,8 @@ class _RunStart:
         growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # inside check_convergence's tighter plain run the joints refine their own steps too
         rate_scale = 1.0 / joint_refinement()
-        return (can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                rate_scale, growth_cap, jacobian_step, _separation_step(mbs, period))
+        return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
+                        rate_scale, growth_cap, jacobian_step, _separation_step(mbs, period), mass)
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's

@@ -149,6 +149,28 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
     raise ValueError(f"friction law {kind.__name__} has no compiled form; use backend='python'")
 
 
+class RunStart(NamedTuple):
+    """What a joint's kernel asks its handle once per run start (the handle's run-start
+    callback returns it; ``start_run`` of both kernels reads it by field name, and the
+    compiled kernel exports the names it reads as ``exuclear._ckernel.RUN_START_FIELDS``,
+    which a test keeps equal to these)."""
+
+    can_shorten: bool  #: the solver redoes a rejected step shorter
+    min_step: float  #: the solver's minimum step [s]
+    label: str  #: the joint's name, for messages
+    rate: bool  #: the joint's rate criterion applies (False: an explicit solver's error control sets the step)
+    group_size: int  #: the clearance joints of the joint's system (the kernel's step group)
+    rate_scale: float  #: the factor on ``rate_limit`` for this run (below 1 in a convergence check's tighter run)
+    growth_cap: float  #: the longest step free flight may grow to [s]
+    jacobian_step: float  #: the step above which the joint asks for a Jacobian per step [s] (inf: never)
+    separation_step: float  #: a contact that ends in a longer step is not resolved [s] (inf: not counted)
+    impact_mass: float  #: the effective mass of the joint's impacts [kg] (nan: unknown)
+
+
+#: What a kernel assumes where its handle gives no run-start record (a kernel used without a handle).
+RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("inf"), float("inf"), float("nan"))
+
+
 #: Film model name -> code in the parameter matrix (0: no film; clearance_kernel.cpp ``FilmCode``).
 FILM_CODES = {"short": 1, "long": 2, "finite": 3}
 
