@@ -18,13 +18,13 @@ from ..checks import check_nonnegative
 from ..convergence import joint_refinement
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
-from ..settings import NEWTON_ATOL_DEFAULT, NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
+from ..settings import NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..timescales import STEPS_PER_CONTACT_PERIOD
 from . import outputs as _outputs
 from .backends import make_backend
 from .layout import MAIN, PROBE, RUN_START_DEFAULT, TORQUE, RunStart, parameters, read, uses_bearing_motion
-from .newton import explicit_solver, steer_newton, vote_jacobian
+from .newton import ABSOLUTE_TOLERANCE, explicit_solver, steer_newton, vote_jacobian
 
 _TOKENS = itertools.count(1)
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
@@ -562,38 +562,83 @@ def _chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list
              "the model allows")]
 
 
-#: A journal this close to the wall (fraction of c) when Exudyn gives up is touching it:
-#: the zoo's piston engine stopped 3e-10 m (1e-5 c) from the wall, grazing.
-TOUCHING_GAP = 1e-3
+def _regime(handle: ClearanceJointHandle) -> str:
+    """The joint's regime after the last accepted step, with its eccentricity ratio |e|/c:
+    free flight or metal contact (with the penetration), and for a lubricated joint the film
+    alone (eps <= eps_film), the film's blend near the wall (eq. (70)) or metal contact under
+    the film (:data:`~exuclear.engine.outputs.REGIME_FILM` and the others).  A spatial joint:
+    its most penetrated slice or end face (:meth:`ClearanceJointHandle.state`)."""
+    state, c = handle.state(), handle.joint.geometry.clearance
+    eps = f"|e|/c = {math.hypot(state.ecc_x, state.ecc_y) / c:.6g}"
+    film = handle.joint.film
+    if state.in_contact or state.delta > 0.0:
+        where = "in metal contact under the film" if film is not None else "in metal contact"
+        return f"{where} ({eps}, penetration {state.delta / c:.3g} c)"
+    if film is None:
+        return f"in free flight ({eps}, {-state.delta / c:.3g} c from the wall)"
+    if math.hypot(state.ecc_x, state.ecc_y) / c > film.eps_film:
+        return f"in the film's blend near the wall ({eps} > eps_film = {film.eps_film:g})"
+    return f"carried by the film ({eps} <= eps_film = {film.eps_film:g})"
+
+
+def _stop_cause(solver: Any, adaptive: bool, min_step: float) -> str:
+    """Why Exudyn's solver ended its run early, from its convergence and output flags
+    (``CSolverBase::GetErrorString`` and ``FinalizeSolver`` read the same ones)."""
+    output, conv = solver.output, solver.conv
+    if output.simulationStoppedByUser or output.simulationStoppedByUserFunction:
+        return "stopped by the user (a pre- or post-step function returned False, or Ctrl+C)"
+    if output.simulationTimeout:
+        return "stopped at exudyn.special.solver.timeout"
+    if conv.linearSolverFailed:
+        return "its linear solver failed (the Jacobian is singular)"
+    if conv.newtonSolutionDiverged:
+        return "its Newton iteration diverged"
+    if conv.stepReductionFailed:
+        if adaptive:
+            return f"its Newton did not converge, and the step reduction reached the minimum step ({min_step:g} s)"
+        return "its Newton did not converge at the fixed step (timeIntegration.adaptiveStep is False)"
+    return "an error in a user function or in Exudyn (the solver gives no cause)"
 
 
 def _stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
-    """("stopped", sentence) where Exudyn's solver ended the last run before its end time
-    while this joint was in contact: Exudyn then says only "SolveDynamic terminated"."""
+    """("stopped", sentence) where Exudyn's solver ended the last run before its end time,
+    whatever the joint's regime: Exudyn then says only "SolveDynamic terminated".  The
+    sentence names the joint, the time, the joint's regime and |e|/c (:func:`_regime`), the
+    cause (:func:`_stop_cause`) and, for a failed Newton, what to try: the tolerances in
+    effect (the solver's copy, after :func:`~exuclear.engine.newton.steer_newton`) where they
+    are tighter than the contact's round-off allows, said to be the user's where the joint
+    kept them."""
     mbs = handle.mbs
     try:
         solver, settings = mbs.sys["dynamicSolver"], mbs.sys["simulationSettings"]
-        finished, end = bool(solver.output.finishedSuccessfully), float(settings.timeIntegration.endTime)
-        newton = settings.timeIntegration.newton
-        rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
-        adaptive = bool(settings.timeIntegration.adaptiveStep)
+        ti = settings.timeIntegration
+        end, adaptive, min_step = float(ti.endTime), bool(ti.adaptiveStep), float(ti.minimumStepSize)
+        newton = solver.newton if not explicit_solver(solver) else None
     except Exception:  # no SolveDynamic run (or another solver): nothing to say
         return []
-    t, state, c = mbs.systemData.GetTime(), handle.state(), handle.joint.geometry.clearance
-    if finished or t >= end or not (state.in_contact or -state.delta < TOUCHING_GAP * c):
+    t = mbs.systemData.GetTime()
+    if t >= end * (1.0 - 1e-12) or not handle._backend.started():
         return []
+    cause = _stop_cause(solver, adaptive, min_step)
+    if solver.output.finishedSuccessfully and not cause.startswith("stopped"):
+        return []  # a finished run whose time is not this solver's (e.g. a static solve since)
+    note = (f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s: {cause}; the joint "
+            f"was then {_regime(handle)}")
+    if "Newton" not in cause and "singular" not in cause:
+        return [("stopped", note)]
     advice = []
-    # exuclear.SolverSettings' Newton tolerances: below them Newton stalls at the contact's round-off
-    if rtol < NEWTON_RTOL_DEFAULT or atol < NEWTON_ATOL_DEFAULT:
-        advice.append(f"Newton tolerances no tighter than the contact's round-off allows (timeIntegration.newton."
-                      f"relativeTolerance >= {NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= "
-                      f"{NEWTON_ATOL_DEFAULT:g}, now {atol:g})")
+    if newton is not None:
+        rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
+        if rtol < NEWTON_RTOL_DEFAULT or atol < ABSOLUTE_TOLERANCE:
+            # the joint raises only Exudyn's default absolute tolerance: a tighter one is the user's
+            advice.append(f"Newton tolerances the residual can reach (timeIntegration.newton.relativeTolerance >= "
+                          f"{NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= {ABSOLUTE_TOLERANCE:g}, now "
+                          f"{atol:g}; the joint keeps tolerances the user set)")
     if not adaptive:
-        advice.append("timeIntegration.adaptiveStep = True, so that the joint can shorten the steps")
-    advice.append("a shorter step")
-    return [("stopped", f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s "
-                        f"(e.g. its Newton did not converge) while this joint touched its wall (penetration "
-                        f"{state.delta / c:.3g} c); try " + ", or ".join(advice))]
+        advice.append("timeIntegration.adaptiveStep = True (Exudyn then shortens a step whose Newton fails)")
+    advice.append("a shorter step; where Newton's residual stalls at every step length (timeIntegration.verboseMode = 2 "
+                  "shows it), look for a singular position of the mechanism")
+    return [("stopped", note + "; try " + ", or ".join(advice))]
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:

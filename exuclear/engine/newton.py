@@ -67,6 +67,24 @@ For the run it starts (the solver's own copy of the settings; the user's
   four-bar -5 %, the others within 3 %; the piston engine, whose run Exudyn's Newton
   ended at 0.12 s, ran to its end).
 
+- ``absoluteTolerance`` to :data:`ABSOLUTE_TOLERANCE` where the user left Exudyn's default
+  (1e-10, :data:`EXUDYN_ABSOLUTE_TOLERANCE`): Exudyn's residual is one L2 norm over the
+  force residuals [N] and the constraint equations, and in contact its floor is the
+  contact's tangent stiffness times the round-off of the coordinates the penetration is
+  computed from.  Under the joint's weight that stiffness is 1e7 to 1.5e9 N/m on the zoo's
+  joints (reduced masses 5e-4 kg to 25 kg, ``exuclear.timescales.contact_stiffness``), times 2.2e-16 m
+  (a metre-sized coordinate's last bit) 2e-9 to 3e-7 N: above 1e-10, so a resting contact
+  can stall Newton where nothing is wrong (issue 15's pendulum, 1.9e8 N/m on coordinates
+  of 0.15 m, 3e-17 m: 5e-9 N; it stops at 0.37 s with 1e-9 and runs with 1e-8).  The joint
+  raises it to exuclear's own :data:`exuclear.settings.NEWTON_ATOL_DEFAULT`, which is no
+  looser because constraints would then be left unmet by the size of a contact's
+  penetration (its reasoning there).  An absolute tolerance the user set (any value other
+  than Exudyn's default) is kept: the joint's note on a run Exudyn stops then names it
+  (``_stopped_note`` in :mod:`exuclear.engine.handle`).  The relative tolerance is left as
+  set: Exudyn's default (1e-8) is exuclear's too, and a tighter one the user chose (the
+  zoo's slider-crank keeps its example's 1e-10) is the user's to loosen, which the same
+  note says.
+
 Measured on the zoo (``validation/exudyn_examples``, own settings, plain
 ``mbs.SolveDynamic``, see README).  ``joint.steer_newton = False`` leaves the solver as
 the user set it.
@@ -79,6 +97,8 @@ from typing import Any
 
 import exudyn as exu
 
+from ..settings import NEWTON_ATOL_DEFAULT
+
 #: The largest ``numericalDifferentiation.relativeEpsilon`` the joint lets an implicit run
 #: use (module docstring).
 RELATIVE_EPSILON = 1e-9
@@ -87,6 +107,13 @@ RELATIVE_EPSILON = 1e-9
 JACOBIAN_PER_STEP_ABOVE = 0.5
 #: The largest ``modifiedNewtonContractivity`` the joint lets an implicit run use (module docstring).
 CONTRACTIVITY = 0.2
+
+
+#: Exudyn's default ``newton.absoluteTolerance`` (1e-10): the value the joint takes for "not set".
+EXUDYN_ABSOLUTE_TOLERANCE = exu.SimulationSettings().timeIntegration.newton.absoluteTolerance
+#: The absolute Newton tolerance the joint sets where the user left Exudyn's default: above the
+#: residual floor of a stiff contact, stiffness x coordinate round-off (module docstring).
+ABSOLUTE_TOLERANCE = NEWTON_ATOL_DEFAULT
 
 
 #: ``mbs.variables`` key of the run's Jacobian votes: ``[weak reference to the solver, the
@@ -119,6 +146,9 @@ def steer_newton(mbs: exu.MainSystem, contact_period: float, token: int = 0) -> 
     if differentiation.relativeEpsilon > RELATIVE_EPSILON:
         changed["numericalDifferentiation.relativeEpsilon"] = (differentiation.relativeEpsilon, RELATIVE_EPSILON)
         differentiation.relativeEpsilon = RELATIVE_EPSILON
+    if newton.absoluteTolerance < ABSOLUTE_TOLERANCE and _users_absolute_tolerance(mbs) == EXUDYN_ABSOLUTE_TOLERANCE:
+        changed["absoluteTolerance"] = (newton.absoluteTolerance, ABSOLUTE_TOLERANCE)
+        newton.absoluteTolerance = ABSOLUTE_TOLERANCE
     if newton.useModifiedNewton and newton.modifiedNewtonContractivity > CONTRACTIVITY:
         changed["modifiedNewtonContractivity"] = (newton.modifiedNewtonContractivity, CONTRACTIVITY)
         newton.modifiedNewtonContractivity = CONTRACTIVITY
@@ -132,6 +162,15 @@ def steer_newton(mbs: exu.MainSystem, contact_period: float, token: int = 0) -> 
     changed["modifiedNewtonJacUpdatePerStep"] = (False, f"while the step exceeds {step:.3g} s")
     vote_jacobian(mbs, token, True)  # the run's first step is its largest (Exudyn's currentStepSize is still 0 here)
     return changed, step
+
+
+def _users_absolute_tolerance(mbs: exu.MainSystem) -> float:
+    """The absolute Newton tolerance of the user's settings of the run being started (the
+    solver's copy may already hold another joint's change); NaN where they are not known."""
+    try:
+        return float(mbs.sys["simulationSettings"].timeIntegration.newton.absoluteTolerance)
+    except Exception:  # a solver run without SolveDynamic: leave the tolerance alone
+        return math.nan
 
 
 def vote_jacobian(mbs: exu.MainSystem, token: int, wanted: bool) -> None:

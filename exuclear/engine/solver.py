@@ -310,7 +310,9 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     if not ok:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
                     f"{_solver_advice(message, settings)})")
-        return SimulationResult(ok, message, wall, steps, rejected, t_reached, step=settings.step)
+        for note in step_notes:  # with each joint's note on the stop: its regime and |e|/c then
+            warnings.warn(note, AccuracyWarning, stacklevel=2)
+        return SimulationResult(ok, message, wall, steps, rejected, t_reached, tuple(step_notes), step=settings.step)
     notes = tuple(step_notes)  # with the joints' numerical chatter of implicit runs (handle._chatter_note)
     notes += tuple(n for n in (tilt_note(h, a) for h, a in zip(joints, aligned)) if n)
     for note in notes:
