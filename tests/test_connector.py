@@ -228,6 +228,18 @@ def test_the_kernels_layout_constants_agree():
                                         for name in exuclear.contact.STIFFNESS_MODELS)} == KERNEL_STIFFNESS_CODES
 
 
+@COMPILED
+def test_the_kernels_read_the_same_run_start_record_and_step_constants():
+    # the run-start record's fields the compiled kernel reads by name (layout.RunStart), and its
+    # step-control constants, against the Python kernel's
+    from exuclear.engine import _python_kernel
+    from exuclear.engine.layout import RunStart
+
+    assert list(kernel.COMPILED.RUN_START_FIELDS) == list(RunStart._fields)
+    constants = kernel.COMPILED.STEP_CONSTANTS
+    assert constants and {name: getattr(_python_kernel, name) for name in constants} == dict(constants)
+
+
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)
 
 
