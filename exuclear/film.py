@@ -461,6 +461,12 @@ _A8 = (0.70038, 3.2415, -12.2486, 18.895, -9.3561)
 _A9 = (-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928)
 #: The range of B/D the fits were made for (Butenschoen 1976; DIN 31652-2).
 FINITE_WIDTH_RANGE = (1.0 / 8.0, 1.0)
+#: How fast a rotating film turns with the squeeze (eq. (66a)): the share of the approaching
+#: squeeze number is ``1/2 + arctan(SQUEEZE_TURN r) / pi`` with ``r`` the squeeze over the wedge.
+#: Fitted to the Reynolds reference under Butenschoen's conditions (Reynolds' condition, supply
+#: groove at the largest gap; B/D = 1/8 and 1, eps = 0.5 and 0.9, r = 0.3 to 10), which it meets
+#: within 0.02 of that share (``python -m validation.film_models``, ``turning.md``).
+SQUEEZE_TURN = 1.3
 
 
 @dataclass(frozen=True)
@@ -532,8 +538,28 @@ class FiniteBearing(FilmLaw):
         # the load -F_D lies beta from n, behind it in the sense of omega_eff: F_D on the journal
         # has components (-cos(beta), sin(beta) sign(omega_eff)) along (n, n turned +90 degrees)
         sign = 1.0 if omega_eff >= 0.0 else -1.0
-        f_v = self.squeeze(eps if eps_dot >= 0.0 else -eps) * unit * eps_dot  # signed: against the squeeze
+        f_v = self.turning_squeeze(eps, eps_dot, omega_eff) * unit * eps_dot  # signed: against the squeeze
         return -f_d * math.cos(beta) - f_v, sign * f_d * math.sin(beta)
+
+    def turning_squeeze(self, eps: float, eps_dot: float, omega_eff: float) -> float:
+        """``So_V`` of a rotating film, eq. (66a): the approaching and the leaving number of
+        eq. (66) weighted by how far the squeeze has turned the film,
+
+            w = 1/2 + arctan(SQUEEZE_TURN r) / pi,    r = 2 eps_dot / (eps |omega_eff| sqrt(1 - eps^2)),
+            So_V = w So_V(eps) + (1 - w) So_V(-eps)
+
+        Without rotation ``w`` is 1 approaching and 0 leaving (Butenschoen's switch, exactly);
+        with rotation it passes 1/2 at ``eps_dot = 0`` and turns over a squeeze of the
+        wedge's order, as the cavitated film does (physics.md section 10.3), so that the
+        force is smooth in ``eps_dot`` wherever the film rotates.
+        """
+        wedge = eps * abs(omega_eff) * math.sqrt(1.0 - eps * eps)
+        w = 0.5 + math.atan2(2.0 * SQUEEZE_TURN * eps_dot, wedge) / math.pi  # atan2(0, 0) = 0: no force anyway
+        if w == 1.0:  # approaching without rotation, or a squeeze far beyond the wedge
+            return self.squeeze(eps)
+        if w == 0.0:
+            return self.squeeze(-eps)
+        return w * self.squeeze(eps) + (1.0 - w) * self.squeeze(-eps)
 
 
 #: Model name -> film law class.
