@@ -501,10 +501,22 @@ class FiniteBearing(FilmLaw):
     def __post_init__(self) -> None:
         super().__post_init__()
         bd = self.width_ratio
+        # D is the journal's diameter here and the bearing's in DIN 31652; they differ by the
+        # clearance ratio c / R, a width within the fits' range by either is accepted (the fits
+        # evaluated at the journal's B/D, at most c / R beyond their range, nothing clamped)
+        g = self.geometry
+        bd_bearing = g.length / (2.0 * g.bearing_radius)
         low, high = FINITE_WIDTH_RANGE
-        if not low <= bd <= high:
-            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs 1/8 <= B/D <= 1, got B/D = {bd:.4g}; "
-                             "use model='short' for narrower and 'long' for wider bearings")
+        if bd_bearing > high:
+            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs B/D <= 1 (D the bearing's "
+                             f"diameter 2 `bearing_radius`, which is c/R = {relative_clearance(g):.3g} larger than the "
+                             f"journal's), got B/D = {bd_bearing:.12g} (`length` {g.length:.6g} m); use model='long' "
+                             "for wider bearings")
+        if bd < low:
+            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs B/D >= 1/8 (D the journal's "
+                             f"diameter 2 `journal_radius`, which is c/R = {relative_clearance(g):.3g} smaller than the "
+                             f"bearing's), got B/D = {bd:.12g} (`length` {g.length:.6g} m); use model='short' "
+                             "for narrower bearings")
         object.__setattr__(self, "_coefficients", tuple(_polynomial(a, bd) for a in
                                                         (_A1, _A2, _A3, _A4, _A5, _A6, _A7, _A8, _A9)))
 
