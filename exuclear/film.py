@@ -464,14 +464,15 @@ FINITE_WIDTH_RANGE = (1.0 / 8.0, 1.0)
 #: How fast a rotating film turns with the squeeze (eq. (66a)): the share of the approaching
 #: squeeze number is ``1/2 + arctan(SQUEEZE_TURN r) / pi`` with ``r`` the squeeze over the wedge.
 #: Fitted to the Reynolds reference under Butenschoen's conditions (Reynolds' condition, supply
-#: groove at the largest gap; B/D = 1/8 and 1, eps = 0.5 and 0.9, r = 0.3 to 10), which it meets
-#: within 0.02 of that share (``python -m validation.film_models``, ``turning.md``).
+#: groove at the largest gap; B/D = 1/8 and 1, eps = 0.5 and 0.9, r = 0.01 to 10), which it meets
+#: within 0.016 of that share (tests/test_reynolds.py); the short model's own arc turns alike.
 SQUEEZE_TURN = 1.3
 
 
 @dataclass(frozen=True)
 class FiniteBearing(FilmLaw):
-    """Butenschoen's finite-width bearing, ``1/8 <= B/D <= 1`` (physics.md eqs. (64)-(67)).
+    """Butenschoen's finite-width bearing, ``1/8 <= B/D <= 1`` (physics.md eqs. (64)-(67)), with ``D``
+    the journal's or the bearing's diameter (``B/D`` below is the journal's).
 
     Rotation (Butenschoen 1976, as DIN 31652-2 gives it): Ocvirk's Sommerfeld number times a
     fitted correction, and a fitted attitude angle,
@@ -623,11 +624,22 @@ def blend_eccentricity(eps: float, eps_dot: float, eps_film: float = EPS_FILM_DE
         eps_b = eps_film + (eps_cap - eps_film) tanh((eps - eps_film) / (eps_cap - eps_film)),
         eps_dot_b = eps_dot / cosh^2((eps - eps_film) / (eps_cap - eps_film)),
 
-    continuous with its first two derivatives at ``eps_film`` and below ``eps_cap < 1``
-    for every ``eps``: the film force grows monotonically and stays finite at and beyond the
-    wall, where the dry contact law (which the joint adds unchanged) takes over; the
-    squeeze damping fades as ``eps_dot_b -> 0`` while the contact law's own damping
-    acts.  ``eps_dot_b`` is the exact rate of ``eps_b``.
+    below ``eps_cap < 1`` for every ``eps``: the film force grows monotonically and stays
+    finite at and beyond the wall, where the dry contact law (which the joint adds unchanged)
+    takes over; the squeeze damping fades as ``eps_dot_b -> 0`` while the contact law's own
+    damping acts.  ``eps_dot_b`` is the exact rate of ``eps_b``.
+
+    Smoothness at ``eps_film``: ``eps_b`` keeps its value and first two derivatives (its
+    third jumps, by ``-2 / (eps_cap - eps_film)^2``); ``eps_dot_b`` keeps value and slope in
+    ``eps``, its second derivative jumps by ``-2 eps_dot / (eps_cap - eps_film)^2``.  So the
+    film force and its first derivatives, the entries of Newton's Jacobian, are continuous
+    across ``eps_film``; only the force's second derivative in ``eps`` jumps, and only for a
+    moving journal (the jump is proportional to ``eps_dot``, zero at rest).  Newton converges
+    quadratically wherever its Jacobian is Lipschitz continuous, which that jump does not
+    break; a difference quotient straddling ``eps_film`` errs by its increment times the
+    jump.  What stalled Newton for a journal resting near ``eps = 0.9`` was a jump of the
+    first derivative, at ``eps_dot = 0``: the finite model's squeeze switch, which eq. (66a)
+    turns smoothly (:meth:`FiniteBearing.turning_squeeze`).
     """
     check_nonnegative("eps", eps)
     if eps <= eps_film:
