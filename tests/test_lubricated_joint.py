@@ -21,6 +21,7 @@ less than 1e-5 relative over a run: the spin is constant to that.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import exudyn as exu
 import numpy as np
@@ -182,7 +183,8 @@ REST_R, REST_C, REST_ETA, REST_OMEGA = 0.01, 10e-6, 0.01, 2.0 * math.pi * 50.0
 REST_MASS, REST_INERTIA, REST_STEP, REST_END = 0.05, 1e3, 1e-5, 0.2
 
 
-def plain_rest_run(model: str, length: float, load: exu.Any, t_end: float = REST_END) -> tuple[float, dict]:
+def plain_rest_run(model: str, length: float, load: float | Callable[[float], float],
+                   t_end: float = REST_END) -> tuple[float, dict]:
     """The user's path: ``mbs.CreateRigidBody`` (planar), ``exuclear.CreateClearanceJoint``
     and ``mbs.SolveDynamic`` with Exudyn's default settings (generalized-alpha) and steps of
     REST_STEP; ``load`` [N] along -y, a number or a function of time.  The time the solver
