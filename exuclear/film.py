@@ -461,11 +461,18 @@ _A8 = (0.70038, 3.2415, -12.2486, 18.895, -9.3561)
 _A9 = (-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928)
 #: The range of B/D the fits were made for (Butenschoen 1976; DIN 31652-2).
 FINITE_WIDTH_RANGE = (1.0 / 8.0, 1.0)
+#: How fast a rotating film turns with the squeeze (eq. (66a)): the share of the approaching
+#: squeeze number is ``1/2 + arctan(SQUEEZE_TURN r) / pi`` with ``r`` the squeeze over the wedge.
+#: Fitted to the Reynolds reference under Butenschoen's conditions (Reynolds' condition, supply
+#: groove at the largest gap; B/D = 1/8 and 1, eps = 0.5 and 0.9, r = 0.01 to 10), which it meets
+#: within 0.016 of that share (tests/test_reynolds.py); the short model's own arc turns alike.
+SQUEEZE_TURN = 1.3
 
 
 @dataclass(frozen=True)
 class FiniteBearing(FilmLaw):
-    """Butenschoen's finite-width bearing, ``1/8 <= B/D <= 1`` (physics.md eqs. (64)-(67)).
+    """Butenschoen's finite-width bearing, ``1/8 <= B/D <= 1`` (physics.md eqs. (64)-(67)), with ``D``
+    the journal's or the bearing's diameter (``B/D`` below is the journal's).
 
     Rotation (Butenschoen 1976, as DIN 31652-2 gives it): Ocvirk's Sommerfeld number times a
     fitted correction, and a fitted attitude angle,
@@ -495,10 +502,22 @@ class FiniteBearing(FilmLaw):
     def __post_init__(self) -> None:
         super().__post_init__()
         bd = self.width_ratio
+        # D is the journal's diameter here and the bearing's in DIN 31652; they differ by the
+        # clearance ratio c / R, a width within the fits' range by either is accepted (the fits
+        # evaluated at the journal's B/D, at most c / R beyond their range, nothing clamped)
+        g = self.geometry
+        bd_bearing = g.length / (2.0 * g.bearing_radius)
         low, high = FINITE_WIDTH_RANGE
-        if not low <= bd <= high:
-            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs 1/8 <= B/D <= 1, got B/D = {bd:.4g}; "
-                             "use model='short' for narrower and 'long' for wider bearings")
+        if bd_bearing > high:
+            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs B/D <= 1 (D the bearing's "
+                             f"diameter 2 `bearing_radius`, which is c/R = {relative_clearance(g):.3g} larger than the "
+                             f"journal's), got B/D = {bd_bearing:.12g} (`length` {g.length:.6g} m); use model='long' "
+                             "for wider bearings")
+        if bd < low:
+            raise ValueError(f"the `finite` film model (Butenschoen's fits) needs B/D >= 1/8 (D the journal's "
+                             f"diameter 2 `journal_radius`, which is c/R = {relative_clearance(g):.3g} smaller than the "
+                             f"bearing's), got B/D = {bd:.12g} (`length` {g.length:.6g} m); use model='short' "
+                             "for narrower bearings")
         object.__setattr__(self, "_coefficients", tuple(_polynomial(a, bd) for a in
                                                         (_A1, _A2, _A3, _A4, _A5, _A6, _A7, _A8, _A9)))
 
@@ -532,8 +551,28 @@ class FiniteBearing(FilmLaw):
         # the load -F_D lies beta from n, behind it in the sense of omega_eff: F_D on the journal
         # has components (-cos(beta), sin(beta) sign(omega_eff)) along (n, n turned +90 degrees)
         sign = 1.0 if omega_eff >= 0.0 else -1.0
-        f_v = self.squeeze(eps if eps_dot >= 0.0 else -eps) * unit * eps_dot  # signed: against the squeeze
+        f_v = self.turning_squeeze(eps, eps_dot, omega_eff) * unit * eps_dot  # signed: against the squeeze
         return -f_d * math.cos(beta) - f_v, sign * f_d * math.sin(beta)
+
+    def turning_squeeze(self, eps: float, eps_dot: float, omega_eff: float) -> float:
+        """``So_V`` of a rotating film, eq. (66a): the approaching and the leaving number of
+        eq. (66) weighted by how far the squeeze has turned the film,
+
+            w = 1/2 + arctan(SQUEEZE_TURN r) / pi,    r = 2 eps_dot / (eps |omega_eff| sqrt(1 - eps^2)),
+            So_V = w So_V(eps) + (1 - w) So_V(-eps)
+
+        Without rotation ``w`` is 1 approaching and 0 leaving (Butenschoen's switch, exactly);
+        with rotation it passes 1/2 at ``eps_dot = 0`` and turns over a squeeze of the
+        wedge's order, as the cavitated film does (physics.md section 10.3), so that the
+        force is smooth in ``eps_dot`` wherever the film rotates.
+        """
+        wedge = eps * abs(omega_eff) * math.sqrt(1.0 - eps * eps)
+        w = 0.5 + math.atan2(2.0 * SQUEEZE_TURN * eps_dot, wedge) / math.pi  # atan2(0, 0) = 0: no force anyway
+        if w == 1.0:  # approaching without rotation, or a squeeze far beyond the wedge
+            return self.squeeze(eps)
+        if w == 0.0:
+            return self.squeeze(-eps)
+        return w * self.squeeze(eps) + (1.0 - w) * self.squeeze(-eps)
 
 
 #: Model name -> film law class.
@@ -585,11 +624,22 @@ def blend_eccentricity(eps: float, eps_dot: float, eps_film: float = EPS_FILM_DE
         eps_b = eps_film + (eps_cap - eps_film) tanh((eps - eps_film) / (eps_cap - eps_film)),
         eps_dot_b = eps_dot / cosh^2((eps - eps_film) / (eps_cap - eps_film)),
 
-    continuous with its first two derivatives at ``eps_film`` and below ``eps_cap < 1``
-    for every ``eps``: the film force grows monotonically and stays finite at and beyond the
-    wall, where the dry contact law (which the joint adds unchanged) takes over; the
-    squeeze damping fades as ``eps_dot_b -> 0`` while the contact law's own damping
-    acts.  ``eps_dot_b`` is the exact rate of ``eps_b``.
+    below ``eps_cap < 1`` for every ``eps``: the film force grows monotonically and stays
+    finite at and beyond the wall, where the dry contact law (which the joint adds unchanged)
+    takes over; the squeeze damping fades as ``eps_dot_b -> 0`` while the contact law's own
+    damping acts.  ``eps_dot_b`` is the exact rate of ``eps_b``.
+
+    Smoothness at ``eps_film``: ``eps_b`` keeps its value and first two derivatives (its
+    third jumps, by ``-2 / (eps_cap - eps_film)^2``); ``eps_dot_b`` keeps value and slope in
+    ``eps``, its second derivative jumps by ``-2 eps_dot / (eps_cap - eps_film)^2``.  So the
+    film force and its first derivatives, the entries of Newton's Jacobian, are continuous
+    across ``eps_film``; only the force's second derivative in ``eps`` jumps, and only for a
+    moving journal (the jump is proportional to ``eps_dot``, zero at rest).  Newton converges
+    quadratically wherever its Jacobian is Lipschitz continuous, which that jump does not
+    break; a difference quotient straddling ``eps_film`` errs by its increment times the
+    jump.  What stalled Newton for a journal resting near ``eps = 0.9`` was a jump of the
+    first derivative, at ``eps_dot = 0``: the finite model's squeeze switch, which eq. (66a)
+    turns smoothly (:meth:`FiniteBearing.turning_squeeze`).
     """
     check_nonnegative("eps", eps)
     if eps <= eps_film:

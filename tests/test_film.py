@@ -388,3 +388,40 @@ def test_film_module_is_pure_physics():
     imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
     assert not {name for name in imported if name.split(".")[0] in ("exudyn", "matplotlib")}
     assert imported <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "checks", "geometry"}
+
+
+# -- the finite model's width range and its smoothness where a journal comes to rest -------------
+def test_finite_model_accepts_its_width_range_within_the_clearance_ratio():
+    # Butenschoen's fits are for 1/8 <= B/D <= 1 (DIN 31652-2); D may be the journal's or the
+    # bearing's diameter, which differ by c/R (1e-3 here): a bearing as long as its own bore
+    # (B/D = 1.001 with the journal's) and one an eighth of the journal's diameter are inside
+    psi = C / R
+    for length in (2.0 * (R + C), 2.0 * R / 8.0):
+        Lubrication(viscosity=ETA, model="finite").law(BearingGeometry(R, R + C, length))
+    # beyond, by a tenth of the clearance ratio: refused, naming B/D and the diameter
+    for length, word in ((2.0 * (R + C) * (1.0 + 0.1 * psi), "bearing's"), (2.0 * R / 8.0 * (1.0 - 0.1 * psi),
+                                                                           "journal's")):
+        with pytest.raises(ValueError, match=f"B/D .*D the {word} diameter"):
+            Lubrication(viscosity=ETA, model="finite").law(BearingGeometry(R, R + C, length))
+
+
+@pytest.mark.parametrize("width_ratio", [1 / 8, 1 / 2, 1.0])
+@pytest.mark.parametrize("eps", [0.8, 0.896, 0.9, 0.95, 0.99])
+def test_rotating_finite_film_is_smooth_in_the_squeeze_rate_at_rest(width_ratio, eps):
+    # a loaded journal comes to rest at eps_dot = 0; there the film's slope in eps_dot (its
+    # damping, which dominates Newton's matrix) is the same from both sides and equals
+    # eq. (66a)'s mean of the approaching and leaving numbers (blended eccentricity near the
+    # wall, eq. (70)).  Butenschoen's switch alone made the two one-sided slopes differ by the
+    # factor So_V(eps) / So_V(-eps), 281 at B/D = 1, eps 0.896.  Differences over 1e-6 of the
+    # wedge: the one-sided slopes agree to that order (second derivative times the increment)
+    film = law("finite", width_ratio)
+    g = film.geometry
+    eps_b, _ = blend_eccentricity(eps, 0.0, film.eps_film, film.eps_cap)
+    _, rate_factor = blend_eccentricity(eps, 1.0, film.eps_film, film.eps_cap)
+    h = 1e-6 * eps_b * OMEGA * math.sqrt(1.0 - eps_b ** 2) / 2.0  # [1/s]
+    f0, fp, fm = (film.blended_load(eps * C, 0.0, v * C, 0.0, OMEGA, 0.0).fx for v in (0.0, h, -h))
+    slope_up, slope_down = (f0 - fp) / h, (fm - f0) / h
+    unit = g.length * 2.0 * R * ETA / (C / R) ** 2  # eq. (67)
+    mean = 0.5 * (film.squeeze(eps_b) + film.squeeze(-eps_b)) * unit * rate_factor
+    assert slope_up == pytest.approx(mean, rel=1e-4)
+    assert slope_down == pytest.approx(mean, rel=1e-4)

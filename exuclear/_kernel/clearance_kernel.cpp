@@ -784,6 +784,8 @@ const double FINITE_A[9][5] = {
     {-0.999935, 0.0157434, -0.74224, 0.42278, -0.368928},
 };
 const int FINITE_A_DEGREE[9] = {4, 4, 1, 1, 1, 1, 1, 4, 4};
+// film.py SQUEEZE_TURN: how fast a rotating film turns with the squeeze (eq. (66a))
+const double SQUEEZE_TURN = 1.3;
 
 double polynomial(const double* coefficients, int degree, double x) {  // film.py _polynomial
     double r = 0.0;
@@ -808,6 +810,27 @@ const FiniteCoefficients& finite_coefficients(FiniteCoefficients& k, const Param
     return k;
 }
 
+// FiniteBearing.squeeze, eq. (66): So_V at x = eps approaching the wall, x = -eps leaving it
+double finite_squeeze(const FiniteCoefficients& k, double x) {
+    const double* c = k.c;
+    double bd = k.bd;
+    double one_mx = 1.0 - x * x;
+    double root_mx = std::sqrt(one_mx);
+    return (4.0 * bd * bd / (one_mx * one_mx * root_mx)
+            * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * root_mx)
+            * c[7] * (1.0 - x) / (-c[8] - x));
+}
+
+// FiniteBearing.turning_squeeze, eq. (66a): the approaching and leaving numbers weighted by how far
+// the squeeze has turned the rotating film; smooth in eps_dot wherever the film rotates
+double finite_turning_squeeze(const FiniteCoefficients& k, double eps, double eps_dot, double omega_eff) {
+    double wedge = eps * std::fabs(omega_eff) * std::sqrt(1.0 - eps * eps);
+    double w = 0.5 + std::atan2(2.0 * SQUEEZE_TURN * eps_dot, wedge) / M_PI;  // atan2(0, 0) = 0: no force anyway
+    if (w == 1.0) return finite_squeeze(k, eps);  // approaching without rotation, or far beyond the wedge
+    if (w == 0.0) return finite_squeeze(k, -eps);
+    return w * finite_squeeze(k, eps) + (1.0 - w) * finite_squeeze(k, -eps);
+}
+
 // FiniteBearing.components, eqs. (64)-(67): Butenschoen's rotation and squeeze fits
 void finite_components(const Params& a, const FiniteCoefficients& k, double clearance, double eps, double eps_dot,
                        double omega_eff, double& f_n, double& f_perp) {
@@ -820,13 +843,7 @@ void finite_components(const Params& a, const FiniteCoefficients& k, double clea
     double base = std::atan2(M_PI * std::sqrt(one_m), 2.0 * eps);
     double eps2 = eps * eps;
     double beta = base * (c[2] + c[3] * eps + c[4] * eps2 + c[5] * eps2 * eps + c[6] * eps2 * eps2);
-    // squeeze, eq. (66), at eps approaching the wall, -eps leaving it
-    double x = eps_dot >= 0.0 ? eps : -eps;
-    double one_mx = 1.0 - x * x;
-    double root_mx = std::sqrt(one_mx);
-    double so_v = (4.0 * bd * bd / (one_mx * one_mx * root_mx)
-                   * ((0.5 * M_PI - 0.5 * std::acos(x)) * (1.0 + 2.0 * x * x) + 1.5 * x * root_mx)
-                   * c[7] * (1.0 - x) / (-c[8] - x));
+    double so_v = finite_turning_squeeze(k, eps, eps_dot, omega_eff);
     double psi = clearance / a.r_j;
     double unit = a.length * 2.0 * a.r_j * a.viscosity / (psi * psi);  // B D eta / psi^2, eq. (67)
     double f_d = so * unit * std::fabs(omega_eff);
