@@ -34,10 +34,10 @@ SPECTRAL_RADIUS_DEFAULT = 0.9
 #: pendulum at 1e-4 s steps stops at 0.37 s with an absolute 1e-9, runs with 1e-8).  Exudyn
 #: stops when either tolerance is met, so an absolute tolerance above that floor ends the
 #: iteration there.  It is not looser: Exudyn's residual is one L2 norm over the force
-#: residuals [N] and the constraint equations [m, rad], so an absolute 1e-6 (the default
-#: until 2026-11-26) accepted constraint violations of up to a micrometre, the size of a
+#: residuals [N] and the constraint equations [m, rad], so an absolute 1e-6 would accept
+#: constraint violations of up to a micrometre, the size of a
 #: contact's penetration.  On the zoo's piston engine (``validation/exudyn_examples``, 15
-#: constraints) ``exuclear.simulate`` then took 13695 steps with 1197 impacts and 111
+#: constraints) ``exuclear.simulate`` with it took 13695 steps with 1197 impacts and 111
 #: unresolved steps, against 4688 steps and 305 impacts with 1e-8 (the example's own
 #: settings, Exudyn's 1e-10: 4694 and 313).  The relative tolerance stays at Exudyn's 1e-8:
 #: loosened to 1e-6 it makes the drive constraint's multiplier (the driving moment) inexact,
