@@ -32,7 +32,7 @@ from exuclear.models.slider_crank import SliderCrankParams, build, columns
 from validation._tables import markdown_table
 from validation.reference import slider_crank as sc_reference
 
-#: The reference's tolerances and output grid (validation/cross_check.py's).
+#: The reference's tolerances and output grid (validation/cross_check/common.py's).
 REF_RTOL, REF_ATOL, REF_GRID = 1e-10, 1e-13, 1e-5
 #: The issue's steps [s]: the paper's 22 impacts last 87 to 255 us, about 9 to 250 steps.
 DEFAULT_STEPS = (1e-6, 2e-6, 5e-6, 1e-5)
