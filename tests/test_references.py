@@ -214,6 +214,14 @@ def test_anchor_links_resolve(doc):
     assert not [a for a in links if a not in anchors]
 
 
+def test_the_physics_contents_list_every_section():
+    """The contents at the top of docs/physics.md link every section and subsection."""
+    text = PHYSICS.read_text(encoding="utf-8")
+    first = text.index("\n## ")  # the contents come before the first section
+    links = set(ANCHOR_LINK.findall(text[:first]))
+    assert [text for level, text in headings(PHYSICS) if level > 1 and slug(text) not in links] == []
+
+
 def test_the_checks_catch_what_they_are_for():
     """The patterns find the mentions this test exists for (the stale ones issue 31 found)."""
     assert PATH.findall("see validation/slider_crank.py's closed form") == ["validation/slider_crank.py"]
