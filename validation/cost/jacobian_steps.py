@@ -2,10 +2,10 @@
 
 Source problem: the zoo's models (``validation/exudyn_examples``).  Where a model's largest
 step exceeds half the joint's contact period, the joint asks Exudyn's modified Newton for a
-Jacobian at every step (``exuclear.engine.newton``).  It used to ask for the whole run; now
-its kernel switches the ask with the steps it accepts, redoes and grows.  This script runs
-both side by side, the former rule by leaving the ask as the run started it (the kernel's
-``jacobian_per_step`` calls do nothing), over a set of restitutions (chaotic models move
+Jacobian at every step (``exuclear.engine.newton``); its kernel switches the ask with the
+steps it accepts, redoes and grows.  The other rule holds the ask for the whole run.  This
+script runs both side by side, the held rule by leaving the ask as the run started it (the
+kernel's ``jacobian_per_step`` calls do nothing), over a set of restitutions (chaotic models move
 with any change of a bounce, so one run says little), with each model's own settings
 through a plain ``mbs.SolveDynamic`` and through ``exuclear.simulate``.  It prints per run
 the wall time, steps and impacts, and per model and path the sums of the wall times; with

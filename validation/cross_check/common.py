@@ -27,7 +27,8 @@ SC_BEARING = "steel"
 #: Crank revolutions of the full slider-crank runs (docs/physics.md section 6.2: at least two).
 REVOLUTIONS = 2.0
 #: Horizon of the quick slider-crank runs [s]: the paper case's impacts all begin before
-#: 0.024 s (measured by the reference); after that the journal stays in contact.
+#: 0.024 s (the reference's onset times, :attr:`validation.reference.slider_crank.Result.onsets`);
+#: after that the journal stays in contact.
 QUICK_HORIZON = 0.03
 #: The two slider-crank cases of the quick run: (cr, journal, friction).
 QUICK_SC_CASES = ((0.9, "steel", "none"), (0.3, "aluminium", "paper"))
