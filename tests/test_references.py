@@ -55,7 +55,7 @@ COMMAND = re.compile(r"python3? -m ((?:validation|exuclear|models)(?:\.\w+)*)")
 #: A dotted name under validation or exuclear: ``validation.cost.film``, ``exuclear.make_joint``.
 #: A quoted one is a string key (``"exuclear.joints"``), not a module.
 DOTTED = re.compile(r"""(?<![\w./\-"'])((?:validation|exuclear)(?:\.\w+)+)""")
-#: An upper-case placeholder in a command, as in ``python -m exuclear.models.NAME``.
+#: An upper-case placeholder in a command or name, as in ``python -m exuclear.models.NAME``.
 PLACEHOLDER = re.compile(r"\.[A-Z][A-Z_]*\b")
 SECTION_LIST = r"(\d+(?:\.\d+)*(?:(?:,\s*|\s*-\s*|\s+and\s+|\s+to\s+)\d+(?:\.\d+)*)*)"
 PHYSICS_SECTION = re.compile(r"physics\.md`*\)?,?\s+sections?\s+" + SECTION_LIST)
@@ -177,7 +177,7 @@ def test_dotted_module_mentions_resolve():
         for m in DOTTED.finditer(text):
             if text[max(0, m.start() - 5):m.start()] == "e.g. ":
                 continue  # an example of a name, not a mention
-            if not _dotted_exists(m.group(1)):
+            if not PLACEHOLDER.search(m.group(1)) and not _dotted_exists(m.group(1)):
                 yield m.start(1), m.group(1), "no such module or name"
 
     dangling = _dangling(check)
