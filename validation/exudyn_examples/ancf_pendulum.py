@@ -33,13 +33,11 @@ Route (Exudyn 1.13):
 - For ``step="auto"`` the contact period needs the cable element's mass,
   ``massPerLength`` * ``length`` (``_diagnostics.body_mass``).
 
-With the example's settings the clearance run reaches a short end time but stops at the
-joint's penetration limit over the example's own; where, depends on the end time, since
-the adaptive step's path does.  ``exuclear.simulate`` at its automatic step (from the
-element's mass) reaches the end with a penetration of about 0.01 c, the tip close to the
-ideal pendulum's.  Numbers of each run (reached time, wall time, steps, largest
-penetration, verdict): the zoo's report, ``python -m validation.exudyn_examples --models
-ancf_pendulum``.
+The example's step is adaptive, so where its path meets a contact depends on the end
+time; ``exuclear.simulate``'s automatic step comes from the element's mass.
+What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models ancf_pendulum``.
 """
 from __future__ import annotations
 

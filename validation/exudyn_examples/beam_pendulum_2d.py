@@ -32,13 +32,11 @@ Route:
   node marker is the lumped mass of its elements (half of each two-node element's
   ``massPerLength`` * ``length``).
 
-With the example's settings the clearance run stops at the joint's penetration limit
-early: the journal sits on node 0, a fraction of a gram, whose contact period is
-microseconds against the 2.5 ms step.  ``exuclear.simulate`` at its automatic step (from
-node 0's lumped mass) and a plain ``SolveDynamic`` at a step of that order reach the end
-with penetrations of a few thousandths of c, the tip close to the ideal pendulum's.
-Numbers of each run (reached time, wall time, steps, largest penetration, verdict): the
-zoo's report, ``python -m validation.exudyn_examples --models beam_pendulum_2d``.
+The journal sits on node 0, a fraction of a gram, whose contact period is microseconds
+against the example's 2.5 ms step; ``exuclear.simulate``'s automatic step comes from node
+0's lumped mass.  What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models beam_pendulum_2d``.
 """
 from __future__ import annotations
 

@@ -37,12 +37,9 @@ axis, with ``constrainAxial=True`` so that the conrod's axial motion and tilt st
 as the replaced joint held them (no other joint holds them: conrod and piston would
 float out of plane).  Pin: the example's crank pin, R_B = 8 mm, L = 24 mm; c = 30 um.
 
-With the example's settings the clearance run's Newton fails at a contact, Exudyn halves
-the step, and the run stops at the joint's penetration limit (a shorter run ends
-silently with a penetration above the zoo's 0.1 c rule).  ``exuclear.simulate`` at its
-automatic step reaches the end with a small penetration, piston 0 and the free-running
-crank speed close to the ideal engine's.  Numbers of each run (reached time, wall time, steps, largest penetration, verdict): the
-zoo's report, ``python -m validation.exudyn_examples --models piston_engine,piston_engine_lubricated``.
+What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models piston_engine,piston_engine_lubricated``.
 
 Variant ``piston_engine_lubricated`` (issue 23): the same big end with an oil film
 (``lubrication=``, :data:`OIL`): an SAE 40 engine oil at SAE J300's smallest
