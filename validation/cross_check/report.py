@@ -246,8 +246,6 @@ def crank_records(rows: Sequence[CrankRow]) -> list[dict[str, object]]:
              "onset_bookkeeping_passed": r.bookkeeping.passed, "notes": "; ".join(r.notes)} for r in rows]
 
 
-
-
 def write_outputs(x: CrossCheck, directory: str) -> list[str]:
     """The report and the two CSV tables; returns the paths."""
     os.makedirs(directory, exist_ok=True)
