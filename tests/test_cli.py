@@ -62,7 +62,7 @@ def test_ideal_joint_force_is_the_reaction_exudyn_computes():
     settled = cols["time"] > 1e-3  # generalized-alpha's accelerations settle within a few steps
     # 1e-3 of the 45 N peak: the accelerations' O(h^2) error, as in test_slider_crank
     assert np.abs(cols["contact_force"] - exudyn_force)[settled].max() < 1e-3 * 45.0
-    # 9-45 N over a revolution (issue 15; validation/slider_crank.py's closed form: 9.08-45.24 N)
+    # 9-45 N over a revolution (issue 15; validation/slider_crank/metrics.py's closed form: 9.08-45.24 N)
     assert 9.0 < cols["contact_force"].min() < 9.2 and 45.1 < cols["contact_force"].max() < 45.4
 
 

@@ -2,7 +2,7 @@
 
 References: momentum balance of docs/physics.md section 4 (sum of forces zero; moment of
 the pair ``delta F_T``); the Python kernel (the readable statement) for the compiled
-one; the paper's departure velocity (0.269 m/s at cr 0.9, docs/physics.md section 5.1).
+one; the paper's departure velocity (0.269 m/s at cr 0.9, docs/physics.md section 6.1).
 """
 from __future__ import annotations
 
@@ -120,7 +120,7 @@ def test_compiled_kernel_equals_python_kernel(law, cr, friction):
 
 @pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
 def test_paper_departure_velocity_with_a_direct_solve_dynamic(backend):
-    # docs/physics.md section 5.1: cr 0.9 gives 0.269 m/s (the paper); a plain
+    # docs/physics.md section 6.1: cr 0.9 gives 0.269 m/s (the paper); a plain
     # mbs.SolveDynamic, twice: the second run must start from a fresh history
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
@@ -188,7 +188,7 @@ BODY_KINDS = {"rigid-2d": "dopri5", "rigid-3d-rxyz": "dopri5", "rigid-3d-rotvec"
 @pytest.mark.parametrize("kind", sorted(BODY_KINDS))
 @pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
 def test_every_body_type_gives_the_paper_departure_velocity(kind, backend):
-    # docs/physics.md section 5.1: 0.269 m/s at cr 0.9, whatever body carries the journal
+    # docs/physics.md section 6.1: 0.269 m/s at cr 0.9, whatever body carries the journal
     # (Euler-parameter nodes need an implicit method: Exudyn refuses explicit ones for them)
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())

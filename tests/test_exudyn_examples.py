@@ -23,7 +23,8 @@ import pytest
 
 import exuclear
 from validation.exudyn_examples import REGISTRY, load_models
-from validation.exudyn_examples._common import PENETRATION_WRONG, joint_peaks
+from validation.exudyn_examples._common import joint_peaks
+from validation.exudyn_examples._runs import PENETRATION_WRONG
 
 load_models()
 NAMES = list(REGISTRY)

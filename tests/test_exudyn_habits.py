@@ -20,7 +20,7 @@ PAPER = dict(journal_radius=R_J, bearing_radius=R_B, length=L, law="wang-liu", c
 
 
 def _impact_scene(mbs, **joint):
-    """The paper's journal-bearing impact (docs/physics.md section 5.1), built the Exudyn way:
+    """The paper's journal-bearing impact (docs/physics.md section 6.1), built the Exudyn way:
     centred in the reference configuration, touching the wall at the start."""
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[C, 0, 0],

@@ -2,7 +2,7 @@
 
 The paper's slider-crank (cr 0.9, steel, no friction) through a plain ``mbs.SolveDynamic``
 with generalized-alpha at the user's fixed steps, with the joint's defaults and with its rules
-off, against the independent SciPy reference (``validation.fine_steps``); and the physics the
+off, against the independent SciPy reference (``validation.cost.fine_steps``); and the physics the
 onset rule's threshold rests on, the duration of an elastic impact.
 """
 from __future__ import annotations
@@ -15,11 +15,11 @@ import exuclear
 from exuclear.engine import _python_kernel, kernel
 from exuclear.engine.layout import MAIN, parameters
 from exuclear.timescales import impact_duration, stored_energy
-from validation import fine_steps
+from validation.cost import fine_steps
 
 COMPILED = pytest.mark.skipif(kernel.STATUS != kernel.STATUS_DIRECT, reason=f"compiled kernel: {kernel.STATUS}")
 
-#: The 22 impacts of the paper's case end by 0.024 s (validation.fine_steps): 0.03 s holds them all.
+#: The 22 impacts of the paper's case end by 0.024 s (validation.cost.fine_steps): 0.03 s holds them all.
 END_TIME = 0.03
 #: The issue's tolerance on "never worse": the defaults' path error at most 5 % above the rules' off.
 NEVER_WORSE = 1.05
@@ -37,7 +37,7 @@ def test_the_joints_defaults_are_never_worse_than_its_rules_off(case, step):
     params, ref = case
     on = fine_steps.path_error(params, step, True, ref)
     off = fine_steps.path_error(params, step, False, ref)
-    assert on.impacts == off.impacts == 22  # the reference's 22 impacts (validation.fine_steps)
+    assert on.impacts == off.impacts == 22  # the reference's 22 impacts (validation.cost.fine_steps)
     assert on.error <= NEVER_WORSE * off.error
     if step <= 2e-6:  # a step that resolves every impact: the rules stay idle, the run is the user's
         # (to 1e-4 of the error, 2e-7 c: rules off also leaves Exudyn's Newton tolerances as they are)

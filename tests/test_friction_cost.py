@@ -1,4 +1,4 @@
-"""validation/friction_cost.py: its impact summary on rows whose answer is known, and its settings."""
+"""validation/cost/friction.py: its impact summary on rows whose answer is known, and its settings."""
 from __future__ import annotations
 
 import math
@@ -6,7 +6,7 @@ import math
 import pytest
 
 from exuclear.friction import ModifiedCoulomb
-from validation import friction_cost as fc
+from validation.cost import friction as fc
 
 
 def test_impacts_are_counted_with_the_median_onset_speed():

@@ -1,4 +1,4 @@
-"""validation/jacobian_steps.py: its former rule leaves the run-start setting alone, and its inputs are checked."""
+"""validation/cost/jacobian_steps.py: its former rule leaves the run-start setting alone, and its inputs are checked."""
 from __future__ import annotations
 
 import argparse
@@ -6,7 +6,7 @@ import argparse
 import pytest
 
 from exuclear.engine import handle
-from validation import jacobian_steps as js
+from validation.cost import jacobian_steps as js
 
 
 def test_the_former_rule_ignores_the_joints_asks_and_is_undone():

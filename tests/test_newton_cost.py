@@ -1,7 +1,7 @@
-"""validation/newton_cost.py: the counts it prints, on evaluations whose answer is known."""
+"""validation/cost/newton.py: the counts it prints, on evaluations whose answer is known."""
 from __future__ import annotations
 
-from validation import newton_cost as nc
+from validation.cost import newton as nc
 
 
 def test_steps_evaluations_and_overshoots_are_counted():

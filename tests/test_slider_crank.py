@@ -200,7 +200,7 @@ def test_impact_aware_steps_hold_one_percent_of_the_clearance():
     # the redundant default (generalized-alpha, 2e-5 s, 1e-6 s from each onset) against
     # the minimal formulation at rtol 1e-9 over the first quarter revolution, which holds
     # all 22 impacts of the paper case: within 1 % of c (the target the defaults were
-    # chosen for, validation/work_precision.py), where a fixed 1e-5 s step errs by ~12 %
+    # chosen for, validation/cost/work_precision.py), where a fixed 1e-5 s step errs by ~12 %
     p = SliderCrankParams.paper(revolutions=0.25)
     minimal = run(p, replace(default_settings(p), rtol=1e-9, atol=1e-12, output_step=1e-7))
     pr = replace(p, formulation="redundant")

@@ -1,11 +1,11 @@
-"""validation/spectral_radius.py: it compares only models whose solver has a spectral radius,
+"""validation/cost/spectral_radius.py: it compares only models whose solver has a spectral radius,
 the radius it sets reaches the solver, and its inputs are checked."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from validation import spectral_radius as sr
+from validation.cost import spectral_radius as sr
 from validation.exudyn_examples._common import REGISTRY, load_models
 
 load_models()

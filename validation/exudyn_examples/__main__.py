@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._common import run_zoo, show
+from ._table import run_zoo, show
 
 
 def main(argv: list[str] | None = None) -> None:

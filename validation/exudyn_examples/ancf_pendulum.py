@@ -23,27 +23,21 @@ joint, bearing on the ground, journal on a ``MarkerBodyRigid`` at the start of t
 cable element (``exuclear.CreateClearanceJoint``, itemNumbers [ground, first element]).
 Pin: R_B = 10 mm in the 50 mm cable, L = 50 mm (the cable's width), c = 30 um.
 
-Route (exuclear 1.x on Exudyn 1.13.6):
+Route (Exudyn 1.13):
 
 - ``MarkerBodyRigid`` on an ``ObjectANCFCable2D`` exists in Exudyn 1.13 (position and
   the slope's rotation about z).
-- Fixed (branch drop): ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first
-  element], ...)`` raised "ObjectANCFCable2D (a body) has no OutputVariableType
-  'RotationMatrix'" (connector.py ``_reference_pose``); it now reads the element's planar
-  rotation angle and places the marker at ``position`` on the element's axis.
-- Fixed (branch drop): ``exuclear.simulate`` with ``step="auto"`` refused the model: the
-  cable element's mass, ``massPerLength`` * ``length``, was not read (NaN), so the contact
-  period could not be estimated; ``_diagnostics.body_mass`` reads it now.
+- The cable element has no ``RotationMatrix`` output: ``exuclear.CreateClearanceJoint``
+  reads the element's planar rotation angle and places the marker at ``position`` on
+  the element's axis (connector.py ``_reference_pose``).
+- For ``step="auto"`` the contact period needs the cable element's mass,
+  ``massPerLength`` * ``length`` (``_diagnostics.body_mass``).
 
-Short runs (exuclear at commit a50d2fe, two shared cores): ideal, the example's
-settings, 0.3 s: reached, 0.19 s wall.  Clearance, the example's settings: 0.05 s
-reached (0.08 s wall, 0.018 c), but a 0.3 s run stops at t = 0.136 s, "exuclear:
-penetration 2.075e-05 m exceeds the limit 1.5e-05 m" (0.69 c), the example's 3 s run at
-t = 0.118 s (3.235e-05 m; the adaptive step's path depends on the end time).  ``exuclear.simulate``:
-``step="auto"`` was refused (above); with ``step=1e-5`` it reaches 0.3 s in 4.0 s wall,
-largest penetration 0.013 c, tip within 4e-5 m of the ideal pendulum.  Since branch drop
-``step="auto"`` (2.5e-5 s, from the element's mass) reaches 0.3 s in 1.5 s wall, largest
-penetration 0.014 c.
+The example's step is adaptive, so where its path meets a contact depends on the end
+time; ``exuclear.simulate``'s automatic step comes from the element's mass.
+What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models ancf_pendulum``.
 """
 from __future__ import annotations
 

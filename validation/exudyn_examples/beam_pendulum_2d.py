@@ -13,39 +13,30 @@ The example: a very soft (E = 1e8 Pa) strip, 0.5 m x 10 mm x 2 mm, of ten
 ``ObjectBeamGeometricallyExact2D`` elements (Timoshenko-Reissner) on ``NodeRigidBody2D``
 nodes, pinned at node 0 to the ground by an ``ObjectJointRevolute2D`` and released from
 the horizontal under gravity; generalized-alpha (Exudyn's default spectral radius), step
-2.5 ms, 5 s, modified Newton, sparse solver.  Kept: all of it (the parameters are now
+2.5 ms, 5 s, modified Newton, sparse solver.  Kept: all of it (the parameters are
 given by the element's current names, ``length`` etc., as ``physicsLength`` etc. are
 deprecated in Exudyn 1.13), except that no solution file is written.  Changed with
 ``clearance=True``: the pivot becomes a clearance joint, bearing on the ground, journal
 on node 0.  Pin: the strip is 2 mm thick and 10 mm wide, so R_B = 1 mm, L = 10 mm,
 c = 20 um (a 0.01 kg pendulum on a 2 mm steel pin).
 
-Route (exuclear 1.x on Exudyn 1.13.6; the failures are the library's, found here):
+Route:
 
-- ``exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, first element], ...)``
-  raised "ObjectBeamGeometricallyExact2D (a body) has no OutputVariableType
-  'RotationMatrix'"; ``exuclear.AddClearanceJoint`` with a ``MarkerBodyRigid`` on the
-  first element built, but ``mbs.SolveDynamic`` failed: "illegal call to
-  CObjectBody::GetAngularVelocityLocal" (the element gives no local angular velocity to
-  the connector).  Now (branch drop) both refuse such a marker at creation, naming a
-  ``MarkerNodeRigid`` on one of the element's nodes.
+- A ``MarkerBodyRigid`` on the beam element cannot carry the joint: the element has no
+  ``RotationMatrix`` output and gives the connector no local angular velocity, so
+  ``exuclear.CreateClearanceJoint`` and ``exuclear.AddClearanceJoint`` refuse such a
+  marker at creation, naming a ``MarkerNodeRigid`` on one of the element's nodes.
 - Used here: ``exuclear.CreateClearanceJoint`` with itemNumbers [ground, a
   ``MarkerNodeRigid`` on node 0] (a marker in ``itemNumbers``, as ``mbs.CreateRevoluteJoint``
-  takes it; the marker sets the joint's centre).  ``exuclear.simulate`` raised in
-  ``_diagnostics.check_model`` -> ``body_mass`` -> ``_body_of`` ("failed to convert to
-  ObjectIndex, but received None": a node marker has no object); fixed (branch drop):
-  a node marker's mass is the lumped mass of its elements (half of each two-node
-  element's ``massPerLength`` * ``length``), so ``step="auto"`` works.
+  takes it; the marker sets the joint's centre).  For ``step="auto"`` the mass behind a
+  node marker is the lumped mass of its elements (half of each two-node element's
+  ``massPerLength`` * ``length``).
 
-Short runs (exuclear at commit a50d2fe, two shared cores): ideal, the example's
-settings, 0.5 s: reached, 0.01 s wall.  Clearance, the example's settings: stops at
-t = 0.0175 s, "exuclear: penetration 1.379e-05 m exceeds the limit 1e-05 m" (0.69 c;
-the journal sits on node 0, a fraction of a gram, whose contact period is microseconds
-against the 2.5 ms step).  ``exuclear.simulate``: the ``_diagnostics`` error above,
-before the first step, whatever the step (before branch drop); since then ``step="auto"``
-(4.2e-6 s, from node 0's lumped mass) reaches 0.1 s in 0.4 s wall, largest penetration
-0.002 c.  Plain ``SolveDynamic`` at a 2e-6 s step: reaches 0.5 s in 9.9 s wall, largest
-penetration 0.0021 c, tip within 5e-5 m of the ideal pendulum.
+The journal sits on node 0, a fraction of a gram, whose contact period is microseconds
+against the example's 2.5 ms step; ``exuclear.simulate``'s automatic step comes from node
+0's lumped mass.  What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models beam_pendulum_2d``.
 """
 from __future__ import annotations
 

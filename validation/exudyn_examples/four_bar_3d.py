@@ -36,7 +36,7 @@ z and against tilt by its joint to the crank, the rocker by its joint to the gro
 nothing is left unheld; the axial constraint would restore the loop's three redundant
 constraints, which the clearance joint removes.
 
-Quick runs over 1.5 s (two shared cores): the example's settings reach the end with a
+Over 1.5 s the example's settings reach the end with a
 largest penetration of 0.067 c (8.6 kN, the first contact after the 50 kg links fall
 across the gap); ``exuclear.simulate`` (auto step 8.2e-5 s, with the joint's
 AccuracyWarning about steps it could not shorten) 0.061 c.

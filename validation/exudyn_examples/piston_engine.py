@@ -37,13 +37,9 @@ axis, with ``constrainAxial=True`` so that the conrod's axial motion and tilt st
 as the replaced joint held them (no other joint holds them: conrod and piston would
 float out of plane).  Pin: the example's crank pin, R_B = 8 mm, L = 24 mm; c = 30 um.
 
-Short runs over 2 s (exuclear at commit a50d2fe, two shared cores): ideal, the
-example's settings: reached, 0.17 s wall.  Clearance, the same: Newton fails at
-t = 0.122 s, Exudyn halves the step, and the run stops at t = 0.136 s, "exuclear:
-penetration 4.009e-05 m exceeds the limit 1.5e-05 m" (over 0.1 s it ends silently
-with 0.16 c).  ``exuclear.simulate`` (auto step 2.6e-5 s): reaches 2 s in 14 s wall,
-77927 steps, largest penetration 0.005 c; piston 0 within 0.06 mm and the free-running
-crank speed 3.139 rad/s against the ideal engine's 3.142.
+What each way of running it gives is checked in ``tests/test_exudyn_examples.py`` and
+reported, with its numbers (reached time, wall time, steps, largest penetration,
+verdict), by ``python -m validation.exudyn_examples --models piston_engine,piston_engine_lubricated``.
 
 Variant ``piston_engine_lubricated`` (issue 23): the same big end with an oil film
 (``lubrication=``, :data:`OIL`): an SAE 40 engine oil at SAE J300's smallest
@@ -53,13 +49,10 @@ model: the pin's B/D = 24 / 16 = 1.5 lies above the finite model's fits (1/8 ...
 the two limits the long bearing is the nearer; it leaves out the leakage at the bearing's
 ends, so it overestimates the film's load (docs/physics.md section 10.6: by 10.7 % still at
 B/D = 8).  The engine turns at pi rad/s without gravity: the big end's load is a fraction
-of a newton, and the film holds the journal near the centre of its bearing.  Measured
-over 2 s (exuclear at this commit's parent, two shared cores): the example's own settings
-reach the end, 0.29 s wall (1.2 times the ideal engine's), largest eccentricity ratio 0.13,
-film force at most 0.35 N, no metal contact; the zoo's verdict "right", its convergence
-check's path agreeing to 1e-6 c.  Once the drive is off (1 s), the film's viscous moment
-(at most 4e-5 N m, docs/physics.md eq. (69)) brakes the free-running engine: crank speed
-3.1347 rad/s at 2 s against the ideal engine's 3.1419, so piston 0 lags by 0.1 mm.
+of a newton, and the film holds the journal near the centre of its bearing: the
+example's own settings reach the end without metal contact.  Once the drive is off
+(1 s), the film's viscous moment (docs/physics.md eq. (69)) brakes the free-running
+engine, so its crank speed falls slightly below the ideal engine's and piston 0 lags.
 """
 from __future__ import annotations
 

@@ -22,7 +22,7 @@ bearing, 30 um radial clearance.  The rod - slider joint stays ideal: the slider
 mass point, which has no rotation to carry a bearing or a journal
 (``CreateClearanceJoint`` needs rigid bodies).  ``energy`` is None: the torque drives it.
 
-Quick runs over 2 s (two shared cores): the example's settings stop at t = 0.061 s,
+Over 2 s the example's settings stop at t = 0.061 s,
 "SolveDynamic terminated", and the joint's note says why: the example's Newton relative
 tolerance 1e-10, which the joint keeps, lies below the round-off floor of the stiff
 contact; the joint's absolute tolerance 1e-8 (in place of Exudyn's 1e-10, with which the run

@@ -128,7 +128,8 @@ def flywheel_roundoff(omega: float, steps: int) -> float:
     increment to the spacing ``ulp(omega)`` of doubles; ``steps`` roundings of up to half a
     spacing add up like a random walk, ``ulp / 2 sqrt(steps)``, and ``J_fly omega`` turns a
     speed error into an energy error.  The bound is 4 of those standard deviations (the
-    walk is not quite random: residuals of 1-2 of them were measured).
+    walk is not quite random: the audit rows of ``python -m validation.hard_cases`` show
+    residuals of 1-2 of them).
     """
     return 4.0 * FLYWHEEL_INERTIA * abs(omega) * float(np.spacing(abs(omega))) / 2.0 * math.sqrt(steps)
 

@@ -22,7 +22,8 @@ RESTING_CR = 0.9
 #: 4.8 kHz) decays as exp(-zeta omega t) with zeta ~ 0.03 at the default floor, by
 #: 1e-7 in 20 ms.
 RESTING_TIME = 0.02
-#: Simulated time of the dropped journal [s]: 35 bounces, the last one at 80 ms (measured).
+#: Simulated time of the dropped journal [s]: 35 bounces, the last one at 80 ms (the
+#: dropped journal's row of ``python -m validation.hard_cases`` reports them).
 DROPPED_TIME = 0.12
 #: Settings of the resting and dropped journal: DOPRI5 with steps up to 1e-5 s (20 per
 #: period of the contact oscillation), rtol 1e-8; atol 1e-14 m is 6e-7 of delta_s.
@@ -72,8 +73,9 @@ PERTURBATION = 1e-5
 #: paper's 500 rpm (0.03 degrees of crank angle), 1e-6 s at 5000 rpm.  The contact-onset
 #: velocity is interpolated within the step where contact begins, with an error of
 #: order step^2 * acceleration (exuclear.history.ContactState), and accelerations grow as the
-#: speed squared.  (Measured at 5000 rpm over 20 ms with a fixed 1e-5 s bound: max |de|
-#: = 2.7 % of c; with 1e-6 s: 0.06 %.)
+#: speed squared.  (At 5000 rpm over 20 ms a fixed 1e-5 s bound leaves max |de| = 2.7 % of
+#: c, 1e-6 s 0.06 %: the 5000 rpm row of ``python -m validation.hard_cases`` reports the
+#: former as ``ref_ecc_step_1e-5``.)
 CONVERGED = (("rtol", 1e-9), ("atol", 1e-12))
 CONVERGED_STEP_ANGLE = 1e-5 * sc_model.PAPER_CRANK_SPEED  # [rad]
 

@@ -2,17 +2,17 @@
 
 Source problem: the zoo's models (``validation/exudyn_examples``).  Where a model's largest
 step exceeds half the joint's contact period, the joint asks Exudyn's modified Newton for a
-Jacobian at every step (``exuclear.engine.newton``).  It used to ask for the whole run; now
-its kernel switches the ask with the steps it accepts, redoes and grows.  This script runs
-both side by side, the former rule by leaving the ask as the run started it (the kernel's
-``jacobian_per_step`` calls do nothing), over a set of restitutions (chaotic models move
+Jacobian at every step (``exuclear.engine.newton``); its kernel switches the ask with the
+steps it accepts, redoes and grows.  The other rule holds the ask for the whole run.  This
+script runs both side by side, the held rule by leaving the ask as the run started it (the
+kernel's ``jacobian_per_step`` calls do nothing), over a set of restitutions (chaotic models move
 with any change of a bounce, so one run says little), with each model's own settings
 through a plain ``mbs.SolveDynamic`` and through ``exuclear.simulate``.  It prints per run
 the wall time, steps and impacts, and per model and path the sums of the wall times; with
 ``--convergence`` also, for the own-settings runs, the distance of the |e|/c spectrum to
 the 4x refined run's (``exuclear.check_convergence``; it agrees below 0.1).  Run::
 
-    python -m validation.jacobian_steps [--models a,b] [--restitutions 0.89,0.9,0.91] [--paths own,simulate] [--convergence]
+    python -m validation.cost jacobian_steps [--models a,b] [--restitutions 0.89,0.9,0.91] [--paths own,simulate] [--convergence]
 
 (about two minutes with the defaults, nothing else running).
 """
@@ -94,7 +94,7 @@ def parse_restitutions(text: str) -> list[float]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.jacobian_steps", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost jacobian_steps", description=__doc__.split("\n")[0])
     ap.add_argument("--models", default="rigid_body_tutorial3_friction,double_pendulum_2d_friction,four_bar_3d,"
                                         "piston_engine", help="zoo models, comma-separated (default %(default)s)")
     ap.add_argument("--restitutions", type=parse_restitutions, default=parse_restitutions("0.89,0.9,0.91"),
@@ -133,7 +133,3 @@ def main(argv: list[str] | None = None) -> int:
                                   f"{sums[n, p, RULES[1]] / sums[n, p, RULES[0]]:.2f}"]
                                  for n in names for p in paths]))
     return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -16,7 +16,7 @@ spread of points is a response that is not (multi-periodic or chaotic).
 
 Run from the repository root (or anywhere after ``pip install -e .``)::
 
-    python -m validation.speed_sweep [--out DIR] [--workers N | --scheduler ADDRESS] [--quick]
+    python -m validation.cost speed_sweep [--out DIR] [--workers N | --scheduler ADDRESS] [--quick]
 
 Writes ``speed_sweep.csv`` (the study table, with Parquet beside it when pyarrow is
 present), ``speed_sweep.png`` and ``speed_sweep.md`` (wall time and the settings) to
@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
 import time
 
 import numpy as np
@@ -68,7 +67,7 @@ def figure(table, path: str) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.speed_sweep", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost speed_sweep", description=__doc__.split("\n")[0])
     ap.add_argument("--out", default="results/speed_sweep", help="output directory (default %(default)s)")
     ap.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
     ap.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address, or 'local'")
@@ -107,7 +106,3 @@ def main(argv: list[str] | None = None) -> int:
         f.write(report + "\n")
     print(report)
     return 0 if failed.empty else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

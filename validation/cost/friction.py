@@ -22,7 +22,7 @@ stick-slip and friction-induced vibration): the journal chatters along its wall 
 of a few mm/s, each resolved by the joint's rate criterion, and the 4x refined run has more
 of them, not fewer, at onset speeds of the same few mm/s.  Run::
 
-    python -m validation.friction_cost [--models double_pendulum_2d,rigid_body_tutorial3] [--repeat 3] [--end-time T]
+    python -m validation.cost friction [--models double_pendulum_2d,rigid_body_tutorial3] [--repeat 3] [--end-time T]
 
 (about a minute with the defaults).
 """
@@ -120,7 +120,7 @@ def model_rows(name: str, repeat: int, end_time: float | None) -> list[list[str]
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.friction_cost", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost friction", description=__doc__.split("\n")[0])
     ap.add_argument("--models", default="double_pendulum_2d,rigid_body_tutorial3",
                     help="zoo models with rigid bodies, comma-separated (default %(default)s)")
     ap.add_argument("--repeat", type=_positive_int, default=3,
@@ -143,7 +143,3 @@ def main(argv: list[str] | None = None) -> int:
     print(markdown_table(["model", "joint / friction", "wall [s]", "/ ideal", "steps", "impacts",
                           "median onset speed [mm/s]", "reached the end"], rows))
     return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -23,7 +23,7 @@ smaller error.
 
 Run from the repository root::
 
-    python -m validation.work_precision [--out DIR] [--repeats N] [--quick]
+    python -m validation.cost work_precision [--out DIR] [--repeats N] [--quick]
 
 Writes ``work_precision.md``, ``work_precision.csv`` and ``work_precision.png`` to
 ``results/work_precision/`` and prints the headline figures.
@@ -401,7 +401,7 @@ def figure(points: Sequence[Point], path: str) -> str:
 def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: Sequence[Profile] = ()) -> str:
     lines = ["# Work-precision study", "",
              "Source problems: docs/physics.md sections 6.1 (journal-bearing impact, Wang-Liu cr 0.9) and 6.2 (slider-crank, steel, "
-             "no friction, 2 crank revolutions). Command: `python -m validation.work_precision` "
+             "no friction, 2 crank revolutions). Command: `python -m validation.cost work_precision` "
              f"(median of {repeats} runs per point; total runtime {runtime:.0f} s).", "",
              "Error: slider-crank, max |e - e_ref| / c over the run at the run's output instants, against DOP853 at "
              f"rtol {cc.REF_RTOL:g}; journal-bearing, relative error of the departure velocity against DOP853 at "
@@ -458,7 +458,7 @@ def headline(points: Sequence[Point]) -> list[str]:
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="python -m validation.work_precision", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost work_precision", description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=DEFAULT_OUT, help="output directory (default %(default)s)")
     ap.add_argument("--repeats", type=int, default=3, help="runs per point; the median is reported (default 3)")
     ap.add_argument("--quick", action="store_true", help="fewer points and solvers (a smoke run)")
@@ -492,7 +492,3 @@ def main(argv: list[str] | None = None) -> int:
     print(f"total runtime {runtime:.0f} s")
     failed = [p for p in points if not p.success]
     return 1 if failed else 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -15,7 +15,7 @@ machine shared with others the numbers move with their load.
 
 Run from the repository root (or anywhere after ``pip install -e .``)::
 
-    python -m validation.study_benchmark [--runs N] [--revolutions R] [--quick] [--out DIR]
+    python -m validation.cost study_benchmark [--runs N] [--revolutions R] [--quick] [--out DIR]
 
 ``--quick``: 8 runs of a quarter revolution, a smoke test of the script.  Prints the
 table and writes ``study_benchmark.md`` to ``--out`` (default ``results/study_benchmark``).
@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
 import tempfile
 import time
 
@@ -49,7 +48,7 @@ def _values(df):
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.study_benchmark", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost study_benchmark", description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=200, help="runs in the study (default %(default)s)")
     ap.add_argument("--revolutions", type=float, default=1.0, help="crank revolutions per run (default %(default)s)")
     ap.add_argument("--quick", action="store_true", help="8 runs of a quarter revolution: a smoke test")
@@ -88,7 +87,3 @@ def main(argv: list[str] | None = None) -> int:
     print(report)
     print(f"wrote {path}")
     return 0 if ok else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -13,13 +13,12 @@ friction, two revolutions) and journal-bearing impact (section 6.1).  Prints one
 
 Every number is measured now, on this machine; run nothing else meanwhile.  Run::
 
-    python -m validation.benchmark [--repeats N]
+    python -m validation.cost benchmark [--repeats N]
 """
 from __future__ import annotations
 
 import argparse
 import statistics
-import sys
 import time
 from dataclasses import replace
 
@@ -28,7 +27,7 @@ import numpy as np
 import exuclear
 from exuclear.models import journal_bearing as jb_model
 from exuclear.models import slider_crank as sc_model
-from validation import work_precision as wp
+from validation.cost import work_precision as wp
 
 #: SciPy solvers and tolerances searched for the fastest run at a given error.
 SCIPY_POINTS = tuple((method, rtol) for method in ("LSODA", "RK45", "DOP853", "Radau")
@@ -140,7 +139,7 @@ def spatial_row() -> tuple[str, str, str] | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.benchmark", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost benchmark", description=__doc__.split("\n")[0])
     ap.add_argument("--repeats", type=int, default=5, help="runs per point; the median is quoted (default 5)")
     args = ap.parse_args(argv)
     if args.repeats < 1:
@@ -157,7 +156,3 @@ def main(argv: list[str] | None = None) -> int:
     for row in rows:
         print("| " + " | ".join(row) + " |")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

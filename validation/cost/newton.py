@@ -20,7 +20,7 @@ converges back from above, where the force grows like ``delta^n (1 + D delta_dot
 (docs/physics.md eq. (9)): each Newton iteration then removes only about half of the
 excess, and the modified Newton method takes a Jacobian at nearly every one.  Run::
 
-    python -m validation.newton_cost [--models beam_pendulum_2d,double_pendulum_2d_friction] [--start S] [--end E]
+    python -m validation.cost newton [--models beam_pendulum_2d,double_pendulum_2d_friction] [--start S] [--end E]
 
 (the Python kernel is 3 to 10 times slower than the compiled one; a window of 0.05 s of the
 beam pendulum takes about half a minute).
@@ -102,7 +102,7 @@ def summary(name: str, rows: list[tuple[float, float, float, float, float]], sta
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.newton_cost", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost newton", description=__doc__.split("\n")[0])
     ap.add_argument("--models", default="beam_pendulum_2d,double_pendulum_2d",
                     help="zoo models, comma-separated (default %(default)s)")
     ap.add_argument("--start", type=float, default=0.2, help="window start [s] (default %(default)s)")
@@ -124,7 +124,3 @@ def main(argv: list[str] | None = None) -> int:
                           f"steps with an iterate > {OVERSHOOT:g}x the start's penetration"], table))
     print("\n" + "\n\n".join(d for d in details if d))
     return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

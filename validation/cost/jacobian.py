@@ -22,12 +22,12 @@ calls at the initial state, for
 
 Run nothing else meanwhile::
 
-    python -m validation.jacobian_cost
+    python -m validation.cost jacobian
 """
 from __future__ import annotations
 
+import argparse
 import statistics
-import sys
 import time
 import warnings
 
@@ -80,7 +80,8 @@ def generic_elbow(with_jacobian: bool) -> exu.MainSystem:
     return mbs
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
+    argparse.ArgumentParser(prog="python -m validation.cost jacobian", description=__doc__.split("\n")[0]).parse_args(argv)
     warnings.simplefilter("ignore")  # the builders' unit notes are not the subject here
     rows = [
         ("ideal elbow (ObjectJointRevolute2D)", double_pendulum_2d.build(False, 0.01).mbs),
@@ -94,7 +95,3 @@ def main() -> int:
     for label, mbs in rows:
         print(f"| {label} | {jacobian_time(mbs):.2f} |")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

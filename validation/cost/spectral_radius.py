@@ -19,7 +19,7 @@ model and restitution, shared by the rho_inf compared) the impacts, the distance
 |e|/c spectrum (agrees below 0.1) and whether all its statistics agree.  Run nothing else
 meanwhile::
 
-    python -m validation.spectral_radius [--models a,b] [--restitutions 0.9] [--radii 0.7,0.5] [--factor 4]
+    python -m validation.cost spectral_radius [--models a,b] [--restitutions 0.9] [--radii 0.7,0.5] [--factor 4]
 
 (about a minute with the defaults, two with ``--factor 16``).
 """
@@ -34,8 +34,8 @@ import exudyn as exu
 
 import exuclear
 from validation._tables import markdown_table
+from validation.cost.jacobian_steps import parse_restitutions
 from validation.exudyn_examples._common import REGISTRY, ZooModel, model_names
-from validation.jacobian_steps import parse_restitutions
 
 #: The zoo's models the comparison applies to (generalized-alpha proper, own settings).
 DEFAULT_MODELS = "beam_pendulum_2d,piston_engine,double_pendulum_2d_friction,four_bar_3d,double_pendulum_2d"
@@ -89,7 +89,7 @@ def compare(name: str, cr: float, radii: list[float | None], factor: float) -> l
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.spectral_radius", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost spectral_radius", description=__doc__.split("\n")[0])
     ap.add_argument("--models", default=DEFAULT_MODELS, help="zoo models, comma-separated (default %(default)s)")
     ap.add_argument("--restitutions", type=parse_restitutions, default=parse_restitutions("0.9"),
                     help="coefficients of restitution of the joint, comma-separated (default 0.9)")
@@ -120,7 +120,3 @@ def main(argv: list[str] | None = None) -> int:
     print("\n" + markdown_table(["model", "cr", "spectral radius", "wall / ideal", "steps",
                                  f"impacts / {args.factor:g}x refined (own radius)", "spectrum distance", "statistics agree"], rows))
     return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -14,7 +14,7 @@ it is and make a coarse one better.
 Printed per formulation and step: the path error with the joint's defaults and with its rules
 off, their ratio, and the steps the joint redid::
 
-    python -m validation.fine_steps [--steps 1e-6,2e-6,5e-6,1e-5] [--formulations spatial,redundant] [--end-time 0.24]
+    python -m validation.cost fine_steps [--steps 1e-6,2e-6,5e-6,1e-5] [--formulations spatial,redundant] [--end-time 0.24]
 
 (about two minutes with the defaults; the 22 impacts of the paper's case end by 0.024 s).
 """
@@ -32,7 +32,7 @@ from exuclear.models.slider_crank import SliderCrankParams, build, columns
 from validation._tables import markdown_table
 from validation.reference import slider_crank as sc_reference
 
-#: The reference's tolerances and output grid (validation/cross_check.py's).
+#: The reference's tolerances and output grid (validation/cross_check/common.py's).
 REF_RTOL, REF_ATOL, REF_GRID = 1e-10, 1e-13, 1e-5
 #: The issue's steps [s]: the paper's 22 impacts last 87 to 255 us, about 9 to 250 steps.
 DEFAULT_STEPS = (1e-6, 2e-6, 5e-6, 1e-5)
@@ -102,7 +102,7 @@ def _floats(text: str) -> list[float]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m validation.fine_steps", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m validation.cost fine_steps", description=__doc__.split("\n")[0])
     ap.add_argument("--steps", default=",".join(f"{s:g}" for s in DEFAULT_STEPS),
                     help="the user's steps [s], comma-separated (default %(default)s)")
     ap.add_argument("--formulations", default=",".join(FORMULATIONS),
@@ -131,7 +131,3 @@ def main(argv: list[str] | None = None) -> int:
     print("\n" + markdown_table(["formulation", "step [s]", "path error, joint's defaults [% c]",
                                  "rules off [% c]", "ratio", "steps redone", "impacts (defaults / off)"], rows))
     return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

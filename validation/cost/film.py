@@ -16,10 +16,11 @@ lubricated against dry (the dry journal resting on the wall).  Medians of repeat
 trials, the cases of a trial timed one after the other; the machine (2 cores) is shared, so
 single numbers vary by tens of per cent::
 
-    python -m validation.film_cost
+    python -m validation.cost film
 """
 from __future__ import annotations
 
+import argparse
 import statistics
 import time
 
@@ -93,7 +94,8 @@ def per_step(model: str | None, steps: int = 5000) -> float:
     return statistics.median(times)
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> None:
+    argparse.ArgumentParser(prog="python -m validation.cost film", description=__doc__.split("\n")[0]).parse_args(argv)
     if kernel.COMPILED is None:
         raise SystemExit(f"the compiled kernel is not available: {kernel.REASON}")
     contact = 1.0 + 1e-6 / C
@@ -112,7 +114,3 @@ def main() -> None:
     for model in ("short", "long", "finite"):
         s = per_step(model)
         print(f"  {model + ' film':42s} {s * 1e6:7.2f} us/step   {s / dry_step:5.2f} x dry")
-
-
-if __name__ == "__main__":
-    main()

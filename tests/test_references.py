@@ -1,0 +1,238 @@
+"""Every file, command and section that the code and the docs name exists.
+
+A maintainer follows ``validation/cross_check/common.py``, ``python -m validation.cost
+film`` or "docs/physics.md section 6.2" from a comment; a file that moved or a section that
+was renumbered leaves such a mention dangling.  These tests read every ``.py`` and ``.md``
+file of the repository and resolve:
+
+- path mentions under ``docs/``, ``validation/``, ``exuclear/`` and ``models/`` (a file or
+  a folder of the repository, ``*`` as a wildcard);
+- ``python -m`` commands under those packages (a module or package that Python finds),
+  and dotted names under ``validation`` and ``exuclear`` (a module, or a name the package
+  exports);
+- "physics.md section N" / "sections N and M" and bare "section N.M" against the headings
+  of docs/physics.md (a bare "section N.M" of the paper, "the paper's section 5.2", is the
+  paper's, not physics.md's, and is skipped);
+- the ``#anchor`` links of docs/*.md against the headings of the same file.
+
+README.md is skipped while it is rewritten.  The zoo's citations of Exudyn's own files
+(``main/pythonDev/Examples/...``) name another repository and match none of the prefixes.
+"""
+from __future__ import annotations
+
+import importlib.util
+import pathlib
+import re
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PHYSICS = ROOT / "docs" / "physics.md"
+
+#: Folders that hold no source of the project (virtual environment, build and run outputs).
+SKIP_DIRS = {".git", ".venv", ".ruff_cache", ".pytest_cache", "__pycache__", "build", "dist", "results", "solution"}
+#: Files not read: README.md is being rewritten (issue 31); this file quotes dangling examples.
+SKIP_FILES = {"README.md", "tests/test_references.py"}
+
+#: Mentions in files this branch does not own that name a moved file or command, each with
+#: its correct target; the owners fix them (issue 31), and the entry goes with the fix.
+KNOWN_ELSEWHERE: dict[tuple[str, str], str] = {
+    ("exuclear/convergence.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
+    ("models/_defaults.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
+    ("models/four_bar.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
+    ("models/slider_crank.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
+    ("models/slider_crank.py", "validation/hard_cases.py"): "validation/hard_cases/audit.py",
+    ("models/slider_crank.py", "python -m validation.benchmark"): "python -m validation.cost benchmark",
+    ("models/slider_crank.py", "validation.benchmark"): "validation.cost.benchmark",
+    ("exuclear/engine/_python_kernel.py", "python -m validation.fine_steps"): "python -m validation.cost fine_steps",
+    ("exuclear/engine/_python_kernel.py", "validation.fine_steps"): "validation.cost.fine_steps",
+    ("exuclear/engine/newton.py", "python -m validation.jacobian_steps"): "python -m validation.cost jacobian_steps",
+    ("exuclear/engine/newton.py", "validation.jacobian_steps"): "validation.cost.jacobian_steps",
+}
+
+PATH = re.compile(r"(?<![\w./-])((?:docs|validation|exuclear|models)/[\w.*/-]*[\w*/])")
+COMMAND = re.compile(r"python3? -m ((?:validation|exuclear|models)(?:\.\w+)*)")
+#: A dotted name under validation or exuclear: ``validation.cost.film``, ``exuclear.make_joint``.
+#: A quoted one is a string key (``"exuclear.joints"``), not a module.
+DOTTED = re.compile(r"""(?<![\w./\-"'])((?:validation|exuclear)(?:\.\w+)+)""")
+#: An upper-case placeholder in a command or name, as in ``python -m exuclear.models.NAME``.
+PLACEHOLDER = re.compile(r"\.[A-Z][A-Z_]*\b")
+SECTION_LIST = r"(\d+(?:\.\d+)*(?:(?:,\s*|\s*-\s*|\s+and\s+|\s+to\s+)\d+(?:\.\d+)*)*)"
+PHYSICS_SECTION = re.compile(r"physics\.md`*\)?,?\s+sections?\s+" + SECTION_LIST)
+BARE_SECTION = re.compile(r"(?<![\w.])sections?\s+(\d+\.\d+)\b")
+#: Words right before a bare "section N.M" that make it another document's.
+NOT_PHYSICS = re.compile(r"(paper's|paper|its|their|Mechanics\*?|\d{4}),?\s*$")
+ANCHOR_LINK = re.compile(r"\]\(#([^)]+)\)")
+
+
+def _sources() -> list[pathlib.Path]:
+    out = []
+    for path in sorted(ROOT.rglob("*")):
+        rel = path.relative_to(ROOT)
+        if path.suffix not in (".py", ".md") or not path.is_file():
+            continue
+        if any(part in SKIP_DIRS or part.endswith(".egg-info") for part in rel.parts):
+            continue
+        if rel.as_posix() not in SKIP_FILES:
+            out.append(path)
+    return out
+
+
+SOURCES = _sources()
+
+
+def _rel(path: pathlib.Path) -> str:
+    return path.relative_to(ROOT).as_posix()
+
+
+def _path_exists(mention: str) -> bool:
+    """A file or folder of the repository; ``models/four_bar`` may name ``models/four_bar.py``."""
+    mention = mention.rstrip(".")
+    if "*" in mention:
+        return any(ROOT.glob(mention))
+    return (ROOT / mention).exists() or (ROOT / f"{mention}.py").exists()
+
+
+def slug(heading: str) -> str:
+    """The anchor GitHub gives a Markdown heading: lower case, punctuation dropped, spaces
+    to hyphens."""
+    text = re.sub(r"[^\w\- ]", "", heading.strip().lower())
+    return text.replace(" ", "-")
+
+
+def headings(path: pathlib.Path) -> list[tuple[int, str]]:
+    """The Markdown headings of ``path`` outside code blocks: (level, text)."""
+    out, fenced = [], False
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        m = re.match(r"(#{1,6})\s+(.*)", line)
+        if m and not fenced:
+            out.append((len(m.group(1)), m.group(2)))
+    return out
+
+
+def physics_sections() -> set[str]:
+    """Section numbers of docs/physics.md: "6" for "## 6. The paper's scenes", "6.2" for
+    "### 6.2 Slider-crank ..."."""
+    numbers = set()
+    for _, text in headings(PHYSICS):
+        m = re.match(r"(\d+(?:\.\d+)*)\.?\s", text)
+        if m:
+            numbers.add(m.group(1))
+    return numbers
+
+
+def _section_numbers(listing: str) -> list[str]:
+    """"6.1 and 6.2" -> [6.1, 6.2]; "1-4" -> [1, 4] (a range's ends)."""
+    return re.findall(r"\d+(?:\.\d+)*", listing)
+
+
+def _line(text: str, pos: int) -> int:
+    return text.count("\n", 0, pos) + 1
+
+
+def _dangling(check) -> list[str]:
+    out = []
+    for path in SOURCES:
+        text = path.read_text(encoding="utf-8")
+        for pos, mention, target in check(path, text):
+            if (_rel(path), mention) in KNOWN_ELSEWHERE:
+                continue
+            out.append(f"{_rel(path)}:{_line(text, pos)}: {mention!r}" + (f" ({target})" if target else ""))
+    return out
+
+
+def test_path_mentions_resolve():
+    def check(path, text):
+        for m in PATH.finditer(text):
+            if not _path_exists(m.group(1)):
+                yield m.start(1), m.group(1), "no such file or folder"
+
+    dangling = _dangling(check)
+    assert not dangling, "dangling path mentions:\n" + "\n".join(dangling)
+
+
+def test_commands_resolve():
+    def check(path, text):
+        for m in COMMAND.finditer(text):
+            if not PLACEHOLDER.search(m.group(1)) and importlib.util.find_spec(m.group(1)) is None:
+                yield m.start(1), m.group(0), "no such module"
+
+    dangling = _dangling(check)
+    assert not dangling, "dangling commands:\n" + "\n".join(dangling)
+
+
+def _dotted_exists(name: str) -> bool:
+    """The first name under the package is a module of it, or an attribute of it
+    (``exuclear.SolverSettings``); what follows may be a module or an attribute."""
+    root, first = name.split(".")[:2]
+    if importlib.util.find_spec(f"{root}.{first}") is not None:
+        return True
+    return hasattr(importlib.import_module(root), first)
+
+
+def test_dotted_module_mentions_resolve():
+    def check(path, text):
+        for m in DOTTED.finditer(text):
+            if text[max(0, m.start() - 5):m.start()] == "e.g. ":
+                continue  # an example of a name, not a mention
+            if not PLACEHOLDER.search(m.group(1)) and not _dotted_exists(m.group(1)):
+                yield m.start(1), m.group(1), "no such module or name"
+
+    dangling = _dangling(check)
+    assert not dangling, "dangling dotted names:\n" + "\n".join(dangling)
+
+
+def test_physics_section_mentions_resolve():
+    known = physics_sections()
+
+    def check(path, text):
+        spans = []
+        for m in PHYSICS_SECTION.finditer(text):
+            spans.append(m.span())
+            for number in _section_numbers(m.group(1)):
+                if number not in known:
+                    yield m.start(1), f"physics.md section {number}", "no such heading in docs/physics.md"
+        if path == PHYSICS or "physics.md" in text:
+            for m in BARE_SECTION.finditer(text):
+                if any(a <= m.start() < b for a, b in spans):
+                    continue  # read above as a physics.md mention
+                before = text[max(0, m.start() - 30):m.start()]
+                if m.group(1) not in known and not NOT_PHYSICS.search(before):
+                    yield m.start(1), f"section {m.group(1)}", "no such heading in docs/physics.md"
+
+    assert known >= {"1", "6", "6.1", "6.2", "10.9"}  # the parser reads the headings
+    dangling = _dangling(check)
+    assert not dangling, "dangling section mentions:\n" + "\n".join(dangling)
+
+
+@pytest.mark.parametrize("doc", sorted((ROOT / "docs").glob("*.md")), ids=lambda p: p.name)
+def test_anchor_links_resolve(doc):
+    anchors = {slug(text) for _, text in headings(doc)}
+    links = ANCHOR_LINK.findall(doc.read_text(encoding="utf-8"))
+    assert not [a for a in links if a not in anchors]
+
+
+def test_the_physics_contents_list_every_section():
+    """The contents at the top of docs/physics.md link every section and subsection."""
+    text = PHYSICS.read_text(encoding="utf-8")
+    first = text.index("\n## ")  # the contents come before the first section
+    links = set(ANCHOR_LINK.findall(text[:first]))
+    assert [text for level, text in headings(PHYSICS) if level > 1 and slug(text) not in links] == []
+
+
+def test_the_checks_catch_what_they_are_for():
+    """The patterns find the mentions this test exists for (the stale ones issue 31 found)."""
+    assert PATH.findall("see validation/slider_crank.py's closed form") == ["validation/slider_crank.py"]
+    assert not _path_exists("validation/slider_crank.py") and _path_exists("validation/slider_crank/")
+    assert COMMAND.findall("python -m validation.film_cost") == ["validation.film_cost"]
+    assert importlib.util.find_spec("validation.cost.film") is not None
+    listing = PHYSICS_SECTION.search("docs/physics.md sections 6.1 and\n5.2 (slider-crank)").group(1)
+    assert _section_numbers(listing) == ["6.1", "5.2"]
+    assert "5.2" not in physics_sections()
+    assert NOT_PHYSICS.search("the paper's example 2, its ") and NOT_PHYSICS.search("the paper, ")
+    assert not _dotted_exists("validation.benchmark") and _dotted_exists("validation.cost.benchmark")
+    assert PLACEHOLDER.search("exuclear.models.NAME")
+    assert slug("### 2.3 The onset velocity `v0`, its floor and its interpolation"[4:]) == \
+        "23-the-onset-velocity-v0-its-floor-and-its-interpolation"

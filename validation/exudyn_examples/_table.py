@@ -1,0 +1,91 @@
+"""The zoo's table and report: every model's row (:func:`._runs.run_model`), the
+printed table, ``zoo.csv`` and ``report.md`` (the template ``_report.md`` filled in).
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+import exudyn as exu
+
+import exuclear
+
+from ._common import IMPORT_ERRORS, REGISTRY, load_models
+from ._runs import CONVERGED_PENETRATION, PENETRATION_WRONG, QUICK_TIME_LIMIT, REFERENCE_FACTOR, TIME_LIMIT, run_model
+
+#: Columns of the printed table (all columns go to zoo.csv).
+TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_pen_c",
+                 "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
+                 "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence"]
+
+
+def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
+            end_time: float | None = None, out: Path | None = None, progress: bool = True) -> Any:
+    """Run the models (all registered ones by default); returns the table (pandas
+    DataFrame) and writes ``zoo.csv`` and ``report.md`` into ``out`` if given."""
+    import pandas as pd
+
+    load_models()
+    names = list(REGISTRY) if not names else names
+    unknown = [n for n in names if n not in REGISTRY and n not in IMPORT_ERRORS]
+    if unknown:
+        raise ValueError(f"unknown zoo model(s) {unknown}; registered: {sorted(REGISTRY)}")
+    rows = []
+    for name in names:
+        if name in IMPORT_ERRORS:
+            rows.append({"model": name, "verdict": "import error", "error": IMPORT_ERRORS[name]})
+            continue
+        if progress:
+            print(f"[zoo] {name} ...", flush=True)
+        t0 = time.perf_counter()
+        rows.append(run_model(name, quick, convergence, end_time))
+        if progress:
+            print(f"[zoo] {name}: {rows[-1].get('verdict')} ({time.perf_counter() - t0:.0f} s)", flush=True)
+    for name in IMPORT_ERRORS:
+        if name not in names and not any(r["model"] == name for r in rows):
+            rows.append({"model": name, "verdict": "import error", "error": IMPORT_ERRORS[name]})
+    table = pd.DataFrame(rows)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        table.to_csv(out / "zoo.csv", index=False)
+        (out / "report.md").write_text(report(table, quick, end_time))
+    return table
+
+
+def show(table: Any) -> str:
+    """The printed table: :data:`TABLE_COLUMNS` that exist, numbers rounded."""
+    cols = [c for c in TABLE_COLUMNS if c in table.columns]
+    return table[cols].to_string(index=False, float_format=lambda x: f"{x:.3g}")
+
+
+def report(table: Any, quick: bool, end_time: float | None) -> str:
+    """The Markdown report: _report.md filled with the tables and the run's notes."""
+    template = (Path(__file__).with_name("_report.md")).read_text()
+    cols = [c for c in TABLE_COLUMNS if c in table.columns]
+    messages = []
+    for _, r in table.iterrows():
+        for key in ("ideal_message", "own_message", "own_warnings", "sim_message", "sim_warnings", "error"):
+            value = r.get(key)
+            if isinstance(value, str) and value:
+                messages.append(f"- `{r['model']}` {key}: {value}")
+    models = "\n".join(f"- `{e.name}`: {e.example} ({e.bodies}); replaced: {e.replaced}"
+                       + (f"; with {', '.join(f'{k}={v!r}' for k, v in e.fixed.items())}" if e.fixed else "")
+                       for e in REGISTRY.values())
+    return template.format(
+        mode="quick (one run per timing, no convergence check)" if quick else "full (median of 3 timings)",
+        end_time="the examples' own" if end_time is None else f"{end_time:g} s for every model",
+        exudyn=exu.__version__, exuclear=getattr(exuclear, "__version__", "?"),
+        models=models, table=table[cols].to_markdown(index=False, floatfmt=".3g") if _has_tabulate()
+        else "```\n" + show(table) + "\n```",
+        messages="\n".join(messages) or "(none)", pen_wrong=PENETRATION_WRONG, ref_factor=REFERENCE_FACTOR,
+        converged=CONVERGED_PENETRATION,
+        time_limit=QUICK_TIME_LIMIT if quick else TIME_LIMIT)
+
+
+def _has_tabulate() -> bool:
+    try:
+        import tabulate  # noqa: F401
+    except ImportError:
+        return False
+    return True
