@@ -85,12 +85,15 @@ def _rel(path: pathlib.Path) -> str:
     return path.relative_to(ROOT).as_posix()
 
 
-def _path_exists(mention: str) -> bool:
-    """A file or folder of the repository; ``models/four_bar`` may name ``models/four_bar.py``."""
+def _path_exists(mention: str, source: pathlib.Path | None = None) -> bool:
+    """A file or folder of the repository; ``models/four_bar`` may name ``models/four_bar.py``.
+    In a Markdown page a link may also be relative to the page (``docs/index.md`` linking
+    ``validation/zoo.md`` means ``docs/validation/zoo.md``)."""
     mention = mention.rstrip(".")
     if "*" in mention:
         return any(ROOT.glob(mention))
-    return (ROOT / mention).exists() or (ROOT / f"{mention}.py").exists()
+    bases = [ROOT] + ([source.parent] if source is not None and source.suffix == ".md" else [])
+    return any((base / mention).exists() or (base / f"{mention}.py").exists() for base in bases)
 
 
 def slug(heading: str) -> str:
@@ -146,7 +149,7 @@ def _dangling(check) -> list[str]:
 def test_path_mentions_resolve():
     def check(path, text):
         for m in PATH.finditer(text):
-            if not _path_exists(m.group(1)):
+            if not _path_exists(m.group(1), path):
                 yield m.start(1), m.group(1), "no such file or folder"
 
     dangling = _dangling(check)
