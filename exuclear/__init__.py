@@ -55,9 +55,10 @@ from .joint import ClearanceJoint, make_joint
 from .materials import MATERIALS, Material, composite_modulus
 from .settings import METHODS, SolverSettings
 
-# The study names are imported on first use (PEP 562), not here: ``python -m exuclear.study``
-# imports the package first, and a study module already in ``sys.modules`` then would be
-# executed a second time as ``__main__`` (runpy's RuntimeWarning, once per worker process).
+# The study names are imported on first use (PEP 562), not here: the study runner brings
+# pandas and tqdm along when it runs, and ``import exuclear`` stays light.  ``python -m
+# exuclear.study`` runs the package's ``__main__``, which nothing imports before runpy runs
+# it, so runpy's double-import warning cannot arise, in the parent or in a worker.
 _LAZY = {"Study": "study", "grid": "study", "sample": "study", "run_study": "study"}
 
 

@@ -54,11 +54,11 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.columns import Column
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
 from exuclear.engine.outputs import FILM_OUTPUT_COLUMNS
 from exuclear.materials import MATERIALS
-from exuclear.study import Column
 
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication

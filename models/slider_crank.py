@@ -64,12 +64,12 @@ from exudyn.rigidBodyUtilities import RigidBodyInertia
 import exuclear
 from exuclear import SolverSettings
 from exuclear import convergence as _convergence
+from exuclear.columns import Column
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, AccuracyWarning
 from exuclear.engine.outputs import REGIME_CONTACT
 from exuclear.materials import MATERIALS
 from exuclear.settings import METHODS
-from exuclear.study import Column
 from exuclear.timescales import reduced_mass
 
 from . import _defaults

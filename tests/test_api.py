@@ -93,7 +93,7 @@ import sys, matplotlib
 matplotlib.use("svg")
 import numpy as np, pandas as pd
 from exuclear import plotting
-from exuclear.study_plot import plot_metric
+from exuclear.study.plot import plot_metric
 t = np.linspace(0.0, 0.05, 500)
 cols = {{k: np.sin(50 * t) for k in ("slider_x", "slider_v", "slider_a", "contact_force", "crank_moment")}}
 cols.update(time=t, crank_angle=t * 3000.0, ecc_x=1e-6 * t, ecc_y=1e-6 * t)
