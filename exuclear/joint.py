@@ -146,7 +146,7 @@ def make_joint(
         ``"none"``, ``"coulomb:MU"``, ``"paper"`` or a :class:`FrictionLaw`.
     v_min : float, optional
         Floor of the onset velocity in the damping term [m/s]; default
-        :data:`exuclear.V_MIN_DEFAULT`.
+        :data:`exuclear.contact.V_MIN_DEFAULT`.
     stiffness, damping : str, optional
         The law as a pair instead of ``law``: a name of
         :data:`exuclear.contact.STIFFNESS_MODELS` and one of

@@ -18,6 +18,7 @@ import pytest
 from exudyn.itemInterface import SensorObject
 
 import exuclear
+from exuclear.engine import OUTPUT_COLUMNS
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from exuclear.models.slider_crank import SliderCrankParams
@@ -159,7 +160,7 @@ def test_journal_bearing_dt_out_end_time_and_csv(tmp_path):
     status, out, _ = cli(jb, "--dt-out", "1e-6", "--end-time", "2e-4", "--csv", str(path), "--json")
     assert status == 0
     names, data = read_csv(path)
-    assert names == ["time", *exuclear.OUTPUT_COLUMNS]
+    assert names == ["time", *OUTPUT_COLUMNS]
     assert 195 <= len(data) <= 202  # 2e-4 s every 1e-6 s
     # the paper's departure velocity at cr 0.9: 0.269 m/s (paper, example 1)
     assert '"departure_velocity": 0.26' in out

@@ -95,7 +95,7 @@ def _frozen_overview(diag: Diagnostics, done: Sequence[tuple[Sweep, SweepRows]],
     panels = []
     for value in (f"{CR_SWEEP[0]:g}", f"{CR_SWEEP[-1]:g}"):
         curves = []
-        for name, cols in ((f"v_min {exuclear.V_MIN_DEFAULT:g} m/s", default.get(value)),
+        for name, cols in ((f"v_min {exuclear.contact.V_MIN_DEFAULT:g} m/s", default.get(value)),
                            (f"v_min {diag.frozen_v_min:.3f} m/s", frozen.get(value))):
             if cols is not None:
                 dev = cols["slider_a"] - np.interp(cols["time"], ideal["time"], ideal["slider_a"])
