@@ -319,7 +319,7 @@ def run_approach(params: JournalBearingParams,
 
 def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem: str = "journal_bearing") -> list[str]:
     """Write the force-penetration and rate-penetration plots of the paper's Figs. 4-7."""
-    from exuclear.plotting import impact_curves
+    from exuclear.models.figures import impact_curves
 
     return impact_curves(results, directory, stem)
 

@@ -830,7 +830,7 @@ def main(argv: list[str] | None = None) -> int:
         write_csv(args.csv, result.columns, incomplete="" if result.success else result.message, notes=notes + result.notes)
         print(f"wrote {args.csv}")
     if args.plot is not None:
-        from exuclear.plotting import slider_crank_figures
+        from exuclear.models.figures import slider_crank_figures
 
         baseline = result if params.ideal else run(replace(params, ideal=True, formulation="redundant"))
         cases = [] if params.ideal else [(f"cr = {params.cr}", result.columns)]

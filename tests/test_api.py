@@ -95,12 +95,12 @@ def test_plots_leave_the_backend_alone(tmp_path):
 import sys, matplotlib
 matplotlib.use("svg")
 import numpy as np, pandas as pd
-from exuclear import plotting
+from exuclear.models import figures
 from exuclear.study.plot import plot_metric
 t = np.linspace(0.0, 0.05, 500)
 cols = {{k: np.sin(50 * t) for k in ("slider_x", "slider_v", "slider_a", "contact_force", "crank_moment")}}
 cols.update(time=t, crank_angle=t * 3000.0, ecc_x=1e-6 * t, ecc_y=1e-6 * t)
-plotting.slider_crank_figures([("a", cols)], cols, 1e-4, {str(tmp_path)!r}, "s")
+figures.slider_crank_figures([("a", cols)], cols, 1e-4, {str(tmp_path)!r}, "s")
 plot_metric(pd.DataFrame({{"x": [1, 2], "m": [1.0, 2.0], "success": [True, True]}}), "m", "x",
             path={str(tmp_path / "m.png")!r})
 print(matplotlib.get_backend(), "matplotlib.pyplot" in sys.modules)

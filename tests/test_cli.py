@@ -19,6 +19,7 @@ from exudyn.itemInterface import SensorObject
 
 import exuclear
 from exuclear.engine import OUTPUT_COLUMNS
+from exuclear.models import figures
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from exuclear.models.slider_crank import SliderCrankParams
@@ -129,8 +130,8 @@ def test_spectrum_has_a_log_frequency_axis_with_room_below_the_crank_line(tmp_pa
     # the sweep figures of validation/ share the axis helper
     t = np.arange(0.0, 0.24, 1e-5)
     cols = {"time": t, "crank_angle": np.degrees(2 * np.pi * crank_hz * t), "slider_a": np.cos(2 * np.pi * crank_hz * t)}
-    exuclear.plotting.slider_crank_sweep_figures([("case", cols)], None, 1e-4, str(tmp_path), "sweep",
-                                                 quantities=("spectrum",))
+    figures.slider_crank_sweep_figures([("case", cols)], None, 1e-4, str(tmp_path), "sweep",
+                                       quantities=("spectrum",))
     axes = _spectrum_axes(kept_figures)
     assert len(axes) == 2
     for ax in axes:

@@ -7,8 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 
 import exuclear
+from exuclear.models.figures import crank_angle_panels, slider_crank_sweep_figures
 from exuclear.models.slider_crank import SliderCrankParams, ideal_joint_force
-from exuclear.plotting import crank_angle_panels, slider_crank_sweep_figures
 from validation._tables import write_csv
 from validation.slider_crank.cases import BAND, CR_SWEEP, FROZEN_FIGURES, SPECTRUM_STEP, STARTUP, Runner, Sweep
 from validation.slider_crank.diagnostics import Diagnostics, SweepRows
