@@ -277,13 +277,15 @@ def contact_law(
 
 def law_and_restitution(law: str | None = None, stiffness: str | None = None, damping: str | None = None,
                         cr: float | None = None, default_law: str = DEFAULT_LAW,
-                        default_cr: float = 0.9) -> tuple[str, float]:
-    """The law name and ``cr`` a command line's options ask for.
+                        default_cr: float | None = 0.9) -> tuple[str, float]:
+    """The law name and ``cr`` that a command line's options or :func:`exuclear.make_joint`'s
+    arguments ask for.
 
     ``law`` or the pair ``stiffness``/``damping`` (not both; a missing member of the pair
     is that of the default law); ``cr`` defaults to ``default_cr`` for a law with damping
-    and to 1 for an elastic one, so that ``--law hertz`` alone is accepted.  Unknown names
-    raise ``ValueError`` listing the known ones.
+    (``default_cr=None``: ``cr`` is then required, ``ValueError``) and to 1 for an elastic
+    one, so that ``--law hertz`` alone is accepted.  Unknown names raise ``ValueError``
+    listing the known ones.
     """
     if stiffness is not None or damping is not None:
         if law is not None:
@@ -291,7 +293,12 @@ def law_and_restitution(law: str | None = None, stiffness: str | None = None, da
         law = pair_name(stiffness, damping)
     elif law is None:
         law = default_law
-    split_law_name(law)
+    split_law_name(law)  # unknown names fail here, listing the known ones
     if cr is None:
-        cr = 1.0 if is_elastic(law) else default_cr
+        if is_elastic(law):
+            cr = 1.0
+        elif default_cr is None:
+            raise ValueError(f"`cr` (coefficient of restitution in (0, 1]) is required for the {law!r} law")
+        else:
+            cr = default_cr
     return law, cr
