@@ -13,6 +13,7 @@ import subprocess
 import sys
 import warnings
 
+import exudyn as exu
 import numpy as np
 import pytest
 from exudyn.itemInterface import SensorObject
@@ -55,7 +56,7 @@ def test_ideal_joint_force_is_the_reaction_exudyn_computes():
     revolutes = [i for i in range(mbs.systemData.NumberOfObjects())
                  if mbs.GetObject(i)["objectType"] == "JointRevolute2D"]
     sensor = mbs.AddSensor(SensorObject(objectNumber=revolutes[-1], storeInternal=True, writeToFile=False,
-                                        outputVariableType=sc.exu.OutputVariableType.Force))
+                                        outputVariableType=exu.OutputVariableType.Force))
     mbs.Assemble()
     assert exuclear.simulate(mbs, sc.default_settings(params)).success
     cols = sc.columns(model)
