@@ -59,7 +59,7 @@ def _scaled_defaults(params: SliderCrankParams, base: dict) -> dict:
 
 
 def accuracy_notes(params: SliderCrankParams, settings: SolverSettings) -> list[str]:
-    """Why a run of ``params`` at its default settings may not be converged (issue 16)."""
+    """Why a run of ``params`` at its default settings may not be converged."""
     if params.ideal:
         return []
     return _defaults.accuracy_notes(params.crank_speed, params.clearance, len(params.clearance_joints),

@@ -164,7 +164,7 @@ def _energy_audit(model: Scene) -> dict[str, float]:
     stored at the end, plus ``int (F_N - F_el) delta' + F_T v_T dt`` dissipated, trapezoid
     rule) + residual.  ``energy_residual_rel`` is the residual over the gross contact
     work ``int |F_N delta' + F_T v_T| dt``; it includes the round-off of the flywheel's
-    energy (``validation/hard_cases.py`` bounds it).
+    energy (``validation/hard_cases/common.py`` bounds it, AUDIT_LIMIT).
     """
     t, energy, omega = mechanical_energy(model)
     change = float(energy[-1] - energy[0])

@@ -336,7 +336,7 @@ def test_slider_crank_study_paper_case():
     # after the start-up bounces the journal stays in permanent contact (README): no new onset
     assert row["impacts_per_rev"] == 0.0
     assert 1.0 < row["max_ecc_over_c"] < 1.05  # in contact, penetration a few % of c at most (README: micrometres)
-    # energy audit within 1 % of the contact's gross work: validation/hard_cases.py AUDIT_LIMIT
+    # energy audit within 1 % of the contact's gross work: validation/hard_cases/common.py AUDIT_LIMIT
     assert abs(row["energy_residual_rel"]) < 0.01
     assert row["contact_dissipated"] > 0.0
 
