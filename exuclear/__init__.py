@@ -8,22 +8,23 @@ The public API is the names of ``__all__`` below, by role:
   :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``);
 - **contact laws**: :func:`contact_law` is the one way to build a :class:`ContactLaw`,
   by the name of a named law (``"wang-liu"``) or of a stiffness model and a damping
-  model (``"pereira+gonthier"``); ``V_MIN_DEFAULT`` is the laws' velocity floor;
+  model (``"pereira+gonthier"``);
 - **friction**: :func:`friction_law` (``"none"``, ``"coulomb:MU"``, ``"paper"``);
 - **materials**: :class:`Material`, :data:`MATERIALS`, :func:`composite_modulus`;
-- **settings and runs**: :class:`SolverSettings` (``METHODS``), the kernel backends
-  (``BACKENDS``, ``DEFAULT_BACKEND``), :func:`simulate` and its
-  :class:`SimulationResult`, the joint outputs ``OUTPUT_COLUMNS``;
+- **settings and runs**: :class:`SolverSettings`, :func:`simulate` and its
+  :class:`SimulationResult`;
 - **convergence check**: :func:`check_convergence`, :class:`RunRecord`,
   :class:`ConvergenceResult`;
 - **studies**: :class:`Study`, :func:`grid`, :func:`sample`, :func:`run_study`;
 - **warnings**: :class:`UnitWarning`, :class:`ValidityWarning`, :class:`AccuracyWarning`.
 
 Everything else stays importable from its module: the models behind the laws
-(:mod:`exuclear.contact`: ``WangLiu``, ``STIFFNESS_MODELS``, ``DAMPING_MODELS``, ...),
-the friction classes (:mod:`exuclear.friction`), the contact kinematics
+(:mod:`exuclear.contact`: ``WangLiu``, ``STIFFNESS_MODELS``, ``DAMPING_MODELS``, the
+laws' velocity floor ``V_MIN_DEFAULT``, ...), the solver methods (:mod:`exuclear.settings`:
+``METHODS``), the friction classes (:mod:`exuclear.friction`), the contact kinematics
 (:mod:`exuclear.geometry`), the contact history (:mod:`exuclear.history`) and the engine
-glue (:mod:`exuclear.engine`: ``DATA_COLUMNS``, ``simulation_settings``,
+glue (:mod:`exuclear.engine`: the kernel backends ``BACKENDS`` and ``DEFAULT_BACKEND``,
+the joint outputs ``OUTPUT_COLUMNS``, ``DATA_COLUMNS``, ``simulation_settings``,
 ``KernelWarning``, ``unheld_motion`` and its ``OutOfPlaneWarning``, ...).  Physics
 without exudyn: :mod:`~exuclear.contact`,
 :mod:`~exuclear.friction`, :mod:`~exuclear.materials`, :mod:`~exuclear.geometry`,
@@ -34,18 +35,14 @@ matplotlib, pandas, tqdm, scipy and dask are imported where a function needs the
 (``tests/test_api.py``).
 """
 from .checks import UnitWarning
-from .contact import V_MIN_DEFAULT, ContactLaw, ValidityWarning, contact_law
+from .contact import ContactLaw, ValidityWarning, contact_law
 from .convergence import ConvergenceResult, RunRecord, check_convergence
 from .engine import (
-    BACKENDS,
-    DEFAULT_BACKEND,
-    OUTPUT_COLUMNS,
     AccuracyWarning,
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
     SimulationResult,
-    add_clearance_joint,  # noqa: F401 - exuclear 0.1's planar form, kept importable while it is deprecated
     simulate,
 )
 from .film import Lubrication
@@ -53,11 +50,12 @@ from .friction import friction_law
 from .geometry import BearingGeometry
 from .joint import ClearanceJoint, make_joint
 from .materials import MATERIALS, Material, composite_modulus
-from .settings import METHODS, SolverSettings
+from .settings import SolverSettings
 
-# The study names are imported on first use (PEP 562), not here: ``python -m exuclear.study``
-# imports the package first, and a study module already in ``sys.modules`` then would be
-# executed a second time as ``__main__`` (runpy's RuntimeWarning, once per worker process).
+# The study names are imported on first use (PEP 562), not here: the study runner brings
+# pandas and tqdm along when it runs, and ``import exuclear`` stays light.  ``python -m
+# exuclear.study`` runs the package's ``__main__``, which nothing imports before runpy runs
+# it, so runpy's double-import warning cannot arise, in the parent or in a worker.
 _LAZY = {"Study": "study", "grid": "study", "sample": "study", "run_study": "study"}
 
 
@@ -82,13 +80,13 @@ __all__ = [
     "CreateClearanceJoint", "AddClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
     "make_joint", "Lubrication",
     # contact laws
-    "contact_law", "ContactLaw", "V_MIN_DEFAULT",
+    "contact_law", "ContactLaw",
     # friction
     "friction_law",
     # materials
     "Material", "MATERIALS", "composite_modulus",
     # settings and runs
-    "SolverSettings", "METHODS", "BACKENDS", "DEFAULT_BACKEND", "simulate", "SimulationResult", "OUTPUT_COLUMNS",
+    "SolverSettings", "simulate", "SimulationResult",
     # convergence check
     "check_convergence", "RunRecord", "ConvergenceResult",
     # studies

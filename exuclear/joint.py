@@ -10,7 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import NamedTuple
 
-from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, is_elastic, pair_name, split_law_name
+from .contact import V_MIN_DEFAULT, ContactLaw, contact_law, law_and_restitution
 from .film import FilmLaw, Lubrication
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
@@ -146,7 +146,7 @@ def make_joint(
         ``"none"``, ``"coulomb:MU"``, ``"paper"`` or a :class:`FrictionLaw`.
     v_min : float, optional
         Floor of the onset velocity in the damping term [m/s]; default
-        :data:`exuclear.V_MIN_DEFAULT`.
+        :data:`exuclear.contact.V_MIN_DEFAULT`.
     stiffness, damping : str, optional
         The law as a pair instead of ``law``: a name of
         :data:`exuclear.contact.STIFFNESS_MODELS` and one of
@@ -171,17 +171,7 @@ def make_joint(
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
         return ClearanceJoint(law, friction_law(friction), film)
-    if stiffness is not None or damping is not None:
-        if law is not None:
-            raise ValueError("give either `law` or `stiffness`/`damping`, not both")
-        law = pair_name(stiffness, damping)
-    elif law is None:
-        law = DEFAULT_LAW
-    split_law_name(law)  # unknown names fail here, listing the known ones
-    if cr is None:
-        if not is_elastic(law):
-            raise ValueError(f"`cr` (coefficient of restitution in (0, 1]) is required for the {law!r} law")
-        cr = 1.0
+    law, cr = law_and_restitution(law, stiffness, damping, cr, default_cr=None)
     if E_star is None:
         E_star = composite_modulus(DEFAULT_MATERIAL if journal_material is None else journal_material,
                                    DEFAULT_MATERIAL if bearing_material is None else bearing_material)

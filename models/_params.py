@@ -22,7 +22,7 @@ from dataclasses import Field, fields
 from typing import Any
 
 from exuclear.checks import check_nonnegative, check_positive, check_real
-from exuclear.study import Column
+from exuclear.columns import Column
 
 #: A field's rule: takes the field's name and value, returns the value (a float for the
 #: numeric rules) or raises ``ValueError`` naming the field.
@@ -169,7 +169,7 @@ _UNIT = re.compile(r"\s*\[([^\]]+)\]")
 
 
 def column(f: Field, label: str | None = None) -> Column:
-    """The study :class:`~exuclear.study.Column` of a parameter field: its help text (up to
+    """The study :class:`~exuclear.columns.Column` of a parameter field: its help text (up to
     a colon, semicolon or parenthesis) as the label, the unit in its brackets, its short
     option (:func:`param`'s ``option``) as the other spelling.  ``label`` replaces the
     label where the help does not read as one."""

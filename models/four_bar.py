@@ -112,7 +112,7 @@ class FourBarParams:
     law, cr, journal_material, bearing_material, friction, v_min
         The clearance joint's physics, as in :func:`exuclear.make_joint`.
     backend : str
-        How the clearance joint's forces are evaluated (:data:`exuclear.BACKENDS`).
+        How the clearance joint's forces are evaluated (:data:`exuclear.engine.BACKENDS`).
     max_penetration : float, optional
         Penetration [m] beyond which a run stops; None: the library's default bound.
     """

@@ -54,11 +54,11 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.columns import Column
 from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
 from exuclear.engine.outputs import FILM_OUTPUT_COLUMNS
 from exuclear.materials import MATERIALS
-from exuclear.study import Column
 
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
 from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication
@@ -319,7 +319,7 @@ def run_approach(params: JournalBearingParams,
 
 def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem: str = "journal_bearing") -> list[str]:
     """Write the force-penetration and rate-penetration plots of the paper's Figs. 4-7."""
-    from exuclear.plotting import impact_curves
+    from exuclear.models.figures import impact_curves
 
     return impact_curves(results, directory, stem)
 

@@ -1,6 +1,6 @@
 """A rigid shaft in two misaligned clearance bearings: tilt, edge loads and the force along each bearing.
 
-Scene of exuclear (issue 14, docs/physics.md section 9.5); no published scene with numbers
+Scene of exuclear (docs/physics.md section 9.5); no published scene with numbers
 was reached, so it is stated here in full.  A steel shaft (radius R_J, length 0.12 m)
 runs in two fixed bearings A and B, 0.1 m apart, each of the paper's journal-bearing
 geometry (R_B = 10 mm, c = 0.1 mm, L = 15 mm).  Bearing B sits ``misalignment`` higher than

@@ -13,11 +13,14 @@ import subprocess
 import sys
 import warnings
 
+import exudyn as exu
 import numpy as np
 import pytest
 from exudyn.itemInterface import SensorObject
 
 import exuclear
+from exuclear.engine import OUTPUT_COLUMNS
+from exuclear.models import figures
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from exuclear.models.slider_crank import SliderCrankParams
@@ -53,7 +56,7 @@ def test_ideal_joint_force_is_the_reaction_exudyn_computes():
     revolutes = [i for i in range(mbs.systemData.NumberOfObjects())
                  if mbs.GetObject(i)["objectType"] == "JointRevolute2D"]
     sensor = mbs.AddSensor(SensorObject(objectNumber=revolutes[-1], storeInternal=True, writeToFile=False,
-                                        outputVariableType=sc.exu.OutputVariableType.Force))
+                                        outputVariableType=exu.OutputVariableType.Force))
     mbs.Assemble()
     assert exuclear.simulate(mbs, sc.default_settings(params)).success
     cols = sc.columns(model)
@@ -128,8 +131,8 @@ def test_spectrum_has_a_log_frequency_axis_with_room_below_the_crank_line(tmp_pa
     # the sweep figures of validation/ share the axis helper
     t = np.arange(0.0, 0.24, 1e-5)
     cols = {"time": t, "crank_angle": np.degrees(2 * np.pi * crank_hz * t), "slider_a": np.cos(2 * np.pi * crank_hz * t)}
-    exuclear.plotting.slider_crank_sweep_figures([("case", cols)], None, 1e-4, str(tmp_path), "sweep",
-                                                 quantities=("spectrum",))
+    figures.slider_crank_sweep_figures([("case", cols)], None, 1e-4, str(tmp_path), "sweep",
+                                       quantities=("spectrum",))
     axes = _spectrum_axes(kept_figures)
     assert len(axes) == 2
     for ax in axes:
@@ -159,7 +162,7 @@ def test_journal_bearing_dt_out_end_time_and_csv(tmp_path):
     status, out, _ = cli(jb, "--dt-out", "1e-6", "--end-time", "2e-4", "--csv", str(path), "--json")
     assert status == 0
     names, data = read_csv(path)
-    assert names == ["time", *exuclear.OUTPUT_COLUMNS]
+    assert names == ["time", *OUTPUT_COLUMNS]
     assert 195 <= len(data) <= 202  # 2e-4 s every 1e-6 s
     # the paper's departure velocity at cr 0.9: 0.269 m/s (paper, example 1)
     assert '"departure_velocity": 0.26' in out

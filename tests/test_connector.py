@@ -243,18 +243,10 @@ def test_the_kernels_read_the_same_run_start_record_and_step_constants():
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)
 
 
-def test_add_clearance_joint_is_deprecated_and_names_the_call_to_write():
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
-    with pytest.warns(DeprecationWarning) as caught:
-        exuclear.add_clearance_joint(mbs, body, ground, journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9,
-                                     max_penetration=1e-5)
-    message = str(caught[0].message)
-    # the bearing first, and the new name of the penetration limit
-    assert f"CreateClearanceJoint(mbs, itemNumbers=[{ground!r}, {body!r}]" in message
-    assert "maxPenetration=1e-05" in message and "AddClearanceJoint(mbs, markerNumbers=" in message
+def test_the_deprecated_add_clearance_joint_is_gone_from_the_package():
+    # CreateClearanceJoint (bodies) and AddClearanceJoint (markers) are the two ways in
+    assert not hasattr(exuclear, "add_clearance_joint") and "add_clearance_joint" not in dir(exuclear)
+    assert callable(exuclear.CreateClearanceJoint) and callable(exuclear.AddClearanceJoint)
 
 
 @pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])

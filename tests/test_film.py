@@ -1,4 +1,4 @@
-"""Film laws of the lubricated joint (exuclear/film.py, docs/physics.md section 10): published
+"""Film laws of the lubricated joint (exuclear/film/, docs/physics.md section 10): published
 numbers, closed forms and properties.  Pure physics, no Exudyn, no reference solver
 (tests/test_reynolds.py compares with that)."""
 from __future__ import annotations
@@ -383,11 +383,15 @@ def test_film_module_is_pure_physics():
 
     import exuclear.film
 
-    tree = ast.parse(pathlib.Path(exuclear.film.__file__).read_text())
-    imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
-    imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
-    assert not {name for name in imported if name.split(".")[0] in ("exudyn", "matplotlib")}
-    assert imported <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "checks", "geometry"}
+    files = sorted(pathlib.Path(exuclear.film.__file__).parent.glob("*.py"))  # the film package, by role
+    own = {path.stem for path in files}
+    for path in files:
+        tree = ast.parse(path.read_text())
+        imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
+        imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
+        assert not {name for name in imported if name.split(".")[0] in ("exudyn", "matplotlib")}, path.name
+        assert imported - own <= {"__future__", "math", "abc", "dataclasses", "typing", "numpy", "checks", "geometry"}, \
+            path.name
 
 
 # -- the finite model's width range and its smoothness where a journal comes to rest -------------

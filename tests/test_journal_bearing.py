@@ -9,6 +9,7 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 import exuclear
+from exuclear.engine import OUTPUT_COLUMNS
 from exuclear.models.journal_bearing import JournalBearingParams, run
 
 
@@ -90,7 +91,7 @@ def test_implicit_solver_agrees_with_dopri5():
 
 def test_outputs_are_recorded():
     result, out = run(JournalBearingParams.paper())
-    assert set(out) == {"time", *exuclear.OUTPUT_COLUMNS}
+    assert set(out) == {"time", *OUTPUT_COLUMNS}
     contact = out["in_contact"] > 0
     assert np.all(out["normal_force"][~contact] == 0.0)
     assert np.all(out["normal_force"] >= 0.0)

@@ -165,7 +165,7 @@ def test_short_model_settles_at_ocvirks_closed_form(width_ratio, eps_target):
 @needs_compiled
 def test_long_model_settles_at_sommerfelds_closed_form():
     # the long model: F_r = 12 eta omega R^3 B eps^2 / (c^2 (2 + eps^2) (1 - eps^2)),
-    # F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2)) (exuclear/film.py LongBearing)
+    # F_t = 6 pi eta omega R^3 B eps / (c^2 (2 + eps^2) sqrt(1 - eps^2)) (exuclear/film/laws.py LongBearing)
     eps_target, width_ratio = 0.6, 1.0
     k = ETA * OMEGA * R ** 3 * (2.0 * R * width_ratio) / C ** 2
     f_r = 12.0 * k * eps_target ** 2 / ((2.0 + eps_target ** 2) * (1.0 - eps_target ** 2))

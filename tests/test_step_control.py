@@ -11,7 +11,7 @@ import pytest
 from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
-from exuclear.engine import kernel
+from exuclear.engine import DEFAULT_BACKEND, kernel
 
 #: The paper's departure velocity of the journal impact [m/s] (README, models/journal_bearing.py).
 DEPARTURE = 0.269
@@ -21,7 +21,7 @@ RTOL = 1e-2
 BACKENDS = (["compiled"] if kernel.COMPILED is not None else []) + ["python"]
 
 
-def impact(backend: str = exuclear.DEFAULT_BACKEND, **options):
+def impact(backend: str = DEFAULT_BACKEND, **options):
     """The README's journal impact: a 0.04 kg journal touching the bearing wall at 0.3 m/s."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
@@ -228,11 +228,11 @@ def test_both_kernels_grow_the_same_steps(impact_step):
 def test_one_joint_in_contact_keeps_the_others_free_flight_from_growing_the_step():
     # the second journal rests on its wall all along: the step grows by Exudyn's own rule
     # only (at most twice the step before), never by the first joint's free flight
-    steps, impacts = _steps_and_contacts(exuclear.DEFAULT_BACKEND, joints=2)
+    steps, impacts = _steps_and_contacts(DEFAULT_BACKEND, joints=2)
     first_end = impacts[0].onset_time + impacts[0].duration
     h = [h for t, h in steps if t > first_end]
     assert max(b / a for a, b in zip(h, h[1:])) <= 2.0 * (1 + 1e-9)
-    single, _ = _steps_and_contacts(exuclear.DEFAULT_BACKEND)
+    single, _ = _steps_and_contacts(DEFAULT_BACKEND)
     h1 = [h for t, h in single if t > first_end]
     assert max(b / a for a, b in zip(h1, h1[1:])) > 2.0
 

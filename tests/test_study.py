@@ -14,6 +14,8 @@ import pandas as pd
 import pytest
 
 from exuclear import study as st
+from exuclear.study.cli import _scene_of, _scene_parser
+from exuclear.study.runner import _batch_size
 
 # -- cheap study functions (module level: worker processes import them by name) -------------
 
@@ -298,10 +300,10 @@ def test_dask_local_cluster_rows_equal_serial_rows(tmp_path: Path):
 
 
 def test_batch_size():
-    assert st._batch_size([0.0, 0], 100, 2) == 1  # nothing measured yet
-    assert st._batch_size([1.0, 100], 10_000, 2) == 100  # 10 ms runs: 1 s of work per task
-    assert st._batch_size([1.0, 100], 400, 2) == 50  # ... but 4 tasks per worker over what is left
-    assert st._batch_size([20.0, 10], 10_000, 2) == 1  # 2 s runs: one per task
+    assert _batch_size([0.0, 0], 100, 2) == 1  # nothing measured yet
+    assert _batch_size([1.0, 100], 10_000, 2) == 100  # 10 ms runs: 1 s of work per task
+    assert _batch_size([1.0, 100], 400, 2) == 50  # ... but 4 tasks per worker over what is left
+    assert _batch_size([20.0, 10], 10_000, 2) == 1  # 2 s runs: one per task
 
 
 # -- the scenes ------------------------------------------------------------------------------
@@ -410,7 +412,7 @@ def test_the_study_speaks_the_scene_s_option_names(name, module):
 
     scene_parser = importlib.import_module(f"exuclear.models.{module}")._parser()
     study = st.scene(name)
-    study_parser = st._scene_parser(study, "study")
+    study_parser = _scene_parser(study, "study")
 
     def spellings(parser, dest):
         return {flag for action in parser._actions if action.dest == dest for flag in action.option_strings}
@@ -432,13 +434,13 @@ def test_plot_axes_say_what_and_in_which_unit(tmp_path: Path):
     pytest.importorskip("matplotlib")
     from matplotlib.figure import Figure
 
-    from exuclear.study_plot import axis_label, plot_metric
+    from exuclear.study.plot import axis_label, plot_metric
 
     out = tmp_path / "labels.csv"
     assert st.main(["journal-bearing", "--cr", "0.5,0.9", "--length", "0.01,0.02", "--workers", "1", "--no-progress",
                     "--out", str(out)]) == 0
     table = st.load_table(out)
-    study = st._scene_of(table)  # what the command line labels by when no --scene is given
+    study = _scene_of(table)  # what the command line labels by when no --scene is given
     assert study is not None and study.name == "journal-bearing"
     ax = plot_metric(table, "peak_force", "cr", by="length", ax=Figure().subplots(), columns=study.columns)
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("coefficient of restitution", "peak contact force [N]")

@@ -180,10 +180,6 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "wrong type", "exuclear.SolverSettings(end_time=0.1, method=5)", "ValueError"),
     BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time=0.1, verbose="yes")', "ValueError"),
     BadInput("API", "wrong type", 'exuclear.SolverSettings(end_time=0.1, step="fast")', "ValueError", says="'auto'"),
-    BadInput("API", "wrong type", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, journal_point="ab")',
-             "ValueError"),
-    BadInput("API", "wrong type", "exuclear.add_clearance_joint(system()[0], 1.5, 0, **PAPER, cr=0.9)", "ValueError"),
-    BadInput("API", "wrong type", 'exuclear.add_clearance_joint("mbs", 1, 0, **PAPER, cr=0.9)', "ValueError", says="`mbs`"),
     BadInput("API", "wrong type", 'exuclear.simulate("mbs", exuclear.SolverSettings(end_time=0.1))', "ValueError"),
     BadInput("API", "wrong type", 'exuclear.simulate(system()[0], {"end_time": 0.1})', "ValueError"),
     BadInput("API", "wrong type", 'SliderCrankParams.paper(crank_speed="500")', "ValueError"),
@@ -199,16 +195,12 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "missing value", "exuclear.make_joint(**PAPER)", "ValueError"),
     BadInput("API", "missing value", "exuclear.make_joint(bearing_radius=10e-3, length=15e-3, cr=0.9)", "TypeError"),
     BadInput("API", "missing value", "exuclear.SolverSettings()", "TypeError"),
-    BadInput("API", "unknown name", "exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, radius=1e-2)",
-             "TypeError"),
     # -- API: unknown names
     BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, law="hertzian", cr=0.9)', "ValueError"),
     BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, cr=0.9, journal_material="brass")', "ValueError"),
     BadInput("API", "unknown name", 'exuclear.make_joint(**PAPER, cr=0.9, friction="viscous")', "ValueError"),
     BadInput("API", "unknown name", 'exuclear.SolverSettings(end_time=0.1, method="rk45")', "ValueError"),
     BadInput("API", "unknown name", 'SliderCrankParams.paper(formulation="tree")', "ValueError"),
-    BadInput("API", "unknown name", 'exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, backend="numba")',
-             "ValueError"),
     # -- API: the joint as an Exudyn item (CreateClearanceJoint / AddClearanceJoint)
     BadInput("API", "inconsistent input", "exuclear.CreateClearanceJoint(system()[0], itemNumbers=[0, 1], "
                                           "axis=[0, 0, 0], **PAPER, cr=0.9)", "ValueError", says="`axis`"),
@@ -262,10 +254,6 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'setattr(exuclear.CreateClearanceJoint(**on_marker(), **PAPER, cr=0.9), '
                                           '"rate_limit", -1)',
              "ValueError", says="`rate_limit`"),
-    BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(system()[0], 0, 0, **PAPER, cr=0.9)",
-             "ValueError"),
-    BadInput("API", "inconsistent input", "exuclear.add_clearance_joint(*system(), **PAPER, cr=0.9, "
-                                          "max_penetration=-1e-6)", "ValueError"),
     BadInput("API", "inconsistent input", "SliderCrankParams.paper(rod_length=0.04)", "ValueError"),
     BadInput("API", "inconsistent input", "SliderCrankParams.paper(clearance=0.02)", "ValueError", says="`clearance`"),
     BadInput("API", "inconsistent input", 'SliderCrankParams.paper(clearance_joints=("O", "A", "B"))', "accepted"),

@@ -35,8 +35,8 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 import exuclear
+from exuclear.models.figures import impact_curves
 from exuclear.models.journal_bearing import ImpactResult, JournalBearingParams, run
-from exuclear.plotting import impact_curves
 from exuclear.study import run_study
 from validation._cli import add_workers_option
 from validation._tables import write_csv

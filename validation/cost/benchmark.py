@@ -70,17 +70,17 @@ def crank_rows(repeats: int) -> list[tuple[str, str, str]]:
 def impact_row(repeats: int) -> tuple[str, str, str]:
     params = jb_model.JournalBearingParams.paper()
     walls = {}
-    for backend in ("python", exuclear.DEFAULT_BACKEND):
+    for backend in ("python", exuclear.engine.DEFAULT_BACKEND):
         settings = replace(jb_model.default_settings(params), step=1e-7, output_step=1e-6)
 
         def run(backend=backend, settings=settings):
             return exuclear.simulate(jb_model.build(replace(params, backend=backend)).mbs, settings).wall_time
 
         walls[backend] = _median(run, repeats)
-    ratio = walls["python"] / walls[exuclear.DEFAULT_BACKEND]
+    ratio = walls["python"] / walls[exuclear.engine.DEFAULT_BACKEND]
     return ("element overhead, journal impact (steps <= 1e-7 s)", "compiled >= 2.5x faster than Python",
-            f"python {walls['python'] * 1e3:.2f} ms, {exuclear.DEFAULT_BACKEND} "
-            f"{walls[exuclear.DEFAULT_BACKEND] * 1e3:.2f} ms: {ratio:.1f}x")
+            f"python {walls['python'] * 1e3:.2f} ms, {exuclear.engine.DEFAULT_BACKEND} "
+            f"{walls[exuclear.engine.DEFAULT_BACKEND] * 1e3:.2f} ms: {ratio:.1f}x")
 
 
 def floor_rows(repeats: int) -> list[tuple[str, str, str]]:
@@ -144,7 +144,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be at least 1")
-    print(f"compiled kernel: {exuclear.engine.kernel.STATUS}; default backend: {exuclear.DEFAULT_BACKEND}; "
+    print(f"compiled kernel: {exuclear.engine.kernel.STATUS}; default backend: {exuclear.engine.DEFAULT_BACKEND}; "
           f"medians of {args.repeats}")
     rows = crank_rows(args.repeats) + [impact_row(args.repeats)] + floor_rows(args.repeats)
     spatial = spatial_row()

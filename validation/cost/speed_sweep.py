@@ -51,7 +51,7 @@ def figure(table, path: str) -> str:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from exuclear.study_plot import plot_metric
+    from exuclear.study.plot import plot_metric
 
     columns = st.scene("slider-crank").columns  # axis labels with units, the scene's own
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8.0, 7.5), sharex=True)

@@ -79,7 +79,7 @@ class Config:
     side: str                      # "exuclear" or "scipy"
     points: tuple[object, ...]     # settings changes (exuclear) or (method, rtol) (scipy)
     formulation: str = "minimal"
-    backend: str = exuclear.DEFAULT_BACKEND
+    backend: str = exuclear.engine.DEFAULT_BACKEND
 
 
 def crank_configs(quick: bool) -> list[Config]:
@@ -93,7 +93,7 @@ def crank_configs(quick: bool) -> list[Config]:
 
     rtols = (1e-5, 1e-6) if quick else (1e-5, 1e-6, 1e-7, 1e-8)
     impacts = (2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
-    compiled = exuclear.DEFAULT_BACKEND
+    compiled = exuclear.engine.DEFAULT_BACKEND
     configs = [
         Config(f"minimal, {compiled}, dopri5", "exuclear", dopri(rtols)),
         Config("minimal, python, dopri5", "exuclear", dopri(rtols[:3]), backend="python"),
@@ -125,7 +125,7 @@ def impact_configs(quick: bool) -> list[Config]:
     steps = (1e-7, 2e-8) if quick else (1e-6, 3e-7, 1e-7, 3e-8, 1e-8)
     alpha = tuple({"method": "generalized-alpha", "step": h} for h in steps)
     configs = [Config(f"{b}, {name}", "exuclear", pts, backend=b)
-               for b in exuclear.BACKENDS for name, pts in (("dopri5", dopri), ("generalized-alpha", alpha))]
+               for b in exuclear.engine.BACKENDS for name, pts in (("dopri5", dopri), ("generalized-alpha", alpha))]
     for method in ("DOP853", "RK45", "LSODA"):
         configs.append(Config(f"SciPy {method}", "scipy", tuple((method, r) for r in rtols)))
     return configs
@@ -430,7 +430,7 @@ def report_md(points: Sequence[Point], repeats: int, runtime: float, profiles: S
     lines += [markdown_table(("scene", "configuration", "cheapest setting", "wall [s]", "error",
                                  "vs fastest SciPy at that error"), rows), ""]
     if profiles:
-        lines += [f"## Where the time goes (default settings, {exuclear.DEFAULT_BACKEND} backend)", "", _PROFILE_NOTE, "",
+        lines += [f"## Where the time goes (default settings, {exuclear.engine.DEFAULT_BACKEND} backend)", "", _PROFILE_NOTE, "",
                   profile_md(profiles), ""]
     return "\n".join(lines)
 
@@ -451,7 +451,7 @@ def headline(points: Sequence[Point]) -> list[str]:
             default = replace(sc_model.default_settings(params), output_step=OUTPUT_STEP)
             for p in points:
                 if (p.scene == scene and p.settings == default and p.config.formulation == formulation
-                        and p.config.backend == exuclear.DEFAULT_BACKEND):
+                        and p.config.backend == exuclear.engine.DEFAULT_BACKEND):
                     out.append(f"{scene}, default {formulation} ({p.setting}): {p.wall:.3f} s, error {p.error:.2e} c, "
                                f"fastest SciPy at that error: {ratio_text(points, p)}")
     return out

@@ -171,7 +171,7 @@ def run_study(quick: bool = False, progress: Callable[[str], None] = _print,
                 raise RuntimeError(f"floor v_min = {part['v_min']:g} m/s failed: {rec['message']}")
             floor.append(_floor_row(part["v_min"], rec))
             figures.setdefault("resting", []).append((part["v_min"], _trace(rec, "resting")))
-            if part["v_min"] == exuclear.V_MIN_DEFAULT:
+            if part["v_min"] == exuclear.contact.V_MIN_DEFAULT:
                 figures["dropped"] = _trace(rec, "dropped")
             progress(f"floor v_min = {part['v_min']:g} m/s: done ({floor[-1].wall:.1f} s)")
             continue

@@ -55,7 +55,7 @@ class JournalRun(NamedTuple):
     wall: float
 
 
-def resting_params(start_gap: float = 0.0, v_min: float = exuclear.V_MIN_DEFAULT, gravity: float = GRAVITY,
+def resting_params(start_gap: float = 0.0, v_min: float = exuclear.contact.V_MIN_DEFAULT, gravity: float = GRAVITY,
                    end_time: float = RESTING_TIME) -> JournalBearingParams:
     """The paper's journal (docs/physics.md section 6.1) at rest under gravity, ``start_gap`` from the wall."""
     return JournalBearingParams.paper(cr=RESTING_CR, impact_velocity=0.0, gravity=gravity, start_gap=start_gap,

@@ -35,7 +35,7 @@ def plot_resting(data: dict[str, object], directory: str) -> str:
         ax.plot(dropped.out["time"] * 1e3, dropped.out["penetration"] * 1e9, lw=0.7, label="dropped from the centre")
         ax.axhline(dropped.delta_s * 1e9, color="k", ls="--", lw=1.0, label="static penetration (analytic)")
         ax.set_ylim(-5 * dropped.delta_s * 1e9, 50 * dropped.delta_s * 1e9)
-        ax.set_title(f"journal dropped from the bearing centre (v_min = {exuclear.V_MIN_DEFAULT:g} m/s); free flight "
+        ax.set_title(f"journal dropped from the bearing centre (v_min = {exuclear.contact.V_MIN_DEFAULT:g} m/s); free flight "
                      "below the axis", fontsize=10)
         ax.legend(fontsize=8)
     ax.set_xlabel("time [ms]")

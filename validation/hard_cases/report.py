@@ -50,7 +50,7 @@ def floor_md(rows: Sequence[FloorRow]) -> str:
 def floor_conclusion(rows: Sequence[FloorRow]) -> str:
     """What the floor study shows, in numbers taken from ``rows``."""
     by = {r.v_min: r for r in rows}
-    lo, mid, hi = by[FLOORS[0]], by[exuclear.V_MIN_DEFAULT], by[FLOORS[-1]]
+    lo, mid, hi = by[FLOORS[0]], by[exuclear.contact.V_MIN_DEFAULT], by[FLOORS[-1]]
     slow = min(lo.restitution)
     lines = [
         f"- Impacts faster than the floor do not see it: at {max(lo.restitution):g} m/s the effective restitution is "

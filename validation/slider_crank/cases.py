@@ -147,7 +147,7 @@ def describe(params: SliderCrankParams) -> str:
         return f"ideal mechanism ({params.formulation})"
     text = (f"cr = {params.cr:g}, {params.journal_material} journal / {params.bearing_material} bearing, "
             f"friction {params.friction}")
-    if params.v_min != exuclear.V_MIN_DEFAULT:
+    if params.v_min != exuclear.contact.V_MIN_DEFAULT:
         text += f", v_min = {params.v_min:.4g} m/s"
     return text
 
@@ -160,7 +160,7 @@ class History:
 
     ``theta`` is the crank angle [deg] from the crank speed (the flywheel of the
     minimal formulation holds it to 1e-6); ``out`` holds
-    :data:`exuclear.OUTPUT_COLUMNS` and ``time``.
+    :data:`exuclear.engine.OUTPUT_COLUMNS` and ``time``.
     """
 
     theta: np.ndarray

@@ -364,7 +364,7 @@ def frozen_md(diag: Diagnostics, done: Sequence[tuple[Sweep, SweepRows]]) -> str
         "A modelling difference that could explain the paper's picture: a v0 that is not lowered by the settling "
         "bounces, as if every contact were damped like the first impact (or v0 were a fixed reference speed). "
         "Demonstrated without touching the model through the law's parameter `v_min`, raised from "
-        f"{exuclear.V_MIN_DEFAULT:g} m/s to the first impact's onset speed {diag.frozen_v_min:.4f} m/s "
+        f"{exuclear.contact.V_MIN_DEFAULT:g} m/s to the first impact's onset speed {diag.frozen_v_min:.4f} m/s "
         "(v0_eff = max(v0, v_min)); restitution sweeps (cr = "
         f"{', '.join(f'{cr:g}' for cr in CR_SWEEP)}):\n\n" + markdown_table(_SHORT_HEADER, rows) + "\n\n"
         + "\n".join(summaries) + "\n\nThe paper does not say how it handles v0 in a long contact; docs/physics.md fixes "

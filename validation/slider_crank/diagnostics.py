@@ -128,7 +128,7 @@ def run_diagnostics(runner: Runner, sweeps: Sequence[Sweep], ideal: dict[str, np
     tolerance = tolerance_ladder(runner, ideal, revolutions)
     histories = contact_histories(runner, sweeps)
     firsts = [h.v0_first for h in histories.values()]
-    v_min = max(firsts) if firsts else exuclear.V_MIN_DEFAULT
+    v_min = max(firsts) if firsts else exuclear.contact.V_MIN_DEFAULT
     frozen = frozen_v0_sweeps(runner, sweeps, v_min, ideal)
     paper = SliderCrankParams.paper(revolutions=revolutions)
     force = ideal_force_stats(paper)

@@ -7,8 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 
 import exuclear
+from exuclear.models.figures import crank_angle_panels, slider_crank_sweep_figures
 from exuclear.models.slider_crank import SliderCrankParams, ideal_joint_force
-from exuclear.plotting import crank_angle_panels, slider_crank_sweep_figures
 from validation._tables import write_csv
 from validation.slider_crank.cases import BAND, CR_SWEEP, FROZEN_FIGURES, SPECTRUM_STEP, STARTUP, Runner, Sweep
 from validation.slider_crank.diagnostics import Diagnostics, SweepRows
@@ -95,7 +95,7 @@ def _frozen_overview(diag: Diagnostics, done: Sequence[tuple[Sweep, SweepRows]],
     panels = []
     for value in (f"{CR_SWEEP[0]:g}", f"{CR_SWEEP[-1]:g}"):
         curves = []
-        for name, cols in ((f"v_min {exuclear.V_MIN_DEFAULT:g} m/s", default.get(value)),
+        for name, cols in ((f"v_min {exuclear.contact.V_MIN_DEFAULT:g} m/s", default.get(value)),
                            (f"v_min {diag.frozen_v_min:.3f} m/s", frozen.get(value))):
             if cols is not None:
                 dev = cols["slider_a"] - np.interp(cols["time"], ideal["time"], ideal["slider_a"])

@@ -1,6 +1,8 @@
-"""Opt-in plotting helpers (matplotlib is imported here only, and only on use).
+"""Figures of the scenes: the journal-bearing's impact curves and the slider-crank's
+plots against crank angle, its orbit and spectra (matplotlib, imported only on use).
 
-The figures are written to files and never shown: each is a
+They live with the scenes, not in the library, because each knows a scene's outputs by
+name (``slider_x``, ``crank_moment``, ...).  The figures are written to files and never shown: each is a
 :class:`matplotlib.figure.Figure` made outside pyplot, which ``savefig`` renders with
 matplotlib's Agg canvas, so no backend is chosen or switched and a user's pyplot session
 is left alone.
@@ -13,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .spectrum import amplitude_spectrum
+from exuclear.spectrum import amplitude_spectrum
 
 #: Titles longer than this many characters are wrapped so that they fit the figure.
 _TITLE_WIDTH = 55

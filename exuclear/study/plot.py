@@ -8,7 +8,7 @@ canvas); a figure returned to draw on further is made by pyplot, in the caller's
 parameter (lines, or points for a bifurcation-style diagram; one set per value of
 ``by``) or over two (a heat map).  Failed runs are left out and counted in the title.
 Axes are labelled with what a column holds and its unit, from the study's
-:class:`~exuclear.study.Column` table (a scene's ``STUDY_COLUMNS``), and with the bare
+:class:`~exuclear.columns.Column` table (a scene's ``STUDY_COLUMNS``), and with the bare
 column name where it has none.
 """
 from __future__ import annotations
@@ -38,8 +38,8 @@ def _select(table, metric: str, names: list[str], where: Mapping[str, Any]):
 
 def axis_label(name: str, columns: Mapping[str, Any] | None = None) -> str:
     """``"label [unit]"`` of column ``name`` from ``columns`` (name ->
-    :class:`~exuclear.study.Column`) or the status columns' table; else ``name`` itself."""
-    from .study import STATUS_LABELS
+    :class:`~exuclear.columns.Column`) or the status columns' table; else ``name`` itself."""
+    from .table import STATUS_LABELS
 
     column = (columns or {}).get(name) or STATUS_LABELS.get(name)
     return column.axis_label if column is not None else name
@@ -74,7 +74,7 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
         Save the figure there and close it (if pyplot holds it); returns the path.
         Without it, returns the Axes.
     columns : mapping, optional
-        What the columns hold, name -> :class:`~exuclear.study.Column` (the study's
+        What the columns hold, name -> :class:`~exuclear.columns.Column` (the study's
         ``Study.columns``, e.g. ``scene("slider-crank").columns``): the axis labels with
         units (:func:`axis_label`).
     """
