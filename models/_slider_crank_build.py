@@ -287,7 +287,7 @@ def build(params: SliderCrankParams) -> Scene:
     return Scene(params, mbs, joints, sensors, build_time=time.perf_counter() - start, main_joint="B")
 
 
-#: Default settings, chosen by ``validation/work_precision.py`` as the cheapest of each
+#: Default settings, chosen by ``validation/cost/work_precision.py`` as the cheapest of each
 #: formulation that holds the eccentricity error below 1 % of the clearance on the
 #: paper's cases (cr 0.9 and 0.3) over two revolutions.  Minimal: DOPRI5 with steps of
 #: at most 1e-4 s (longer free-flight steps would be interpolated linearly between the

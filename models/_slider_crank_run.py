@@ -28,7 +28,7 @@ MINIMAL_DEFAULTS = {"method": "dopri5", "step": 1e-4, "rtol": 1e-7, "atol": 1e-1
 #: turns its Jacobian fast (the crank at 500 rpm) and the matrix is small: at the joint's
 #: contractivity 0.2 Newton takes 6.0 iterations per step on 32 Jacobians over two
 #: revolutions, at 0.01 3.7 on 467, in 0.70 of the wall time and on the same path
-#: (python -m validation.benchmark prints both).  Tried and dropped (measured against the
+#: (python -m validation.cost benchmark prints both).  Tried and dropped (measured against the
 #: converged reference, cr 0.9, and python -m validation.scaled_defaults): the
 #: steps the joint controls (``joint_steps``, KAPPA 0.02, 2.5e-5 s): 0.21 s at 6.4e-3 c on
 #: the paper's case but 4.5e-2 c at 2000 rpm and 2.8e-2 c at c = 0.5 mm; 2.2e-5 s steps:

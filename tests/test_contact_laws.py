@@ -1,6 +1,6 @@
 """The contact-law library (issue 13): stiffness models, damping models and their pairs.
 
-Reference values: the former laws' formulas (git history of ``exuclear/contact.py``,
+Reference values: the former laws' formulas (git history of the module ``exuclear.contact``, a package now,
 written out here), closed forms of the sources, the exact restitution relation of the
 Hunt-Crossley force, an independent one-degree-of-freedom SciPy integration
 (:func:`validation.contact_laws.one_dof_impact`) and the paper's published departure
@@ -29,7 +29,7 @@ def _law(name, geometry, e_star, cr):
 
 # -- the five named laws: unchanged forces ---------------------------------------------------
 def _old_force(name, g, e_star, cr, delta, rate, v0, v_min=C.V_MIN_DEFAULT):
-    """The former classes' normal_force (exuclear/contact.py before issue 13), operation for operation."""
+    """The former classes' normal_force (the module exuclear.contact before issue 13), operation for operation."""
     if delta <= 0.0:
         return 0.0
     v0_eff = v0 if v0 > v_min else v_min
