@@ -10,6 +10,7 @@ function called at the elbow: ``exuclear.CreateClearanceJoint`` takes the same
 joint's own parameters.  ``constrainAxial=True`` keeps what the replaced joint held along
 its axis (axial translation and tilt), so the contact acts in the plane of motion.
 """
+
 import exudyn as exu
 import exudyn.utilities as eu
 import matplotlib.pyplot as plt
@@ -18,7 +19,7 @@ from exudyn.itemInterface import SensorBody, SensorObject
 
 import exuclear
 
-DENSITY, LENGTH, WIDTH = 7850.0, 0.3, 0.02   # steel bar [kg/m^3, m, m]
+DENSITY, LENGTH, WIDTH = 7850.0, 0.3, 0.02  # steel bar [kg/m^3, m, m]
 
 
 def build(clearance: bool):
@@ -26,24 +27,56 @@ def build(clearance: bool):
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.CreateGround()
     inertia = eu.InertiaCuboid(DENSITY, [LENGTH, WIDTH, WIDTH])
-    bars = [mbs.CreateRigidBody(inertia=inertia, referencePosition=[(k + 0.5) * LENGTH, 0, 0],
-                                gravity=[0, -9.81, 0]) for k in range(2)]
-    mbs.CreateRevoluteJoint(itemNumbers=[ground, bars[0]], position=[0, 0, 0], axis=[0, 0, 1])
+    bars = [
+        mbs.CreateRigidBody(
+            inertia=inertia,
+            referencePosition=[(k + 0.5) * LENGTH, 0, 0],
+            gravity=[0, -9.81, 0],
+        )
+        for k in range(2)
+    ]
+    mbs.CreateRevoluteJoint(
+        itemNumbers=[ground, bars[0]], position=[0, 0, 0], axis=[0, 0, 1]
+    )
     elbow = [LENGTH, 0, 0]
     joint = None
     if clearance:
-        joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=bars, position=elbow, axis=[0, 0, 1],
-                                              journal_radius=9.9e-3, bearing_radius=10e-3, length=20e-3,
-                                              law="wang-liu", cr=0.7, journal_material="steel",
-                                              bearing_material="steel", friction="none", constrainAxial=True)
+        joint = exuclear.CreateClearanceJoint(
+            mbs,
+            itemNumbers=bars,
+            position=elbow,
+            axis=[0, 0, 1],
+            journal_radius=9.9e-3,
+            bearing_radius=10e-3,
+            length=20e-3,
+            law="wang-liu",
+            cr=0.7,
+            journal_material="steel",
+            bearing_material="steel",
+            friction="none",
+            constrainAxial=True,
+        )
         connector = joint.objectNumber
     else:
-        connector = mbs.CreateRevoluteJoint(itemNumbers=bars, position=elbow, axis=[0, 0, 1])
+        connector = mbs.CreateRevoluteJoint(
+            itemNumbers=bars, position=elbow, axis=[0, 0, 1]
+        )
     # the same sensors on either joint: ForceLocal is in the revolute joint's frame
-    tip = mbs.AddSensor(SensorBody(bodyNumber=bars[1], localPosition=[LENGTH / 2, 0, 0], storeInternal=True,
-                                   outputVariableType=exu.OutputVariableType.Position))
-    force = mbs.AddSensor(SensorObject(objectNumber=connector, storeInternal=True,
-                                       outputVariableType=exu.OutputVariableType.ForceLocal))
+    tip = mbs.AddSensor(
+        SensorBody(
+            bodyNumber=bars[1],
+            localPosition=[LENGTH / 2, 0, 0],
+            storeInternal=True,
+            outputVariableType=exu.OutputVariableType.Position,
+        )
+    )
+    force = mbs.AddSensor(
+        SensorObject(
+            objectNumber=connector,
+            storeInternal=True,
+            outputVariableType=exu.OutputVariableType.ForceLocal,
+        )
+    )
     mbs.Assemble()
     return mbs, joint, tip, force
 
@@ -64,7 +97,11 @@ runs = {}
 for clearance in (False, True):
     mbs, joint, tip, force = build(clearance)
     solve(mbs)
-    runs[clearance] = (mbs.GetSensorStoredData(tip), mbs.GetSensorStoredData(force), joint)
+    runs[clearance] = (
+        mbs.GetSensorStoredData(tip),
+        mbs.GetSensorStoredData(force),
+        joint,
+    )
     print(f"clearance={clearance}: tip at t = 0.5 s: {runs[clearance][0][-1, 1:3]} m")
 
 # %%
@@ -82,6 +119,11 @@ ax[0].set(xlabel="x [m]", ylabel="y [m]", title="path of the free end", aspect="
 ax[0].legend()
 ax[1].plot(f0[:, 0], np.hypot(f0[:, 1], f0[:, 2]), label="ideal elbow")
 ax[1].plot(f1[:, 0], np.hypot(f1[:, 1], f1[:, 2]), lw=0.8, label="clearance elbow")
-ax[1].set(xlabel="time [s]", ylabel="elbow force |F| [N]", title="load on the elbow", yscale="log")
+ax[1].set(
+    xlabel="time [s]",
+    ylabel="elbow force |F| [N]",
+    title="load on the elbow",
+    yscale="log",
+)
 ax[1].legend()
 plt.show()

@@ -10,6 +10,7 @@ journal impact (:func:`exuclear.models.journal_bearing.run`) over the coefficien
 restitution and the bearing material, on one worker.  The same study from the command
 line: ``exuclear study journal-bearing --cr 0.3:0.9:0.1 --bearing steel,aluminium --out t.csv``.
 """
+
 import contextlib
 import io
 
@@ -21,9 +22,14 @@ from exuclear.models.journal_bearing import JournalBearingParams, run
 
 def impact(values):
     """One run: the parameters of the grid in, a row of results out."""
-    summary, _ = run(JournalBearingParams.paper(cr=values["cr"], bearing_material=values["bearing"]))
-    return {"departure_velocity": summary.departure_velocity, "peak_force": summary.max_force,
-            "duration": summary.contact_duration}
+    summary, _ = run(
+        JournalBearingParams.paper(cr=values["cr"], bearing_material=values["bearing"])
+    )
+    return {
+        "departure_velocity": summary.departure_velocity,
+        "peak_force": summary.max_force,
+        "duration": summary.contact_duration,
+    }
 
 
 study = exuclear.Study(impact, name="journal impact")
@@ -33,7 +39,9 @@ runs = exuclear.grid(cr=[0.3, 0.5, 0.7, 0.9], bearing=["steel", "aluminium"])
 with contextlib.redirect_stderr(io.StringIO()) as bar:
     table = exuclear.run_study(study, runs, workers=1)
 print(bar.getvalue().split("\r")[-1].strip())
-print(table[["cr", "bearing", "departure_velocity", "peak_force", "duration", "success"]])
+print(
+    table[["cr", "bearing", "departure_velocity", "peak_force", "duration", "success"]]
+)
 
 # %%
 # The table is a pandas DataFrame: one row per run, the parameters first, then the results

@@ -10,6 +10,7 @@ one by one, the peak forces.  It needs a function that builds and runs the model
 settings and returns a :class:`exuclear.RunRecord`; here the paper's slider-crank
 (:mod:`exuclear.models.slider_crank`) for a quarter of a crank revolution.
 """
+
 import matplotlib.pyplot as plt
 
 import exuclear
@@ -39,8 +40,16 @@ j = check.joints["B"]
 fig, ax = plt.subplots(figsize=(8, 4), layout="constrained")
 ax.semilogy(j.time * 1e3, j.de / j.clearance, label="|e - e_tighter| / c")
 ax.axhline(0.01, color="grey", ls=":", label="bound: 1 % of c")
-ax.axvline(j.horizon * 1e3, color="C3", ls="--", label=f"paths agree until {j.horizon * 1e3:.1f} ms")
-ax.set(xlabel="time [ms]", ylabel="path difference / clearance [-]",
-       title=f"slider-crank, step {settings.step:.2g} s against {check.reference_settings.step:.2g} s")
+ax.axvline(
+    j.horizon * 1e3,
+    color="C3",
+    ls="--",
+    label=f"paths agree until {j.horizon * 1e3:.1f} ms",
+)
+ax.set(
+    xlabel="time [ms]",
+    ylabel="path difference / clearance [-]",
+    title=f"slider-crank, step {settings.step:.2g} s against {check.reference_settings.step:.2g} s",
+)
 ax.legend()
 plt.show()
