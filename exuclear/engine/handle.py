@@ -34,20 +34,28 @@ REGISTRY_KEY = "exuclear.joints"
 class ClearanceJointHandle:
     """A clearance joint in an Exudyn system; returned by :func:`CreateClearanceJoint`.
 
-    Attributes (Exudyn indices)
-    ---------------------------
-    objectNumber : the joint's connector; ``SensorObject`` on it with ``ForceLocal`` /
-        ``TorqueLocal`` records ``-F_i`` and ``-M_i`` (the loads on the bearing from the
-        journal, in the bearing's joint frame).
-    nodeNumber : the ``NodeGenericData`` with :data:`exuclear.engine.layout.DATA_COLUMNS`
-        after every accepted step.
-    markerNumbers : [bearing marker, journal marker].
-    sensorNumber : the sensor that records the data node (None with ``record=False``).
-    probeNumber, torqueNumber : the bearing-spin probe and torque connectors (None where
-        the bearing is the ground).
-    constraintNumber : the ``ObjectJointGeneric`` of ``constrainAxial=True``, else None.
-    drawingNumber : the ground object whose graphics function draws journal and bearing
-        (``show=True``), else None.
+    The attributes are Exudyn indices.
+
+    Attributes
+    ----------
+    objectNumber : int
+        The joint's connector; ``SensorObject`` on it with ``ForceLocal`` / ``TorqueLocal``
+        records ``-F_i`` and ``-M_i`` (the loads on the bearing from the journal, in the
+        bearing's joint frame).
+    nodeNumber : int
+        The ``NodeGenericData`` with :data:`exuclear.engine.layout.DATA_COLUMNS` after every
+        accepted step.
+    markerNumbers : list of int
+        [bearing marker, journal marker].
+    sensorNumber : int or None
+        The sensor that records the data node (None with ``record=False``).
+    probeNumber, torqueNumber : int or None
+        The bearing-spin probe and torque connectors (None where the bearing is the ground).
+    constraintNumber : int or None
+        The ``ObjectJointGeneric`` of ``constrainAxial=True``, else None.
+    drawingNumber : int or None
+        The ground object whose graphics function draws journal and bearing (``show=True``),
+        else None.
     """
 
     # The system keeps its joints (mbs.variables, for exuclear.simulate), and a handle refers to

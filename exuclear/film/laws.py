@@ -426,7 +426,7 @@ class FiniteBearing(FilmLaw):
 
     def turning_squeeze(self, eps: float, eps_dot: float, omega_eff: float) -> float:
         """``So_V`` of a rotating film, eq. (66a): the approaching and the leaving number of
-        eq. (66) weighted by how far the squeeze has turned the film,
+        eq. (66) weighted by how far the squeeze has turned the film::
 
             w = 1/2 + arctan(SQUEEZE_TURN r) / pi,    r = 2 eps_dot / (eps |omega_eff| sqrt(1 - eps^2)),
             So_V = w So_V(eps) + (1 - w) So_V(-eps)
