@@ -39,8 +39,6 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 # docs/examples/ holds the gallery's sources; sphinx-gallery turns them into auto_examples/
 exclude_patterns = ["_build", "examples", "**.ipynb_checkpoints"]
-templates_path = ["_templates"]
-html_static_path = ["_static"]
 
 # -- MyST ------------------------------------------------------------------------------
 # dollarmath: $...$ and $$...$$ for pages that want LaTeX; physics.md writes its equations

@@ -85,15 +85,24 @@ def _rel(path: pathlib.Path) -> str:
     return path.relative_to(ROOT).as_posix()
 
 
+#: What the doc build writes (docs/conf.py): named in the docs, absent from a checkout.
+GENERATED = ("docs/_build", "docs/api/exuclear.rst", "docs/auto_examples")
+
+
 def _path_exists(mention: str, source: pathlib.Path | None = None) -> bool:
     """A file or folder of the repository; ``models/four_bar`` may name ``models/four_bar.py``.
     In a Markdown page a link may also be relative to the page (``docs/index.md`` linking
     ``validation/zoo.md`` means ``docs/validation/zoo.md``)."""
     mention = mention.rstrip(".")
+    if any(mention.startswith(out) for out in GENERATED):
+        return True
     if "*" in mention:
         return any(ROOT.glob(mention))
     bases = [ROOT] + ([source.parent] if source is not None and source.suffix == ".md" else [])
-    return any((base / mention).exists() or (base / f"{mention}.py").exists() for base in bases)
+    if (ROOT / "docs" / f"{mention}.md").exists():  # a Sphinx document name (docs/index.md's toctree)
+        return True
+    return any((base / mention).exists() or (base / f"{mention}.py").exists() or (base / f"{mention}.md").exists()
+               for base in bases)
 
 
 def slug(heading: str) -> str:
