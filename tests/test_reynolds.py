@@ -193,7 +193,7 @@ def test_rotating_film_turns_its_squeeze_as_the_finite_model_does(width_ratio, e
     # groove at the largest gap) gives its share from its own pure-squeeze numbers.  Measured
     # (256 x 32 nodes, B/D 1/8 and 1, eps 0.5 and 0.9): within 0.016 of the model's share from
     # r = 0.01 to 10 (SQUEEZE_TURN is fitted to these); 0.025 is that and the coarser mesh here
-    from exuclear.film import FiniteBearing, SQUEEZE_TURN
+    from exuclear.film import SQUEEZE_TURN, FiniteBearing
 
     b = bearing(width_ratio)
     s = math.sqrt(1.0 - eps * eps)
