@@ -33,14 +33,12 @@ Of the third-party packages, ``import exuclear`` imports numpy and exudyn only;
 matplotlib, pandas, tqdm, scipy and dask are imported where a function needs them
 (``tests/test_api.py``).
 """
-from .checks import UnitWarning
-from .contact import V_MIN_DEFAULT, ContactLaw, ValidityWarning, contact_law
+from .contact import V_MIN_DEFAULT, ContactLaw, contact_law
 from .convergence import ConvergenceResult, RunRecord, check_convergence
 from .engine import (
     BACKENDS,
     DEFAULT_BACKEND,
     OUTPUT_COLUMNS,
-    AccuracyWarning,
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
@@ -48,6 +46,7 @@ from .engine import (
     add_clearance_joint,  # noqa: F401 - exuclear 0.1's planar form, kept importable while it is deprecated
     simulate,
 )
+from .exceptions import AccuracyWarning, UnitWarning, ValidityWarning
 from .film import Lubrication
 from .friction import friction_law
 from .geometry import BearingGeometry

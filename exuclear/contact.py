@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from .checks import check_choice, check_open_closed, check_positive, check_real
+from .exceptions import ValidityWarning
 from .geometry import BearingGeometry
 
 #: Default floor of the onset velocity in the damping term [m/s] (docs/physics.md eq. (17)):
@@ -70,10 +71,6 @@ _ROOT_MAX_ITER = 200
 #: Unit conversions of Pereira et al.'s fit, which is written in mm, MPa and N.
 _MM = 1e3
 _MPA = 1e-6
-
-
-class ValidityWarning(UserWarning):
-    """A contact model used outside the range its source established it for."""
 
 
 def _warn_validity(message: str) -> None:

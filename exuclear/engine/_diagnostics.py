@@ -23,6 +23,7 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
+from ..exceptions import OutOfPlaneWarning
 from ..timescales import contact_period, reduced_mass
 from .connector import ClearanceJointHandle
 
@@ -51,11 +52,6 @@ TILT_NOTE_FRACTION = 0.01
 #: Relative angular velocity across the axis [rad/s] up to which a journal counts as
 #: started without tilting: a journal set tumbling on purpose has far more.
 ALIGNED_TILT_RATE = 1e-12
-
-
-class OutOfPlaneWarning(UserWarning):
-    """A clearance joint's journal can move along the axis or tilt, and nothing in the
-    model holds it (the replaced revolute joint did): see :func:`unheld_motion`."""
 
 
 #: Gravitational acceleration assumed for the contact load where a model has no

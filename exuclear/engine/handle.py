@@ -16,6 +16,7 @@ import numpy as np
 
 from ..checks import check_nonnegative
 from ..convergence import joint_refinement
+from ..exceptions import AccuracyWarning
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
 from ..settings import NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
@@ -314,8 +315,6 @@ class ClearanceJointHandle:
         fresh = [text for kind, text in notes if kind not in self._told]
         self._told.update(kind for kind, _text in notes)
         if fresh:
-            from .solver import AccuracyWarning  # the solver driver imports this module
-
             for note in fresh:
                 warnings.warn(note, AccuracyWarning, stacklevel=3)
 

@@ -20,16 +20,12 @@ from typing import Any
 
 import exudyn as exu
 
+from ..exceptions import AccuracyWarning
 from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, SolverSettings
 from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
 from ._diagnostics import check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
 from .checks import check_system
 from .handle import ClearanceJointHandle, joints_of
-
-
-class AccuracyWarning(UserWarning):
-    """A run finished, but its path may not be converged (e.g. numerical contact chatter)."""
-
 
 #: Attempts at one step after which a run is ended: DOPRI5 rejects a step a few times at
 #: an impact, but at its minimum step Exudyn's DOPRI5 retries forever.
