@@ -38,11 +38,8 @@ This module never imports exudyn itself and never plots.
 """
 from __future__ import annotations
 
-import copy
 import math
-from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
-from contextvars import ContextVar
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -226,9 +223,10 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     times ``factor`` (the step, and the largest step of adaptive solvers, divided),
     ``minimumStepSize`` divided, and with ``automaticStepSize`` (explicit adaptive
     solvers; implicit ones ignore these) ``relativeTolerance``, ``absoluteTolerance`` and
-    a given ``initialStepSize`` divided.  The clearance joints' own step control is not in
-    these settings: :func:`check_convergence` runs the tighter run inside
-    :func:`refined_joints`, which divides the joints' ``rate_limit`` for that run.
+    a given ``initialStepSize`` divided.  The copy is an
+    :class:`exuclear.engine.steering.RefinedSimulationSettings`, which also carries
+    ``factor`` to the clearance joints' own step control: each joint of a run given these
+    settings divides its ``rate_limit`` by it for that run.
     """
     if check_positive("factor", factor) <= 1.0:
         raise ValueError(f"`factor` must exceed 1 (the reference must be tighter), got {factor}")
@@ -251,30 +249,6 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     return replace(settings, **changes)
 
 
-#: The factor by which the clearance joints of a run started inside :func:`refined_joints`
-#: divide their step control's ``rate_limit`` (1 outside): the joints' own part of a plain
-#: ``mbs.SolveDynamic``'s steps, which ``exu.SimulationSettings`` do not hold.
-_JOINT_REFINEMENT: ContextVar[float] = ContextVar("exuclear_joint_refinement", default=1.0)
-
-
-@contextmanager
-def refined_joints(factor: float) -> Iterator[None]:
-    """Within this block, every clearance joint starting a run divides its ``rate_limit`` by
-    ``factor`` for that run (the joint's own attribute is left as it is).
-    :func:`check_convergence` runs its tighter plain ``mbs.SolveDynamic`` inside it, so that
-    the steps the joints control are refined with the solver's."""
-    token = _JOINT_REFINEMENT.set(check_positive("factor", factor))
-    try:
-        yield
-    finally:
-        _JOINT_REFINEMENT.reset(token)
-
-
-def joint_refinement() -> float:
-    """The factor of the enclosing :func:`refined_joints` block (1 outside any)."""
-    return _JOINT_REFINEMENT.get()
-
-
 def _exudyn_settings(settings: object) -> bool:
     """Whether ``settings`` is an ``exu.SimulationSettings`` (told by its shape: this
     module does not import exudyn)."""
@@ -283,7 +257,10 @@ def _exudyn_settings(settings: object) -> bool:
 
 def _refined_exudyn_settings(settings: Any, factor: float) -> Any:
     """A copy of the ``exu.SimulationSettings`` ``settings``, refined (:func:`refined_settings`)."""
-    tighter = copy.deepcopy(settings)  # Exudyn's settings copy deeply; the user's stay as they are
+    from .engine.steering import RefinedSimulationSettings  # exudyn is imported where its settings are given
+
+    # a copy (the user's settings stay as they are) whose joints divide their rate_limit by factor
+    tighter = RefinedSimulationSettings(settings, getattr(settings, "joint_refinement", 1.0) * factor)
     ti = tighter.timeIntegration
     ti.numberOfSteps = math.ceil(settings.timeIntegration.numberOfSteps * factor - 1e-9)
     ti.minimumStepSize = settings.timeIntegration.minimumStepSize / factor
@@ -759,10 +736,10 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
                              "with RunRecord.from_handles(result, ...), whose result.step it is")
         settings = replace(settings, step=first.step, joint_steps=settings.steered)
     reference_settings = refined_settings(settings, factor)
-    # a plain mbs.SolveDynamic refines the joints' own steps with the solver's (exuclear.simulate
-    # sets the joints' rate_limit from the refined settings)
-    with refined_joints(factor if _exudyn_settings(settings) else 1.0):
-        second = run(reference_settings)
+    # the joints' own steps are refined with the solver's: exuclear.simulate sets their rate_limit
+    # from the refined SolverSettings, a plain mbs.SolveDynamic's joints read the factor from
+    # the refined exu.SimulationSettings (RefinedSimulationSettings)
+    second = run(reference_settings)
     if not isinstance(second, RunRecord):
         raise ValueError(f"run(tighter settings) must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
                          f"{type(second).__name__}")

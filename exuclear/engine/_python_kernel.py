@@ -107,7 +107,7 @@ MIN_STEP_MARGIN = 10.0
 #: Free flight lets the step grow (:meth:`JointKernel.step_growth`): after two accepted steps in
 #: which none of the joint's contacts touched, the next step may last until the journal would
 #: reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step (and, on
-#: the handle's side, ten of the joint's contact periods: handle.GROWTH_CONTACT_PERIODS).  Exudyn's
+#: the handle's side, ten of the joint's contact periods: steering.GROWTH_CONTACT_PERIODS).  Exudyn's
 #: own rule doubles a step after 10 steps of at most 7 Newton iterations: from an impact's
 #: microsecond steps back to a model's millisecond step that is 70 steps at best, and none
 #: where the model's Newton takes more (measured on the zoo, README).  The limit keeps Newton's
@@ -150,7 +150,7 @@ class StepControl:
         self.rate = True  # False: an explicit solver's error control sets the step (no rate criterion)
         self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
         self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
-        self.growth_cap = math.inf  # the longest step free flight may grow to [s] (handle.GROWTH_CONTACT_PERIODS)
+        self.growth_cap = math.inf  # the longest step free flight may grow to [s] (steering.GROWTH_CONTACT_PERIODS)
         self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
         self.jacobian_on = False  # whether it asks now
         self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
@@ -564,7 +564,7 @@ class JointKernel:
     def count_separations(self, advance: bool, ended: int, h: float) -> None:
         """Count the contacts that ended in an accepted step of length ``h``, and those of them
         in a step longer than the run-start callback's ``separation_step`` (numerical chatter,
-        :func:`exuclear.engine.handle._chatter_note`); a step accepted again from the same start
+        :func:`exuclear.engine.diagnostics.chatter_note`); a step accepted again from the same start
         (redone after another item rejected it) replaces its first count."""
         c = self.control
         if not advance:
@@ -577,7 +577,7 @@ class JointKernel:
 
     def steer_jacobian(self, step: float) -> None:
         """Ask for a Jacobian per step while the step the joint accepts is longer than the
-        run-start callback's ``jacobian_step`` (:mod:`exuclear.engine.newton`), and for the step
+        run-start callback's ``jacobian_step`` (:mod:`exuclear.engine.steering`), and for the step
         after one in which a contact opened or closed (its stiffness came or went) or that it
         redoes or grows (a step of another length, whose Newton matrix's mass term
         ``M / (beta h^2)`` an older Jacobian does not hold): ``step`` inf.  Through the callback's
