@@ -11,6 +11,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "exuclear"
 #: Lines a source file of the engine and the kernels may hold (STYLE.md: "each file small
@@ -147,3 +149,16 @@ KNOWN_CYCLES = [["exuclear.study", "exuclear.study_plot"]]
 
 def test_no_module_of_exuclear_imports_one_that_imports_it_back():
     assert [c for c in cycles(import_graph(PACKAGE)) if c not in KNOWN_CYCLES] == []
+
+
+@pytest.mark.parametrize("folder", ["exuclear/engine", "exuclear/_kernel"])
+def test_no_source_file_of_the_engine_or_the_kernels_is_too_long_to_read_at_once(folder):
+    assert long_files(ROOT / folder) == {}
+
+
+def test_the_two_kernels_split_into_modules_of_the_same_names():
+    # exuclear/_kernel/layout.hpp ... bindings.cpp mirror exuclear/engine/_python_kernel/layout.py ... bindings.py
+    compiled = {p.stem for p in (PACKAGE / "_kernel").iterdir() if p.suffix in (".hpp", ".cpp")}
+    python = {p.stem for p in (PACKAGE / "engine" / "_python_kernel").glob("*.py")} - {"__init__"}
+    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "joint_state", "step_control",
+                                  "bindings"}

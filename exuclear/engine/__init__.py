@@ -18,10 +18,12 @@ Its modules in layers, each importing only from the layers below it
    solver's run (the run-start record, step growth, the Jacobian vote, Newton's settings);
 6. **the model** -- :mod:`~exuclear.engine.bodies`: the masses and contact period of a
    joint's bodies; :mod:`~exuclear.engine.registry`: the joints of a system;
-7. **the kernels** -- :mod:`~exuclear.engine.kernel`: the compiled kernel and its import
-   self-test; :mod:`~exuclear.engine._python_kernel`: the same user functions in Python;
-   :mod:`~exuclear.engine.layout`: where parameters and outputs sit in the items (one named
-   table, shared with the compiled kernel).
+7. **the kernels** -- :mod:`~exuclear.engine.kernel`: the compiled kernel
+   (``exuclear/_kernel/``) and its import self-test; :mod:`~exuclear.engine._python_kernel`:
+   the same user functions in Python, in modules of the same names as the compiled
+   kernel's files (layout, kinematics, laws, contacts, film, joint_state, step_control,
+   bindings); :mod:`~exuclear.engine.layout`: where parameters and outputs sit in the items
+   (one named table, shared with the compiled kernel).
 
 The warnings are those of :mod:`exuclear.exceptions`.
 """

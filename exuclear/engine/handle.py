@@ -289,7 +289,7 @@ class ClearanceJointHandle:
         """What the joint's own step control could not do in the last run (steps it could not
         resolve, a penetration beyond the limit), each with the joint's name, the time, the
         step and the step to use; empty if the run was resolved.  Each note is also issued
-        once as an :class:`~exuclear.engine.solver.AccuracyWarning`, at the first access to
+        once as an :class:`~exuclear.exceptions.AccuracyWarning`, at the first access to
         the joint's results after the run."""
         self._report()
         return list(self._notes)
