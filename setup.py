@@ -4,6 +4,8 @@ The extension is optional: where it cannot be built (no compiler, no Python head
 ``pip install`` still succeeds and exuclear runs its Python kernel, saying so once at
 import (exuclear/engine/kernel.py).
 """
+from glob import glob
+
 from setuptools import setup
 
 try:
@@ -12,7 +14,9 @@ except ImportError:  # pybind11 is a build requirement; without it, install the 
     ext_modules, cmdclass = [], {}
 else:
     ext_modules = [Pybind11Extension(
-        "exuclear._ckernel", ["exuclear/_kernel/clearance_kernel.cpp"],
+        # one translation unit; the headers it includes (exuclear/_kernel/*.hpp) hold the kernel by role
+        "exuclear._ckernel", ["exuclear/_kernel/bindings.cpp"],
+        depends=sorted(glob("exuclear/_kernel/*.hpp")),
         cxx_std=17,
         extra_compile_args=["-ffp-contract=off"],  # no fused multiply-add: equal to the Python kernel to round-off
         optional=True,  # a failed build leaves the pure-Python package working

@@ -34,17 +34,16 @@ Of the third-party packages, ``import exuclear`` imports numpy and exudyn only;
 matplotlib, pandas, tqdm, scipy and dask are imported where a function needs them
 (``tests/test_api.py``).
 """
-from .checks import UnitWarning
-from .contact import ContactLaw, ValidityWarning, contact_law
+from .contact import ContactLaw, contact_law
 from .convergence import ConvergenceResult, RunRecord, check_convergence
 from .engine import (
-    AccuracyWarning,
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
     SimulationResult,
     simulate,
 )
+from .exceptions import AccuracyWarning, UnitWarning, ValidityWarning
 from .film import Lubrication
 from .friction import friction_law
 from .geometry import BearingGeometry

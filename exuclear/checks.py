@@ -9,9 +9,7 @@ import math
 import warnings
 from numbers import Real
 
-
-class UnitWarning(UserWarning):
-    """A value that is valid but looks like a unit mistake (mm for m, GPa for Pa, ...)."""
+from .exceptions import UnitWarning
 
 
 def warn_unit(message: str) -> None:

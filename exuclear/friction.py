@@ -54,7 +54,7 @@ def smooth_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
 class FrictionLaw(ABC):
     """Base of the friction laws: ``coefficient(v_t) -> mu``.
 
-    The compiled kernel (``exuclear/_kernel/clearance_kernel.cpp``,
+    The compiled kernel (``exuclear/_kernel/laws.hpp``,
     ``friction_coefficient``) writes the same formulas in the same order; a law it does
     not know runs with the Python kernel only.
     """

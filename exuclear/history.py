@@ -4,7 +4,7 @@ Pure Python (no exudyn).  A :class:`ContactState` is immutable: :meth:`ContactSt
 returns the state after the next accepted step, and the record of a contact that ended
 in it.  The engine keeps two of them per contact (at the start and at the end of the last
 step) so that a step that is computed again starts from the right history.  The compiled
-kernel (``exuclear/_kernel/clearance_kernel.cpp``) states the same rules in its
+kernel (``exuclear/_kernel/contacts.hpp``) states the same rules in its
 ``History``, ``onset_velocity`` and ``accept``, in the same order, with mutable C++ structs
 instead of immutable states; ``tests/test_connector.py`` keeps the two equal to round-off.
 

@@ -165,7 +165,7 @@ class SolverSettings:
         Implicit methods only: Exudyn's ``newton.modifiedNewtonContractivity``, in (0, 1]:
         the modified Newton method computes a new Jacobian where an iteration reduces the
         residual by less than this factor.  Default None: the joints' choice (at most
-        :data:`exuclear.engine.newton.CONTRACTIVITY`, 0.2).  Smaller values take more
+        :data:`exuclear.engine.steering.CONTRACTIVITY`, 0.2).  Smaller values take more
         Jacobians and fewer iterations: worth it where Jacobians are cheap and the motion
         turns the Jacobian fast (the redundant slider-crank's defaults, measured there).
     linear_solver : str

@@ -1,7 +1,7 @@
 """Sliced line contact of a spatial revolute clearance joint (docs/physics.md section 9).
 
 Pure Python, no exudyn, plain float arithmetic on 3-tuples (it runs inside the force
-callback; the compiled kernel ``exuclear/_kernel/clearance_kernel.cpp`` writes the same
+callback; the compiled kernel ``exuclear/_kernel/kinematics.hpp`` writes the same
 formulas in the same order, with the same names).  The planar joint is the case of one
 slice with the motion projected on the plane normal to the axis (``u = e_z``, ``p_z = 0``).
 

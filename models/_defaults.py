@@ -7,7 +7,7 @@ speed and clearance by the model's own time scales:
 - the crank period ``T``: the largest step shrinks with it (ratio ``s = T_paper / T``,
   never above 1: a slower crank keeps the paper's steps);
 - the tolerances: DOPRI5's ``rtol`` falls as ``s**3`` and ``atol`` is 1e-6 of the
-  clearance.  Measured (``validation/work_precision.py``, case ``speed-clearance``): at
+  clearance.  Measured (``validation/cost/work_precision.py``, case ``speed-clearance``): at
   5000 rpm rtol 1e-7 errs by 0.07 c and 1e-8 / 1e-9 by 4e-3 / 1.8e-2 c (the motion is
   sensitive: the error grows tenfold over two revolutions), 1e-10 holds 3.2e-3 c;
 - the impact step of the implicit methods: no more than a twentieth of the largest step

@@ -81,7 +81,7 @@ COLUMNS = ("time", "crank_angle", "coupler_angle", "rocker_angle", "rocker_rate"
 
 #: Default settings: those of the slider-crank's redundant formulation (generalized-alpha,
 #: 2e-5 s in free flight and steady contact, 1e-6 s from each contact onset), chosen there
-#: by ``validation/work_precision.py`` for impacts of the same contact law and clearance.
+#: by ``validation/cost/work_precision.py`` for impacts of the same contact law and clearance.
 DEFAULT_SETTINGS = {"method": "generalized-alpha", "step": 2e-5, "impact_step": 1e-6}
 
 

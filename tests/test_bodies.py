@@ -25,7 +25,7 @@ from exudyn.itemInterface import (
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
 import exuclear
-from exuclear.engine._diagnostics import body_mass
+from exuclear.engine.bodies import body_mass
 from exuclear.engine.connector import revolute_frame
 
 R_B, R_J, L = 10e-3, 9.9e-3, 15e-3

@@ -1,4 +1,4 @@
-"""The joint's Newton settings for the implicit runs it starts (exuclear.engine.newton, issue 20).
+"""The joint's Newton settings for the implicit runs it starts (exuclear.engine.steering, issue 20).
 
 Exudyn differentiates the joint's connector numerically with an increment of 1e-7 per unit
 of coordinate, the size of a resting journal's penetration; its modified Newton then
@@ -18,8 +18,8 @@ import exudyn as exu
 import numpy as np
 import pytest
 
-from exuclear.engine._diagnostics import joint_contact_period
-from exuclear.engine.newton import (
+from exuclear.engine.bodies import joint_contact_period
+from exuclear.engine.steering import (
     ABSOLUTE_TOLERANCE,
     CONTRACTIVITY,
     JACOBIAN_PER_STEP_ABOVE,

@@ -31,24 +31,11 @@ PHYSICS = ROOT / "docs" / "physics.md"
 
 #: Folders that hold no source of the project (virtual environment, build and run outputs).
 SKIP_DIRS = {".git", ".venv", ".ruff_cache", ".pytest_cache", "__pycache__", "build", "dist", "results", "solution"}
-#: Files not read: README.md is being rewritten (issue 31); this file quotes dangling examples.
-SKIP_FILES = {"README.md", "tests/test_references.py"}
+#: Files not read: this file quotes dangling examples.
+SKIP_FILES = {"tests/test_references.py"}
 
-#: Mentions in files this branch does not own that name a moved file or command, each with
-#: its correct target; the owners fix them (issue 31), and the entry goes with the fix.
-KNOWN_ELSEWHERE: dict[tuple[str, str], str] = {
-    ("exuclear/convergence.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
-    ("models/_defaults.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
-    ("models/four_bar.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
-    ("models/slider_crank.py", "validation/work_precision.py"): "validation/cost/work_precision.py",
-    ("models/slider_crank.py", "validation/hard_cases.py"): "validation/hard_cases/audit.py",
-    ("models/slider_crank.py", "python -m validation.benchmark"): "python -m validation.cost benchmark",
-    ("models/slider_crank.py", "validation.benchmark"): "validation.cost.benchmark",
-    ("exuclear/engine/_python_kernel.py", "python -m validation.fine_steps"): "python -m validation.cost fine_steps",
-    ("exuclear/engine/_python_kernel.py", "validation.fine_steps"): "validation.cost.fine_steps",
-    ("exuclear/engine/newton.py", "python -m validation.jacobian_steps"): "python -m validation.cost jacobian_steps",
-    ("exuclear/engine/newton.py", "validation.jacobian_steps"): "validation.cost.jacobian_steps",
-}
+#: Mentions known to dangle, each with its correct target (empty: every mention resolves).
+KNOWN_ELSEWHERE: dict[tuple[str, str], str] = {}
 
 PATH = re.compile(r"(?<![\w./-])((?:docs|validation|exuclear|models)/[\w.*/-]*[\w*/])")
 COMMAND = re.compile(r"python3? -m ((?:validation|exuclear|models)(?:\.\w+)*)")

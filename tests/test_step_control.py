@@ -12,6 +12,7 @@ from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2
 
 import exuclear
 from exuclear.engine import DEFAULT_BACKEND, kernel
+from exuclear.engine.steering import RefinedSimulationSettings
 
 #: The paper's departure velocity of the journal impact [m/s] (README, models/journal_bearing.py).
 DEPARTURE = 0.269
@@ -38,13 +39,15 @@ def impact(backend: str = DEFAULT_BACKEND, **options):
 
 
 def solve(mbs, steps: int, solver=exu.DynamicSolverType.GeneralizedAlpha, adaptive: bool = True,
-          end_time: float = 2e-4, recovery_steps: int | None = None):
+          end_time: float = 2e-4, recovery_steps: int | None = None, joint_refinement: float | None = None):
     ss = exu.SimulationSettings()
     ti = ss.timeIntegration
     ti.endTime, ti.numberOfSteps, ti.adaptiveStep, ti.verboseMode = end_time, steps, adaptive, 0
     if recovery_steps is not None:
         ti.adaptiveStepRecoverySteps = recovery_steps
     ss.solution.sensors.writePeriod = end_time / 100
+    if joint_refinement is not None:  # a convergence check's tighter run (exuclear.convergence.refined_settings)
+        ss = RefinedSimulationSettings(ss, joint_refinement)
     mbs.SolveDynamic(ss, solverType=solver)
 
 
@@ -274,10 +277,9 @@ def test_simulate_sets_the_runs_rate_limit_and_restores_the_joints_own():
 
 
 def test_a_convergence_checks_tighter_plain_run_refines_the_joints_steps():
-    # check_convergence on a plain mbs.SolveDynamic runs its tighter run inside
-    # refined_joints(factor): the joints' rate_limit is divided for that run only, the same
-    # steps as a joint given rate_limit / factor
-    from exuclear.convergence import refined_joints
+    # check_convergence on a plain mbs.SolveDynamic gives its tighter run RefinedSimulationSettings
+    # with joint_refinement = factor: the joints' rate_limit is divided for that run only, the
+    # same steps as a joint given rate_limit / factor
     rejected = []
     for kappa, factor in ((0.1, 10.0), (0.01, None)):
         mbs, _node, joint = impact()
@@ -285,8 +287,7 @@ def test_a_convergence_checks_tighter_plain_run_refines_the_joints_steps():
         if factor is None:
             solve(mbs, 2)
         else:
-            with refined_joints(factor):
-                solve(mbs, 2)
+            solve(mbs, 2, joint_refinement=factor)
             assert joint.rate_limit == kappa  # the joint's own value is kept
         rejected.append(joint.counts["rejected_steps"])
     assert rejected[0] == rejected[1] > 20

@@ -1,7 +1,7 @@
 """Issue 30, item 4: a run that Exudyn ends early while a clearance joint is in the model
 leaves a note (an AccuracyWarning and ``joint.notes``) naming the joint, the time, the
 joint's regime with |e|/c, and the cause Exudyn's solver flags give
-(``exuclear.engine.handle._stopped_note``), whatever the regime: free flight, metal contact,
+(``exuclear.engine.diagnostics.stopped_note``), whatever the regime: free flight, metal contact,
 the film or its blend.  And item 3's IFToMM four-bar, which stops at its change point.
 """
 from __future__ import annotations

@@ -31,7 +31,7 @@ The compiled kernel evaluates the same formulas; each stiffness model names its 
 Units: SI.  Sign convention: ``delta > 0`` is penetration, ``delta_dot > 0`` is approach
 (compression), ``v0 > 0`` the approach speed at contact onset.
 """
-from ._validity import ValidityWarning
+from ..exceptions import ValidityWarning
 from .damping import (
     DAMPING_MODELS,
     CarvalhoMartinsDamping,

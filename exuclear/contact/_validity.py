@@ -1,11 +1,10 @@
-"""The warning of a contact model used outside its source's range, and the one call that issues it."""
+"""The one call that warns of a contact model used outside its source's range
+(:class:`~exuclear.exceptions.ValidityWarning`)."""
 from __future__ import annotations
 
 import warnings
 
-
-class ValidityWarning(UserWarning):
-    """A contact model used outside the range its source established it for."""
+from ..exceptions import ValidityWarning
 
 
 def _warn_validity(message: str) -> None:

@@ -21,7 +21,7 @@ this relies on.
 The other roles live next to this file: the handle a builder returns
 (:mod:`~exuclear.engine.handle`, with its backends :mod:`~exuclear.engine.backends`), its
 outputs (:mod:`~exuclear.engine.outputs`), its drawing (:mod:`~exuclear.engine.drawing`)
-and the builders' argument checks (:mod:`~exuclear.engine.checks`).
+and the builders' argument checks (:mod:`~exuclear.engine.arguments`).
 """
 from __future__ import annotations
 
@@ -51,7 +51,7 @@ from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
 from . import kernel
-from .checks import (
+from .arguments import (
     AXIS_UNIT_TOLERANCE,
     DEFAULT_SLICES,
     PENETRATION_LIMIT_CLEARANCE,
@@ -70,9 +70,10 @@ from .checks import (
     vector3,
 )
 from .drawing import drawing_function
-from .handle import REGISTRY_KEY, ClearanceJointHandle, JointHistory, joints_of, register
+from .handle import ClearanceJointHandle, JointHistory
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
+from .registry import REGISTRY_KEY, joints_of, register
 
 #: Names kept here for the code that imports them from this module.
 __all__ = ["AXIS_UNIT_TOLERANCE", "BACKENDS", "DEFAULT_BACKEND", "DEFAULT_SLICES", "FACE_OUTPUT_PREFIX",
@@ -103,7 +104,6 @@ def joint_frame(axis: np.ndarray) -> np.ndarray:
     x = e - (e @ z) * z
     x /= np.linalg.norm(x)
     return np.column_stack([x, np.cross(z, x), z])
-
 
 
 def revolute_frame(axis: np.ndarray) -> np.ndarray:
@@ -164,7 +164,6 @@ def _orientation_is_fixed(mbs: exu.MainSystem, marker: Any) -> bool:
             return False
         link = parents[link]
     return True
-
 
 
 def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
@@ -280,7 +279,6 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                 objectNumber=handle.objectNumber, storeInternal=True, writeToFile=False, outputVariableType=kind))
                 for kind in (exu.OutputVariableType.ForceLocal, exu.OutputVariableType.TorqueLocal)]
     return handle
-
 
 
 def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories

@@ -5,7 +5,6 @@ its item numbers, its physics (replaceable between runs), and what its last run 
 from __future__ import annotations
 
 import itertools
-import math
 import warnings
 import weakref
 from dataclasses import dataclass
@@ -15,20 +14,18 @@ import exudyn as exu
 import numpy as np
 
 from ..checks import check_nonnegative
-from ..convergence import joint_refinement
+from ..exceptions import AccuracyWarning
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
-from ..settings import NEWTON_RTOL_DEFAULT, RATE_LIMIT_DEFAULT
+from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
-from ..timescales import STEPS_PER_CONTACT_PERIOD
 from . import outputs as _outputs
 from .backends import make_backend
-from .layout import MAIN, PROBE, RUN_START_DEFAULT, TORQUE, RunStart, parameters, read, uses_bearing_motion
-from .newton import ABSOLUTE_TOLERANCE, explicit_solver, steer_newton, vote_jacobian
+from .diagnostics import step_notes
+from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .steering import _RunStart
 
 _TOKENS = itertools.count(1)
-#: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
-REGISTRY_KEY = "exuclear.joints"
 
 
 class ClearanceJointHandle:
@@ -90,7 +87,7 @@ class ClearanceJointHandle:
         self._impact_step = 0.0
         self._rate_limit = RATE_LIMIT_DEFAULT
         #: Whether the joint sets the Newton settings of the implicit runs it starts
-        #: (:mod:`exuclear.engine.newton`); ``newton_changes``: what it set in the last run.
+        #: (:mod:`exuclear.engine.steering`); ``newton_changes``: what it set in the last run.
         self.steer_newton = True
         self.newton_changes: dict[str, tuple[Any, Any]] = {}
         self.token = next(_TOKENS)  # identifies the handle's connector in its system (see is_live)
@@ -300,7 +297,7 @@ class ClearanceJointHandle:
         """What the joint's own step control could not do in the last run (steps it could not
         resolve, a penetration beyond the limit), each with the joint's name, the time, the
         step and the step to use; empty if the run was resolved.  Each note is also issued
-        once as an :class:`~exuclear.engine.solver.AccuracyWarning`, at the first access to
+        once as an :class:`~exuclear.exceptions.AccuracyWarning`, at the first access to
         the joint's results after the run."""
         self._report()
         return list(self._notes)
@@ -317,13 +314,11 @@ class ClearanceJointHandle:
             if runs == self._reported_run:
                 return
             self._reported_run = runs
-        notes = _step_notes(self, control, running)
+        notes = step_notes(self, control, running)
         self._notes = [text for _kind, text in notes]
         fresh = [text for kind, text in notes if kind not in self._told]
         self._told.update(kind for kind, _text in notes)
         if fresh:
-            from .solver import AccuracyWarning  # the solver driver imports this module
-
             for note in fresh:
                 warnings.warn(note, AccuracyWarning, stacklevel=3)
 
@@ -380,283 +375,3 @@ class JointHistory:
     @property
     def delta(self) -> float:
         return self.state.delta
-
-
-def label(handle: ClearanceJointHandle) -> str:
-    """How messages name a joint: its name, else its connector's object number."""
-    return repr(handle.name) if handle.name else str(handle.objectNumber)
-
-
-def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
-    """Whether the solver of the run ``mbs.SolveDynamic`` is starting redoes a step that a
-    post-Newton function rejects with a shorter one, its minimum step [s], if not, why, and
-    whether the joint's rate criterion applies (SolveDynamic stores its settings and solver
-    in ``mbs.sys`` before solving).  The rate criterion is off where an explicit solver
-    controls its step by its error estimate (DOPRI5 and the like): that control resolves
-    the contact (the paper's numbers come from it), and the criterion would only add
-    rejected steps.  Unknown settings (a solver run without SolveDynamic) count as able to
-    shorten: a step that comes back unshortened is then accepted and reported."""
-    try:
-        ti = mbs.sys["simulationSettings"].timeIntegration
-        solver = mbs.sys["dynamicSolver"]
-        explicit = explicit_solver(solver)
-    except Exception:  # no SolveDynamic run: the kernel's defaults
-        return True, 0.0, "", True
-    if explicit:
-        try:
-            error_control = bool(ti.automaticStepSize) and bool(solver.HasAutomaticStepSizeControl(
-                mbs, mbs.sys["simulationSettings"]))
-        except Exception:  # an Exudyn without the query: keep the criterion
-            error_control = False
-        return (bool(ti.automaticStepSize), float(ti.minimumStepSize),
-                "" if ti.automaticStepSize else "timeIntegration.automaticStepSize is False", not error_control)
-    return (bool(ti.adaptiveStep), float(ti.minimumStepSize),
-            "" if ti.adaptiveStep else "timeIntegration.adaptiveStep is False", True)
-
-
-#: A step grown in free flight lasts at most this many of the joint's contact periods (under
-#: its weight, exuclear.timescales): the contact that ends the flight starts from a step its
-#: rate criterion cuts to the contact's resolution in one or two attempts (a tenth each),
-#: where a longer one took more Newton solves at steps far too long.  Averages over three
-#: restitutions (0.89 to 0.91), zoo models: exuclear.simulate's double pendulum, whose
-#: largest step is 20 contact periods, 9964 -> 6162 steps; the own-settings runs, whose
-#: steps are at most 8 periods (but the beam pendulum's, 59), within the scatter that any
-#: change of a bounce gives these chaotic models (the piston engine: 4694 and 10472 steps
-#: at restitutions 0.90 and 0.91).
-GROWTH_CONTACT_PERIODS = 10.0
-
-
-def _separation_step(mbs: exu.MainSystem, period: float) -> float:
-    """The longest step [s] in which a contact of a joint of contact ``period`` [s] ends
-    resolved, in the implicit run ``mbs.SolveDynamic`` is starting: a tenth of the period
-    (:data:`~exuclear.timescales.STEPS_PER_CONTACT_PERIOD`); inf where nothing is counted (an
-    explicit solver: its error control, or the joint's rate criterion at fixed steps, resolves
-    separations; an unknown period).  A contact that ends in a longer step of an implicit
-    method rings and leaves the wall without a physical cause (a resting pendulum at steps of
-    1e-3 s, 2.9 of its contact periods, leaves the wall 68 times in 2 s where DOPRI5 and
-    physics give one contact): the joint counts such separations and its notes say so
-    (:func:`_step_notes`)."""
-    try:
-        explicit = explicit_solver(mbs.sys["dynamicSolver"])
-    except Exception:  # no SolveDynamic run: nothing to count against
-        return math.inf
-    return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf
-
-
-class _RunStart:
-    """The kernel's run-start callback: returns the joint's
-    :class:`~exuclear.engine.layout.RunStart` record for the run the solver is starting
-    (whether the solver can shorten steps, its minimum step, the joint's label, how many
-    clearance joints the system has, the factor on its ``rate_limit`` for the run, below 1
-    inside :func:`exuclear.convergence.refined_joints`, the longest step its free flight may
-    grow to, :data:`GROWTH_CONTACT_PERIODS`, the step above which it asks for a Jacobian per
-    step, :func:`~exuclear.engine.newton.steer_newton`, where finite it asks at the run's
-    first step, the step above which a contact's end counts as unresolved,
-    :func:`_separation_step`, and the effective mass of its impacts, the reduced mass of its
-    two bodies); its ``grow(step)`` lets the solver's next step grow, its
-    ``jacobian_per_step(wanted)`` passes the joint's ask on.  It holds its system weakly and
-    finds its handle by token: the kernel's table outlives no handle through it."""
-
-    def __init__(self, mbs: exu.MainSystem, token: int) -> None:
-        self._mbs, self._token = weakref.ref(mbs), token
-
-    def __call__(self) -> RunStart:
-        mbs = self._mbs()
-        if mbs is None:
-            return RUN_START_DEFAULT
-        can_shorten, min_step, _why, rate = solver_steps(mbs)
-        handle = self._handle(mbs)
-        period, mass, jacobian_step = math.nan, math.nan, math.inf
-        if handle is not None:
-            from ._diagnostics import joint_contact_period, joint_mass  # the diagnostics import this module
-
-            try:
-                mass = joint_mass(mbs, handle)
-                period = joint_contact_period(mbs, handle)
-            except Exception:  # a body whose mass is not read: no Jacobian per step, no cap on growth
-                period = math.nan
-            if handle.steer_newton:
-                handle.newton_changes, jacobian_step = steer_newton(mbs, period, self._token)
-        growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
-        # inside check_convergence's tighter plain run the joints refine their own steps too
-        rate_scale = 1.0 / joint_refinement()
-        return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                        rate_scale, growth_cap, jacobian_step, _separation_step(mbs, period), mass)
-
-    def jacobian_per_step(self, wanted: bool) -> None:
-        """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's
-        ``steer_jacobian``, where its ask changes): :func:`~exuclear.engine.newton.vote_jacobian`."""
-        mbs = self._mbs()
-        if mbs is not None:
-            vote_jacobian(mbs, self._token, wanted)
-
-    def grow(self, step: float) -> None:
-        """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):
-        lengthen the solver's next step to it, within the solver's largest step.  Exudyn's
-        implicit solver takes ``it.currentStepSize`` for its next step (and redoes a rejected
-        one shorter, or doubles it after its recovery steps, from there)."""
-        mbs = self._mbs()
-        try:
-            it = mbs.sys["dynamicSolver"].it
-            step = min(step, it.maxStepSize)
-            if step > it.currentStepSize:
-                it.currentStepSize = step
-        except Exception:  # no SolveDynamic solver (a solver run by hand): Exudyn's own rule
-            pass
-
-    def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:
-        return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == self._token), None)
-
-    def note(self) -> None:
-        """The kernel's first unresolved step of a kind in this run: warn now (the run may
-        still be stopped by Exudyn, after which nobody might ask the joint)."""
-        mbs = self._mbs()
-        handle = self._handle(mbs) if mbs is not None else None
-        if handle is not None:
-            handle._report(running=True)
-
-
-def _step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: bool = False) -> list[tuple[str, str]]:
-    """(kind, sentence) for what the joint's step control could not do in the last run: each names
-    the joint, what happened (time, step, penetration / c) and the fixed step to use: the
-    smaller of the kernel's recommendation at the worst step and a tenth of the joint's
-    contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
-    can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
-    5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
-    stopped = [] if running else _stopped_note(handle) + _chatter_note(handle, control)
-    if not control["unresolved"] and not control["over_limit"]:
-        return stopped
-    _can, _min, why, _rate = solver_steps(handle.mbs)
-    period = math.nan
-    try:
-        from ._diagnostics import joint_contact_period
-
-        period = joint_contact_period(handle.mbs, handle)
-    except Exception:  # a body whose mass is not read: the kernel's recommendation stands
-        pass
-    name, c = label(handle), handle.joint.geometry.clearance
-    notes = []
-    for kind, count, when, step, advice, what, otherwise in (
-            ("unresolved", control["unresolved"], control["unresolved_time"], control["unresolved_step"],
-             control["unresolved_advice"], "did not resolve the contact (the penetration rate changed by more than "
-                                           "the joint's step control allows)", "the same step came back unshortened"),
-            ("over_limit", control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
-             f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
-             f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it")):
-        if not count:
-            continue
-        if period > 0.0:  # a tenth of the contact period under the weight, as step="auto"; an
-            advice = min(advice, period / 10)  # impact is faster: the kernel's worst step is then shorter
-        notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
-                     f"of the run{' so far' if running else ''}, which could not be shortened enough "
-                     f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
-                     "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
-                     "automaticStepSize = True for explicit solvers)"))
-    return notes + stopped
-
-
-def _chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[tuple[str, str]]:
-    """("chatter", sentence) where contacts of the last run ended in steps longer than a tenth
-    of the joint's contact period (the kernel's ``long_separations``, :func:`_separation_step`):
-    its contact onsets may be numerical chatter."""
-    long, step = control["long_separations"], control["separation_step"]
-    if not long:
-        return []
-    return [("chatter", f"joint {label(handle)}: {long} of its {control['separations']} contacts ended in a step "
-             f"longer than a tenth of its contact period ({step * STEPS_PER_CONTACT_PERIOD:.2g} s, estimated); such "
-             f"separations are not resolved, and the {handle.history.onsets} contact onsets may be numerical "
-             f"chatter, not physics: use steps of at most {step:.2g} s where contacts open "
-             "(timeIntegration.numberOfSteps, or exuclear.simulate's `step`), or an explicit adaptive method where "
-             "the model allows")]
-
-
-def _regime(handle: ClearanceJointHandle) -> str:
-    """The joint's regime after the last accepted step, with its eccentricity ratio |e|/c:
-    free flight or metal contact (with the penetration), and for a lubricated joint the film
-    alone (eps <= eps_film), the film's blend near the wall (eq. (70)) or metal contact under
-    the film (:data:`~exuclear.engine.outputs.REGIME_FILM` and the others).  A spatial joint:
-    its most penetrated slice or end face (:meth:`ClearanceJointHandle.state`)."""
-    state, c = handle.state(), handle.joint.geometry.clearance
-    eps = f"|e|/c = {math.hypot(state.ecc_x, state.ecc_y) / c:.6g}"
-    film = handle.joint.film
-    if state.in_contact or state.delta > 0.0:
-        where = "in metal contact under the film" if film is not None else "in metal contact"
-        return f"{where} ({eps}, penetration {state.delta / c:.3g} c)"
-    if film is None:
-        return f"in free flight ({eps}, {-state.delta / c:.3g} c from the wall)"
-    if math.hypot(state.ecc_x, state.ecc_y) / c > film.eps_film:
-        return f"in the film's blend near the wall ({eps} > eps_film = {film.eps_film:g})"
-    return f"carried by the film ({eps} <= eps_film = {film.eps_film:g})"
-
-
-def _stop_cause(solver: Any, adaptive: bool, min_step: float) -> str:
-    """Why Exudyn's solver ended its run early, from its convergence and output flags
-    (``CSolverBase::GetErrorString`` and ``FinalizeSolver`` read the same ones)."""
-    output, conv = solver.output, solver.conv
-    if output.simulationStoppedByUser or output.simulationStoppedByUserFunction:
-        return "stopped by the user (a pre- or post-step function returned False, or Ctrl+C)"
-    if output.simulationTimeout:
-        return "stopped at exudyn.special.solver.timeout"
-    if conv.linearSolverFailed:
-        return "its linear solver failed (the Jacobian is singular)"
-    if conv.newtonSolutionDiverged:
-        return "its Newton iteration diverged"
-    if conv.stepReductionFailed:
-        if adaptive:
-            return f"its Newton did not converge, and the step reduction reached the minimum step ({min_step:g} s)"
-        return "its Newton did not converge at the fixed step (timeIntegration.adaptiveStep is False)"
-    return "an error in a user function or in Exudyn (the solver gives no cause)"
-
-
-def _stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
-    """("stopped", sentence) where Exudyn's solver ended the last run before its end time,
-    whatever the joint's regime: Exudyn then says only "SolveDynamic terminated".  The
-    sentence names the joint, the time, the joint's regime and |e|/c (:func:`_regime`), the
-    cause (:func:`_stop_cause`) and, for a failed Newton, what to try: the tolerances in
-    effect (the solver's copy, after :func:`~exuclear.engine.newton.steer_newton`) where they
-    are tighter than the contact's round-off allows, said to be the user's where the joint
-    kept them."""
-    mbs = handle.mbs
-    try:
-        solver, settings = mbs.sys["dynamicSolver"], mbs.sys["simulationSettings"]
-        ti = settings.timeIntegration
-        end, adaptive, min_step = float(ti.endTime), bool(ti.adaptiveStep), float(ti.minimumStepSize)
-        newton = solver.newton if not explicit_solver(solver) else None
-    except Exception:  # no SolveDynamic run (or another solver): nothing to say
-        return []
-    t = mbs.systemData.GetTime()
-    if t >= end * (1.0 - 1e-12) or not handle._backend.started():
-        return []
-    cause = _stop_cause(solver, adaptive, min_step)
-    if solver.output.finishedSuccessfully and not cause.startswith("stopped"):
-        return []  # a finished run whose time is not this solver's (e.g. a static solve since)
-    note = (f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s: {cause}; the joint "
-            f"was then {_regime(handle)}")
-    if "Newton" not in cause and "singular" not in cause:
-        return [("stopped", note)]
-    advice = []
-    if newton is not None:
-        rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
-        if rtol < NEWTON_RTOL_DEFAULT or atol < ABSOLUTE_TOLERANCE:
-            # the joint raises only Exudyn's default absolute tolerance: a tighter one is the user's
-            advice.append(f"Newton tolerances the residual can reach (timeIntegration.newton.relativeTolerance >= "
-                          f"{NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= {ABSOLUTE_TOLERANCE:g}, now "
-                          f"{atol:g}; the joint keeps tolerances the user set)")
-    if not adaptive:
-        advice.append("timeIntegration.adaptiveStep = True (Exudyn then shortens a step whose Newton fails)")
-    advice.append("a shorter step; where Newton's residual stalls at every step length (timeIntegration.verboseMode = 2 "
-                  "shows it), look for a singular position of the mechanism")
-    return [("stopped", note + "; try " + ", or ".join(advice))]
-
-
-def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
-    """Keep ``handle`` with its system (:func:`joints_of`); the joints of an earlier build,
-    before ``mbs.Reset()``, are let go (their kernel state is released with their handle)."""
-    mbs.variables[REGISTRY_KEY] = [*joints_of(mbs), handle._system_view()]
-
-
-def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
-    """The clearance joints live in ``mbs`` (those of an earlier build, before ``mbs.Reset()``, dropped)."""
-    live = [h for h in mbs.variables.get(REGISTRY_KEY, []) if h.is_live()]
-    mbs.variables[REGISTRY_KEY] = live
-    return live

@@ -19,11 +19,9 @@ import importlib
 import warnings
 from types import ModuleType
 
+from ..exceptions import KernelWarning
+
 STATUS_DIRECT, STATUS_THROUGH_PYTHON, STATUS_MISSING = "direct", "through-python", "missing"
-
-
-class KernelWarning(UserWarning):
-    """The compiled kernel cannot be used as intended; exuclear runs the Python kernel."""
 
 
 def _load() -> tuple[ModuleType | None, str, str]:

@@ -6,7 +6,7 @@ and the Python kernel alike (``mbs.GetObject(joint.objectNumber)["stiffness"]``)
 :data:`LAYOUT` names every field: its row, first column, number of entries and meaning.
 Both languages read it by name: Python through :func:`read` and :func:`parameters`, the
 compiled kernel through its copy of the table (``Field`` and ``LAYOUT`` in
-``exuclear/_kernel/clearance_kernel.cpp``, exported as ``exuclear._ckernel.LAYOUT``), which
+``exuclear/_kernel/layout.hpp``, exported as ``exuclear._ckernel.LAYOUT``), which
 a test keeps equal to this one.
 
 Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
@@ -99,7 +99,7 @@ def write(matrix: np.ndarray, name: str, value: float | Sequence[float]) -> None
     matrix[f.row, f.column:f.column + len(values)] = values
 
 
-#: The data node's entries, in order (the compiled kernel's ``write_data``).
+#: The data node's entries, in order (both kernels' ``data_values``).
 DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "normal_force", "tangential_force",
                 "slip_velocity", "v0", "in_contact", "onsets", "onset_time", "peak_force", "max_penetration")
 
@@ -124,7 +124,7 @@ def spatial_data_columns(slices: int, faces: int = 0, lubricated: bool = False) 
             + (tuple(f"{c}[{k}]" for k in range(slices) for c in FILM_DATA_COLUMNS) if lubricated else ()))
 
 
-#: Stiffness codes the compiled kernel evaluates (clearance_kernel.cpp ``elastic_force``).
+#: Stiffness codes the compiled kernel evaluates (exuclear/_kernel/laws.hpp ``elastic_force``).
 KERNEL_STIFFNESS_CODES = frozenset(range(7))
 
 
@@ -171,7 +171,7 @@ class RunStart(NamedTuple):
 RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("inf"), float("inf"), float("nan"))
 
 
-#: Film model name -> code in the parameter matrix (0: no film; clearance_kernel.cpp ``FilmCode``).
+#: Film model name -> code in the parameter matrix (0: no film; exuclear/_kernel/layout.hpp ``FilmCode``).
 FILM_CODES = {"short": 1, "long": 2, "finite": 3}
 
 

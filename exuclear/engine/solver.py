@@ -16,20 +16,20 @@ import math
 import time
 import warnings
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import exudyn as exu
 
+from ..exceptions import AccuracyWarning
 from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, SolverSettings
 from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
-from ._diagnostics import check_model, joint_contact_period, started_aligned, tilt_note, unread_masses
-from .checks import check_system
-from .handle import ClearanceJointHandle, joints_of
+from .arguments import check_system
+from .bodies import joint_contact_period, unread_masses
+from .diagnostics import check_model, started_aligned, tilt_note
+from .registry import joints_of
 
-
-class AccuracyWarning(UserWarning):
-    """A run finished, but its path may not be converged (e.g. numerical contact chatter)."""
-
+if TYPE_CHECKING:
+    from .handle import ClearanceJointHandle
 
 #: Attempts at one step after which a run is ended: DOPRI5 rejects a step a few times at
 #: an impact, but at its minimum step Exudyn's DOPRI5 retries forever.
@@ -77,7 +77,7 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.newton.relativeTolerance = settings.newton_rtol
         ti.newton.absoluteTolerance = settings.newton_atol
         ss.linearSolver.solverType = getattr(exu.LinearSolverType, LINEAR_SOLVERS[settings.linear_solver])
-        if settings.newton_contractivity is not None:  # the joints only ever lower it (engine.newton)
+        if settings.newton_contractivity is not None:  # the joints only ever lower it (engine.steering)
             ti.newton.modifiedNewtonContractivity = settings.newton_contractivity
         ti.generalizedAlpha.spectralRadius = settings.spectral_radius
         ti.generalizedAlpha.computeInitialAccelerations = True
@@ -313,7 +313,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
         for note in step_notes:  # with each joint's note on the stop: its regime and |e|/c then
             warnings.warn(note, AccuracyWarning, stacklevel=2)
         return SimulationResult(ok, message, wall, steps, rejected, t_reached, tuple(step_notes), step=settings.step)
-    notes = tuple(step_notes)  # with the joints' numerical chatter of implicit runs (handle._chatter_note)
+    notes = tuple(step_notes)  # with the joints' numerical chatter of implicit runs (diagnostics.chatter_note)
     notes += tuple(n for n in (tilt_note(h, a) for h, a in zip(joints, aligned)) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)

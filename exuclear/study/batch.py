@@ -20,9 +20,7 @@ def _error_text(err: BaseException) -> str:
 def _carried_categories() -> tuple[type[Warning], ...]:
     """The warnings a row carries in its message: exuclear's own, which say that a result
     may not mean what it seems (a unit slip, a law outside its validity, an unconverged path)."""
-    from ..checks import UnitWarning
-    from ..contact import ValidityWarning
-    from ..engine import AccuracyWarning
+    from ..exceptions import AccuracyWarning, UnitWarning, ValidityWarning
 
     return UnitWarning, ValidityWarning, AccuracyWarning
 

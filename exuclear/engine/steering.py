@@ -1,5 +1,24 @@
-"""What the joint changes in an implicit solver's Newton method for the run it starts.
+"""How a clearance joint steers the run that Exudyn's solver starts: one module for all
+that the joint sets or asks of the solver, read by its kernel through the run-start record.
 
+- **The run-start record.**  Once per run start the kernel calls :class:`_RunStart`, which
+  returns the joint's :class:`~exuclear.engine.layout.RunStart`: whether the solver redoes a
+  rejected step shorter and its minimum step (:func:`solver_steps`), the joint's label, the
+  number of clearance joints of the system (the kernels' step group), the factor on the
+  joint's ``rate_limit`` for the run (:func:`joint_refinement`: below 1 in a convergence
+  check's tighter run), the longest step free flight may grow to
+  (:data:`GROWTH_CONTACT_PERIODS`), the step above which the joint asks for a Jacobian per
+  step (:func:`steer_newton`), the step in which a contact's end counts as unresolved
+  (:func:`separation_step`) and the effective mass of its impacts
+  (:func:`~exuclear.engine.bodies.joint_mass`).
+- **Step growth.**  After free flight the kernel lets the solver's next step grow
+  (:meth:`_RunStart.grow`).
+- **The Jacobian vote.**  The kernel asks for a Jacobian per step while its steps are long
+  against its contact period (:meth:`_RunStart.jacobian_per_step`, :func:`vote_jacobian`).
+- **Newton's settings**, below.
+
+Newton's settings
+-----------------
 Exudyn differentiates the joint's connector numerically (an
 ``ObjectConnectorRigidBodySpringDamper`` with a user function offers no analytic Jacobian:
 its ``GetAvailableJacobians`` lists ``ODE2_ODE2`` and ``ODE2_ODE2_t`` without the
@@ -37,21 +56,21 @@ For the run it starts (the solver's own copy of the settings; the user's
   of each step): on after a step it accepts longer than ``T_c / 2``, off after one at most
   that long, and on for the step after one in which a contact opened or closed (its
   stiffness came or went) and after one it redoes or lets grow (a step of another length,
-  whose mass term an older Jacobian does not hold: a first version without these asks,
-  which also began its runs without a Jacobian per step, left the beam pendulum's steps at
-  1e-7 s after its impacts, 120831 steps instead of 27213).  A sliding contact that the
+  whose mass term an older Jacobian does not hold: without these asks, and without a
+  Jacobian per step at the run's first step, the beam pendulum's steps stay at 1e-7 s after
+  its impacts, 120831 steps instead of 27213).  A sliding contact that the
   joint's rate criterion holds at steps below ``T_c / 2`` (friction) then runs on the
   Jacobian it has.  Measured against the same rule held for the whole run
-  (``python -m validation.jacobian_steps``, sums over the restitutions 0.89, 0.9 and 0.91, own
+  (``python -m validation.cost jacobian_steps``, sums over the restitutions 0.89, 0.9 and 0.91, own
   settings / ``exuclear.simulate``): rigid-body tutorial with friction 0.69 / 0.71 of the
   wall time, double pendulum with friction 0.78 / 0.70, four-bar 0.88 / 0.85, the piston
   engine 0.91 / 1.19 (a chaotic model whose contact chatters numerically with either rule:
   its 4x refined run has some 100 to 150 impacts, its runs 151 to 975).  The results move
   within what these models' chaos moves them by: over seven restitutions 0.88 to 0.92 (its
   ``--convergence``), the distance of the rigid-body tutorial with friction's |e|/c spectrum
-  to its 4x refined run's is 0.08 to 0.28 before (median 0.155) and 0.12 to 0.28 now
-  (median 0.158, smaller in 4 of the 7 pairs), the four-bar's 0.010 to 0.057 before and
-  0.013 to 0.070 now (all within the check's 0.1).
+  to its 4x refined run's is 0.08 to 0.28 with the rule held for the whole run (median
+  0.155) and 0.12 to 0.28 with it switched with the steps (median 0.158, smaller in 4 of
+  the 7 pairs), the four-bar's 0.010 to 0.057 and 0.013 to 0.070 (all within the check's 0.1).
   With several joints, the Jacobian comes per step while any of them asks for it.
 
 - ``modifiedNewtonContractivity`` to at most :data:`CONTRACTIVITY`: Exudyn's modified
@@ -80,7 +99,7 @@ For the run it starts (the solver's own copy of the settings; the user's
   looser because constraints would then be left unmet by the size of a contact's
   penetration (its reasoning there).  An absolute tolerance the user set (any value other
   than Exudyn's default) is kept: the joint's note on a run Exudyn stops then names it
-  (``_stopped_note`` in :mod:`exuclear.engine.handle`).  The relative tolerance is left as
+  (:func:`exuclear.engine.diagnostics.stopped_note`).  The relative tolerance is left as
   set: Exudyn's default (1e-8) is exuclear's too, and a tighter one the user chose (the
   zoo's slider-crank keeps its example's 1e-10) is the user's to loosen, which the same
   note says.
@@ -93,11 +112,18 @@ from __future__ import annotations
 
 import math
 import weakref
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import exudyn as exu
 
 from ..settings import NEWTON_ATOL_DEFAULT
+from ..timescales import STEPS_PER_CONTACT_PERIOD
+from .bodies import joint_contact_period, joint_mass
+from .layout import RUN_START_DEFAULT, RunStart
+from .registry import handle_of, joints_of, label
+
+if TYPE_CHECKING:
+    from .handle import ClearanceJointHandle
 
 #: The largest ``numericalDifferentiation.relativeEpsilon`` the joint lets an implicit run
 #: use (module docstring).
@@ -183,3 +209,157 @@ def vote_jacobian(mbs: exu.MainSystem, token: int, wanted: bool) -> None:
     solver = votes[0]()
     if solver is not None:  # else gone with its run: nothing to steer
         solver.newton.modifiedNewtonJacUpdatePerStep = any(votes[2].values())
+
+
+def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
+    """Whether the solver of the run ``mbs.SolveDynamic`` is starting redoes a step that a
+    post-Newton function rejects with a shorter one, its minimum step [s], if not, why, and
+    whether the joint's rate criterion applies (SolveDynamic stores its settings and solver
+    in ``mbs.sys`` before solving).  The rate criterion is off where an explicit solver
+    controls its step by its error estimate (DOPRI5 and the like): that control resolves
+    the contact (the paper's numbers come from it), and the criterion would only add
+    rejected steps.  Unknown settings (a solver run without SolveDynamic) count as able to
+    shorten: a step that comes back unshortened is then accepted and reported."""
+    try:
+        ti = mbs.sys["simulationSettings"].timeIntegration
+        solver = mbs.sys["dynamicSolver"]
+        explicit = explicit_solver(solver)
+    except Exception:  # no SolveDynamic run: the kernel's defaults
+        return True, 0.0, "", True
+    if explicit:
+        try:
+            error_control = bool(ti.automaticStepSize) and bool(solver.HasAutomaticStepSizeControl(
+                mbs, mbs.sys["simulationSettings"]))
+        except Exception:  # an Exudyn without the query: keep the criterion
+            error_control = False
+        return (bool(ti.automaticStepSize), float(ti.minimumStepSize),
+                "" if ti.automaticStepSize else "timeIntegration.automaticStepSize is False", not error_control)
+    return (bool(ti.adaptiveStep), float(ti.minimumStepSize),
+            "" if ti.adaptiveStep else "timeIntegration.adaptiveStep is False", True)
+
+
+#: A step grown in free flight lasts at most this many of the joint's contact periods (under
+#: its weight, exuclear.timescales): the contact that ends the flight starts from a step its
+#: rate criterion cuts to the contact's resolution in one or two attempts (a tenth each),
+#: where a longer one took more Newton solves at steps far too long.  Averages over three
+#: restitutions (0.89 to 0.91), zoo models: exuclear.simulate's double pendulum, whose
+#: largest step is 20 contact periods, 9964 -> 6162 steps; the own-settings runs, whose
+#: steps are at most 8 periods (but the beam pendulum's, 59), within the scatter that any
+#: change of a bounce gives these chaotic models (the piston engine: 4694 and 10472 steps
+#: at restitutions 0.90 and 0.91).
+GROWTH_CONTACT_PERIODS = 10.0
+
+
+class RefinedSimulationSettings(exu.SimulationSettings):
+    """``exu.SimulationSettings`` of a convergence check's tighter run: Exudyn's settings, and
+    :attr:`joint_refinement`, the factor by which the clearance joints of the run divide their
+    ``rate_limit`` (their own step control, which Exudyn's settings do not hold).  Exudyn's
+    ``SolveDynamic`` takes them as any settings and keeps them in ``mbs.sys``, where each
+    joint reads the factor at its run's start (:func:`joint_refinement`); the joints' own
+    ``rate_limit`` is not changed.  Made by :func:`exuclear.convergence.refined_settings`."""
+
+    def __init__(self, settings: exu.SimulationSettings, joint_refinement: float) -> None:
+        super().__init__()
+        self.SetDictionary(settings.GetDictionary())
+        self.joint_refinement = float(joint_refinement)
+
+    def __deepcopy__(self, memo: dict) -> RefinedSimulationSettings:
+        return RefinedSimulationSettings(self, self.joint_refinement)
+
+
+def joint_refinement(mbs: exu.MainSystem) -> float:
+    """The factor by which the clearance joints of the run ``mbs.SolveDynamic`` is starting
+    divide their ``rate_limit``: that of its :class:`RefinedSimulationSettings`, else 1."""
+    try:
+        settings = mbs.sys["simulationSettings"]
+    except Exception:  # no SolveDynamic run: the joints' own rate_limit
+        return 1.0
+    return float(getattr(settings, "joint_refinement", 1.0))
+
+
+def separation_step(mbs: exu.MainSystem, period: float) -> float:
+    """The longest step [s] in which a contact of a joint of contact ``period`` [s] ends
+    resolved, in the implicit run ``mbs.SolveDynamic`` is starting: a tenth of the period
+    (:data:`~exuclear.timescales.STEPS_PER_CONTACT_PERIOD`); inf where nothing is counted (an
+    explicit solver: its error control, or the joint's rate criterion at fixed steps, resolves
+    separations; an unknown period).  A contact that ends in a longer step of an implicit
+    method rings and leaves the wall without a physical cause (a resting pendulum at steps of
+    1e-3 s, 2.9 of its contact periods, leaves the wall 68 times in 2 s where DOPRI5 and
+    physics give one contact): the joint counts such separations and its notes say so
+    (:func:`exuclear.engine.diagnostics.chatter_note`)."""
+    try:
+        explicit = explicit_solver(mbs.sys["dynamicSolver"])
+    except Exception:  # no SolveDynamic run: nothing to count against
+        return math.inf
+    return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf
+
+
+class _RunStart:
+    """The kernel's run-start callback: returns the joint's
+    :class:`~exuclear.engine.layout.RunStart` record for the run the solver is starting
+    (whether the solver can shorten steps, its minimum step, the joint's label, how many
+    clearance joints the system has, the factor on its ``rate_limit`` for the run,
+    :func:`joint_refinement`, the longest step its free flight may
+    grow to, :data:`GROWTH_CONTACT_PERIODS`, the step above which it asks for a Jacobian per
+    step, :func:`steer_newton`, where finite it asks at the run's
+    first step, the step above which a contact's end counts as unresolved,
+    :func:`separation_step`, and the effective mass of its impacts, the reduced mass of its
+    two bodies); its ``grow(step)`` lets the solver's next step grow, its
+    ``jacobian_per_step(wanted)`` passes the joint's ask on.  It holds its system weakly and
+    finds its handle by token: the kernel's table outlives no handle through it."""
+
+    def __init__(self, mbs: exu.MainSystem, token: int) -> None:
+        self._mbs, self._token = weakref.ref(mbs), token
+
+    def __call__(self) -> RunStart:
+        mbs = self._mbs()
+        if mbs is None:
+            return RUN_START_DEFAULT
+        can_shorten, min_step, _why, rate = solver_steps(mbs)
+        handle = self._handle(mbs)
+        period, mass, jacobian_step = math.nan, math.nan, math.inf
+        if handle is not None:
+            try:
+                mass = joint_mass(mbs, handle)
+                period = joint_contact_period(mbs, handle)
+            except Exception:  # a body whose mass is not read: no Jacobian per step, no cap on growth
+                period = math.nan
+            if handle.steer_newton:
+                handle.newton_changes, jacobian_step = steer_newton(mbs, period, self._token)
+        growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
+        # a convergence check's tighter run refines the joints' own steps with the solver's
+        rate_scale = 1.0 / joint_refinement(mbs)
+        return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
+                        rate_scale, growth_cap, jacobian_step, separation_step(mbs, period), mass)
+
+    def jacobian_per_step(self, wanted: bool) -> None:
+        """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's
+        ``steer_jacobian``, where its ask changes): :func:`~exuclear.engine.steering.vote_jacobian`."""
+        mbs = self._mbs()
+        if mbs is not None:
+            vote_jacobian(mbs, self._token, wanted)
+
+    def grow(self, step: float) -> None:
+        """The joints' free flight allows ``step`` [s] next (the kernel's ``report_growth``):
+        lengthen the solver's next step to it, within the solver's largest step.  Exudyn's
+        implicit solver takes ``it.currentStepSize`` for its next step (and redoes a rejected
+        one shorter, or doubles it after its recovery steps, from there)."""
+        mbs = self._mbs()
+        try:
+            it = mbs.sys["dynamicSolver"].it
+            step = min(step, it.maxStepSize)
+            if step > it.currentStepSize:
+                it.currentStepSize = step
+        except Exception:  # no SolveDynamic solver (a solver run by hand): Exudyn's own rule
+            pass
+
+    def _handle(self, mbs: exu.MainSystem) -> ClearanceJointHandle | None:
+        return handle_of(mbs, self._token)
+
+    def note(self) -> None:
+        """The kernel's first unresolved step of a kind in this run: warn now (the run may
+        still be stopped by Exudyn, after which nobody might ask the joint)."""
+        mbs = self._mbs()
+        handle = self._handle(mbs) if mbs is not None else None
+        if handle is not None:
+            handle._report(running=True)

@@ -1,30 +1,43 @@
-"""What :func:`exuclear.simulate` checks before a run and reads after it.
+"""What a clearance joint's model and runs are checked for, and the notes that say so.
 
-Before: a model that cannot run names its likely cause (issue 15): a body of a
-clearance joint without mass, a journal that starts outside its bearing, a non-finite
-initial coordinate or velocity.  After: the tilt of a spatial joint that started aligned
-(below).  Contact chatter that is a numerical artefact is counted by the joint's kernel in
-any implicit run, ``mbs.SolveDynamic`` as well (:func:`exuclear.engine.handle._separation_step`).
+Before a run (:func:`check_model`, called by :func:`exuclear.simulate`): a model that
+cannot run names its likely cause: a body of a clearance joint without mass, a journal
+that starts outside its bearing, a non-finite initial coordinate or velocity; and a
+journal whose out-of-plane motion nothing holds warns (:func:`unheld_motion`).
 
-Tilt of an aligned journal (issue 21, docs/physics.md section 9.8).  A spatial joint's
-journal that starts exactly aligned stays in its plane only as long as round-off does:
-under a varying in-plane load (a swinging double pendulum) the tilt is an unstable mode of
-the rigid bodies on the slices, and it grows from round-off (1e-17 to 1e-14 rad) at some 30
-to 60 per second.  A run
-in which such a journal tilted beyond a fraction of ``c / L`` says so.
+After a run, the joint's notes (:func:`step_notes`, read by the handle's ``notes`` and
+issued as :class:`~exuclear.exceptions.AccuracyWarning`): steps its step control could
+not shorten enough, contact chatter that is a numerical artefact (:func:`chatter_note`:
+contacts that ended in steps longer than :func:`~exuclear.engine.steering.separation_step`,
+counted by the kernel in any implicit run, ``mbs.SolveDynamic`` as well), and a run
+Exudyn's solver ended early (:func:`stopped_note`).
+
+Tilt of an aligned journal (docs/physics.md section 9.8, :func:`tilt_note`).  A spatial
+joint's journal that starts exactly aligned stays in its plane only as long as round-off
+does: under a varying in-plane load (a swinging double pendulum) the tilt is an unstable
+mode of the rigid bodies on the slices, and it grows from round-off (1e-17 to 1e-14 rad)
+at some 30 to 60 per second.  A run in which such a journal tilted beyond a fraction of
+``c / L`` says so.
 """
 from __future__ import annotations
 
 import math
 import warnings
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import exudyn as exu
 import numpy as np
 
-from ..timescales import contact_period, reduced_mass
-from .connector import ClearanceJointHandle
+from ..exceptions import OutOfPlaneWarning
+from ..settings import NEWTON_RTOL_DEFAULT
+from ..timescales import STEPS_PER_CONTACT_PERIOD
+from .bodies import body_label, body_mass, joint_contact_period
+from .registry import joints_of, label
+from .steering import ABSOLUTE_TOLERANCE, explicit_solver, solver_steps
+
+if TYPE_CHECKING:
+    from .handle import ClearanceJointHandle
 
 #: Largest number of ODE2 coordinates for which :func:`unheld_motion` runs: it takes the
 #: dense constraint Jacobian's SVD and one marker read per admissible direction (0.1 s
@@ -51,130 +64,6 @@ TILT_NOTE_FRACTION = 0.01
 #: Relative angular velocity across the axis [rad/s] up to which a journal counts as
 #: started without tilting: a journal set tumbling on purpose has far more.
 ALIGNED_TILT_RATE = 1e-12
-
-
-class OutOfPlaneWarning(UserWarning):
-    """A clearance joint's journal can move along the axis or tilt, and nothing in the
-    model holds it (the replaced revolute joint did): see :func:`unheld_motion`."""
-
-
-#: Gravitational acceleration assumed for the contact load where a model has no
-#: mass-proportional load [m/s^2]: a joint is then pressed by its effective mass times g.
-STANDARD_GRAVITY = 9.81
-
-
-def _body_of(mbs: exu.MainSystem, marker: Any) -> tuple[Any, dict | None, int | None]:
-    """The object a marker sits on, its dictionary and its kinematic-tree link; ``(None,
-    None, None)`` for a node marker (``MarkerNodeRigid``), which sits on no object."""
-    m = mbs.GetMarker(marker)
-    body = m.get("bodyNumber", m.get("objectNumber"))
-    if body is None:
-        return None, None, None
-    link = m.get("linkNumber")
-    return body, mbs.GetObject(body), (int(link) if link is not None else None)
-
-
-def _where(mbs: exu.MainSystem, marker: Any) -> str:
-    """The body a marker sits on, for messages: "object 3", "link 1 of object 0", "node 2"."""
-    body, _, link = _body_of(mbs, marker)
-    if body is None:
-        return f"node {mbs.GetMarker(marker)['nodeNumber']}"
-    return f"link {link} of object {body}" if link is not None else f"object {body}"
-
-
-def _element_mass(item: dict) -> float:
-    """Mass [kg] of an object, nan where its type does not say: a rigid body's or mass
-    point's ``physicsMass`` / ``mass``; a beam or cable element's mass per length times its
-    length (``ObjectANCFCable2D``, ``ObjectBeamGeometricallyExact2D``: ``massPerLength``
-    and ``length``; the 3D elements: ``physicsMassPerLength`` or their ``sectionData``,
-    and ``physicsLength``)."""
-    for key in ("physicsMass", "mass"):  # ObjectRigidBody and mass points; ObjectRigidBody2D
-        if key in item:
-            return float(item[key])
-    per_length = item.get("massPerLength", item.get("physicsMassPerLength"))
-    if per_length is None and "sectionData" in item:
-        per_length = getattr(item["sectionData"], "massPerLength", None)
-    length = item.get("length", item.get("physicsLength"))
-    if per_length is None or length is None:
-        return math.nan
-    return float(per_length) * float(length)
-
-
-def _node_mass(mbs: exu.MainSystem, node: int) -> float:
-    """Mass [kg] that moves with a node: the whole mass of the objects whose only node it is
-    (a rigid body), and a share ``1 / (number of the element's nodes)`` of every element
-    that has it among several nodes (the lumped mass of a beam or cable node); nan where
-    an attached object's mass is not read (:func:`_element_mass`) or nothing is attached."""
-    mass, attached = 0.0, False
-    for i in range(mbs.systemData.NumberOfObjects()):
-        item = mbs.GetObject(i)
-        nodes = [int(n) for n in item.get("nodeNumbers", [])]
-        if "nodeNumber" in item and item["nodeNumber"] is not None and int(item["nodeNumber"]) >= 0:
-            nodes.append(int(item["nodeNumber"]))
-        if node not in nodes or item["objectType"].startswith(("Connector", "Joint", "Contact")):
-            continue
-        attached = True
-        mass += _element_mass(item) / len(nodes)
-    return mass if attached else math.nan
-
-
-def body_mass(mbs: exu.MainSystem, marker: Any) -> float:
-    """Mass [kg] of the body (or kinematic-tree link) a marker sits on; inf for the
-    ground; for a node marker the mass that moves with the node (:func:`_node_mass`); nan
-    where the object type does not say."""
-    body, item, link = _body_of(mbs, marker)
-    if item is None:
-        return _node_mass(mbs, int(mbs.GetMarker(marker)["nodeNumber"]))
-    kind = item["objectType"]
-    if kind == "Ground":
-        return math.inf
-    if kind == "KinematicTree":
-        return float(item["linkMasses"][link])
-    return _element_mass(item)
-
-
-def unread_masses(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
-    """The bodies of a joint whose mass :func:`body_mass` does not read, for messages
-    ("its journal body (object 3, an ObjectFFRF)"), or ``""``."""
-    unread = []
-    for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
-        if math.isnan(body_mass(mbs, marker)):
-            _, item, _ = _body_of(mbs, marker)
-            kind = f", an Object{item['objectType']}" if item is not None else ""
-            unread.append(f"its {role} body ({_where(mbs, marker)}{kind})")
-    return " and ".join(unread)
-
-
-def _gravity(mbs: exu.MainSystem) -> float:
-    g = 0.0
-    for i in range(mbs.systemData.NumberOfLoads()):
-        load = mbs.GetLoad(i)
-        if load["loadType"] == "MassProportional":
-            g = max(g, float(np.linalg.norm(load["loadVector"])))
-    for i in range(mbs.systemData.NumberOfObjects()):
-        item = mbs.GetObject(i)
-        if item["objectType"] == "KinematicTree":
-            g = max(g, float(np.linalg.norm(item["gravity"])))
-    return g
-
-
-def joint_mass(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
-    """The effective mass [kg] of a joint's relative motion: its two bodies' reduced mass
-    (nan where a body's mass is not read).  A crude estimate: a body held by other joints
-    moves the journal with more or less than its own mass."""
-    return reduced_mass(*(body_mass(mbs, m) for m in handle.markerNumbers))
-
-
-def joint_contact_period(mbs: exu.MainSystem, handle: ClearanceJointHandle, force: float | None = None) -> float:
-    """Contact period [s] of a joint: its two bodies' reduced mass (:func:`joint_mass`),
-    pressed by ``force`` [N] (default: that mass times the model's gravity, or
-    :data:`STANDARD_GRAVITY`)."""
-    mass = joint_mass(mbs, handle)
-    if not mass > 0.0 or not math.isfinite(mass):
-        return math.nan
-    if force is None:
-        force = mass * (_gravity(mbs) or STANDARD_GRAVITY)
-    return contact_period(handle.joint.law, mass, force)
 
 
 def _constraint_jacobian(mbs: exu.MainSystem) -> np.ndarray:
@@ -226,8 +115,6 @@ def unheld_motion(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle] | 
     and its axial displacement and tilt are read from the markers.  Models with more than
     :data:`UNHELD_MAX_COORDINATES` coordinates are not checked (an empty result).
     """
-    from .handle import joints_of  # noqa: PLC0415 - the handle module imports this one's users
-
     joints = list(joints_of(mbs) if joints is None else joints)
     checked = [h for h in joints if h.constraintNumber is None and not (h.slices and h.shoulders is not None)]
     if not checked:
@@ -288,7 +175,7 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
         for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
             mass = body_mass(mbs, marker)
             if mass <= 0.0:  # NaN (a body type whose mass is not read here) passes
-                raise ValueError(f"clearance joint {name!r}: its {role} body ({_where(mbs, marker)}) has mass {mass}; every body "
+                raise ValueError(f"clearance joint {name!r}: its {role} body ({body_label(mbs, marker)}) has mass {mass}; every body "
                                  "of a clearance joint needs a positive mass (the contact force would accelerate "
                                  "it without bound)")
         delta = initial_penetration(mbs, handle)
@@ -299,12 +186,12 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
                              "m); place the journal centre within the clearance of the bearing centre (check "
                              "journal_point / bearing_point and the bodies' initial positions, in metres)")
     ref = exu.ConfigurationType.Initial
-    for label, values in (("coordinate", mbs.systemData.GetODE2Coordinates(configuration=ref)),
+    for kind, values in (("coordinate", mbs.systemData.GetODE2Coordinates(configuration=ref)),
                           ("velocity", mbs.systemData.GetODE2Coordinates_t(configuration=ref))):
         bad = [k for k, v in enumerate(np.asarray(values, dtype=float)) if not math.isfinite(v)]
         if bad:
-            raise ValueError(f"initial {label} {bad[0]} (ODE2 index; node {_node_of(mbs, bad[0])}) is {values[bad[0]]}: "
-                             f"every initial {label} must be finite")
+            raise ValueError(f"initial {kind} {bad[0]} (ODE2 index; node {_node_of(mbs, bad[0])}) is {values[bad[0]]}: "
+                             f"every initial {kind} must be finite")
     note = unheld_note(unheld_motion(mbs, joints))
     if note:
         warnings.warn(note, OutOfPlaneWarning, stacklevel=3)
@@ -375,3 +262,134 @@ def tilt_note(handle: ClearanceJointHandle, aligned: bool) -> str:
             "by round-off. "
             "For a model meant to stay planar, use the planar joint (no `slices`) with constrainAxial=True, which "
             "holds the tilt")
+
+
+def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: bool = False) -> list[tuple[str, str]]:
+    """(kind, sentence) for what the joint's step control could not do in the last run: each names
+    the joint, what happened (time, step, penetration / c) and the fixed step to use: the
+    smaller of the kernel's recommendation at the worst step and a tenth of the joint's
+    contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
+    can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
+    5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
+    stopped = [] if running else stopped_note(handle) + chatter_note(handle, control)
+    if not control["unresolved"] and not control["over_limit"]:
+        return stopped
+    _can, _min, why, _rate = solver_steps(handle.mbs)
+    period = math.nan
+    try:
+        period = joint_contact_period(handle.mbs, handle)
+    except Exception:  # a body whose mass is not read: the kernel's recommendation stands
+        pass
+    name, c = label(handle), handle.joint.geometry.clearance
+    notes = []
+    for kind, count, when, step, advice, what, otherwise in (
+            ("unresolved", control["unresolved"], control["unresolved_time"], control["unresolved_step"],
+             control["unresolved_advice"], "did not resolve the contact (the penetration rate changed by more than "
+                                           "the joint's step control allows)", "the same step came back unshortened"),
+            ("over_limit", control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
+             f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
+             f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it")):
+        if not count:
+            continue
+        if period > 0.0:  # a tenth of the contact period under the weight, as step="auto"; an
+            advice = min(advice, period / 10)  # impact is faster: the kernel's worst step is then shorter
+        notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
+                     f"of the run{' so far' if running else ''}, which could not be shortened enough "
+                     f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
+                     "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
+                     "automaticStepSize = True for explicit solvers)"))
+    return notes + stopped
+
+
+def chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[tuple[str, str]]:
+    """("chatter", sentence) where contacts of the last run ended in steps longer than a tenth
+    of the joint's contact period (the kernel's ``long_separations``, :func:`_separation_step`):
+    its contact onsets may be numerical chatter."""
+    long, step = control["long_separations"], control["separation_step"]
+    if not long:
+        return []
+    return [("chatter", f"joint {label(handle)}: {long} of its {control['separations']} contacts ended in a step "
+             f"longer than a tenth of its contact period ({step * STEPS_PER_CONTACT_PERIOD:.2g} s, estimated); such "
+             f"separations are not resolved, and the {handle.history.onsets} contact onsets may be numerical "
+             f"chatter, not physics: use steps of at most {step:.2g} s where contacts open "
+             "(timeIntegration.numberOfSteps, or exuclear.simulate's `step`), or an explicit adaptive method where "
+             "the model allows")]
+
+
+def regime(handle: ClearanceJointHandle) -> str:
+    """The joint's regime after the last accepted step, with its eccentricity ratio |e|/c:
+    free flight or metal contact (with the penetration), and for a lubricated joint the film
+    alone (eps <= eps_film), the film's blend near the wall (eq. (70)) or metal contact under
+    the film (:data:`~exuclear.engine.outputs.REGIME_FILM` and the others).  A spatial joint:
+    its most penetrated slice or end face (:meth:`ClearanceJointHandle.state`)."""
+    state, c = handle.state(), handle.joint.geometry.clearance
+    eps = f"|e|/c = {math.hypot(state.ecc_x, state.ecc_y) / c:.6g}"
+    film = handle.joint.film
+    if state.in_contact or state.delta > 0.0:
+        where = "in metal contact under the film" if film is not None else "in metal contact"
+        return f"{where} ({eps}, penetration {state.delta / c:.3g} c)"
+    if film is None:
+        return f"in free flight ({eps}, {-state.delta / c:.3g} c from the wall)"
+    if math.hypot(state.ecc_x, state.ecc_y) / c > film.eps_film:
+        return f"in the film's blend near the wall ({eps} > eps_film = {film.eps_film:g})"
+    return f"carried by the film ({eps} <= eps_film = {film.eps_film:g})"
+
+
+def stop_cause(solver: Any, adaptive: bool, min_step: float) -> str:
+    """Why Exudyn's solver ended its run early, from its convergence and output flags
+    (``CSolverBase::GetErrorString`` and ``FinalizeSolver`` read the same ones)."""
+    output, conv = solver.output, solver.conv
+    if output.simulationStoppedByUser or output.simulationStoppedByUserFunction:
+        return "stopped by the user (a pre- or post-step function returned False, or Ctrl+C)"
+    if output.simulationTimeout:
+        return "stopped at exudyn.special.solver.timeout"
+    if conv.linearSolverFailed:
+        return "its linear solver failed (the Jacobian is singular)"
+    if conv.newtonSolutionDiverged:
+        return "its Newton iteration diverged"
+    if conv.stepReductionFailed:
+        if adaptive:
+            return f"its Newton did not converge, and the step reduction reached the minimum step ({min_step:g} s)"
+        return "its Newton did not converge at the fixed step (timeIntegration.adaptiveStep is False)"
+    return "an error in a user function or in Exudyn (the solver gives no cause)"
+
+
+def stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
+    """("stopped", sentence) where Exudyn's solver ended the last run before its end time,
+    whatever the joint's regime: Exudyn then says only "SolveDynamic terminated".  The
+    sentence names the joint, the time, the joint's regime and |e|/c (:func:`regime`), the
+    cause (:func:`stop_cause`) and, for a failed Newton, what to try: the tolerances in
+    effect (the solver's copy, after :func:`~exuclear.engine.steering.steer_newton`) where they
+    are tighter than the contact's round-off allows, said to be the user's where the joint
+    kept them."""
+    mbs = handle.mbs
+    try:
+        solver, settings = mbs.sys["dynamicSolver"], mbs.sys["simulationSettings"]
+        ti = settings.timeIntegration
+        end, adaptive, min_step = float(ti.endTime), bool(ti.adaptiveStep), float(ti.minimumStepSize)
+        newton = solver.newton if not explicit_solver(solver) else None
+    except Exception:  # no SolveDynamic run (or another solver): nothing to say
+        return []
+    t = mbs.systemData.GetTime()
+    if t >= end * (1.0 - 1e-12) or not handle._backend.started():
+        return []
+    cause = stop_cause(solver, adaptive, min_step)
+    if solver.output.finishedSuccessfully and not cause.startswith("stopped"):
+        return []  # a finished run whose time is not this solver's (e.g. a static solve since)
+    note = (f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s: {cause}; the joint "
+            f"was then {regime(handle)}")
+    if "Newton" not in cause and "singular" not in cause:
+        return [("stopped", note)]
+    advice = []
+    if newton is not None:
+        rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
+        if rtol < NEWTON_RTOL_DEFAULT or atol < ABSOLUTE_TOLERANCE:
+            # the joint raises only Exudyn's default absolute tolerance: a tighter one is the user's
+            advice.append(f"Newton tolerances the residual can reach (timeIntegration.newton.relativeTolerance >= "
+                          f"{NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= {ABSOLUTE_TOLERANCE:g}, now "
+                          f"{atol:g}; the joint keeps tolerances the user set)")
+    if not adaptive:
+        advice.append("timeIntegration.adaptiveStep = True (Exudyn then shortens a step whose Newton fails)")
+    advice.append("a shorter step; where Newton's residual stalls at every step length (timeIntegration.verboseMode = 2 "
+                  "shows it), look for a singular position of the mechanism")
+    return [("stopped", note + "; try " + ", or ".join(advice))]

@@ -1,0 +1,366 @@
+// Compiled kernel of the exuclear clearance joint: the functions Exudyn calls and the Python
+// module (the one translation unit; the headers it includes hold the kernel by role, each
+// named as its Python mirror in exuclear/engine/_python_kernel/).
+//
+// The same formulas as the Python statement of the physics, in the same order and with
+// the same names, so that the two can be read side by side and agree to round-off:
+//   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
+//                                               planar joint's eqs. (1)-(8) as one slice)
+//   normal force        exuclear/contact.py    (eq. (9) once, damped_normal_force; eqs. (10)-(17))
+//   friction            exuclear/friction.py   (eqs. (20)-(23))
+//   one contact         exuclear/engine/_python_kernel/contacts.py Contact (response: onset velocity,
+//                       normal force, friction; the same for slices and end faces)
+//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
+//   contact history     exuclear/history.py    (onset velocity, records)
+//   film                exuclear/film.py       (eqs. (55)-(70))
+//   the joint           exuclear/engine/_python_kernel/joint_state.py JointState (which history an
+//                       evaluation uses; force and post-Newton drivers over the contacts)
+// The planar joint is the spatial joint with one slice and no end faces, whose motion is
+// projected on the plane normal to the bearing axis.
+//
+// Exudyn calls these functions through raw function pointers, without Python, when they
+// are bound by pybind11, capture nothing and have exactly Exudyn's signature
+// (see exuclear/engine/kernel.py, which checks that at import).
+// Parameters reach the functions through the connector's `stiffness` matrix (layout in
+// exuclear/engine/layout.py); the per-joint dynamic state lives in a table indexed by the
+// joint id stored there.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "step_control.hpp"
+
+namespace pybind11 {
+namespace detail {
+// Lets pybind11 bind functions that take Exudyn's MainSystem, which this module does not
+// know.  A call from Python (the self-test's fallback check) passes any object; the
+// functions never touch it.
+template <> class type_caster<MainSystem> {
+public:
+    bool load(handle src, bool) {
+        ptr_ = reinterpret_cast<MainSystem*>(src.ptr());
+        return true;
+    }
+    static constexpr auto name = const_name("exudyn.MainSystem");
+    template <typename T> using cast_op_type = MainSystem&;
+    operator MainSystem&() { return *ptr_; }
+    static handle cast(const MainSystem&, return_value_policy, handle) { return none().release(); }
+
+private:
+    MainSystem* ptr_ = nullptr;
+};
+}  // namespace detail
+}  // namespace pybind11
+
+namespace {
+
+V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, V3 velocity, V3 angularVelocity,
+                M6 parameters, M6, M3, M3, V6) {
+    Params a = decode(parameters);
+    switch (a.role) {
+        case PROBE:  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
+            record_bearing_spin(a, angularVelocity);
+            return zeros6();
+        case TORQUE: {
+            const V3& c = state(a.id).torque_correction;
+            return V6{0.0, 0.0, 0.0, c[0], c[1], c[2]};
+        }
+        default:
+            return joint_force(a, t, displacement, rotation, velocity, angularVelocity);
+    }
+}
+
+// The reply of a post-Newton function, [error = 0, recommended step = -1], with room for the
+// data node's n entries after it: one allocation per call (Exudyn counts a run's allocations
+// and warns where they come every step).
+StdVector reply(size_t n) {
+    StdVector out;
+    out.reserve(2 + n);
+    out.push_back(0.0);
+    out.push_back(-1.0);
+    return out;
+// JointKernel.post_newton: the contacts' history update, once per accepted step.
+// Returns [error, recommended step, data...].
+}
+
+StdVector joint_post_newton(const Params& a, const void* system, double t, const StdVector& data,
+                            const V3& displacement, const V3& rotation, const V3& velocity,
+                            const V3& angularVelocity) {
+    StdVector out = reply(data.size());
+    JointState& s = state(a.id);
+    s.post_newton_calls++;
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    history_for(s, a, q, t);  // starts a run if needed
+    bool advance = t > s.cur[0].time;
+    const std::vector<History>& base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
+    if (!all_finite(s)) fail(s, t, DIVERGED);
+    size_t n = s.kins.size();
+    if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
+        bool run_start = base[0].time == s.initial[0].time;  // the step from the run's initial state
+        for (size_t i = 0; i < n; ++i) {
+            // a contact begins in a long step, or the run begins in an impact: redo it with impact_step
+            if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
+                (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
+                steer_jacobian(s, INF);  // a step of another length: a Jacobian for it
+                out[0] = REDO_STEP_ERROR;
+                out[1] = a.impact_step;
+                out.insert(out.end(), data.begin(), data.end());
+                return out;
+            }
+        }
+    }
+    double redo = step_control(a, s, base, t);
+    if (redo > 0.0) {
+        steer_jacobian(s, INF);
+        out[0] = REDO_STEP_ERROR;
+        out[1] = redo;
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
+    }
+    s.next.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        s.records[i].resize(static_cast<size_t>(base[i].closed));
+        s.next[i] = accept(base[i], a, contact_kind(a, i), s.kins[i], t, s.records[i]);
+        if (!std::isfinite(s.next[i].f_n)) fail(s, t, "the contact force became non-finite (NaN or inf)");
+    }
+    for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+        set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+    }
+    // the step before this one: free flight must have lasted both (a repeated step: unknown)
+    double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
+    double h = t - base[0].time;
+    bool switched = false;  // a contact opened or closed in this step: its stiffness came or went
+    long ended = 0;         // contacts that ended in this step
+    for (size_t i = 0; i < n; ++i) {
+        switched = switched || base[i].in_contact != s.next[i].in_contact;
+        if (base[i].in_contact && !s.next[i].in_contact) ended++;
+    }
+    count_separations(s.control, advance, ended, h);
+    if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
+    s.cur.swap(s.next);
+    steer_jacobian(s, switched ? INF : h);
+    report_growth(s, a.id, system, t, allow, h);
+    if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
+        data_values(s.cur[0], out);
+        if (a.film_model != FILM_NONE) {
+            out.push_back(s.cur[0].film_fx);
+            out.push_back(s.cur[0].film_fy);
+            out.push_back(s.cur[0].film_torque);
+        }
+        return out;
+    }
+    // layout.spatial_data_columns, as many entries as the data node has (reserved by reply)
+    out.push_back(t);
+    out.push_back(q.u[0]);
+    out.push_back(q.u[1]);
+    out.push_back(q.p[2]);
+    for (const History& h : s.cur) data_values(h, out, 1);  // each contact's entries without its time
+    if (a.film_model != FILM_NONE) {  // then each slice's film entries (layout.FILM_DATA_COLUMNS)
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            out.push_back(s.cur[i].film_fx);
+            out.push_back(s.cur[i].film_fy);
+            out.push_back(s.cur[i].film_torque);
+        }
+    }
+    return out;
+}
+
+StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 displacement, V3 rotation,
+                      V3 velocity, V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
+    Params a = decode(parameters);
+    if (a.role == PROBE) {
+        record_bearing_spin(a, angularVelocity);
+        StdVector out = reply(data.size());
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
+    }
+    return joint_post_newton(a, &mbs, t, data, displacement, rotation, velocity, angularVelocity);
+}
+
+// ---- dispatch counter for the self-test -----------------------------------------------------
+long g_dispatch_calls = 0;
+struct DispatchCounter {  // constructed only when a call comes through pybind11's Python dispatcher
+    DispatchCounter() { ++g_dispatch_calls; }
+};
+
+py::dict history_dict(const History& h) {
+    py::dict d;
+    d["time"] = h.time;
+    d["delta"] = h.delta;
+    d["delta_dot"] = h.delta_dot;
+    d["in_contact"] = h.in_contact;
+    d["v0"] = h.v0;
+    d["onsets"] = h.onsets;
+    d["closed"] = h.closed;
+    d["onset_time"] = h.onset_time;
+    d["peak_force"] = h.peak_force;
+    d["max_penetration"] = h.max_penetration;
+    d["normal_force"] = h.f_n;
+    d["tangential_force"] = h.f_t;
+    d["slip_velocity"] = h.v_t;
+    d["ecc_x"] = h.ex;
+    d["ecc_y"] = h.ey;
+    d["film_fx"] = h.film_fx;
+    d["film_fy"] = h.film_fy;
+    d["film_torque"] = h.film_torque;
+    return d;
+}
+
+py::list history_list(const std::vector<History>& hs) {
+    py::list l;
+    for (const History& h : hs) l.append(history_dict(h));
+    return l;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_ckernel, m) {
+    m.doc() = "Compiled kernel of the exuclear clearance joint (see exuclear/engine/kernel.py)";
+    m.def("force_torque", &force_torque, py::call_guard<DispatchCounter>(),
+          "springForceTorqueUserFunction of the clearance-joint connectors");
+    m.def("post_newton", &post_newton, py::call_guard<DispatchCounter>(),
+          "postNewtonStepUserFunction of the clearance-joint connectors");
+    m.def("new_joint", []() {
+        if (!g_free.empty()) {  // reuse a released slot
+            long id = g_free.back();
+            g_free.pop_back();
+            g_joints[static_cast<size_t>(id)] = JointState();
+            return id;
+        }
+        g_joints.emplace_back();
+        return static_cast<long>(g_joints.size() - 1);
+    }, "a new joint's id in the kernel's table");
+    m.def("release", [](long id) {
+        leave_group(state(id));
+        state(id) = JointState();
+        g_joints[static_cast<size_t>(id)].in_use = false;
+        g_free.push_back(id);
+    }, "free a joint's state (its handle is gone); new_joint reuses the slot");
+    m.def("joints_in_use", []() { return static_cast<long>(g_joints.size() - g_free.size()); });
+    m.def("reset", [](long id) {  // forget the history; keep the run-start callback and the run count
+        JointState& s = state(id);
+        py::object run_start = s.run_start;
+        long runs = s.control.runs;
+        leave_group(s);
+        s = JointState();
+        s.run_start = run_start;
+        s.control.runs = runs;
+    });
+    m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
+          "a callable called once per run start: (can_shorten, min_step, label, rate); hold no strong "
+          "reference to the joint's handle in it");
+    m.def("step_control", [](long id) {  // what the joint's own step control did in the last run
+        const StepControl& c = state(id).control;
+        py::dict d;
+        d["runs"] = c.runs;
+        d["can_shorten"] = c.can_shorten;
+        d["min_step"] = c.min_step;
+        d["rate"] = c.rate;
+        d["label"] = c.label;
+        d["group_size"] = c.group_size;
+        d["rate_scale"] = c.rate_scale;
+        d["growth_cap"] = c.growth_cap;
+        d["jacobian_step"] = c.jacobian_step;
+        d["jacobian_on"] = c.jacobian_on;
+        d["separation_step"] = c.separation_step;
+        d["impact_mass"] = c.impact_mass;
+        d["separations"] = c.separations;
+        d["long_separations"] = c.long_separations;
+        d["rejected"] = c.rejected;
+        d["unresolved"] = c.unresolved;
+        d["unresolved_time"] = c.unresolved_time;
+        d["unresolved_step"] = c.unresolved_step;
+        d["unresolved_advice"] = c.unresolved_advice;
+        d["over_limit"] = c.over_limit;
+        d["over_time"] = c.over_time;
+        d["over_step"] = c.over_step;
+        d["deepest"] = c.deepest;
+        return d;
+    });
+    m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("impact_duration", [](M6 parameters, double mass, double speed) {
+        return impact_duration(decode(parameters), mass, speed);
+    }, "timescales.impact_duration of the joint whose parameter matrix is given (a test hook)");
+    m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
+        // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)
+        V3 rotation{0.0, 0.0, 0.0};
+        volatile double sink = 0.0;  // keeps the evaluations from being optimised away
+        auto start = std::chrono::steady_clock::now();
+        for (long i = 0; i < n; ++i) {  // what force_torque does for the joint's connector: decode, evaluate
+            Params a = decode(parameters);
+            V6 f = joint_force(a, t, displacement, rotation, velocity, angularVelocity);
+            sink = sink + f[0];
+        }
+        std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        return elapsed.count() / static_cast<double>(n);
+    }, "seconds per evaluation of the joint's force function (a micro benchmark)");
+    m.def("calls", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(s.force_calls, s.post_newton_calls);
+    });
+    m.def("history", [](long id) {  // per contact: slices (one for the planar joint), then end faces
+        JointState& s = state(id);
+        py::dict d;
+        d["started"] = s.started;
+        d["current"] = history_list(s.cur);
+        d["previous"] = history_list(s.prev);
+        d["initial"] = history_list(s.initial);
+        return d;
+    });
+    m.def("records", [](long id) {  // per contact
+        JointState& s = state(id);
+        py::list out;
+        for (const std::vector<Record>& rs : s.records) {
+            py::list l;
+            for (const Record& r : rs) {
+                l.append(py::make_tuple(r.onset_time, r.onset_velocity, r.peak_force, r.duration, r.max_penetration));
+            }
+            out.append(l);
+        }
+        return out;
+    });
+    m.def("initial_axis", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(py::make_tuple(s.initial_axis[0], s.initial_axis[1], s.initial_axis[2]),
+                              s.initial_axial);
+    });
+    m.def("failure", [](long id) {
+        JointState& s = state(id);
+        return py::make_tuple(s.failure, s.failure_time);
+    });
+    m.def("failed", [](long id) { return !state(id).failure.empty(); });  // per step, cheap: no string
+    py::list layout;
+    for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
+    m.attr("LAYOUT") = layout;
+    m.attr("N_DATA") = N_DATA;
+    m.attr("N_FILM_DATA") = N_FILM_DATA;
+    m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
+    // the run-start record's fields start_run reads (layout.py RunStart), and the step
+    // control's constants (_python_kernel/step_control.py), which tests keep equal to Python's
+    py::list run_start_fields;
+    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap",
+                             "jacobian_step", "separation_step", "impact_mass"}) {
+        run_start_fields.append(name);
+    }
+    m.attr("RUN_START_FIELDS") = run_start_fields;
+    py::dict constants;
+    constants["REDO_STEP_ERROR"] = REDO_STEP_ERROR;
+    constants["STEP_SLACK"] = STEP_SLACK;
+    constants["ONSET_TAIL"] = ONSET_TAIL;
+    constants["ONSET_TARGET"] = ONSET_TARGET;
+    constants["ONSET_FLOOR"] = ONSET_FLOOR;
+    constants["ONSET_IDLE_STEPS"] = ONSET_IDLE_STEPS;
+    constants["SOLVER_STEP_CUT"] = SOLVER_STEP_CUT;
+    constants["STEP_SAFETY"] = STEP_SAFETY;
+    constants["MAX_CUT"] = MAX_CUT;
+    constants["MIN_STEP_MARGIN"] = MIN_STEP_MARGIN;
+    constants["GROWTH_LIMIT"] = GROWTH_LIMIT;
+    constants["GROWTH_MIN"] = GROWTH_MIN;
+    constants["GROWTH_GAP"] = GROWTH_GAP;
+    constants["PENETRATION_CUT"] = PENETRATION_CUT;
+    constants["PENETRATION_RETRIES"] = PENETRATION_RETRIES;
+    m.attr("STEP_CONSTANTS") = constants;
+}

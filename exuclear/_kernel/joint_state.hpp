@@ -1,0 +1,285 @@
+// One joint's state in the kernel's table (JointState, by the joint id in its parameters): per
+// contact, the history at the start and the end of the last accepted step, which of them an
+// evaluation uses (history_for), the joint's kinematics and its force evaluation, and the
+// data node's entries of a history.  Python: exuclear/engine/_python_kernel/joint_state.py.
+
+#pragma once
+
+#include <unordered_map>
+
+#include "film.hpp"
+
+namespace {
+
+// ---- the per-joint table -------------------------------------------------------------------
+// One joint's state (_python_kernel/joint_state.py JointState): per contact, its history at the start
+// (prev) and at the end (cur) of the last post-processed step and its records.
+// What the joint's own step control did in the last run (_python_kernel/joint_state.py StepControl):
+// steps it rejected, and steps it could not resolve because the solver could not shorten
+// them (read by the handle after the run, which says so in an AccuracyWarning).
+struct StepControl {
+    bool can_shorten = true;  // the solver redoes a rejected step shorter (from the run-start callback)
+    double min_step = 0.0;    // the solver's minimum step [s]
+    bool rate = true;         // false: an explicit solver's error control sets the step (no rate criterion)
+    std::string label;        // the joint's name, for messages (from the run-start callback)
+    int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
+    double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
+    double growth_cap = INF;  // the longest step free flight may grow to [s] (handle.py GROWTH_CONTACT_PERIODS)
+    double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
+    bool jacobian_on = false;    // whether it asks now
+    double separation_step = INF;  // a contact that ends in a longer step is not resolved [s] (handle.py)
+    double impact_mass = std::numeric_limits<double>::quiet_NaN();  // the joint's impacts' effective mass [kg] (nan: unknown)
+    long separations = 0;          // contacts that ended in the run
+    long long_separations = 0;     // ... in a step longer than separation_step: maybe numerical chatter
+    long last_ended = 0, last_long = 0;  // what the last accepted step added (taken back if it is redone)
+    long runs = 0;            // runs started since the joint was created
+    long rejected = 0;        // steps rejected by the joint and redone shorter
+    long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
+    double unresolved_time = 0.0, unresolved_step = 0.0, unresolved_advice = INF;  // the first; smallest advice
+    long over_limit = 0;      // steps accepted with a penetration beyond the limit
+    double over_time = 0.0, over_step = 0.0, deepest = 0.0;
+    double last_time = -INF, last_step = 0.0;  // the last rejected step (to see it come back unshortened)
+    double retry_start = -INF;                  // the start of the step the penetration retries are about
+    int retries = 0;
+};
+
+struct JointState {
+    bool in_use = true;    // false: released (its handle is gone), the slot is free for a new joint
+    bool started = false;  // an accepted (initial) state exists in this run
+    std::vector<Kinematics> kins;            // the last evaluation's, one per contact (storage reused)
+    std::vector<History> prev, cur, initial;
+    std::vector<History> next;               // scratch of the post-Newton update (storage reused)
+    std::vector<std::vector<Record>> records;
+    V3 omega_bearing{0.0, 0.0, 0.0};      // the bearing's angular velocity (J0), from the probe
+    std::vector<FilmInput> film_inputs;  // the last evaluation's, per slice, for a lubricated joint
+    FiniteCoefficients finite;                           // the finite film model's a1 ... a9 at this B/D
+    V3 torque_correction{0.0, 0.0, 0.0};  // eq. (45), for the torque connector
+    V3 initial_axis{0.0, 0.0, 1.0};
+    double initial_axial = 0.0;
+    long force_calls = 0, post_newton_calls = 0;
+    std::string failure;
+    double failure_time = 0.0;
+    StepControl control;
+    const void* group = nullptr;  // the system whose step group the joint reports to (report_growth)
+    py::object run_start;  // Python callable, once per run start: (can_shorten, min_step, label, rate); None: none
+};
+
+std::vector<JointState> g_joints;
+std::vector<long> g_free;  // released slots of g_joints, reused by new_joint
+
+JointState& state(long id) {
+    if (id < 0 || id >= static_cast<long>(g_joints.size()) || !g_joints[static_cast<size_t>(id)].in_use) {
+        throw std::runtime_error("exuclear kernel: unknown joint id " + std::to_string(id));
+    }
+    return g_joints[static_cast<size_t>(id)];
+}
+
+// Record why the run cannot go on, and stop it (an exception ends Exudyn's solve; mirrors
+// JointState._fail of _python_kernel/joint_state.py).  Only for a state that cannot go on (non-finite, a penetration
+// beyond the limit that shorter steps do not remove): the message names the joint.
+[[noreturn]] void fail(JointState& s, double t, const std::string& message) {
+    s.failure = message;
+    s.failure_time = t;
+    std::string who = s.control.label.empty() ? "" : "joint " + s.control.label + ": ";
+    throw std::runtime_error("exuclear: " + who + message + " at t = " + std::to_string(t) +
+                             " s (joint.failure() says more)");
+}
+
+// JointState.start_run: a new run begins; forget the last run's step control and ask the
+// handle (Python, once per run) whether the solver can shorten steps and the joint's name.
+void start_run(JointState& s) {
+    long runs = s.control.runs + 1;
+    s.control = StepControl();
+    s.control.runs = runs;
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {  // the fields of layout.py RunStart, by name (RUN_START_FIELDS)
+        py::object r = s.run_start();
+        StepControl& c = s.control;
+        c.can_shorten = r.attr("can_shorten").cast<bool>();
+        c.min_step = r.attr("min_step").cast<double>();
+        c.label = r.attr("label").cast<std::string>();
+        c.rate = r.attr("rate").cast<bool>();
+        c.group_size = r.attr("group_size").cast<int>();
+        c.rate_scale = r.attr("rate_scale").cast<double>();
+        c.growth_cap = r.attr("growth_cap").cast<double>();
+        c.jacobian_step = r.attr("jacobian_step").cast<double>();
+        c.separation_step = r.attr("separation_step").cast<double>();
+        c.impact_mass = r.attr("impact_mass").cast<double>();
+        c.jacobian_on = c.jacobian_step < INF;  // steer_newton asked for it at the first step
+    } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
+        PyErr_Clear();
+    } catch (py::cast_error&) {
+    }
+}
+
+// JointStepControl.steer_jacobian: ask for a Jacobian per step while the step the joint accepts is
+// longer than the run-start callback's jacobian_step (newton.py), and for the step after one in
+// which a contact opened or closed or that it redoes or grows (step INF), through its
+// jacobian_per_step(): a call where the ask changes, not per step.
+void steer_jacobian(JointState& s, double step) {
+    bool wanted = step > s.control.jacobian_step;
+    if (wanted == s.control.jacobian_on) return;
+    s.control.jacobian_on = wanted;
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        s.run_start.attr("jacobian_per_step")(wanted);
+    } catch (py::error_already_set&) {  // never end a run for a Jacobian: the setting stays as it was
+        PyErr_Clear();
+    }
+}
+
+// JointState.tell: the first step of a run that the joint could not resolve (of each kind)
+// is told at once, through the run-start callback's `note()` (Python issues the
+// AccuracyWarning, with its advice): a run that Exudyn then stops is not silent either.
+void tell(JointState& s) {
+    if (!s.run_start || s.run_start.is_none()) return;
+    try {
+        s.run_start.attr("note")();
+    } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
+        PyErr_Clear();
+    }
+}
+
+const char* const DIVERGED = "the state became non-finite (NaN or inf); the integration diverged";
+
+struct Pose {  // the journal's centre p and axis u in J0
+    V3 p, u;
+};
+
+// JointState.joint_kinematics: every contact's kinematics into s.kins
+Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, const V3& rotation, const V3& velocity,
+                      const V3& angularVelocity) {
+    int n_slices = slice_count(a);
+    size_t n = contact_count(a);
+    if (s.kins.size() != n) s.kins.resize(n);  // once per joint: no allocation per evaluation
+    Pose q;
+    V3 dv, dw, w_j;
+    // the bearing's spin from the probe, where the loads use it (its probe is off otherwise)
+    const V3 w_b = a.bearing_motion ? s.omega_bearing : V3{0.0, 0.0, 0.0};
+    if (a.slices == 0) {  // the planar joint: the motion projected on the plane normal to the axis
+        q.p = V3{displacement[0], displacement[1], 0.0};
+        q.u = V3{0.0, 0.0, 1.0};
+        dv = V3{velocity[0], velocity[1], 0.0};
+        dw = V3{0.0, 0.0, angularVelocity[2]};
+        w_j = V3{0.0, 0.0, w_b[2]};
+    } else {
+        q.p = displacement;
+        q.u = journal_axis(rotation, a.axis_journal);                   // eq. (34)
+        dv = velocity;
+        dw = angularVelocity;
+        w_j = w_b;
+    }
+    if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
+        s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(1);
+            s.film_inputs[0] = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
+        }
+    } else {
+        for (int k = 0; k < n_slices; ++k) {
+            s.kins[static_cast<size_t>(k)] =
+                slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+        }
+        if (a.film_model != FILM_NONE) {
+            s.film_inputs.resize(static_cast<size_t>(n_slices));
+            for (int k = 0; k < n_slices; ++k) {
+                s.film_inputs[static_cast<size_t>(k)] =
+                    slice_film_input(s.kins[static_cast<size_t>(k)], q.p, q.u, dv, dw, w_j);
+            }
+        }
+    }
+    if (a.play > 0.0) {
+        for (int f = 0; f < 2; ++f) {
+            s.kins[static_cast<size_t>(n_slices + f)] =
+                face_kinematics(a.length, a.play, a.friction_radius, FACE_SIDES[f], q.p, q.u, dv, dw, w_j);
+        }
+    }
+    return q;
+}
+
+bool all_finite(const JointState& s) {
+    for (const Kinematics& k : s.kins) {
+        if (!finite(k)) return false;
+    }
+    return true;
+}
+
+// JointState.history_for: the contacts' history an evaluation at time t uses.  A time
+// before the last step's start means a new run: forget everything and take this
+// evaluation's state (s.kins) as the run's initial accepted state.
+const std::vector<History>& history_for(JointState& s, const Params& a, const Pose& q, double t) {
+    if (!s.started || t < s.prev[0].time) {
+        size_t n = s.kins.size();
+        s.initial_axis = q.u;
+        s.initial_axial = q.p[2];
+        s.records.assign(n, std::vector<Record>());
+        s.failure.clear();
+        start_run(s);
+        s.cur.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            History fresh;
+            fresh.time = t;
+            s.cur[i] = accept(fresh, a, contact_kind(a, i), s.kins[i], t, s.records[i]);
+        }
+        for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
+            set_film_outputs(s.cur[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
+        }
+        s.prev = s.cur;
+        s.initial = s.cur;
+        s.started = true;
+        if (!all_finite(s)) fail(s, t, DIVERGED);
+    }
+    return t <= s.cur[0].time ? s.prev : s.cur;
+}
+
+V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
+
+// JointKernel.force_torque: [F; T] in J0, F the force on the bearing (marker 0), T minus the
+// journal's moment about its marker point (Exudyn applies +F, +T to the bearing, -F, -T to
+// the journal); the bearing's own moment beyond T goes to the torque connector (eq. (45)).
+V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rotation, const V3& velocity,
+               const V3& angularVelocity) {
+    JointState& s = state(a.id);
+    s.force_calls++;
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    const std::vector<History>& history = history_for(s, a, q, t);
+    double loads[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < s.kins.size(); ++i) {
+        const Kinematics& k = s.kins[i];
+        if (k.delta <= 0.0) continue;
+        ContactKind kind = contact_kind(a, i);
+        add_loads(loads, a, kind, q.u, k, response(a, kind, history[i], k));
+    }
+    if (a.film_model != FILM_NONE) {  // at every eccentricity (section 10.5), on every slice
+        for (size_t i = 0; i < s.film_inputs.size(); ++i) {
+            FilmLoad r = film_load(a, s.finite, s.film_inputs[i]);
+            if (a.slices == 0) {
+                add_film_loads(loads, r);
+            } else {
+                add_film_slice_loads(loads, film_share(a), q.u, s.kins[i], r);
+            }
+        }
+    }
+    if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
+        s.torque_correction = V3{loads[6], loads[7], loads[8]};
+    } else {
+        V3 force{loads[0], loads[1], loads[2]};
+        V3 pf = cross(q.p, force);                                      // eq. (45)
+        s.torque_correction = V3{pf[0] + loads[6], pf[1] + loads[7], pf[2] + loads[8]};
+    }
+    return V6{loads[0], loads[1], loads[2], loads[3], loads[4], loads[5]};
+}
+
+void record_bearing_spin(const Params& a, const V3& angularVelocity) {  // the probe: marker 1 is the ground
+    state(a.id).omega_bearing = V3{-angularVelocity[0], -angularVelocity[1], -angularVelocity[2]};
+}
+
+// Appends a history's data-node entries (layout.DATA_COLUMNS) from entry `first` on.
+void data_values(const History& h, StdVector& out, int first = 0) {
+    double values[N_DATA] = {h.time, h.delta == -INF ? 0.0 : h.delta, h.delta_dot, h.ex, h.ey, h.f_n, h.f_t, h.v_t,
+                             h.v0, h.in_contact ? 1.0 : 0.0, static_cast<double>(h.onsets), h.onset_time,
+                             h.peak_force, h.max_penetration};
+    for (int i = first; i < N_DATA; ++i) out.push_back(values[i]);
+}
+
+}  // namespace

@@ -1,0 +1,124 @@
+// The contact kinematics of a slice, the planar joint and an end face: exuclear/geometry.py and
+// exuclear/spatial.py (docs/physics.md eqs. (1)-(8), (33)-(40), (48)-(51)).  Python:
+// exuclear/engine/_python_kernel/kinematics.py.
+
+#pragma once
+
+#include "layout.hpp"
+
+namespace {
+
+// ---- physics: geometry.py and spatial.py (docs/physics.md eqs. (1)-(8), (33)-(40), (48)-(51)) --
+V3 cross(const V3& a, const V3& b) {
+    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+double slice_centre(double length, int slices, int k) {  // eq. (33): the centre of slice k
+    double width = length / slices;
+    return -0.5 * length + (k + 0.5) * width;
+}
+
+V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) Ry(b) Rz(c) a_J
+    double ca = std::cos(angles[0]), sa = std::sin(angles[0]);
+    double cb = std::cos(angles[1]), sb = std::sin(angles[1]);
+    double cc = std::cos(angles[2]), sc = std::sin(angles[2]);
+    V3 r0{cb * cc, -cb * sc, sb};
+    V3 r1{ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb};
+    V3 r2{sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb};
+    return V3{dot(r0, axis_journal), dot(r1, axis_journal), dot(r2, axis_journal)};
+}
+
+// One contact's kinematics: spatial.py's SliceKinematics (side 0) or FaceKinematics (side -1, +1).
+struct Kinematics {
+    int side;
+    double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
+};
+
+// geometry.py contact_kinematics, eqs. (1)-(8): the planar joint's one slice.  The spatial
+// slice's eqs. (35)-(40) reduce to these for the motion projected on the plane normal to the
+// axis (s = 0, m = n, w_j x p normal to n); they are evaluated in this reduced form, in both
+// kernels, so that the planar joint keeps its results bit for bit (some scenes, e.g. a 3D
+// double pendulum at a coarse fixed step, change course on a last-bit change of the force).
+// (ex, ey) the eccentricity, (dvx, dvy) the relative velocity, omega_i, omega_j the journal's and
+// the bearing's spin about the axis.
+Kinematics contact_kinematics(double r_j, double r_b, double ex, double ey, double dvx, double dvy, double omega_i,
+                              double omega_j) {
+    Kinematics k{};
+    k.side = 0;
+    k.ex = ex;
+    k.ey = ey;
+    k.ecc = std::sqrt(ex * ex + ey * ey);
+    if (k.ecc > 0.0) {
+        k.nx = ex / k.ecc;
+        k.ny = ey / k.ecc;
+    } else {  // centred journal: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * r_j + omega_j * r_b;                   // eq. (8)
+    k.delta = k.ecc - (r_b - r_j);                                                     // eq. (4)
+    k.speed = std::fabs(k.v_t);
+    return k;
+}
+
+// spatial.py slice_kinematics, eqs. (35)-(40)
+Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv, const V3& dw,
+                            const V3& w_j) {
+    Kinematics k;
+    k.side = 0;
+    k.s = (z - p[2]) / u[2];                                            // eq. (35)
+    k.ex = p[0] + k.s * u[0];
+    k.ey = p[1] + k.s * u[1];
+    k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
+    if (k.ecc > 0.0) {
+        k.nx = k.ex / k.ecc;
+        k.ny = k.ey / k.ecc;
+    } else {  // journal axis on the bearing axis: no contact, any normal keeps the values finite
+        k.nx = 1.0;
+        k.ny = 0.0;
+    }
+    k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
+    k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    V3 w{dv[0] - wp[0] + ws[0], dv[1] - wp[1] + ws[1], dv[2] - wp[2] + ws[2]};
+    k.delta_dot = k.nx * w[0] + k.ny * w[1] - k.a * w[2];               // eq. (38)
+    V3 r{su[0] + r_j * k.nx, su[1] + r_j * k.ny, su[2]};                // Q_J - P_J, eq. (39)
+    V3 lever{k.delta * k.nx - p[0], k.delta * k.ny - p[1], -p[2]};      // Q_J - Q_B - p
+    V3 wr = cross(dw, r);
+    V3 wl = cross(w_j, lever);
+    V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
+    k.v_t = v[0] * k.ny - v[1] * k.nx;                                   // eq. (40)
+    k.v_a = v[2];
+    k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
+    return k;
+}
+
+const int FACE_SIDES[2] = {-1, 1};  // face 0 at z = -L/2, face 1 at z = +L/2
+
+Kinematics face_kinematics(double length, double play, double r_e, int side, const V3& p, const V3& u, const V3& dv,
+                           const V3& dw, const V3& w_j) {
+    Kinematics k{};
+    k.side = side;
+    k.s = side * 0.5 * (length + play);                                 // eq. (48)
+    double cz = p[2] + k.s * u[2];
+    k.delta = 0.5 * length - side * cz;                                 // eq. (49)
+    V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
+    V3 wp = cross(w_j, p);
+    V3 ws = cross(dw, su);
+    k.delta_dot = -side * (dv[2] - wp[2] + ws[2]);                      // eq. (50)
+    k.v_t = r_e * dot(dw, u);                                           // eq. (51)
+    k.ex = p[0] + su[0];
+    k.ey = p[1] + su[1];
+    return k;
+}
+
+bool finite(const Kinematics& k) {
+    return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
+}
+
+}  // namespace

@@ -1,0 +1,249 @@
+"""One joint's state (:class:`JointState`): per contact, its history at the start and at the
+end of the last accepted step and its records, which history an evaluation uses
+(:meth:`JointState.history_for`, the package docstring), the joint's kinematics, and the
+data node's entries of its histories (:func:`data_values`).  The compiled kernel's
+``joint_state.hpp``."""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from ...history import ContactState, ImpactRecord
+from ...joint import ClearanceJoint
+from ...spatial import ShoulderGeometry
+from .contacts import Contact, Face, PlanarSlice, Slice
+from .film import Film, FilmInput, slice_film_input
+from .kinematics import (
+    FACE_SIDES,
+    V3,
+    Kinematics,
+    contact_kinematics,
+    face_kinematics,
+    finite,
+    journal_axis,
+    slice_centres,
+    slice_kinematics,
+)
+from .layout import RunStart
+
+DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
+
+
+class KernelFailure(RuntimeError):
+    """A joint's state cannot go on (non-finite, penetration beyond the limit)."""
+
+
+class StepControl:
+    """What the joint's own step control did in the last run (the compiled kernel's
+    ``StepControl``): whether the solver can shorten a step (from the run-start callback),
+    the steps the joint rejected, and those it could not resolve (read by the handle, which
+    says so in an :class:`~exuclear.exceptions.AccuracyWarning`)."""
+
+    def __init__(self, runs: int = 0) -> None:
+        self.can_shorten, self.min_step, self.label, self.runs = True, 0.0, "", runs
+        self.rate = True  # False: an explicit solver's error control sets the step (no rate criterion)
+        self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
+        self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
+        self.growth_cap = math.inf  # the longest step free flight may grow to [s] (steering.GROWTH_CONTACT_PERIODS)
+        self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
+        self.jacobian_on = False  # whether it asks now
+        self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
+        self.impact_mass = math.nan  # the effective mass of the joint's impacts [kg] (nan: unknown)
+        self.separations = 0  # contacts that ended in the run
+        self.long_separations = 0  # ... in a step longer than separation_step: maybe numerical chatter
+        self.last_ended = self.last_long = 0  # what the last accepted step added (taken back if it is redone)
+        self.rejected = 0
+        self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
+        self.unresolved_advice = math.inf
+        self.over_limit, self.over_time, self.over_step, self.deepest = 0, 0.0, 0.0, 0.0
+        self.last_time, self.last_step = -math.inf, 0.0  # the last rejected step
+        self.retry_start, self.retries = -math.inf, 0
+
+    def as_dict(self) -> dict[str, Any]:
+        return {k: getattr(self, k) for k in (
+            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
+            "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
+            "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
+
+
+
+class JointState:
+    """One joint's state (the compiled kernel's ``JointState``): per
+    contact a :class:`ContactState` at the start and at the end of the last step, and its
+    records (module docstring).
+
+    ``slices`` 0 for the planar joint, else the spatial joint's number of slices N;
+    ``axis_journal`` the journal axis in the journal marker's frame; ``shoulders`` the
+    axial clearance (section 9.6) or None.  The end faces follow the slices in every
+    per-contact sequence (states, records, data).
+    """
+
+    def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
+                 shoulders: ShoulderGeometry | None = None) -> None:
+        self.planar = slices == 0
+        self.slices = 1 if self.planar else slices
+        self.axis_journal = tuple(float(v) for v in axis_journal)
+        self.shoulders = shoulders
+        self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
+        self.joint = joint
+        #: called once per run start, returns the joint's :class:`~exuclear.engine.layout.RunStart`;
+        #: None: none.  Its ``note()`` warns of an unresolved step, its ``grow(step)`` lets the solver's
+        #: next step grow (:meth:`report_growth`).
+        self.run_start: Callable[[], RunStart] | None = None
+        self.control = StepControl()
+        self.reset()
+
+    @property
+    def joint(self) -> ClearanceJoint:
+        return self._joint
+
+    @joint.setter
+    def joint(self, joint: ClearanceJoint) -> None:
+        g = joint.geometry
+        self._joint = joint
+        self.r_j, self.r_b = g.journal_radius, g.bearing_radius
+        self.centres = slice_centres(g.length, self.slices)                               # eq. (33)
+        slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
+        self.contacts: list[Contact] = [slice_contact] * self.slices
+        if self.shoulders is not None:
+            self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
+        self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
+
+    def reset(self) -> None:
+        self.started = False
+        empty = tuple(ContactState() for _ in range(self.n_contacts))
+        self.previous = self.current = self.initial = empty
+        self.records: list[list[ImpactRecord]] = [[] for _ in range(self.n_contacts)]
+        self.omega_bearing = (0.0, 0.0, 0.0)
+        self.film_inputs: list[FilmInput] = []
+        self.torque_correction = (0.0, 0.0, 0.0)
+        self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
+        self.failure, self.failure_time = "", 0.0
+        self.control = StepControl(self.control.runs)  # the run-start callback is kept
+
+    def _fail(self, message: str, t: float) -> None:
+        """Record why and when the run cannot go on, and raise (the compiled kernel's ``fail``)."""
+        self.failure, self.failure_time = message, t
+        who = f"joint {self.control.label}: " if self.control.label else ""
+        raise KernelFailure(f"exuclear: {who}{message} at t = {t:.6f} s (joint.failure() says more)")
+
+    def start_run(self) -> None:
+        """A new run begins: forget the last run's step control and ask the handle (once per
+        run) whether the solver can shorten steps, its minimum step and the joint's name."""
+        self.control = c = StepControl(self.control.runs + 1)
+        if self.run_start is not None:
+            try:
+                record = self.run_start()
+                for name in RunStart._fields:
+                    setattr(c, name, getattr(record, name))
+                c.jacobian_on = c.jacobian_step < math.inf  # steer_newton asked for it at the first step
+            except Exception:  # never end a run for a label: keep the defaults
+                pass
+
+    def tell(self) -> None:
+        """The first step of a run that the joint could not resolve (of each kind) is told at
+        once, through the run-start callback's ``note()`` (Python issues the AccuracyWarning,
+        with its advice): a run that Exudyn then stops is not silent either."""
+        note = getattr(self.run_start, "note", None)
+        if note is not None:
+            try:
+                note()
+            except Exception:  # a warning filter that raises: the notes keep it
+                pass
+
+    # -- bookkeeping -------------------------------------------------------------------
+    def joint_kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any,
+                         bearing_motion: bool = True) -> tuple[V3, V3, list[Kinematics]]:
+        """The journal's centre and axis, and the kinematics of each contact: the slices
+        (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
+        end faces (eqs. (48)-(51)) where there is an axial clearance.  ``bearing_motion``
+        False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion)."""
+        w_j = self.omega_bearing if bearing_motion else (0.0, 0.0, 0.0)
+        if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
+            omega_j = w_j[2]
+            omega_i = angular_velocity[2] + omega_j  # the journal's own spin
+            kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
+                                     omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            if self.film is not None:
+                self.film_inputs = [FilmInput(displacement[0], displacement[1], velocity[0], velocity[1], omega_i,
+                                              omega_j)]
+            return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), [kin]
+        p = (displacement[0], displacement[1], displacement[2])
+        u = journal_axis((rotation[0], rotation[1], rotation[2]), self.axis_journal)      # eq. (34)
+        dv = (velocity[0], velocity[1], velocity[2])
+        dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
+        kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
+        if self.film is not None:
+            self.film_inputs = [slice_film_input(k, p, u, dv, dw, w_j) for k in kins]
+        if self.shoulders is not None:
+            g, play = self._joint.geometry, self.shoulders.axial_clearance
+            r_e = self.shoulders.friction_radius
+            kins += [face_kinematics(g.length, play, r_e, side, p, u, dv, dw, w_j) for side in FACE_SIDES]
+        return p, u, kins
+
+    def _accept_all(self, base: tuple[ContactState, ...], kins: list[Kinematics], t: float
+                    ) -> tuple[ContactState, ...]:
+        states = []
+        for k, (kin, b, c) in enumerate(zip(kins, base, self.contacts)):
+            del self.records[k][b.closed:]
+            state, record = b.accept(c.accepted(kin), c, t)
+            if record is not None:
+                self.records[k].append(record)
+            if not math.isfinite(state.normal_force):
+                self._fail("the contact force became non-finite (NaN or inf)", t)
+            states.append(state)
+        if self.film is not None:
+            for i, kin in enumerate(self.film_inputs):
+                states[i] = self.film.with_outputs(states[i], kin)
+        return tuple(states)
+
+    def history_for(self, kins: list[Kinematics], t: float, u: V3, axial: float) -> tuple[ContactState, ...]:
+        """The contacts' history an evaluation at time ``t`` uses (module docstring); ``u``,
+        ``axial``: the journal's axis and axial displacement, kept for the initial outputs."""
+        if not self.started or t < self.previous[0].time:
+            self.initial_axis, self.initial_axial = u, axial
+            self.records = [[] for _ in range(self.n_contacts)]
+            self.failure = ""
+            self.start_run()
+            self.current = tuple(ContactState(time=t).accept(c.accepted(k), c, t)[0]
+                                 for k, c in zip(kins, self.contacts))
+            if self.film is not None:
+                films = [self.film.with_outputs(c, k) for c, k in zip(self.current, self.film_inputs)]
+                self.current = (*films, *self.current[len(films):])
+            self.previous = self.initial = self.current
+            self.started = True
+            if not all(finite(k) for k in kins):
+                self._fail(DIVERGED, t)
+        return self.previous if t <= self.current[0].time else self.current
+
+    def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
+        """The data node's entries for the contacts' ``states``: :func:`data_values` of the
+        one slice for the planar joint, :func:`spatial_data_values` for the spatial joint."""
+        lubricated = self.film is not None
+        if self.planar:
+            return data_values(states[0], lubricated)
+        return spatial_data_values(t, u, axial, states, self.slices if lubricated else 0)
+
+
+
+def data_values(s: ContactState, lubricated: bool = False) -> list[float]:
+    """The data node's entries (layout.DATA_COLUMNS; then layout.FILM_DATA_COLUMNS where
+    the joint is ``lubricated``) for a state."""
+    film = [s.film_fx, s.film_fy, s.film_torque] if lubricated else []
+    return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
+            s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
+            s.peak_force, s.max_penetration, *film]
+
+
+def spatial_data_values(t: float, u: Any, axial: float, states: Any, film_slices: int = 0) -> list[float]:
+    """The spatial data node's entries (layout.spatial_data_columns): time, journal axis
+    x, y (tilt, rad for small angles), axial displacement, then each slice's
+    ``data_values`` without the time (with an axial clearance, the two end faces follow),
+    then, for a lubricated joint (``film_slices`` its slices), each slice's film columns."""
+    out = [t, u[0], u[1], axial]
+    for s in states:
+        out.extend(data_values(s)[1:])
+    for s in states[:film_slices]:
+        out.extend((s.film_fx, s.film_fy, s.film_torque))
+    return out

@@ -1,0 +1,32 @@
+"""The contact kinematics the kernel evaluates: those of :mod:`exuclear.geometry` (the planar
+joint, eqs. (1)-(8)) and :mod:`exuclear.spatial` (a slice and an end face, eqs. (33)-(40),
+(48)-(51)).  The compiled kernel's ``kinematics.hpp``."""
+from __future__ import annotations
+
+import math
+
+from ...geometry import ContactKinematics, contact_kinematics, joint_loads
+from ...spatial import (
+    FACE_SIDES,
+    V3,
+    FaceKinematics,
+    SliceKinematics,
+    add_face_loads,
+    add_slice_loads,
+    face_kinematics,
+    finish_loads,
+    friction_components,
+    journal_axis,
+    slice_centres,
+    slice_kinematics,
+)
+
+__all__ = ["FACE_SIDES", "V3", "ContactKinematics", "FaceKinematics", "Kinematics", "SliceKinematics", "add_face_loads",
+           "add_slice_loads", "contact_kinematics", "face_kinematics", "finish_loads", "finite", "friction_components",
+           "joint_loads", "journal_axis", "slice_centres", "slice_kinematics"]
+
+Kinematics = ContactKinematics | SliceKinematics | FaceKinematics
+
+
+def finite(kin: Kinematics) -> bool:
+    return all(math.isfinite(v) for v in (kin.ex, kin.ey, kin.delta_dot, kin.v_t))

@@ -1,0 +1,37 @@
+"""The clearance joints of a system: kept in ``mbs.variables`` under :data:`REGISTRY_KEY`,
+as Exudyn keeps a model's own data with its system, so that :func:`exuclear.simulate`, the
+joints' run-start callbacks and the model checks find them from ``mbs`` alone."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import exudyn as exu
+
+if TYPE_CHECKING:
+    from .handle import ClearanceJointHandle
+
+#: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
+REGISTRY_KEY = "exuclear.joints"
+
+
+def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
+    """Keep ``handle`` with its system (:func:`joints_of`); the joints of an earlier build,
+    before ``mbs.Reset()``, are let go (their kernel state is released with their handle)."""
+    mbs.variables[REGISTRY_KEY] = [*joints_of(mbs), handle._system_view()]
+
+
+def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
+    """The clearance joints live in ``mbs`` (those of an earlier build, before ``mbs.Reset()``, dropped)."""
+    live = [h for h in mbs.variables.get(REGISTRY_KEY, []) if h.is_live()]
+    mbs.variables[REGISTRY_KEY] = live
+    return live
+
+
+def handle_of(mbs: exu.MainSystem, token: int) -> ClearanceJointHandle | None:
+    """The joint of ``mbs`` whose handle has ``token`` (live or not), or None."""
+    return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == token), None)
+
+
+def label(handle: ClearanceJointHandle) -> str:
+    """How messages name a joint: its name, else its connector's object number."""
+    return repr(handle.name) if handle.name else str(handle.objectNumber)
