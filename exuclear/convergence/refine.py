@@ -67,7 +67,7 @@ def _exudyn_settings(settings: object) -> bool:
 
 def _refined_exudyn_settings(settings: Any, factor: float) -> Any:
     """A copy of the ``exu.SimulationSettings`` ``settings``, refined (:func:`refined_settings`)."""
-    from .engine.steering import RefinedSimulationSettings  # exudyn is imported where its settings are given
+    from ..engine.steering import RefinedSimulationSettings  # exudyn is imported where its settings are given
 
     # a copy (the user's settings stay as they are) whose joints divide their rate_limit by factor
     tighter = RefinedSimulationSettings(settings, getattr(settings, "joint_refinement", 1.0) * factor)
