@@ -9,6 +9,7 @@ other.  The helpers take a folder, so that each part of the repository can be he
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -170,3 +171,15 @@ def test_the_two_kernels_split_into_modules_of_the_same_names():
     python = {p.stem for p in (PACKAGE / "engine" / "_python_kernel").glob("*.py")} - {"__init__"}
     assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "joint_state", "step_control",
                                   "bindings"}
+
+
+#: A calendar date or a day's narrative: history, which belongs in commits and closing notes.
+DATED = re.compile(r"\b20\d\d-[01]\d-[0-3]\d\b|\b(?:today|yesterday|this (?:morning|afternoon|evening))\b", re.I)
+
+
+@pytest.mark.parametrize("folder", ["exuclear", "models"])
+def test_the_code_says_what_and_why_not_when(folder):
+    dated = [f"{p.relative_to(ROOT)}:{n}" for p in sorted((ROOT / folder).rglob("*"))
+             if p.suffix in (".py", ".hpp", ".cpp")
+             for n, line in enumerate(p.read_text().splitlines(), 1) if DATED.search(line)]
+    assert dated == []
