@@ -172,20 +172,28 @@ def _told(message: str, ws: tuple[str, ...], joint: Any) -> bool:
     return False
 
 
+#: The verdict of a silent run deeper than PENETRATION_WRONG where no refined run was made
+#: (--quick, --no-convergence): whether that depth is the model's is not known.
+UNCHECKED_DEPTH = "deeper than 0.1 c, unchecked"
+
+
 def verdict(run: _Run, pen_ratio: float, ref_pen_ratio: float | None, joint: Any,
-            refined_pen_ratio: float | None = None) -> str:
+            refined_pen_ratio: float | None = None, checked: bool = True) -> str:
     """The verdict of a clearance run (rule in _report.md); ``refined_pen_ratio``: the largest
-    penetration [c] of its convergence check's refined run, where one was made."""
+    penetration [c] of its convergence check's refined run, where one was made; ``checked``
+    False: no refined run will be made (a deep run is then :data:`UNCHECKED_DEPTH`)."""
     if run.time_limit:
         return "time limit"
     if not run.reached:
         return "told" if _told(run.message, run.warnings, joint) else "crash"
     converged = (refined_pen_ratio is not None and refined_pen_ratio > 0
                  and abs(pen_ratio - refined_pen_ratio) <= CONVERGED_PENETRATION * refined_pen_ratio)
-    too_deep = (pen_ratio > PENETRATION_WRONG and not converged) or (
-        ref_pen_ratio is not None and ref_pen_ratio > 0 and pen_ratio > REFERENCE_FACTOR * ref_pen_ratio)
+    beyond_reference = ref_pen_ratio is not None and ref_pen_ratio > 0 and pen_ratio > REFERENCE_FACTOR * ref_pen_ratio
+    too_deep = (pen_ratio > PENETRATION_WRONG and not converged) or beyond_reference
     if too_deep:
-        return "told" if _told("", run.warnings, joint) else "wrong, no word"
+        if _told("", run.warnings, joint):
+            return "told"
+        return UNCHECKED_DEPTH if not checked and not beyond_reference else "wrong, no word"
     return "right"
 
 
@@ -284,11 +292,12 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
         row.update(sim_reached=sim.reached, sim_time=sim.time_reached, sim_message=sim.message, sim_wall=sim.wall,
                    sim_steps=sim.steps, sim_step=getattr(result, "step", math.nan), sim_pen_c=spen / c,
                    sim_force=sforce, sim_warnings=" | ".join(sim.warnings),
-                   sim_verdict=verdict(sim, spen / c, None, model.joint))
+                   sim_verdict=verdict(sim, spen / c, None, model.joint, checked=convergence and not quick))
         if sim.reached and probe_ideal is not None:
             row["sim_probe_diff"] = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))
         row["sim_ratio"] = sim.wall / ideal_run.wall if ideal_run.reached and sim.reached else math.nan
-        row["verdict"] = verdict(own, pen / c, spen / c if sim.reached else None, model.joint)
+        row["verdict"] = verdict(own, pen / c, spen / c if sim.reached else None, model.joint,
+                                 checked=convergence and not quick)
         if quick or not convergence:
             row["own_convergence"] = row["convergence"] = ("not checked: --quick" if quick else
                                                            "not checked: --no-convergence")
