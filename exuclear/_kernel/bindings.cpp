@@ -250,7 +250,7 @@ PYBIND11_MODULE(_ckernel, m) {
         s.control.runs = runs;
     });
     m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
-          "a callable called once per run start: (can_shorten, min_step, label, rate); hold no strong "
+          "a callable called once per run start, returning layout.py's RunStart; hold no strong "
           "reference to the joint's handle in it");
     m.def("step_control", [](long id) {  // what the joint's own step control did in the last run
         const StepControl& c = state(id).control;

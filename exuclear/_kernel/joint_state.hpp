@@ -61,7 +61,7 @@ struct JointState {
     double failure_time = 0.0;
     StepControl control;
     const void* group = nullptr;  // the system whose step group the joint reports to (report_growth)
-    py::object run_start;  // Python callable, once per run start: (can_shorten, min_step, label, rate); None: none
+    py::object run_start;  // Python callable, once per run start: returns layout.py RunStart; None: none
 };
 
 std::vector<JointState> g_joints;

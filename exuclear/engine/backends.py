@@ -65,7 +65,8 @@ class Backend:
         raise NotImplementedError
 
     def set_run_start(self, callback: Any) -> None:
-        """The callable the kernel calls once per run start: ``(can_shorten, min_step, label)``."""
+        """The callable the kernel calls once per run start; it returns the joint's
+        :class:`~exuclear.engine.layout.RunStart`."""
         raise NotImplementedError
 
     def step_control(self) -> dict[str, Any]:
