@@ -16,6 +16,7 @@ from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .history import ContactState
 from .materials import Material, composite_modulus
+from .wear.law import Wear
 
 
 class ContactResponse(NamedTuple):
@@ -75,11 +76,16 @@ class ClearanceJoint:
         geometry; None (the default) for the dry joint.  The film acts at every
         eccentricity, the contact law where the journal penetrates the wall, the two
         added (docs/physics.md section 10.5).
+    wear : Wear, optional
+        The wear of the joint's surfaces (:class:`exuclear.Wear`, docs/physics.md section
+        11); None (the default): the surfaces keep their shape.  A lubricated joint wears
+        where metal touches.
     """
 
     law: ContactLaw
     friction: FrictionLaw = NO_FRICTION
     film: FilmLaw | None = None
+    wear: Wear | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.law, ContactLaw):
@@ -92,6 +98,8 @@ class ClearanceJoint:
             if self.film.geometry != self.law.geometry:
                 raise ValueError(f"`film` was built for {self.film.geometry}, which differs from the law's "
                                  f"{self.law.geometry}")
+        if self.wear is not None and not isinstance(self.wear, Wear):
+            raise ValueError(f"`wear` must be an exuclear.Wear or None (no wear), got {type(self.wear).__name__}")
 
     @property
     def geometry(self) -> BearingGeometry:
@@ -122,6 +130,7 @@ def make_joint(
     stiffness: str | None = None,
     damping: str | None = None,
     lubrication: Lubrication | None = None,
+    wear: Wear | None = None,
 ) -> ClearanceJoint:
     """Build a :class:`ClearanceJoint` from dimensions, materials and law names.
 
@@ -156,6 +165,8 @@ def make_joint(
         The oil of a lubricated joint (:class:`exuclear.Lubrication`: viscosity and film
         model); None (the default): the dry joint.  The film law is bound to this joint's
         geometry (``c = bearing_radius - journal_radius``, ``B = length``).
+    wear : Wear, optional
+        The wear of the surfaces (:class:`exuclear.Wear`); None (the default): none.
     """
     geometry = BearingGeometry(journal_radius, bearing_radius, length)
     film = _film(lubrication, geometry)
@@ -170,13 +181,13 @@ def make_joint(
                              f"{', '.join(f'`{name}`' for name in given)} or give the law by name")
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
-        return ClearanceJoint(law, friction_law(friction), film)
+        return ClearanceJoint(law, friction_law(friction), film, wear)
     law, cr = law_and_restitution(law, stiffness, damping, cr, default_cr=None)
     if E_star is None:
         E_star = composite_modulus(DEFAULT_MATERIAL if journal_material is None else journal_material,
                                    DEFAULT_MATERIAL if bearing_material is None else bearing_material)
     return ClearanceJoint(contact_law(law, geometry, E_star, cr, V_MIN_DEFAULT if v_min is None else v_min),
-                          friction_law(friction), film)
+                          friction_law(friction), film, wear)
 
 
 def _film(lubrication: Lubrication | None, geometry: BearingGeometry) -> FilmLaw | None:

@@ -134,6 +134,23 @@ def physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJo
     return joint
 
 
+def check_wear(joint: ClearanceJoint, slices: int, backend: str) -> None:
+    """``ValueError`` where the joint's wear cannot be modelled as asked."""
+    if joint.wear is None:
+        return
+    if slices:
+        raise ValueError("`wear` is modelled for the planar joint (slices=None); the spatial joint's wear per slice "
+                         "is not built yet")
+    if backend == "compiled" and not kernel_has_wear():
+        raise ValueError("`wear` needs backend='python': this build's compiled kernel has no wear")
+
+
+def kernel_has_wear() -> bool:
+    from . import kernel
+
+    return kernel.COMPILED is not None and hasattr(kernel.COMPILED, "wear_profiles")
+
+
 def check_slices(slices: Any) -> int:
     """0 for the planar joint (None or 0), else the number of slices (an int >= 1)."""
     if slices is None:

@@ -73,6 +73,11 @@ class Backend:
         """What the joint's own step control did in the last run (the kernel's ``StepControl``)."""
         raise NotImplementedError
 
+    def wear_profiles(self) -> dict[str, Any]:
+        """A worn joint's profiles after the last accepted step: ``bearing``, ``journal``,
+        ``slip`` and ``stability`` per node (the kernel's ``WearState``)."""
+        raise NotImplementedError
+
 
 class PythonBackend(Backend):
     """The Python kernel (:class:`~exuclear.engine._python_kernel.JointKernel`)."""
@@ -118,6 +123,10 @@ class PythonBackend(Backend):
 
     def step_control(self) -> dict[str, Any]:
         return self.kernel.control.as_dict()
+
+    def wear_profiles(self) -> dict[str, Any]:
+        p = self.kernel.wear.current
+        return {"bearing": p.bearing, "journal": p.journal, "slip": p.slip, "stability": p.stability}
 
 
 class CompiledBackend(Backend):

@@ -64,6 +64,7 @@ from .arguments import (
     check_shoulders,
     check_slices,
     check_system,
+    check_wear,
     default_penetration_limit,
     object_type,
     physics,
@@ -206,6 +207,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
+    check_wear(joint, slices, backend)
     if maxPenetration is None:
         maxPenetration = default_penetration_limit(joint.geometry)
     check_positive("maxPenetration", maxPenetration)

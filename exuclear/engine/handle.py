@@ -19,6 +19,7 @@ from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
 from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
+from ..wear.profile import WearProfile
 from . import outputs as _outputs
 from .backends import make_backend
 from .diagnostics import step_notes
@@ -254,6 +255,17 @@ class ClearanceJointHandle:
         if self.slices:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
         return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
+
+    def wear_profile(self) -> WearProfile:
+        """The worn profiles after the last accepted step (before a run: those the joint's
+        :class:`exuclear.Wear` starts from); docs/physics.md section 11."""
+        wear = self._joint.wear
+        if wear is None:
+            raise ValueError(f"joint {self.name!r} has no wear: give `wear=exuclear.Wear(coefficient=...)` to the joint")
+        g = self._joint.geometry
+        p = self._backend.wear_profiles()
+        return WearProfile(2.0 * np.pi * np.arange(wear.nodes) / wear.nodes, *(np.array(p[k]) for k in (
+            "bearing", "journal", "slip", "stability")), g.journal_radius, g.bearing_radius, g.length)
 
     @property
     def nodes(self) -> list[int]:

@@ -24,7 +24,7 @@ class JointKernel(JointStepControl):
         force on the bearing, T minus the journal's moment about its marker point
         (docs/physics.md eqs. (41)-(45), (54); the planar eqs. (24)-(26))."""
         p, u, kins = self.joint_kinematics(displacement, rotation, velocity, angular_velocity,
-                                           read(stiffness, "bearing_motion") != 0.0)
+                                           read(stiffness, "bearing_motion") != 0.0, t)
         history = self.history_for(kins, t, u, p[2])
         loads = [0.0] * 9
         for kin, h, c in zip(kins, history, self.contacts):
@@ -67,7 +67,7 @@ class JointKernel(JointStepControl):
         step.  Returns ``[error, recommended step, data...]``."""
         max_penetration, impact_step = read(stiffness, "max_penetration"), read(stiffness, "impact_step")
         p, u, kins = self.joint_kinematics(displacement, rotation, velocity, angular_velocity,
-                                           read(stiffness, "bearing_motion") != 0.0)
+                                           read(stiffness, "bearing_motion") != 0.0, t)
         self.history_for(kins, t, u, p[2])
         advance = t > self.current[0].time
         base = self.current if advance else self.previous  # a repeated step starts again from its start
@@ -81,6 +81,8 @@ class JointKernel(JointStepControl):
             self.steer_jacobian(math.inf)
             return [REDO_STEP_ERROR, redo, *data]
         states = self._accept_all(base, kins, t)
+        if self.wear is not None:
+            self.accept_wear(advance, kins[0], rotation[2], states[0].normal_force, t - base[0].time, t)
         # the step before this one: free flight must have lasted both (a repeated step: unknown)
         before = self.previous if advance else None
         allow = self.step_growth(before, base, states, t, read(stiffness, "rate_limit"))

@@ -26,6 +26,7 @@ from .kinematics import (
     slice_kinematics,
 )
 from .layout import RunStart
+from .wear import WearState
 
 DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
 
@@ -109,6 +110,7 @@ class JointState:
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
         self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
+        self.wear = WearState(joint.wear, g, joint.law) if joint.wear is not None and self.planar else None
 
     def reset(self) -> None:
         self.started = False
@@ -121,6 +123,8 @@ class JointState:
         self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
         self.failure, self.failure_time = "", 0.0
         self.control = StepControl(self.control.runs)  # the run-start callback is kept
+        if self.wear is not None:
+            self.wear.reset()
 
     def _fail(self, message: str, t: float) -> None:
         """Record why and when the run cannot go on, and raise (the compiled kernel's ``fail``)."""
@@ -153,18 +157,29 @@ class JointState:
                 pass
 
     # -- bookkeeping -------------------------------------------------------------------
+    def wear_profiles(self, t: float) -> Any:
+        """The wear profiles an evaluation at time ``t`` uses (as :meth:`history_for` chooses
+        the history, module docstring of :mod:`.wear`)."""
+        if not self.started or t < self.previous[0].time:
+            return self.wear.initial
+        return self.wear.previous if t <= self.current[0].time else self.wear.current
+
     def joint_kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any,
-                         bearing_motion: bool = True) -> tuple[V3, V3, list[Kinematics]]:
+                         bearing_motion: bool = True, t: float = 0.0) -> tuple[V3, V3, list[Kinematics]]:
         """The journal's centre and axis, and the kinematics of each contact: the slices
         (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
         end faces (eqs. (48)-(51)) where there is an axial clearance.  ``bearing_motion``
-        False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion)."""
+        False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion).
+        A worn joint's slice is the contact of the worn surfaces (eqs. (75), (76)) at time ``t``."""
         w_j = self.omega_bearing if bearing_motion else (0.0, 0.0, 0.0)
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
             omega_j = w_j[2]
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
             kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
                                      omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            if self.wear is not None:
+                kin = self.wear.kinematics(self.wear_profiles(t), kin, rotation[2], velocity[0], velocity[1], omega_i,
+                                           omega_j)
             if self.film is not None:
                 self.film_inputs = [FilmInput(displacement[0], displacement[1], velocity[0], velocity[1], omega_i,
                                               omega_j)]
@@ -206,6 +221,8 @@ class JointState:
             self.records = [[] for _ in range(self.n_contacts)]
             self.failure = ""
             self.start_run()
+            if self.wear is not None:
+                self.wear.reset()
             self.current = tuple(ContactState(time=t).accept(c.accepted(k), c, t)[0]
                                  for k, c in zip(kins, self.contacts))
             if self.film is not None:
@@ -216,6 +233,20 @@ class JointState:
             if not all(finite(k) for k in kins):
                 self._fail(DIVERGED, t)
         return self.previous if t <= self.current[0].time else self.current
+
+    def accept_wear(self, advance: bool, kin: Kinematics, psi: float, f_n: float, h: float, t: float) -> None:
+        """The wear of an accepted step of length ``h`` [s] ending at ``t`` in the state ``kin``
+        with the normal force ``f_n`` (``advance``: a new step, else one computed again, as
+        in ``post_newton``); stops the run where the profile's update would be unstable."""
+        wear = self.wear
+        base = wear.current if advance else wear.previous
+        new = wear.accept(base, kin, psi, f_n, h)
+        if advance:
+            wear.previous = wear.current
+        wear.current = new
+        why = wear.unstable(kin.v_t, h)
+        if why:
+            self._fail(why, t)
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the
