@@ -53,13 +53,12 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear import SolverSettings
 from exuclear import convergence as _convergence
-from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND
-from exuclear.materials import MATERIALS
+from exuclear.contact import law_and_restitution
 from exuclear.settings import METHODS
 
 from ._cli import OneLineParser, add_law_options, add_rpm_option, bad_input, check_output_file, one_line_warnings
 from ._cli import write_csv as _write_columns
+from ._joint_fields import joint_fields, scene_joint, scene_params
 from ._params import (
     add_param_options,
     changes_from_args,
@@ -67,8 +66,6 @@ from ._params import (
     crank_speed_from_rpm,
     nonnegative,
     nonzero,
-    one_of,
-    optional,
     param,
     positive,
     real,
@@ -85,7 +82,7 @@ COLUMNS = ("time", "crank_angle", "coupler_angle", "rocker_angle", "rocker_rate"
 DEFAULT_SETTINGS = {"method": "generalized-alpha", "step": 2e-5, "impact_step": 1e-6}
 
 
-@dataclass(frozen=True)
+@scene_params
 class FourBarParams:
     """Parameters of the four-bar (SI units); :meth:`crank_rocker` gives the documented case.
 
@@ -131,20 +128,10 @@ class FourBarParams:
         "crank speed [rad/s]", nonzero("positive counter-clockwise, negative clockwise"), cli=False))  # --rpm
     revolutions: float = field(metadata=param("crank revolutions", positive))
     gravity: float = field(metadata=param("gravity along -Y [m/s^2]", nonnegative))
-    bearing_radius: float = field(metadata=param("bearing radius R_B at B [m]", positive))
-    clearance: float = field(metadata=param("radial clearance [m]", positive))
-    bearing_length: float = field(metadata=param("bearing length [m]", option="length"))
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
-    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    friction: str = field(metadata=param("none | coulomb:MU | paper"))
+    _joint_fields = joint_fields("bearing_radius", "clearance", "bearing_length", "law", "cr", "journal_material",
+                                 "bearing_material", "friction", help={"bearing_radius": "bearing radius R_B at B [m]"})
     crank_angle0: float = field(default=0.0, metadata=param("crank angle at t = 0, from O2 towards O4 [rad]", real))
-    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
-        "force evaluation of the clearance joint", one_of(sorted(BACKENDS)), choices=BACKENDS))
-    max_penetration: float | None = field(default=None, metadata=param(
-        "penetration [m] beyond which the run stops (default: the library's bound)", optional(positive)))
+    _more_joint_fields = joint_fields("v_min", "backend", "max_penetration")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -181,14 +168,7 @@ class FourBarParams:
         if s != lengths["crank_length"] or s + l >= sum(lengths.values()) - s - l:
             raise ValueError(f"the link lengths {lengths} do not make a crank-rocker: the crank must be the shortest "
                              "link and shortest + longest < sum of the other two (Grashof)")
-        if self.clearance >= self.bearing_radius:
-            raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
-                             f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
-        joint = exuclear.make_joint(
-            journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
-            length=self.bearing_length, law=self.law, cr=self.cr, journal_material=self.journal_material,
-            bearing_material=self.bearing_material, friction=self.friction, v_min=self.v_min)
-        object.__setattr__(self, "_joint", joint)
+        object.__setattr__(self, "_joint", scene_joint(self))
 
     @property
     def joint(self) -> exuclear.ClearanceJoint:

@@ -55,20 +55,18 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear import SolverSettings
 from exuclear.columns import Column
-from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
+from exuclear.contact import law_and_restitution
+from exuclear.engine import OUTPUT_COLUMNS
 from exuclear.engine.outputs import FILM_OUTPUT_COLUMNS
-from exuclear.materials import MATERIALS
 
 from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
-from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication
+from ._joint_fields import joint_field, joint_fields, scene_joint, scene_params
+from ._lubricant import FILM_MODEL_DEFAULT, joint_force, lubrication
 from ._params import (
     add_param_options,
     changes_from_args,
     check_fields,
     nonnegative,
-    one_of,
-    optional,
     param,
     positive,
     study_columns,
@@ -92,7 +90,7 @@ DEFAULT_END_TIME = 4e-4
 APPROACH_END_TIME = 1e-3
 
 
-@dataclass(frozen=True)
+@scene_params
 class JournalBearingParams:
     """Parameters of the journal-bearing impact (SI units).
 
@@ -100,17 +98,11 @@ class JournalBearingParams:
     the paper) turn the scene into a journal resting on, or dropped onto, its bearing.
     """
 
-    # the joint's physics: checked by exuclear.make_joint (joint())
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
-    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    journal_radius: float = field(metadata=param("journal radius R_J [m]"))
-    bearing_radius: float = field(metadata=param("bearing radius R_B [m]"))
-    length: float = field(metadata=param("bearing length L [m]", option="bearing_length"))  # the slider-crank's name
+    _joint_fields = joint_fields("law", "cr", "journal_material", "bearing_material", "journal_radius", "bearing_radius",
+                                 "length")
     mass: float = field(metadata=param("journal mass [kg]", positive))
     impact_velocity: float = field(metadata=param("impact velocity [m/s]", nonnegative, option="velocity"))
-    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    v_min: float = joint_field("v_min")
     end_time: float = field(default=DEFAULT_END_TIME, metadata=param(
         "simulated time [s]; the journal must have left the wall by then", positive))
     #: Gravitational acceleration [m/s^2] along +X, towards the wall the journal starts
@@ -119,21 +111,10 @@ class JournalBearingParams:
     #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
     #: c centred.
     start_gap: float = field(default=0.0, metadata=param("gap at t = 0 [m]", nonnegative, cli=False))
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
-        "the joint's kernel: compiled (C++) or python", choices=BACKENDS))  # checked by the library
-    #: Penetration [m] beyond which a run stops; None: the library's default bound (see
-    #: :func:`exuclear.AddClearanceJoint`).
-    max_penetration: float | None = field(default=None, metadata=param(
-        "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
-        "journal radius)"))  # checked by the library
-    #: Dynamic viscosity [Pa s] of the oil in the clearance; None: dry (the paper's scene).
-    viscosity: float | None = field(default=None, metadata=param(
+    # viscosity None: dry, the paper's scene
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", help={"viscosity": (
         "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
-        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated",
-        optional(positive)))
-    film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
-        "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
-        choices=FILM_MODEL_NAMES))
+        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated")})
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -159,11 +140,7 @@ class JournalBearingParams:
         lubrication(self.viscosity, self.film_model)  # a film model without oil is refused here, not at joint()
 
     def joint(self) -> exuclear.ClearanceJoint:
-        return exuclear.make_joint(
-            journal_radius=self.journal_radius, bearing_radius=self.bearing_radius, length=self.length,
-            law=self.law, cr=self.cr, journal_material=self.journal_material,
-            bearing_material=self.bearing_material, v_min=self.v_min,
-            lubrication=lubrication(self.viscosity, self.film_model))
+        return scene_joint(self)
 
 
 def build(params: JournalBearingParams) -> Scene:
