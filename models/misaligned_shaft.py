@@ -39,11 +39,10 @@ from exudyn.utilities import InertiaCylinder
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
 
-from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, one_line_warnings
+from ._cli import SceneRun, run_main, scene_parser
 from ._joint_fields import joint_field, joint_fields, scene_joint, scene_params
-from ._params import add_param_options, changes_from_args, check_fields, count, param, positive, real
+from ._params import changes_from_args, check_fields, count, param, positive, real
 from .scene import Scene
 
 
@@ -183,40 +182,37 @@ def plot(params: ShaftParams, out: dict, directory: str) -> list[str]:
 def _parser() -> argparse.ArgumentParser:
     """The command line: one option per :class:`ShaftParams` field; defaults
     :meth:`ShaftParams.default`."""
-    p = ShaftParams.default()
-    ap = OneLineParser(prog="python -m exuclear.models.misaligned_shaft", description=__doc__.split("\n")[0])
-    add_law_options(ap, p.law, p.cr)
-    add_param_options(ap, p)
+    ap = scene_parser("misaligned_shaft", __doc__, ShaftParams.default())
     ap.add_argument("--plot", metavar="DIR", help="write the tilt, edge-load and force-distribution figures to DIR")
     return ap
 
 
+class _ShaftRun(SceneRun):
+    """The command line's run (:func:`~exuclear.models._cli.run_main`): the scene of the module
+    docstring with the options' changes, the tilt and loads per bearing, and its figures."""
+
+    def prepare(self, law: str, cr: float) -> None:
+        self.params = ShaftParams.default(**changes_from_args(self.args, ShaftParams), law=law, cr=cr)
+
+    def simulate(self) -> None:
+        self.result, self.out = run(self.params)
+
+    def summary(self) -> None:
+        params, result = self.params, self.result
+        s = summary(params, self.out)
+        print(f"misaligned shaft: {params.misalignment * 1e3:g} mm misalignment, {params.speed:g} rad/s, "
+              f"{params.slices} slices, {result.steps} steps, {result.wall_time:.2f} s")
+        for name in ("A", "B"):
+            print(f"  bearing {name}: tilt {s[f'{name}_tilt'] * 1e3:.3f} mrad, force {s[f'{name}_force']:.2f} N, "
+                  f"edge {s[f'{name}_edge_force_per_length'] / 1e3:.3f} N/mm vs mean "
+                  f"{s[f'{name}_mean_force_per_length'] / 1e3:.3f} N/mm, {s[f'{name}_slices_in_contact']:.0f} slices in contact")
+
+    def plots(self, directory: str) -> list[str]:
+        return plot(self.params, self.out, directory)
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    one_line_warnings()
-    try:
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
-        params = ShaftParams.default(**changes_from_args(args, ShaftParams), law=law, cr=cr)
-        if args.plot is not None:
-            check_output_dir("--plot", args.plot)
-        result, out = run(params)
-    except ValueError as err:
-        return bad_input(err)
-    s = summary(params, out)
-    print(f"misaligned shaft: {params.misalignment * 1e3:g} mm misalignment, {params.speed:g} rad/s, "
-          f"{params.slices} slices, {result.steps} steps, {result.wall_time:.2f} s")
-    for name in ("A", "B"):
-        print(f"  bearing {name}: tilt {s[f'{name}_tilt'] * 1e3:.3f} mrad, force {s[f'{name}_force']:.2f} N, "
-              f"edge {s[f'{name}_edge_force_per_length'] / 1e3:.3f} N/mm vs mean "
-              f"{s[f'{name}_mean_force_per_length'] / 1e3:.3f} N/mm, {s[f'{name}_slices_in_contact']:.0f} slices in contact")
-    if args.plot is not None:
-        for path in plot(params, out, args.plot):
-            print(f"wrote {path}")
-    if not result.success:
-        print(f"error: {result.message}", file=sys.stderr)
-        return 1
-    return 0
+    return run_main(argv, _parser(), _ShaftRun)
 
 
 if __name__ == "__main__":
