@@ -211,9 +211,9 @@ def run_main(argv: Sequence[str] | None, parser: argparse.ArgumentParser,
 
     Bad input, found before the run or when the model is built, is one line ``error: ...``
     and status :data:`EXIT_BAD_INPUT`; the output paths (``--csv`` a file, ``--plot`` a
-    directory) are checked once the parameters are, before the run.  A run that stopped
-    early still writes what it reached (the CSV with its ``# INCOMPLETE`` line first), then
-    ``error: MESSAGE`` and status 1.
+    directory; folders that do not exist yet are made) are checked once the parameters are,
+    before the run.  A run that stopped early still writes what it reached (the CSV with its
+    ``# INCOMPLETE`` line first), then ``error: MESSAGE`` and status 1.
     """
     given = list(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(given)
@@ -233,6 +233,7 @@ def run_main(argv: Sequence[str] | None, parser: argparse.ArgumentParser,
         return bad_input(err)
     scene.summary()
     if csv is not None:
+        os.makedirs(os.path.dirname(os.path.abspath(csv)), exist_ok=True)  # a folder check_output_file let pass
         write_csv(csv, *scene.table())
         print(f"wrote {csv}", file=scene.notices)
     if plot is not None:
