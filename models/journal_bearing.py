@@ -109,7 +109,7 @@ class JournalBearingParams:
     #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
     #: c centred.
     start_gap: float = field(default=0.0, metadata=param("gap at t = 0 [m]", nonnegative, cli=False))
-    # viscosity None: dry, the paper's scene
+    # viscosity None (the default): a dry joint, the paper's scene
     _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", help={"viscosity": (
         "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
         "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated")})
