@@ -192,8 +192,13 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", n
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
     ``# INCOMPLETE: ...`` before the header; ``notes`` follow as ``# NOTE: ...`` lines.
     """
-    names = COLUMNS + FILM_COLUMNS if "film_force" in columns else COLUMNS
-    _write_columns(path, columns, names, incomplete, notes)
+    _write_columns(path, columns, csv_columns(columns), incomplete, notes)
+
+
+def csv_columns(columns: dict[str, np.ndarray]) -> tuple[str, ...]:
+    """The columns a run's CSV has: :data:`COLUMNS`, and :data:`FILM_COLUMNS` where ``columns``
+    holds them (a lubricated joint)."""
+    return COLUMNS + FILM_COLUMNS if "film_force" in columns else COLUMNS
 
 
 #: The columns :func:`record` hands to :func:`exuclear.check_convergence` as named

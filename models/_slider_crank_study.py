@@ -77,7 +77,7 @@ STUDY_METRICS = {
 #: ``python -m exuclear.study`` and its plots.
 STUDY_COLUMNS = {
     **study_columns(SliderCrankParams, STUDY_PARAMETERS, {
-        "friction": "friction law", "formulation": "formulation",
+        "formulation": "formulation",
         "revolutions": "crank revolutions after the start-up"}),
     "rpm": Column("crank speed", "rpm"),
     "startup": Column("start-up revolutions, left out of the steady metrics"),
