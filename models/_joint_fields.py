@@ -30,6 +30,7 @@ import exuclear
 from exuclear.contact import V_MIN_DEFAULT
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND
 from exuclear.materials import MATERIALS
+from exuclear.wear import PRESSURES, SURFACES
 
 from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, lubrication
 from ._params import Check, one_of, optional, param, positive
@@ -84,6 +85,13 @@ JOINT_FIELDS: dict[str, JointField] = {
                             "none, a dry joint)", optional(positive), default=None),
     "film_model": JointField("str", "the oil film's model (docs/physics.md section 10), with --viscosity",
                              one_of(FILM_MODEL_NAMES), choices=FILM_MODEL_NAMES, default=FILM_MODEL_DEFAULT),
+    # the wear: make_joint's `wear`, from the three together (scene_joint)
+    "wear_coefficient": JointField("float | None", "wear coefficient k_D = k / H of Archard's law [1/Pa] (default: "
+                                   "none, no wear; docs/physics.md section 11)", optional(positive), default=None),
+    "wear_surface": JointField("str", "which surfaces wear, with --wear-coefficient", one_of(SURFACES),
+                               choices=SURFACES, default="bearing"),
+    "wear_pressure": JointField("str", "the pressure over the contact arc for the wear, with --wear-coefficient",
+                                one_of(PRESSURES), choices=PRESSURES, default="winkler"),
 }
 
 
@@ -186,4 +194,7 @@ def scene_joint(params: object) -> exuclear.ClearanceJoint:
         arguments["journal_radius"] = bearing_radius - clearance
     if "viscosity" in names:
         arguments["lubrication"] = lubrication(params.viscosity, params.film_model)
+    if "wear_coefficient" in names and params.wear_coefficient is not None:
+        arguments["wear"] = exuclear.Wear(coefficient=params.wear_coefficient, surface=params.wear_surface,
+                                          pressure=params.wear_pressure)
     return exuclear.make_joint(**arguments)

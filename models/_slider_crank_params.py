@@ -78,6 +78,11 @@ class SliderCrankParams:
     film_model : str
         The oil film's model, ``"short"``, ``"long"`` or ``"finite"`` (docs/physics.md section
         10); only with a ``viscosity``.
+    wear_coefficient : float, optional
+        ``k_D = k / H`` [1/Pa] of the clearance joints' wear (:class:`exuclear.Wear`, docs/physics.md
+        section 11); default None, no wear.  Not with the spatial formulation.
+    wear_surface, wear_pressure : str
+        Which surfaces wear and the pressure over the arc, as :class:`exuclear.Wear` takes them.
     """
 
     crank_length: float = field(metadata=param("crank length r [m]", positive))
@@ -98,7 +103,8 @@ class SliderCrankParams:
         "redundant, minimal or spatial", one_of(FORMULATIONS), cli=False))  # its own option: implied by others
     clearance_joints: tuple[str, ...] = field(default=("B",), metadata=param(
         "joints with clearance", cli=False))  # given as letters, --clearance-joints OAB
-    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model")
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", "wear_coefficient",
+                                      "wear_surface", "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod

@@ -128,7 +128,8 @@ class FourBarParams:
     _joint_fields = joint_fields("bearing_radius", "clearance", "bearing_length", "law", "cr", "journal_material",
                                  "bearing_material", "friction", help={"bearing_radius": "bearing radius R_B at B [m]"})
     crank_angle0: float = field(default=0.0, metadata=param("crank angle at t = 0, from O2 towards O4 [rad]", real))
-    _more_joint_fields = joint_fields("v_min", "backend", "max_penetration")
+    _more_joint_fields = joint_fields("v_min", "backend", "max_penetration", "wear_coefficient", "wear_surface",
+                                      "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod

@@ -220,6 +220,11 @@ class _SliderCrankRun(SceneRun):
                       f"eccentricity ratio {cols['eccentricity_ratio'].max():.4g}, smallest film thickness "
                       f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact {100.0 * contact:.3g} % "
                       "of the time")
+        if result.wear is not None:
+            depth, angle = result.wear.deepest()
+            print(f"  wear at B: largest bearing depth {depth * 1e9:.4g} nm at {np.degrees(angle):.1f} deg of the joint "
+                  f"frame, worn volume {result.wear.volume['bearing'] * 1e9:.4g} mm^3 (bearing), "
+                  f"{result.wear.volume['journal'] * 1e9:.4g} mm^3 (journal)")
         print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
         if self.args.check_convergence:
             print(check_convergence(params, settings).report())
