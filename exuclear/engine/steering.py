@@ -146,13 +146,6 @@ ABSOLUTE_TOLERANCE = NEWTON_ATOL_DEFAULT
 #: user's modifiedNewtonJacUpdatePerStep, {joint token: a Jacobian per step wanted}]`` (weak:
 #: the system's variables neither keep a finished run's solver nor stop a deep copy).
 JACOBIAN_VOTES_KEY = "exuclear.jacobian_per_step"
-#: The contact period a worn joint gives :func:`steer_newton`: 0, a Jacobian per step at
-#: every step.  In a worn imprint the contact is conformal, and its normal (the overlaps'
-#: resultant, docs/physics.md eq. (75)) turns by some 0.02 per micrometre of sideways motion
-#: of the journal: an older Jacobian misses that stiffness, the modified Newton needs 8
-#: iterations per step, and Exudyn's step recovery (7 at most) never lets a cut step grow
-#: back (a spinning journal worn 60 um deep: 40975 steps against 2458).
-WORN_JACOBIAN_PERIOD = 0.0
 
 
 def explicit_solver(solver: Any) -> bool:
@@ -214,8 +207,8 @@ def vote_jacobian(mbs: exu.MainSystem, token: int, wanted: bool) -> None:
         return
     votes[2][token] = wanted
     solver = votes[0]()
-    if solver is not None:  # else gone with its run: nothing to steer
-        solver.newton.modifiedNewtonJacUpdatePerStep = any(votes[2].values())
+    if solver is not None:  # else gone with its run: nothing to steer; the user's True stays
+        solver.newton.modifiedNewtonJacUpdatePerStep = votes[1] or any(votes[2].values())
 
 
 def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
@@ -332,10 +325,7 @@ class _RunStart:
             except Exception:  # a body whose mass is not read: no Jacobian per step, no cap on growth
                 period = math.nan
             if handle.steer_newton:
-                # a worn joint's conformal contact turns its normal fast as the journal moves
-                # sideways: a Jacobian per step at every step (WORN_JACOBIAN_PERIOD)
-                jacobian_period = WORN_JACOBIAN_PERIOD if handle.joint.wear is not None else period
-                handle.newton_changes, jacobian_step = steer_newton(mbs, jacobian_period, self._token)
+                handle.newton_changes, jacobian_step = steer_newton(mbs, period, self._token)
         growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # a convergence check's tighter run refines the joints' own steps with the solver's
         rate_scale = 1.0 / joint_refinement(mbs)

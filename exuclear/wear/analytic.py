@@ -33,10 +33,11 @@ def contact_half_angle(depth: float, r: float, c: float) -> float:
     its centre at ``e = c + depth`` from the bearing's, meets the bearing's ``R = r + c``;
     at most 90 degrees."""
     e = c + depth
-    cos_phi = ((r + c) ** 2 - r * r - e * e) / (2.0 * e * r)
-    if cos_phi <= 0.0:
+    # 1 - cos(phi_c) = ((r + c)^2 - r^2 - e^2) / (2 e r) rearranged, exact to round-off at d0 -> 0
+    one_minus_cos = depth * (2.0 * r + e + c) / (2.0 * e * r)
+    if one_minus_cos >= 1.0:
         return 0.5 * math.pi
-    return math.acos(min(cos_phi, 1.0))
+    return 2.0 * math.asin(math.sqrt(0.5 * one_minus_cos))
 
 
 def depth_rate(depth: float, force: float, coefficient: float, r: float, c: float, length: float,

@@ -92,6 +92,7 @@ class JointKernel(JointStepControl):
         h = t - base[0].time
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
-        self.steer_jacobian(math.inf if switched else h)
+        conformal = self.wear is not None and states[0].in_contact and self.wear.current.worn
+        self.steer_jacobian(math.inf if switched else h, conformal)
         self.report_growth(mbs, t, allow, h)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]

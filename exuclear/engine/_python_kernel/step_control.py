@@ -110,15 +110,20 @@ class JointStepControl(JointState):
         c.separations += c.last_ended
         c.long_separations += c.last_long
 
-    def steer_jacobian(self, step: float) -> None:
+    def steer_jacobian(self, step: float, conformal: bool = False) -> None:
         """Ask for a Jacobian per step while the step the joint accepts is longer than the
         run-start callback's ``jacobian_step`` (:mod:`exuclear.engine.steering`), and for the step
         after one in which a contact opened or closed (its stiffness came or went) or that it
         redoes or grows (a step of another length, whose Newton matrix's mass term
-        ``M / (beta h^2)`` an older Jacobian does not hold): ``step`` inf.  Through the callback's
-        ``jacobian_per_step``: a call where the ask changes, not per step."""
+        ``M / (beta h^2)`` an older Jacobian does not hold): ``step`` inf.  Also while a worn
+        joint is in contact (``conformal``): in its imprint the contact's normal (the overlaps'
+        resultant, docs/physics.md eq. (75)) turns by some 0.02 per micrometre of sideways
+        motion, an older Jacobian misses that stiffness, the modified Newton needs 8
+        iterations per step and Exudyn's step recovery (7 at most) never lets a cut step grow
+        back (a spinning journal worn 60 um deep: 40975 steps against 2458).  Through the
+        callback's ``jacobian_per_step``: a call where the ask changes, not per step."""
         c = self.control
-        wanted = step > c.jacobian_step
+        wanted = conformal or step > c.jacobian_step
         if wanted == c.jacobian_on:
             return
         c.jacobian_on = wanted
