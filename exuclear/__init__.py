@@ -6,7 +6,8 @@ The public API is the names of ``__all__`` below, by role:
   return a :class:`ClearanceJointHandle`), and the physics of one joint,
   :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
   :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``),
-  :class:`Wear` (Archard's law) makes its surfaces wear (``wear=``);
+  :class:`Wear` (Archard's law) makes its surfaces wear (``wear=``), and
+  :func:`predict_wear` extrapolates one cycle's wear over many;
 - **contact laws**: :func:`contact_law` is the one way to build a :class:`ContactLaw`,
   by the name of a named law (``"wang-liu"``) or of a stiffness model and a damping
   model (``"pereira+gonthier"``);
@@ -51,7 +52,7 @@ from .geometry import BearingGeometry
 from .joint import ClearanceJoint, make_joint
 from .materials import MATERIALS, Material, composite_modulus
 from .settings import SolverSettings
-from .wear import Wear
+from .wear import Wear, predict_wear
 
 # The study names are imported on first use (PEP 562), not here: the study runner brings
 # pandas and tqdm along when it runs, and ``import exuclear`` stays light.  ``python -m
@@ -79,7 +80,7 @@ __version__ = "0.1.0"
 __all__ = [
     # joints
     "CreateClearanceJoint", "AddClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
-    "make_joint", "Lubrication", "Wear",
+    "make_joint", "Lubrication", "Wear", "predict_wear",
     # contact laws
     "contact_law", "ContactLaw",
     # friction

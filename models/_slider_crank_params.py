@@ -4,25 +4,13 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import field, replace
 
 import exuclear
-from exuclear.contact import V_MIN_DEFAULT
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND
-from exuclear.materials import MATERIALS
 
 from ._defaults import PAPER_CLEARANCE, PAPER_CRANK_SPEED
-from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, lubrication
-from ._params import (
-    boolean,
-    check_fields,
-    nonnegative,
-    nonzero,
-    one_of,
-    optional,
-    param,
-    positive,
-)
+from ._joint_fields import joint_fields, scene_joint, scene_params
+from ._params import boolean, check_fields, nonnegative, nonzero, one_of, param, positive
 
 FORMULATIONS = ("redundant", "minimal", "spatial")
 
@@ -47,7 +35,7 @@ FILM_COLUMNS = ("film_force", "eccentricity_ratio", "min_film_thickness", "regim
 CRANK_SPEED_WARN = 1e5 * 2.0 * math.pi / 60.0
 
 
-@dataclass(frozen=True)
+@scene_params
 class SliderCrankParams:
     """Parameters of the slider-crank (SI units); :meth:`paper` gives the paper's values.
 
@@ -90,6 +78,11 @@ class SliderCrankParams:
     film_model : str
         The oil film's model, ``"short"``, ``"long"`` or ``"finite"`` (docs/physics.md section
         10); only with a ``viscosity``.
+    wear_coefficient : float, optional
+        ``k_D = k / H`` [1/Pa] of the clearance joints' wear (:class:`exuclear.Wear`, docs/physics.md
+        section 11); default None, no wear.  Not with the spatial formulation.
+    wear_surface, wear_pressure : str
+        Which surfaces wear and the pressure over the arc, as :class:`exuclear.Wear` takes them.
     """
 
     crank_length: float = field(metadata=param("crank length r [m]", positive))
@@ -103,30 +96,15 @@ class SliderCrankParams:
         "crank speed [rad/s]", nonzero("positive counter-clockwise, negative clockwise"), cli=False))  # --rpm
     revolutions: float = field(metadata=param("crank revolutions", positive))
     gravity: float = field(metadata=param("gravity along -Y [m/s^2]", nonnegative))
-    bearing_radius: float = field(metadata=param("bearing radius R_B [m]", positive))
-    clearance: float = field(metadata=param("radial clearance [m]", positive))
-    bearing_length: float = field(metadata=param("bearing length [m]", option="length"))
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
-    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    friction: str = field(metadata=param("none | coulomb:MU | paper"))
-    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    _joint_fields = joint_fields("bearing_radius", "clearance", "bearing_length", "law", "cr", "journal_material",
+                                 "bearing_material", "friction", "v_min")
     ideal: bool = field(default=False, metadata=param("ideal revolute joints everywhere (the baseline)", boolean))
     formulation: str = field(default="minimal", metadata=param(
         "redundant, minimal or spatial", one_of(FORMULATIONS), cli=False))  # its own option: implied by others
     clearance_joints: tuple[str, ...] = field(default=("B",), metadata=param(
         "joints with clearance", cli=False))  # given as letters, --clearance-joints OAB
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
-        "the joint's kernel: compiled (C++) or python", one_of(sorted(BACKENDS)), choices=BACKENDS))
-    max_penetration: float | None = field(default=None, metadata=param(
-        "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
-        "journal radius)", optional(positive)))
-    viscosity: float | None = field(default=None, metadata=param(
-        "dynamic viscosity of the oil in the clearance joint [Pa s] (default: none, a dry joint)", optional(positive)))
-    film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
-        "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
-        choices=FILM_MODEL_NAMES))
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", "wear_coefficient",
+                                      "wear_surface", "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -156,15 +134,7 @@ class SliderCrankParams:
             raise ValueError(f"`clearance_joints` must name some of O, A, B, got {self.clearance_joints!r}")
         if len(set(self.clearance_joints)) != len(self.clearance_joints):
             raise ValueError(f"`clearance_joints` must name each joint once, got {self.clearance_joints!r}")
-        if self.clearance >= self.bearing_radius:
-            raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
-                             f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
-        joint = exuclear.make_joint(
-            journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
-            length=self.bearing_length,
-            law=self.law, cr=self.cr, journal_material=self.journal_material, bearing_material=self.bearing_material,
-            friction=self.friction, v_min=self.v_min, lubrication=lubrication(self.viscosity, self.film_model))
-        object.__setattr__(self, "_joint", joint)
+        object.__setattr__(self, "_joint", scene_joint(self))
 
     @property
     def joint(self) -> exuclear.ClearanceJoint:

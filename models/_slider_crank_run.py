@@ -13,6 +13,7 @@ from exuclear import SolverSettings
 from exuclear import convergence as _convergence
 from exuclear.engine import AccuracyWarning
 from exuclear.timescales import reduced_mass
+from exuclear.wear import WearProfile
 
 from . import _defaults
 from ._cli import write_csv as _write_columns
@@ -81,6 +82,8 @@ class SliderCrankResult:
     #: Why the path may not be converged: the defaults' limits (:func:`accuracy_notes`) and
     #: the run's own findings (:attr:`exuclear.SimulationResult.notes`).
     notes: tuple[str, ...] = ()
+    #: The worn profiles of the joint at B after the run (a run with a ``wear_coefficient``).
+    wear: WearProfile | None = None
 
     @property
     def impacts(self) -> int:
@@ -181,8 +184,10 @@ def run(params: SliderCrankParams, settings: SolverSettings | None = None) -> Sl
             warnings.warn(note, AccuracyWarning, stacklevel=2)
     sim = exuclear.simulate(model.mbs, settings)
     onsets = np.array(model.joint.history.onset_times if model.joint is not None else [])  # joint B
+    worn = model.joint is not None and model.joint.joint.wear is not None
     return SliderCrankResult(columns(model), sim.success, sim.message, sim.wall_time, model.build_time,
-                             sim.steps, sim.rejected, onsets, notes + sim.notes)
+                             sim.steps, sim.rejected, onsets, notes + sim.notes,
+                             model.joint.wear_profile() if worn else None)
 
 
 def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", notes: tuple[str, ...] = ()) -> None:
@@ -192,8 +197,13 @@ def write_csv(path: str, columns: dict[str, np.ndarray], incomplete: str = "", n
     ``incomplete``: why the run stopped early; it then goes first, as a comment line
     ``# INCOMPLETE: ...`` before the header; ``notes`` follow as ``# NOTE: ...`` lines.
     """
-    names = COLUMNS + FILM_COLUMNS if "film_force" in columns else COLUMNS
-    _write_columns(path, columns, names, incomplete, notes)
+    _write_columns(path, columns, csv_columns(columns), incomplete, notes)
+
+
+def csv_columns(columns: dict[str, np.ndarray]) -> tuple[str, ...]:
+    """The columns a run's CSV has: :data:`COLUMNS`, and :data:`FILM_COLUMNS` where ``columns``
+    holds them (a lubricated joint)."""
+    return COLUMNS + FILM_COLUMNS if "film_force" in columns else COLUMNS
 
 
 #: The columns :func:`record` hands to :func:`exuclear.check_convergence` as named

@@ -36,7 +36,7 @@ from .scene import Scene
 def _study_defaults() -> dict:
     paper = SliderCrankParams.paper()
     fields = ("law", "journal_material", "bearing_material", "friction", "bearing_length", "gravity", "v_min",
-              "formulation", "backend", "viscosity", "film_model")
+              "formulation", "backend", "viscosity", "film_model", "wear_coefficient")
     return {"cr": paper.cr, "clearance": paper.clearance, "rpm": PAPER_RPM, "startup": 1.0,
             "revolutions": paper.revolutions, **{name: getattr(paper, name) for name in fields}}
 
@@ -68,6 +68,10 @@ STUDY_METRICS = {
     "contact_dissipated": Column("energy dissipated by the contact", "J"),
     "energy_residual": Column("energy residual", "J"),
     "energy_residual_rel": Column("energy residual / gross contact work"),
+    # the wear of the bearing at B over the whole run (a run with a wear_coefficient; NaN otherwise)
+    "max_wear_depth": Column("largest wear depth of the bearing at B", "m"),
+    "max_wear_angle": Column("angle of the largest wear depth, joint frame", "deg"),
+    "wear_volume": Column("worn volume of the bearing at B", "m^3"),
     "steps": Column("solver steps"),
     "sim_wall_time": Column("solver wall time", "s"),
 }
@@ -77,7 +81,7 @@ STUDY_METRICS = {
 #: ``python -m exuclear.study`` and its plots.
 STUDY_COLUMNS = {
     **study_columns(SliderCrankParams, STUDY_PARAMETERS, {
-        "friction": "friction law", "formulation": "formulation",
+        "formulation": "formulation",
         "revolutions": "crank revolutions after the start-up"}),
     "rpm": Column("crank speed", "rpm"),
     "startup": Column("start-up revolutions, left out of the steady metrics"),
@@ -95,6 +99,8 @@ def study_params(values: dict) -> SliderCrankParams:
     v = {**STUDY_PARAMETERS, **values}
     if isinstance(v["viscosity"], str) and v["viscosity"].lower() == "none":
         v["viscosity"] = None  # a dry joint, as the command line spells it
+    if isinstance(v["wear_coefficient"], str) and v["wear_coefficient"].lower() == "none":
+        v["wear_coefficient"] = None  # no wear, as the command line spells it
     if v["viscosity"] is None:
         # the dry runs of a sweep over viscosity and film model (--viscosity none,0.01
         # --film-model finite): a dry joint has no film, so the film model does not apply
@@ -222,6 +228,8 @@ def study(values: dict) -> dict:
     revolution = np.floor((t - t_start) / period * (1.0 + 1e-12)).astype(int)
     count = math.ceil(p.revolutions - startup - 1e-9)
     by_rev = [cols["contact_force"][revolution == k] for k in range(count)]
+    wear = model.joint.wear_profile() if p.wear_coefficient is not None else None
+    depth, angle = wear.deepest() if wear is not None else (math.nan, math.nan)
     return {
         "peak_force": float(cols["contact_force"].max()),
         "peak_force_steady": float(steady_force.max()) if steady_force.size else math.nan,
@@ -236,6 +244,8 @@ def study(values: dict) -> dict:
         "metal_contact_fraction": rms(in_contact) ** 2,  # the time average of a 0/1 signal
         "slider_acc_rms_dev": dev, "slider_acc_rms_dev_rel": dev / rms(ideal),
         **audit,
+        "max_wear_depth": depth, "max_wear_angle": math.degrees(angle),
+        "wear_volume": wear.volume["bearing"] if wear is not None else math.nan,
         "steps": sim.steps, "sim_wall_time": sim.wall_time,
         "success": sim.success, "message": sim.message,
     }

@@ -53,22 +53,16 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear import SolverSettings
 from exuclear import convergence as _convergence
-from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND
-from exuclear.materials import MATERIALS
 from exuclear.settings import METHODS
 
-from ._cli import OneLineParser, add_law_options, add_rpm_option, bad_input, check_output_file, one_line_warnings
-from ._cli import write_csv as _write_columns
+from ._cli import SceneRun, Table, add_rpm_option, run_main, scene_parser
+from ._joint_fields import joint_fields, scene_joint, scene_params
 from ._params import (
-    add_param_options,
     changes_from_args,
     check_fields,
     crank_speed_from_rpm,
     nonnegative,
     nonzero,
-    one_of,
-    optional,
     param,
     positive,
     real,
@@ -85,7 +79,7 @@ COLUMNS = ("time", "crank_angle", "coupler_angle", "rocker_angle", "rocker_rate"
 DEFAULT_SETTINGS = {"method": "generalized-alpha", "step": 2e-5, "impact_step": 1e-6}
 
 
-@dataclass(frozen=True)
+@scene_params
 class FourBarParams:
     """Parameters of the four-bar (SI units); :meth:`crank_rocker` gives the documented case.
 
@@ -131,20 +125,11 @@ class FourBarParams:
         "crank speed [rad/s]", nonzero("positive counter-clockwise, negative clockwise"), cli=False))  # --rpm
     revolutions: float = field(metadata=param("crank revolutions", positive))
     gravity: float = field(metadata=param("gravity along -Y [m/s^2]", nonnegative))
-    bearing_radius: float = field(metadata=param("bearing radius R_B at B [m]", positive))
-    clearance: float = field(metadata=param("radial clearance [m]", positive))
-    bearing_length: float = field(metadata=param("bearing length [m]", option="length"))
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
-    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    friction: str = field(metadata=param("none | coulomb:MU | paper"))
+    _joint_fields = joint_fields("bearing_radius", "clearance", "bearing_length", "law", "cr", "journal_material",
+                                 "bearing_material", "friction", help={"bearing_radius": "bearing radius R_B at B [m]"})
     crank_angle0: float = field(default=0.0, metadata=param("crank angle at t = 0, from O2 towards O4 [rad]", real))
-    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
-        "force evaluation of the clearance joint", one_of(sorted(BACKENDS)), choices=BACKENDS))
-    max_penetration: float | None = field(default=None, metadata=param(
-        "penetration [m] beyond which the run stops (default: the library's bound)", optional(positive)))
+    _more_joint_fields = joint_fields("v_min", "backend", "max_penetration", "wear_coefficient", "wear_surface",
+                                      "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
@@ -181,14 +166,7 @@ class FourBarParams:
         if s != lengths["crank_length"] or s + l >= sum(lengths.values()) - s - l:
             raise ValueError(f"the link lengths {lengths} do not make a crank-rocker: the crank must be the shortest "
                              "link and shortest + longest < sum of the other two (Grashof)")
-        if self.clearance >= self.bearing_radius:
-            raise ValueError(f"`clearance` must be smaller than `bearing_radius` (the journal radius is their "
-                             f"difference), got clearance = {self.clearance}, bearing_radius = {self.bearing_radius}")
-        joint = exuclear.make_joint(
-            journal_radius=self.bearing_radius - self.clearance, bearing_radius=self.bearing_radius,
-            length=self.bearing_length, law=self.law, cr=self.cr, journal_material=self.journal_material,
-            bearing_material=self.bearing_material, friction=self.friction, v_min=self.v_min)
-        object.__setattr__(self, "_joint", joint)
+        object.__setattr__(self, "_joint", scene_joint(self))
 
     @property
     def joint(self) -> exuclear.ClearanceJoint:
@@ -365,9 +343,7 @@ def _parser() -> argparse.ArgumentParser:
     """The command line: one option per :class:`FourBarParams` field; defaults
     :meth:`FourBarParams.crank_rocker`."""
     p = FourBarParams.crank_rocker()
-    ap = OneLineParser(prog="python -m exuclear.models.four_bar", description=__doc__.split("\n")[0])
-    add_law_options(ap, p.law, p.cr)
-    add_param_options(ap, p)
+    ap = scene_parser("four_bar", __doc__, p)
     add_rpm_option(ap, p.crank_speed)
     ap.add_argument("--method", choices=[m for m, (_, explicit, _) in METHODS.items() if not explicit],
                     default=DEFAULT_SETTINGS["method"],
@@ -385,42 +361,45 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    one_line_warnings()
-    try:
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
-        params = FourBarParams.crank_rocker(**changes_from_args(args, FourBarParams), law=law, cr=cr,
-                                            crank_speed=crank_speed_from_rpm("rpm", args.rpm))
+class _FourBarRun(SceneRun):
+    """The command line's run (:func:`~exuclear.models._cli.run_main`): the crank-rocker with
+    the options' changes, its summary, and the convergence check after the CSV."""
+
+    def prepare(self, law: str, cr: float) -> None:
+        args = self.args
+        self.params = FourBarParams.crank_rocker(**changes_from_args(args, FourBarParams), law=law, cr=cr,
+                                                 crank_speed=crank_speed_from_rpm("rpm", args.rpm))
         impact_step = nonnegative("--impact-step", args.impact_step) or None
-        settings = SolverSettings(end_time=params.end_time, method=args.method, step=args.step,
-                                  impact_step=impact_step, output_step=args.dt_out, verbose=int(args.verbose))
-        if args.csv is not None:
-            check_output_file("--csv", args.csv)
-        result = run(params, settings)
-    except ValueError as err:
-        return bad_input(err)
-    print(f"four-bar, {settings.method}, step {settings.step:g} s"
-          f"{f', {settings.impact_step:g} s from each contact onset' if settings.impact_step else ''}: clearance "
-          f"{params.clearance * 1e3:g} mm at B, {params.law} cr = {params.cr}, {params.journal_material} journal, "
-          f"{params.bearing_material} bearing, friction {params.friction}")
-    reached = float(result.columns["time"][-1]) if len(result.columns["time"]) else 0.0
-    status = "simulated" if result.success else "STOPPED EARLY at"
-    print(f"  {status} {reached:.4g} s of {params.end_time:.4g} s ({params.revolutions:g} revolutions) in "
-          f"{result.steps} steps ({result.rejected} rejected)")
-    print(f"  peak contact force {result.peak_force:.1f} N, impacts {result.impacts}, max |e|/c "
-          f"{np.max(np.hypot(result.columns['ecc_x'], result.columns['ecc_y'])) / params.clearance:.3f}")
-    print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
-    if args.csv is not None:
-        _write_columns(args.csv, result.columns, COLUMNS, "" if result.success else result.message)
-        print(f"wrote {args.csv}")
-    if args.check_convergence:
-        print(check_convergence(params, settings, baseline=result.record).report())
-    if not result.success:
-        print(f"error: {result.message}", file=sys.stderr)
-        return 1
-    return 0
+        self.settings = SolverSettings(end_time=self.params.end_time, method=args.method, step=args.step,
+                                       impact_step=impact_step, output_step=args.dt_out, verbose=int(args.verbose))
+
+    def simulate(self) -> None:
+        self.result = run(self.params, self.settings)
+
+    def summary(self) -> None:
+        params, settings, result = self.params, self.settings, self.result
+        print(f"four-bar, {settings.method}, step {settings.step:g} s"
+              f"{f', {settings.impact_step:g} s from each contact onset' if settings.impact_step else ''}: clearance "
+              f"{params.clearance * 1e3:g} mm at B, {params.law} cr = {params.cr}, {params.journal_material} journal, "
+              f"{params.bearing_material} bearing, friction {params.friction}")
+        reached = float(result.columns["time"][-1]) if len(result.columns["time"]) else 0.0
+        status = "simulated" if result.success else "STOPPED EARLY at"
+        print(f"  {status} {reached:.4g} s of {params.end_time:.4g} s ({params.revolutions:g} revolutions) in "
+              f"{result.steps} steps ({result.rejected} rejected)")
+        print(f"  peak contact force {result.peak_force:.1f} N, impacts {result.impacts}, max |e|/c "
+              f"{np.max(np.hypot(result.columns['ecc_x'], result.columns['ecc_y'])) / params.clearance:.3f}")
+        print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
+
+    def table(self) -> Table:
+        return Table(self.result.columns, COLUMNS, self.incomplete)
+
+    def finish(self) -> None:
+        if self.args.check_convergence:
+            print(check_convergence(self.params, self.settings, baseline=self.result.record).report())
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_main(argv, _parser(), _FourBarRun)
 
 
 if __name__ == "__main__":

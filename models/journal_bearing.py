@@ -55,20 +55,16 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear import SolverSettings
 from exuclear.columns import Column
-from exuclear.contact import V_MIN_DEFAULT, law_and_restitution
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND, OUTPUT_COLUMNS
+from exuclear.engine import OUTPUT_COLUMNS
 from exuclear.engine.outputs import FILM_OUTPUT_COLUMNS
-from exuclear.materials import MATERIALS
 
-from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, check_output_file, one_line_warnings, write_csv
-from ._lubricant import FILM_MODEL_DEFAULT, FILM_MODEL_NAMES, joint_force, lubrication
+from ._cli import SceneRun, Table, run_main, scene_parser
+from ._joint_fields import joint_field, joint_fields, scene_joint, scene_params
+from ._lubricant import FILM_MODEL_DEFAULT, joint_force, lubrication
 from ._params import (
-    add_param_options,
     changes_from_args,
     check_fields,
     nonnegative,
-    one_of,
-    optional,
     param,
     positive,
     study_columns,
@@ -92,7 +88,7 @@ DEFAULT_END_TIME = 4e-4
 APPROACH_END_TIME = 1e-3
 
 
-@dataclass(frozen=True)
+@scene_params
 class JournalBearingParams:
     """Parameters of the journal-bearing impact (SI units).
 
@@ -100,17 +96,11 @@ class JournalBearingParams:
     the paper) turn the scene into a journal resting on, or dropped onto, its bearing.
     """
 
-    # the joint's physics: checked by exuclear.make_joint (joint())
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    journal_material: str = field(metadata=param(f"journal material: {', '.join(MATERIALS)}", option="journal"))
-    bearing_material: str = field(metadata=param("bearing material", option="bearing"))
-    journal_radius: float = field(metadata=param("journal radius R_J [m]"))
-    bearing_radius: float = field(metadata=param("bearing radius R_B [m]"))
-    length: float = field(metadata=param("bearing length L [m]", option="bearing_length"))  # the slider-crank's name
+    _joint_fields = joint_fields("law", "cr", "journal_material", "bearing_material", "journal_radius", "bearing_radius",
+                                 "length")
     mass: float = field(metadata=param("journal mass [kg]", positive))
     impact_velocity: float = field(metadata=param("impact velocity [m/s]", nonnegative, option="velocity"))
-    v_min: float = field(default=V_MIN_DEFAULT, metadata=param("floor of v0 in the damping term [m/s]"))
+    v_min: float = joint_field("v_min")
     end_time: float = field(default=DEFAULT_END_TIME, metadata=param(
         "simulated time [s]; the journal must have left the wall by then", positive))
     #: Gravitational acceleration [m/s^2] along +X, towards the wall the journal starts
@@ -119,21 +109,10 @@ class JournalBearingParams:
     #: Distance [m] between journal and wall at t = 0, in [0, c]: 0 touching (the paper),
     #: c centred.
     start_gap: float = field(default=0.0, metadata=param("gap at t = 0 [m]", nonnegative, cli=False))
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param(
-        "the joint's kernel: compiled (C++) or python", choices=BACKENDS))  # checked by the library
-    #: Penetration [m] beyond which a run stops; None: the library's default bound (see
-    #: :func:`exuclear.AddClearanceJoint`).
-    max_penetration: float | None = field(default=None, metadata=param(
-        "penetration [m] beyond which the run stops (default: the larger of half the clearance and 0.1 % of the "
-        "journal radius)"))  # checked by the library
-    #: Dynamic viscosity [Pa s] of the oil in the clearance; None: dry (the paper's scene).
-    viscosity: float | None = field(default=None, metadata=param(
+    # viscosity None (the default): a dry joint, the paper's scene
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", help={"viscosity": (
         "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
-        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated",
-        optional(positive)))
-    film_model: str = field(default=FILM_MODEL_DEFAULT, metadata=param(
-        "the oil film's model (docs/physics.md section 10), with --viscosity", one_of(FILM_MODEL_NAMES),
-        choices=FILM_MODEL_NAMES))
+        "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated")})
 
     @classmethod
     def paper(cls, **changes: object) -> JournalBearingParams:
@@ -159,11 +138,7 @@ class JournalBearingParams:
         lubrication(self.viscosity, self.film_model)  # a film model without oil is refused here, not at joint()
 
     def joint(self) -> exuclear.ClearanceJoint:
-        return exuclear.make_joint(
-            journal_radius=self.journal_radius, bearing_radius=self.bearing_radius, length=self.length,
-            law=self.law, cr=self.cr, journal_material=self.journal_material,
-            bearing_material=self.bearing_material, v_min=self.v_min,
-            lubrication=lubrication(self.viscosity, self.film_model))
+        return scene_joint(self)
 
 
 def build(params: JournalBearingParams) -> Scene:
@@ -327,10 +302,7 @@ def plot(results: list[tuple[str, dict[str, np.ndarray]]], directory: str, stem:
 def _parser() -> argparse.ArgumentParser:
     """The command line: one option per :class:`JournalBearingParams` field;
     defaults :meth:`JournalBearingParams.paper`."""
-    p = JournalBearingParams.paper()
-    ap = OneLineParser(prog="python -m exuclear.models.journal_bearing", description=__doc__.split("\n")[0])
-    add_law_options(ap, p.law, p.cr)
-    add_param_options(ap, p)
+    ap = scene_parser("journal_bearing", __doc__, JournalBearingParams.paper())
     ap.add_argument("--dt-out", type=float, default=IMPACT_STEP / 10,
                     help="output interval [s]; the summary's peak force, peak penetration and contact duration "
                          "come from these outputs, so a coarser interval samples the impact (~40 us) coarsely "
@@ -342,27 +314,22 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    one_line_warnings()
-    if args.viscosity is not None:
-        given = sys.argv[1:] if argv is None else argv
-        return _main_approach(args, end_time_given=any(a.split("=")[0] == "--end-time" for a in given))
-    try:
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
-        params = JournalBearingParams.paper(**changes_from_args(args, JournalBearingParams), law=law, cr=cr)
-        settings = replace(default_settings(params), output_step=positive("--dt-out", args.dt_out))
-        if args.csv is not None:
-            check_output_file("--csv", args.csv)
-        if args.plot is not None:
-            check_output_dir("--plot", args.plot)
-        result, out = run(params, settings)
-    except ValueError as err:
-        return bad_input(err)
-    if args.json:
-        print(json.dumps(asdict(result)))
-    else:
+class _ImpactRun(SceneRun):
+    """The command line's run (:func:`~exuclear.models._cli.run_main`): the paper's impact with
+    the options' changes, its summary (or JSON) and its force-penetration figures."""
+
+    def prepare(self, law: str, cr: float) -> None:
+        self.params = JournalBearingParams.paper(**changes_from_args(self.args, JournalBearingParams), law=law, cr=cr)
+        self.settings = replace(default_settings(self.params), output_step=positive("--dt-out", self.args.dt_out))
+
+    def simulate(self) -> None:
+        self.result, self.out = run(self.params, self.settings)
+
+    def summary(self) -> None:
+        result = self.result
+        if self.args.json:
+            print(json.dumps(asdict(result)))
+            return
         incomplete = "" if result.success else " (INCOMPLETE: see the error below; values up to the stop)"
         print(f"journal-bearing impact{incomplete}: {result.law}, cr = {result.cr}, L = {result.length * 1e3:g} mm, "
               f"{result.journal_material} journal in {result.bearing_material} bearing")
@@ -372,16 +339,12 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  max penetration     {result.max_penetration * 1e6:.4f} um")
         print(f"  contact duration    {result.contact_duration * 1e6:.2f} us")
         print(f"  wall time           {result.wall_time:.3f} s")
-    if args.csv is not None:
-        write_csv(args.csv, out, ("time", *OUTPUT_COLUMNS), incomplete="" if result.success else result.message)
-        print(f"wrote {args.csv}", file=sys.stderr if args.json else sys.stdout)
-    if args.plot is not None:
-        for path in plot([(f"{result.law}, cr = {result.cr}", out)], args.plot):
-            print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
-    if not result.success:
-        print(f"error: {result.message}", file=sys.stderr)
-        return 1
-    return 0
+
+    def table(self) -> Table:
+        return Table(self.out, ("time", *OUTPUT_COLUMNS), self.incomplete)
+
+    def plots(self, directory: str) -> list[str]:
+        return plot([(f"{self.result.law}, cr = {self.result.cr}", self.out)], directory)
 
 
 #: The approach scene's summary lines: (label, :class:`ApproachResult` field, scale, unit).
@@ -397,44 +360,53 @@ APPROACH_LINES = (
 )
 
 
-def _main_approach(args: argparse.Namespace, end_time_given: bool) -> int:
+class _ApproachRun(SceneRun):
     """``--viscosity``: the approach scene (module docstring), dry and lubricated side by side;
-    its own end time unless ``--end-time`` was given (``end_time_given``)."""
-    try:
+    its own end time unless ``--end-time`` was given."""
+
+    def prepare(self, law: str, cr: float) -> None:
+        args = self.args
         if args.plot is not None:
             raise ValueError("`--plot` draws the paper's impact (force against penetration); with --viscosity the "
                              "scene is the approach from the centre: use --csv for its time series")
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
         changes = changes_from_args(args, JournalBearingParams)
-        if not end_time_given:  # the paper impact's default: the approach has its own
+        if not any(a.split("=")[0] == "--end-time" for a in self.argv):  # the paper impact's default: the approach has its own
             del changes["end_time"]
-        oiled = JournalBearingParams.approach(**changes, law=law, cr=cr)
-        dry = replace(oiled, viscosity=None, film_model=FILM_MODEL_DEFAULT)
-        settings = replace(default_settings(oiled), output_step=positive("--dt-out", args.dt_out))
-        if args.csv is not None:
-            check_output_file("--csv", args.csv)
-        results = [run_approach(p, settings) for p in (dry, oiled)]
-    except ValueError as err:
-        return bad_input(err)
-    (r_dry, _), (r_oil, out) = results
-    if args.json:
-        print(json.dumps({"dry": asdict(r_dry), "lubricated": asdict(r_oil)}))
-    else:
+        self.oiled = JournalBearingParams.approach(**changes, law=law, cr=cr)
+        self.dry = replace(self.oiled, viscosity=None, film_model=FILM_MODEL_DEFAULT)
+        self.settings = replace(default_settings(self.oiled), output_step=positive("--dt-out", args.dt_out))
+
+    def simulate(self) -> None:
+        (self.dry_result, _), (self.result, self.out) = [run_approach(p, self.settings) for p in (self.dry, self.oiled)]
+
+    def summary(self) -> None:
+        r_dry, r_oil, oiled = self.dry_result, self.result, self.oiled
+        if self.args.json:
+            print(json.dumps({"dry": asdict(r_dry), "lubricated": asdict(r_oil)}))
+            return
         print(f"journal-bearing approach: from the centre towards the wall at {oiled.impact_velocity:g} m/s, "
-              f"{law}, cr = {cr}; oil {oiled.viscosity:g} Pa s, {oiled.film_model} film")
+              f"{oiled.law}, cr = {oiled.cr}; oil {oiled.viscosity:g} Pa s, {oiled.film_model} film")
         print(f"  {'':28s} {'dry':>12s} {'lubricated':>12s}")
         for label, name, scale, unit in APPROACH_LINES:
             values = [getattr(r, name) * scale for r in (r_dry, r_oil)]
             print(f"  {label:28s} {values[0]:12.4g} {values[1]:12.4g}  {unit}")
-    if args.csv is not None:
-        write_csv(args.csv, out, ("time", *OUTPUT_COLUMNS, *FILM_OUTPUT_COLUMNS),
-                  incomplete="" if r_oil.success else r_oil.message)
-        print(f"wrote {args.csv}", file=sys.stderr if args.json else sys.stdout)
-    failed = [f"{kind}: {r.message}" for kind, r in (("dry", r_dry), ("lubricated", r_oil)) if not r.success]
-    for message in failed:
-        print(f"error: {message}", file=sys.stderr)
-    return 1 if failed else 0
+
+    def table(self) -> Table:
+        """The lubricated run's outputs; INCOMPLETE where that run stopped early."""
+        return Table(self.out, ("time", *OUTPUT_COLUMNS, *FILM_OUTPUT_COLUMNS), self.incomplete)
+
+    def errors(self) -> list[str]:
+        return [f"{kind}: {r.message}" for kind, r in (("dry", self.dry_result), ("lubricated", self.result))
+                if not r.success]
+
+
+def _scene_run(args: argparse.Namespace, argv: list[str]) -> SceneRun:
+    """The paper's impact, or with ``--viscosity`` the approach scene."""
+    return (_ImpactRun if args.viscosity is None else _ApproachRun)(args, argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_main(argv, _parser(), _scene_run)
 
 
 # =======================================================================================

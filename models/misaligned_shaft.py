@@ -29,7 +29,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import field, replace
 
 import exudyn as exu
 import numpy as np
@@ -39,32 +39,28 @@ from exudyn.utilities import InertiaCylinder
 
 import exuclear
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
-from exuclear.engine import BACKENDS, DEFAULT_BACKEND
 
-from ._cli import OneLineParser, add_law_options, bad_input, check_output_dir, one_line_warnings
-from ._params import add_param_options, changes_from_args, check_fields, count, param, positive, real
+from ._cli import SceneRun, run_main, scene_parser
+from ._joint_fields import joint_field, joint_fields, scene_joint, scene_params
+from ._params import changes_from_args, check_fields, count, param, positive, real
 from .scene import Scene
 
 
-@dataclass(frozen=True)
+@scene_params
 class ShaftParams:
     """The scene's parameters (SI units); :meth:`default` is the scene of the module docstring."""
 
-    # the bearings' physics: checked by exuclear.AddClearanceJoint
-    journal_radius: float = field(metadata=param("R_J [m]"))
-    bearing_radius: float = field(metadata=param("R_B of both bearings [m]"))
-    length: float = field(metadata=param("length of each bearing [m]"))
+    # both bearings have this geometry, law and friction
+    _joint_fields = joint_fields("journal_radius", "bearing_radius", "length", second_option=False, help={
+        "bearing_radius": "bearing radius R_B of both bearings [m]", "length": "bearing length L of each bearing [m]"})
     shaft_length: float = field(metadata=param("shaft length [m]", positive))
     spacing: float = field(metadata=param("distance between the bearings' centres [m]", positive))
     misalignment: float = field(metadata=param("height of bearing B above A [m]", real))
     speed: float = field(metadata=param("shaft speed [rad/s]", real))
-    law: str = field(metadata=param("contact law", cli=False))  # --law, --stiffness, --damping (add_law_options)
-    cr: float = field(metadata=param("coefficient of restitution", cli=False))
-    friction: str = field(metadata=param("friction law: none | coulomb:MU | paper"))
+    _more_joint_fields = joint_fields("law", "cr", "friction")
     slices: int = field(metadata=param("slices per bearing", count))
     end_time: float = field(metadata=param("simulated time [s]", positive))
-    backend: str = field(default=DEFAULT_BACKEND, metadata=param("kernel", choices=BACKENDS))
+    backend: str = joint_field("backend")
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -92,16 +88,15 @@ def build(params: ShaftParams) -> Scene:
         initialDisplacement=[0.0, params.misalignment / 2, 0.0], initialRotationMatrix=RotationMatrixX(-tilt),
         initialAngularVelocity=(RotationMatrixX(-tilt) @ [0.0, 0.0, params.speed]).tolist(),
         nodeType=exu.NodeType.RotationRxyz, returnDict=True)
-    physics = dict(journal_radius=params.journal_radius, bearing_radius=params.bearing_radius, length=params.length,
-                   law=params.law, cr=params.cr, friction=params.friction, backend=params.backend,
-                   slices=params.slices, show=False)
+    joint = scene_joint(params)  # the same physics in both bearings
     joints = {}
     for name, z, y in (("A", 0.0, 0.0), ("B", params.spacing, params.misalignment)):
         # bearing centre at (0, y, z); the journal centre on the shaft's axis (the shaft's
         # reference configuration is parallel to the bearings, as the joint takes its axis from it)
         mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, y, z]))
         mj = mbs.AddMarker(MarkerBodyRigid(bodyNumber=shaft["bodyNumber"], localPosition=[0.0, 0.0, z - params.spacing / 2]))
-        joints[name] = exuclear.AddClearanceJoint(mbs, [mb, mj], name=name, constrainAxial=name == "A", **physics)
+        joints[name] = exuclear.AddClearanceJoint(mbs, [mb, mj], name=name, constrainAxial=name == "A", joint=joint,
+                                                  backend=params.backend, slices=params.slices, show=False)
     mbs.Assemble()
     return Scene(params, mbs, joints, nodes={"shaft": shaft["nodeNumber"]}, build_time=time.perf_counter() - start)
 
@@ -187,40 +182,37 @@ def plot(params: ShaftParams, out: dict, directory: str) -> list[str]:
 def _parser() -> argparse.ArgumentParser:
     """The command line: one option per :class:`ShaftParams` field; defaults
     :meth:`ShaftParams.default`."""
-    p = ShaftParams.default()
-    ap = OneLineParser(prog="python -m exuclear.models.misaligned_shaft", description=__doc__.split("\n")[0])
-    add_law_options(ap, p.law, p.cr)
-    add_param_options(ap, p)
+    ap = scene_parser("misaligned_shaft", __doc__, ShaftParams.default())
     ap.add_argument("--plot", metavar="DIR", help="write the tilt, edge-load and force-distribution figures to DIR")
     return ap
 
 
+class _ShaftRun(SceneRun):
+    """The command line's run (:func:`~exuclear.models._cli.run_main`): the scene of the module
+    docstring with the options' changes, the tilt and loads per bearing, and its figures."""
+
+    def prepare(self, law: str, cr: float) -> None:
+        self.params = ShaftParams.default(**changes_from_args(self.args, ShaftParams), law=law, cr=cr)
+
+    def simulate(self) -> None:
+        self.result, self.out = run(self.params)
+
+    def summary(self) -> None:
+        params, result = self.params, self.result
+        s = summary(params, self.out)
+        print(f"misaligned shaft: {params.misalignment * 1e3:g} mm misalignment, {params.speed:g} rad/s, "
+              f"{params.slices} slices, {result.steps} steps, {result.wall_time:.2f} s")
+        for name in ("A", "B"):
+            print(f"  bearing {name}: tilt {s[f'{name}_tilt'] * 1e3:.3f} mrad, force {s[f'{name}_force']:.2f} N, "
+                  f"edge {s[f'{name}_edge_force_per_length'] / 1e3:.3f} N/mm vs mean "
+                  f"{s[f'{name}_mean_force_per_length'] / 1e3:.3f} N/mm, {s[f'{name}_slices_in_contact']:.0f} slices in contact")
+
+    def plots(self, directory: str) -> list[str]:
+        return plot(self.params, self.out, directory)
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    one_line_warnings()
-    try:
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
-        params = ShaftParams.default(**changes_from_args(args, ShaftParams), law=law, cr=cr)
-        if args.plot is not None:
-            check_output_dir("--plot", args.plot)
-        result, out = run(params)
-    except ValueError as err:
-        return bad_input(err)
-    s = summary(params, out)
-    print(f"misaligned shaft: {params.misalignment * 1e3:g} mm misalignment, {params.speed:g} rad/s, "
-          f"{params.slices} slices, {result.steps} steps, {result.wall_time:.2f} s")
-    for name in ("A", "B"):
-        print(f"  bearing {name}: tilt {s[f'{name}_tilt'] * 1e3:.3f} mrad, force {s[f'{name}_force']:.2f} N, "
-              f"edge {s[f'{name}_edge_force_per_length'] / 1e3:.3f} N/mm vs mean "
-              f"{s[f'{name}_mean_force_per_length'] / 1e3:.3f} N/mm, {s[f'{name}_slices_in_contact']:.0f} slices in contact")
-    if args.plot is not None:
-        for path in plot(params, out, args.plot):
-            print(f"wrote {path}")
-    if not result.success:
-        print(f"error: {result.message}", file=sys.stderr)
-        return 1
-    return 0
+    return run_main(argv, _parser(), _ShaftRun)
 
 
 if __name__ == "__main__":

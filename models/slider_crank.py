@@ -40,23 +40,13 @@ from dataclasses import replace
 import numpy as np
 
 from exuclear import SolverSettings
-from exuclear.contact import law_and_restitution
 from exuclear.engine import AccuracyWarning
 from exuclear.engine.outputs import REGIME_CONTACT
 from exuclear.settings import METHODS
 
-from ._cli import (
-    OneLineParser,
-    add_law_options,
-    add_rpm_option,
-    bad_input,
-    check_output_dir,
-    check_output_file,
-    one_line_warnings,
-)
+from ._cli import SceneRun, Table, add_rpm_option, run_main, scene_parser
 from ._defaults import PAPER_CLEARANCE, PAPER_CRANK_SPEED, PAPER_RPM  # noqa: F401 - the paper's values, read from the scene too
 from ._params import (
-    add_param_options,
     changes_from_args,
     crank_speed_from_rpm,
     positive,
@@ -90,6 +80,7 @@ from ._slider_crank_run import (  # noqa: F401 - the scene's names, one module p
     accuracy_notes,
     check_convergence,
     columns,
+    csv_columns,
     default_settings,
     ideal_joint_force,
     record,
@@ -116,9 +107,7 @@ def _parser() -> argparse.ArgumentParser:
     """The command line: one option per :class:`SliderCrankParams` field
     (:func:`~exuclear.models._params.add_param_options`); defaults :meth:`SliderCrankParams.paper`."""
     p = SliderCrankParams.paper()
-    ap = OneLineParser(prog="python -m exuclear.models.slider_crank", description=__doc__.split("\n")[0])
-    add_law_options(ap, p.law, p.cr)
-    add_param_options(ap, p)
+    ap = scene_parser("slider_crank", __doc__, p)
     add_rpm_option(ap, p.crank_speed)
     ap.add_argument("--formulation", choices=FORMULATIONS, default=None,
                     help="minimal (kinematic tree, DOPRI5; default), redundant (2D bodies and joints, implicit "
@@ -175,74 +164,92 @@ def _formulation(args: argparse.Namespace) -> tuple[str, str]:
     return "minimal", ""
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    one_line_warnings()
-    try:
-        law, cr = law_and_restitution(args.law, args.stiffness, args.damping, args.cr, args.paper_law,
-                                       args.paper_cr)
-        formulation, chosen = _formulation(args)
-        params = SliderCrankParams.paper(
+class _SliderCrankRun(SceneRun):
+    """The command line's run (:func:`~exuclear.models._cli.run_main`): the paper's case with
+    the options' changes in the formulation asked for or implied, its summary with the
+    convergence check, and its figures against the ideal mechanism."""
+
+    notes: tuple[str, ...] = ()
+
+    def prepare(self, law: str, cr: float) -> None:
+        args = self.args
+        self.formulation, self.chosen = _formulation(args)
+        self.params = SliderCrankParams.paper(
             **changes_from_args(args, SliderCrankParams), law=law, cr=cr, crank_speed=crank_speed_from_rpm("rpm", args.rpm),
-            formulation=formulation, clearance_joints=tuple(args.clearance_joints))
-        settings = _settings(args, params)
-        if args.csv is not None:
-            check_output_file("--csv", args.csv)
-        if args.plot is not None:
-            check_output_dir("--plot", args.plot)
-        result = run(params, settings)
+            formulation=self.formulation, clearance_joints=tuple(args.clearance_joints))
+        self.settings = _settings(args, self.params)
+
+    def simulate(self) -> None:
+        args = self.args
+        self.result = run(self.params, self.settings)
         defaults = args.step is None and args.rtol is None and args.atol is None
-        notes = tuple(accuracy_notes(params, settings)) if defaults else ()
-        for note in notes:  # after the run: a model that cannot be built is refused without them
+        self.notes = tuple(accuracy_notes(self.params, self.settings)) if defaults else ()
+        for note in self.notes:  # after the run: a model that cannot be built is refused without them
             warnings.warn(note, AccuracyWarning, stacklevel=1)
-    except ValueError as err:
-        return bad_input(err)
-    kind = "ideal joint at B" if params.ideal else (
-        f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
-        f"{params.bearing_material} bearing, friction {params.friction}"
-        + ("" if params.viscosity is None else f", oil {params.viscosity:g} Pa s ({params.film_model} film)"))
-    print(f"slider-crank, {formulation} coordinates{chosen}, {settings.method}: {kind}")
-    if result.success:
-        print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
-              f"({result.rejected} rejected)")
-    else:
-        reached = float(result.columns["time"][-1]) if len(result.columns["time"]) else 0.0
-        print(f"  STOPPED EARLY: last output at t = {reached:.4g} s of {params.end_time:.4g} s "
-              f"({reached / params.end_time * params.revolutions:.3g} of {params.revolutions:g} revolutions), "
-              f"{result.steps} steps ({result.rejected} rejected); see the error below")
-    sampled = f" (in the outputs every {settings.output_step:g} s)" if settings.output_step > 1e-5 else ""
-    if params.ideal:
-        print(f"  joint force at B {np.nanmin(result.columns['contact_force']):.1f} to "
-              f"{np.nanmax(result.columns['contact_force']):.1f} N (closed form of the ideal mechanism)")
-    else:
-        print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
-        if "film_force" in result.columns:
-            cols, t = result.columns, result.columns["time"]
-            contact = float(np.trapezoid((cols["regime"] == REGIME_CONTACT).astype(float), t)) / (t[-1] - t[0])
-            print(f"  oil film: peak joint force (film and contact) {cols['joint_force'].max():.1f} N, largest "
-                  f"eccentricity ratio {cols['eccentricity_ratio'].max():.4g}, smallest film thickness "
-                  f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact {100.0 * contact:.3g} % "
-                  "of the time")
-    print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
-    if args.check_convergence:
-        print(check_convergence(params, settings).report())
-    if args.csv is not None:
-        write_csv(args.csv, result.columns, incomplete="" if result.success else result.message, notes=notes + result.notes)
-        print(f"wrote {args.csv}")
-    if args.plot is not None:
+
+    @property
+    def kind(self) -> str:
+        """What joint B is: the summary's first line and the figures' title."""
+        params = self.params
+        return "ideal joint at B" if params.ideal else (
+            f"clearance {params.clearance * 1e3:g} mm, {params.law} cr = {params.cr}, {params.journal_material} journal, "
+            f"{params.bearing_material} bearing, friction {params.friction}"
+            + ("" if params.viscosity is None else f", oil {params.viscosity:g} Pa s ({params.film_model} film)"))
+
+    def summary(self) -> None:
+        params, settings, result = self.params, self.settings, self.result
+        print(f"slider-crank, {self.formulation} coordinates{self.chosen}, {settings.method}: {self.kind}")
+        if result.success:
+            print(f"  simulated {params.end_time:.4g} s ({params.revolutions:g} revolutions) in {result.steps} steps "
+                  f"({result.rejected} rejected)")
+        else:
+            reached = float(result.columns["time"][-1]) if len(result.columns["time"]) else 0.0
+            print(f"  STOPPED EARLY: last output at t = {reached:.4g} s of {params.end_time:.4g} s "
+                  f"({reached / params.end_time * params.revolutions:.3g} of {params.revolutions:g} revolutions), "
+                  f"{result.steps} steps ({result.rejected} rejected); see the error below")
+        sampled = f" (in the outputs every {settings.output_step:g} s)" if settings.output_step > 1e-5 else ""
+        if params.ideal:
+            print(f"  joint force at B {np.nanmin(result.columns['contact_force']):.1f} to "
+                  f"{np.nanmax(result.columns['contact_force']):.1f} N (closed form of the ideal mechanism)")
+        else:
+            print(f"  peak contact force {result.peak_force:.1f} N{sampled}, impacts {result.impacts}")
+            if "film_force" in result.columns:
+                cols, t = result.columns, result.columns["time"]
+                contact = float(np.trapezoid((cols["regime"] == REGIME_CONTACT).astype(float), t)) / (t[-1] - t[0])
+                print(f"  oil film: peak joint force (film and contact) {cols['joint_force'].max():.1f} N, largest "
+                      f"eccentricity ratio {cols['eccentricity_ratio'].max():.4g}, smallest film thickness "
+                      f"{max(cols['min_film_thickness'].min(), 0.0) * 1e6:.3g} um, metal contact {100.0 * contact:.3g} % "
+                      "of the time")
+        if result.wear is not None:
+            depth, angle = result.wear.deepest()
+            print(f"  wear at B: largest bearing depth {depth * 1e9:.4g} nm at {np.degrees(angle):.1f} deg of the joint "
+                  f"frame, worn volume {result.wear.volume['bearing'] * 1e9:.4g} mm^3 (bearing), "
+                  f"{result.wear.volume['journal'] * 1e9:.4g} mm^3 (journal)")
+        print(f"  wall time {result.wall_time:.2f} s (model building {result.build_time:.3f} s)")
+        if self.args.check_convergence:
+            print(check_convergence(params, settings).report())
+
+    def table(self) -> Table:
+        cols = self.result.columns
+        return Table(cols, csv_columns(cols), self.incomplete, self.notes + self.result.notes)
+
+    def plots(self, directory: str) -> list[str]:
         from exuclear.models.figures import slider_crank_figures
 
+        params, result = self.params, self.result
         baseline = result if params.ideal else run(replace(params, ideal=True, formulation="redundant"))
         cases = [] if params.ideal else [(f"cr = {params.cr}", result.columns)]
-        for path in slider_crank_figures(cases, baseline.columns, params.clearance, args.plot, "slider_crank",
-                                         title=f"slider-crank: {kind}"):
-            print(f"wrote {path}")
-    if not result.success:
-        written = f"; the outputs up to then were written to {args.csv} and are INCOMPLETE" if args.csv else ""
-        print(f"error: {result.message}{written}", file=sys.stderr)
-        return 1
-    return 0
+        return slider_crank_figures(cases, baseline.columns, params.clearance, directory, "slider_crank",
+                                    title=f"slider-crank: {self.kind}")
 
+    def errors(self) -> list[str]:
+        csv = self.args.csv
+        written = f"; the outputs up to then were written to {csv} and are INCOMPLETE" if csv else ""
+        return [message + written for message in super().errors()]
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_main(argv, _parser(), _SliderCrankRun)
 
 
 if __name__ == "__main__":

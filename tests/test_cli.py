@@ -279,6 +279,15 @@ def test_empty_output_names_are_refused(module, option):
     assert status == 2 and f"error: `{option}` must name a" in err
 
 
+def test_a_csv_in_a_folder_yet_to_be_made_is_written(tmp_path):
+    # the check before the run passes a folder that can be made: the run must then make it,
+    # not fail at the end with a traceback
+    path = tmp_path / "new" / "folder" / "impact.csv"
+    status, out, _ = cli(jb, "--csv", str(path))
+    assert status == 0 and f"wrote {path}" in out
+    assert read_csv(path)[0] == ["time", *OUTPUT_COLUMNS]
+
+
 @pytest.mark.parametrize("module, args", [
     ("exuclear.models.slider_crank", ("--cr",)),
     ("exuclear.models.slider_crank", ("--method", "rk45")),

@@ -9,6 +9,9 @@ the contact (docs/physics.md section 11).
 - :mod:`.surface` is the contact of the worn surfaces and one step's wear, :mod:`.analytic`
   the worn-in journal's closed-form law that checks it.
 """
+from .cycles import DIVERGENCE_BOUND, SAFETY_DEFAULT, WearPrediction, predict_wear
 from .law import COEFFICIENT_WARN_ABOVE, NODES_DEFAULT, PRESSURES, SURFACES, Wear
+from .profile import WearProfile
 
-__all__ = ["Wear", "SURFACES", "PRESSURES", "NODES_DEFAULT", "COEFFICIENT_WARN_ABOVE"]
+__all__ = ["Wear", "WearProfile", "predict_wear", "WearPrediction", "SURFACES", "PRESSURES", "NODES_DEFAULT",
+           "COEFFICIENT_WARN_ABOVE", "DIVERGENCE_BOUND", "SAFETY_DEFAULT"]

@@ -69,5 +69,7 @@ class WearProfile:
             ax = plt.figure(figsize=(4.5, 4.5)).add_subplot(projection="polar")
         theta = np.append(self.theta, self.theta[0] + 2.0 * math.pi)
         ax.plot(theta, np.append(depth, depth[0]) / unit, lw=1.2, label=label)
+        # depth 0 on a circle, as the unworn surface: the map reads as the worn outline
+        ax.set_rorigin(-0.5 * max(ax.get_ylim()[1], float(depth.max()) / unit))
         ax.set_title(f"{surface} wear depth [{'um' if unit == 1e-6 else f'{unit:g} m'}]", fontsize=10)
         return ax

@@ -55,12 +55,16 @@ class Run:
     slip: float
     state: object
     wall_time: float
+    handle: object
 
 
 def run(end_time: float, *, coefficient: float = COEFFICIENT, mu: float = 0.0, nodes: int = 720,
         surface: str = "bearing", pressure: str = "winkler", backend: str = "python", step: float = 1e-4,
-        spin: float = SPIN, force: float = FORCE, adaptive: bool = True) -> Run:
-    """The worn-in journal over ``end_time`` [s] with steps of at most ``step`` [s]."""
+        spin: float = SPIN, force: float = FORCE, adaptive: bool = True, wear: exuclear.Wear | None = None,
+        worn: bool = True) -> Run:
+    """The worn-in journal over ``end_time`` [s] with steps of at most ``step`` [s]; ``wear``
+    replaces the one of ``coefficient``, ``surface``, ``nodes`` and ``pressure``; ``worn``
+    False: the same joint without wear (its ``profile`` None)."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     r_j = RADIUS - CLEARANCE
@@ -73,10 +77,11 @@ def run(end_time: float, *, coefficient: float = COEFFICIENT, mu: float = 0.0, n
     m_fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
     mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
     friction = "none" if mu == 0.0 else f"coulomb:{mu}"
+    if wear is None and worn:
+        wear = exuclear.Wear(coefficient=coefficient, surface=surface, nodes=nodes, pressure=pressure)
     handle = exuclear.AddClearanceJoint(
         mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS, length=LENGTH,
-        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False,
-        wear=exuclear.Wear(coefficient=coefficient, surface=surface, nodes=nodes, pressure=pressure))
+        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear)
     mbs.Assemble()
     s = exu.SimulationSettings()
     s.timeIntegration.numberOfSteps = max(1, round(end_time / step))
@@ -86,7 +91,7 @@ def run(end_time: float, *, coefficient: float = COEFFICIENT, mu: float = 0.0, n
     start = time.perf_counter()
     mbs.SolveDynamic(s)
     wall = time.perf_counter() - start
-    return Run(handle.wear_profile(), spin * r_j * end_time, handle.state(), wall)
+    return Run(handle.wear_profile() if worn else None, spin * r_j * end_time, handle.state(), wall, handle)
 
 
 def law_depth(slip: float, coefficient: float = COEFFICIENT, mu: float = 0.0, force: float = FORCE) -> float:
