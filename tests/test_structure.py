@@ -169,8 +169,8 @@ def test_the_two_kernels_split_into_modules_of_the_same_names():
     # exuclear/_kernel/layout.hpp ... bindings.cpp mirror exuclear/engine/_python_kernel/layout.py ... bindings.py
     compiled = {p.stem for p in (PACKAGE / "_kernel").iterdir() if p.suffix in (".hpp", ".cpp")}
     python = {p.stem for p in (PACKAGE / "engine" / "_python_kernel").glob("*.py")} - {"__init__"}
-    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "joint_state", "step_control",
-                                  "bindings"}
+    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "wear", "joint_state",
+                                  "step_control", "bindings"}
 
 
 #: A calendar date or a day's narrative: history, which belongs in commits and closing notes.

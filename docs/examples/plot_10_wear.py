@@ -14,7 +14,6 @@ import math
 
 import exudyn as exu
 import matplotlib.pyplot as plt
-import numpy as np
 from exudyn.itemInterface import (
     CoordinateConstraint,
     Force,

@@ -82,17 +82,17 @@ StdVector reply(size_t n) {
     out.push_back(0.0);
     out.push_back(-1.0);
     return out;
-// JointKernel.post_newton: the contacts' history update, once per accepted step.
-// Returns [error, recommended step, data...].
 }
 
+// JointKernel.post_newton: the contacts' history update, once per accepted step.
+// Returns [error, recommended step, data...].
 StdVector joint_post_newton(const Params& a, const void* system, double t, const StdVector& data,
                             const V3& displacement, const V3& rotation, const V3& velocity,
                             const V3& angularVelocity) {
     StdVector out = reply(data.size());
     JointState& s = state(a.id);
     s.post_newton_calls++;
-    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity, t);
     history_for(s, a, q, t);  // starts a run if needed
     bool advance = t > s.cur[0].time;
     const std::vector<History>& base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
@@ -129,6 +129,8 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     for (size_t i = 0; i < s.film_inputs.size() && a.film_model != FILM_NONE; ++i) {
         set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
     }
+    bool worn_joint = wears(a, s);
+    if (worn_joint) accept_wear(a, s, advance, s.kins[0], rotation[2], s.next[0].f_n, t - base[0].time, t);
     // the step before this one: free flight must have lasted both (a repeated step: unknown)
     double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
     double h = t - base[0].time;
@@ -141,7 +143,9 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     count_separations(s.control, advance, ended, h);
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
-    steer_jacobian(s, switched ? INF : h);
+    // a worn joint in contact: its conformal contact asks for a Jacobian per step
+    bool conformal = worn_joint && s.cur[0].in_contact && s.wear.current.worn;
+    steer_jacobian(s, switched ? INF : h, conformal);
     report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         data_values(s.cur[0], out);
@@ -244,10 +248,36 @@ PYBIND11_MODULE(_ckernel, m) {
         JointState& s = state(id);
         py::object run_start = s.run_start;
         long runs = s.control.runs;
+        WearState wear = std::move(s.wear);  // the joint's wear (set_wear) stays, back at its initial profiles
         leave_group(s);
         s = JointState();
         s.run_start = run_start;
         s.control.runs = runs;
+        s.wear = std::move(wear);
+        s.wear.reset();
+    });
+    m.def("set_wear", [](long id, std::vector<double> bearing, std::vector<double> journal, double e_star) {
+        // the profiles a planar joint's wear starts from (exuclear.Wear's bearing and journal, or
+        // zeros; empty: the joint does not wear) and the law's E* for the Hertz strip; the joint's
+        // worn profiles so far are forgotten, as the Python kernel's joint setter does
+        if (bearing.size() != journal.size()) throw std::invalid_argument("set_wear: profiles of different nodes");
+        WearState& w = state(id).wear;
+        w = WearState();
+        w.grid = grid(static_cast<int>(bearing.size()));
+        w.e_star = e_star;
+        size_t n = bearing.size();
+        w.initial = Profiles{bearing, journal, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), false};
+        w.initial.update_worn();
+        w.reset();
+    }, "a joint's wear: its initial profiles [m] (empty: none) and E* [Pa] (CompiledBackend.set_joint)");
+    m.def("wear_profiles", [](long id) {  // after the last accepted step (before a run: the initial ones)
+        const Profiles& p = state(id).wear.current;
+        py::dict d;
+        d["bearing"] = p.bearing;
+        d["journal"] = p.journal;
+        d["slip"] = p.slip;
+        d["stability"] = p.stability;
+        return d;
     });
     m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
           "a callable called once per run start, returning layout.py's RunStart; hold no strong "

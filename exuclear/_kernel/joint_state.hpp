@@ -1,13 +1,15 @@
 // One joint's state in the kernel's table (JointState, by the joint id in its parameters): per
 // contact, the history at the start and the end of the last accepted step, which of them an
 // evaluation uses (history_for), the joint's kinematics and its force evaluation, and the
-// data node's entries of a history.  Python: exuclear/engine/_python_kernel/joint_state.py.
+// data node's entries of a history, and a planar joint's wear (which profiles an evaluation
+// uses, the wear of an accepted step).  Python: exuclear/engine/_python_kernel/joint_state.py.
 
 #pragma once
 
 #include <unordered_map>
 
 #include "film.hpp"
+#include "wear.hpp"
 
 namespace {
 
@@ -62,6 +64,7 @@ struct JointState {
     StepControl control;
     const void* group = nullptr;  // the system whose step group the joint reports to (report_growth)
     py::object run_start;  // Python callable, once per run start: returns layout.py RunStart; None: none
+    WearState wear;        // a planar joint's wear (its grid empty: none), set by the binding set_wear
 };
 
 std::vector<JointState> g_joints;
@@ -114,10 +117,12 @@ void start_run(JointState& s) {
 
 // JointStepControl.steer_jacobian: ask for a Jacobian per step while the step the joint accepts is
 // longer than the run-start callback's jacobian_step (newton.py), and for the step after one in
-// which a contact opened or closed or that it redoes or grows (step INF), through its
-// jacobian_per_step(): a call where the ask changes, not per step.
-void steer_jacobian(JointState& s, double step) {
-    bool wanted = step > s.control.jacobian_step;
+// which a contact opened or closed or that it redoes or grows (step INF); also while a worn
+// joint is in contact (conformal: in its imprint the contact's normal, the overlaps' resultant
+// of eq. (75), turns fast as the journal moves sideways, which an older Jacobian misses).
+// Through its jacobian_per_step(): a call where the ask changes, not per step.
+void steer_jacobian(JointState& s, double step, bool conformal = false) {
+    bool wanted = conformal || step > s.control.jacobian_step;
     if (wanted == s.control.jacobian_on) return;
     s.control.jacobian_on = wanted;
     if (!s.run_start || s.run_start.is_none()) return;
@@ -146,9 +151,29 @@ struct Pose {  // the journal's centre p and axis u in J0
     V3 p, u;
 };
 
-// JointState.joint_kinematics: every contact's kinematics into s.kins
+// Whether the joint wears: a planar joint whose parameters carry a wear (layout.py wear_code),
+// and whose profiles set_wear gave (on the same nodes; CompiledBackend.set_joint gives them).
+bool wears(const Params& a, const JointState& s) {
+    if (a.slices != 0 || a.wear_surface == WEAR_NONE) return false;
+    if (s.wear.grid.n != a.wear_nodes) {
+        throw std::runtime_error("exuclear kernel: joint " + std::to_string(a.id) + " wears on " +
+                                 std::to_string(a.wear_nodes) + " nodes but set_wear gave it " +
+                                 std::to_string(s.wear.grid.n));
+    }
+    return true;
+}
+
+// JointState.wear_profiles: the wear profiles an evaluation at time t uses, as history_for
+// chooses the history (read before history_for, which may start a run)
+const Profiles& wear_profiles(const JointState& s, double t) {
+    if (!s.started || t < s.prev[0].time) return s.wear.initial;
+    return t <= s.cur[0].time ? s.wear.previous : s.wear.current;
+}
+
+// JointState.joint_kinematics: every contact's kinematics into s.kins; a worn joint's slice is
+// the contact of the worn surfaces (eqs. (75), (76)) at time t
 Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, const V3& rotation, const V3& velocity,
-                      const V3& angularVelocity) {
+                      const V3& angularVelocity, double t) {
     int n_slices = slice_count(a);
     size_t n = contact_count(a);
     if (s.kins.size() != n) s.kins.resize(n);  // once per joint: no allocation per evaluation
@@ -171,6 +196,10 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        if (wears(a, s)) {  // psi: the journal's turn about the axis
+            s.kins[0] = s.wear.kinematics(a, wear_profiles(s, t), s.kins[0], rotation[2], dv[0], dv[1], dw[2] + w_j[2],
+                                          w_j[2]);
+        }
         if (a.film_model != FILM_NONE) {
             s.film_inputs.resize(1);
             s.film_inputs[0] = FilmInput{q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]};
@@ -215,6 +244,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
         s.records.assign(n, std::vector<Record>());
         s.failure.clear();
         start_run(s);
+        s.wear.reset();
         s.cur.resize(n);
         for (size_t i = 0; i < n; ++i) {
             History fresh;
@@ -232,6 +262,19 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
     return t <= s.cur[0].time ? s.prev : s.cur;
 }
 
+// JointState.accept_wear: the wear of an accepted step of length h [s] ending at t in the state
+// kin with the normal force f_n (advance: a new step, else one computed again, as in
+// post_newton); stops the run where the profile's update would be unstable.
+void accept_wear(const Params& a, JointState& s, bool advance, const Kinematics& kin, double psi, double f_n, double h,
+                 double t) {
+    WearState& w = s.wear;
+    w.accept(a, advance ? w.current : w.previous, w.next, kin, psi, f_n, h);
+    if (advance) std::swap(w.previous, w.current);  // previous = the old current
+    std::swap(w.current, w.next);                    // current = the new profiles; next is scratch
+    std::string why = w.unstable(kin.v_t, h);
+    if (!why.empty()) fail(s, t, why);
+}
+
 V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }
 
 // JointKernel.force_torque: [F; T] in J0, F the force on the bearing (marker 0), T minus the
@@ -241,7 +284,7 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
                const V3& angularVelocity) {
     JointState& s = state(a.id);
     s.force_calls++;
-    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity);
+    Pose q = joint_kinematics(a, s, displacement, rotation, velocity, angularVelocity, t);
     const std::vector<History>& history = history_for(s, a, q, t);
     double loads[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (size_t i = 0; i < s.kins.size(); ++i) {

@@ -36,6 +36,24 @@ struct Kinematics {
     double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
 };
 
+// geometry.py kinematics_along: the rest of contact_kinematics once |e| (ecc) and the normal
+// (nx, ny) are known; a worn joint's contact gives its own (wear.hpp WearState::kinematics).
+Kinematics kinematics_along(double r_j, double r_b, double ex, double ey, double ecc, double nx, double ny, double dvx,
+                            double dvy, double omega_i, double omega_j) {
+    Kinematics k{};
+    k.side = 0;
+    k.ex = ex;
+    k.ey = ey;
+    k.ecc = ecc;
+    k.nx = nx;
+    k.ny = ny;
+    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
+    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * r_j + omega_j * r_b;                   // eq. (8)
+    k.delta = k.ecc - (r_b - r_j);                                                     // eq. (4)
+    k.speed = std::fabs(k.v_t);
+    return k;
+}
+
 // geometry.py contact_kinematics, eqs. (1)-(8): the planar joint's one slice.  The spatial
 // slice's eqs. (35)-(40) reduce to these for the motion projected on the plane normal to the
 // axis (s = 0, m = n, w_j x p normal to n); they are evaluated in this reduced form, in both
@@ -45,23 +63,10 @@ struct Kinematics {
 // the bearing's spin about the axis.
 Kinematics contact_kinematics(double r_j, double r_b, double ex, double ey, double dvx, double dvy, double omega_i,
                               double omega_j) {
-    Kinematics k{};
-    k.side = 0;
-    k.ex = ex;
-    k.ey = ey;
-    k.ecc = std::sqrt(ex * ex + ey * ey);
-    if (k.ecc > 0.0) {
-        k.nx = ex / k.ecc;
-        k.ny = ey / k.ecc;
-    } else {  // centred journal: no contact, any normal keeps the values finite
-        k.nx = 1.0;
-        k.ny = 0.0;
-    }
-    k.delta_dot = dvx * k.nx + dvy * k.ny;                                             // eq. (7)
-    k.v_t = dvx * k.ny - dvy * k.nx - omega_i * r_j + omega_j * r_b;                   // eq. (8)
-    k.delta = k.ecc - (r_b - r_j);                                                     // eq. (4)
-    k.speed = std::fabs(k.v_t);
-    return k;
+    double ecc = std::sqrt(ex * ex + ey * ey);
+    if (ecc > 0.0) return kinematics_along(r_j, r_b, ex, ey, ecc, ex / ecc, ey / ecc, dvx, dvy, omega_i, omega_j);
+    // centred journal: no contact, any normal keeps the values finite
+    return kinematics_along(r_j, r_b, ex, ey, ecc, 1.0, 0.0, dvx, dvy, omega_i, omega_j);
 }
 
 // spatial.py slice_kinematics, eqs. (35)-(40)

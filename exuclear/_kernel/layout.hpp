@@ -34,6 +34,9 @@ enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
 // layout.py FILM_CODES
 enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
+// layout.py WEAR_SURFACE_CODES and WEAR_PRESSURE_CODES, packed in the field wear_code
+enum WearSurface { WEAR_NONE = 0, WEAR_BEARING = 1, WEAR_JOURNAL = 2, WEAR_BOTH = 3 };
+enum WearPressure { WEAR_WINKLER = 0, WEAR_HERTZ = 1 };
 
 // The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
 // test compares this table (exported as the module's LAYOUT) with layout.py's.
@@ -45,6 +48,7 @@ enum Field {
     AXIAL_CLEARANCE, FRICTION_RADIUS, FACE_STIFFNESS,
     FILM_MODEL, VISCOSITY, EPS_FILM, EPS_CAP,
     RATE_LIMIT, BEARING_MOTION,
+    WEAR_CODE, WEAR_COEFFICIENT,
     N_FIELDS
 };
 
@@ -58,13 +62,14 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
     {"journal_radius", 0, 3, 1},  {"bearing_radius", 0, 4, 1}, {"max_penetration", 0, 5, 1},
     {"impact_step", 1, 0, 1},     {"stiffness_code", 1, 1, 1}, {"damping_factor", 1, 2, 1},
     {"v_min", 1, 3, 1},           {"friction_code", 1, 4, 1},
-    {"stiffness_constants", 2, 0, 6},
+    {"stiffness_constants", 2, 0, 5},
     {"friction_constants", 3, 0, 4},
     {"slices", 4, 0, 1},          {"length", 4, 1, 1},         {"axis_journal", 4, 2, 3},
     {"axial_clearance", 5, 0, 1}, {"friction_radius", 5, 1, 1}, {"face_stiffness", 5, 2, 1},
     {"film_model", 3, 4, 1},      {"viscosity", 3, 5, 1},
     {"eps_film", 5, 4, 1},        {"eps_cap", 5, 5, 1},
     {"rate_limit", 1, 5, 1},      {"bearing_motion", 4, 5, 1},
+    {"wear_code", 2, 5, 1},       {"wear_coefficient", 5, 3, 1},
 };
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
@@ -76,7 +81,7 @@ struct Params {
     int stiffness_code;
     double damping_factor, v_min;
     int friction_code;
-    double kp[6];
+    double kp[5];
     double fp[4];
     int slices;  // 0: the planar joint (one slice, the motion projected on the plane normal to the axis)
     double length;
@@ -89,6 +94,10 @@ struct Params {
     double viscosity, eps_film, eps_cap;
     double rate_limit;  // KAPPA of the joint's own step control (0: off)
     bool bearing_motion;  // the loads use the bearing's spin (layout.py uses_bearing_motion); false: taken as 0
+    // a planar joint's wear (section 11), from layout.py wear_code: which surfaces (WEAR_NONE:
+    // none), the pressure over the arc, the profiles' nodes; and k_D [1/Pa]
+    int wear_surface, wear_pressure, wear_nodes;
+    double wear_coefficient;
 };
 
 Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
@@ -117,6 +126,11 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.eps_cap = field(p, EPS_CAP);
     a.rate_limit = field(p, RATE_LIMIT);
     a.bearing_motion = field(p, BEARING_MOTION) != 0.0;
+    long wear = static_cast<long>(field(p, WEAR_CODE));  // surface + 4 pressure + 8 nodes (layout.py wear_code)
+    a.wear_surface = static_cast<int>(wear % 4);
+    a.wear_pressure = static_cast<int>((wear / 4) % 2);
+    a.wear_nodes = static_cast<int>(wear / 8);
+    a.wear_coefficient = field(p, WEAR_COEFFICIENT);
     return a;
 }
 

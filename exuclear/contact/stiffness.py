@@ -79,7 +79,8 @@ class StiffnessModel(ABC):
 
     @abstractmethod
     def kernel_parameters(self) -> tuple[float, ...]:
-        """The constants the compiled kernel needs for this :attr:`kernel_code` (at most 6)."""
+        """The constants the compiled kernel needs for this :attr:`kernel_code` (at most 5: the
+        parameter matrix's ``stiffness_constants``)."""
 
 
 

@@ -135,11 +135,25 @@ class CompiledBackend(Backend):
 
     compiled = True
 
-    def __init__(self) -> None:
+    def __init__(self, joint: ClearanceJoint, slices: int = 0) -> None:
         if kernel.COMPILED is None:
             raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
         self.joint_id = kernel.COMPILED.new_joint()
         self._release = weakref.finalize(self, kernel.COMPILED.release, self.joint_id)
+        self.slices = slices
+        self.set_joint(joint)
+
+    def set_joint(self, joint: ClearanceJoint) -> None:
+        """The physics is in the parameters, except what a planar joint's wear starts from: its
+        initial profiles and the law's E* (for the Hertz strip), given here; its worn profiles
+        so far are forgotten, as the Python kernel's ``JointState.joint`` does."""
+        wear = joint.wear if self.slices == 0 else None  # wear is modelled for the planar joint
+        if wear is None:
+            kernel.COMPILED.set_wear(self.joint_id, [], [], 0.0)
+            return
+        zero = [0.0] * wear.nodes
+        kernel.COMPILED.set_wear(self.joint_id, list(zero if wear.bearing is None else wear.bearing),
+                                 list(zero if wear.journal is None else wear.journal), float(joint.law.E_star))
 
     def user_functions(self) -> dict[str, Any]:
         c = kernel.COMPILED  # one function serves every role; the role is in the parameters
@@ -174,10 +188,13 @@ class CompiledBackend(Backend):
     def step_control(self) -> dict[str, Any]:
         return dict(kernel.COMPILED.step_control(self.joint_id))
 
+    def wear_profiles(self) -> dict[str, Any]:
+        return dict(kernel.COMPILED.wear_profiles(self.joint_id))
+
 
 def make_backend(name: str, joint: ClearanceJoint, slices: int, axis_journal: V3,
                  shoulders: ShoulderGeometry | None) -> Backend:
     """The backend called ``name`` (``"compiled"`` or ``"python"``) for one joint."""
     if name == "compiled":
-        return CompiledBackend()
+        return CompiledBackend(joint, slices)
     return PythonBackend(joint, slices, axis_journal, shoulders)

@@ -28,6 +28,7 @@ from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
 from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import ShoulderGeometry
+from ..wear.law import Wear
 
 MAIN, PROBE, TORQUE = 0, 1, 2
 #: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
@@ -57,7 +58,8 @@ LAYOUT = (
     Field("damping_factor", 1, 2, 1, "D of eq. (9) (dimensionless)"),
     Field("v_min", 1, 3, 1, "floor of the onset velocity in eq. (9) [m/s]"),
     Field("friction_code", 1, 4, 1, "0 none, 1 Coulomb, 2 modified Coulomb (-1: the Python kernel only)"),
-    Field("stiffness_constants", 2, 0, 6, "the stiffness model's kernel_parameters()"),
+    Field("stiffness_constants", 2, 0, 5, "the stiffness model's kernel_parameters() (at most 5, the line-contact "
+                                          "models'; the row's last entry holds wear_code)"),
     Field("friction_constants", 3, 0, 4, "Coulomb (mu, v_eps); modified Coulomb (mu_s, mu_d, v_s, v_d)"),
     Field("slices", 4, 0, 1, "number of slices N of the spatial joint (0: the planar joint)"),
     Field("length", 4, 1, 1, "bearing length L [m]"),
@@ -74,6 +76,9 @@ LAYOUT = (
     Field("bearing_motion", 4, 5, 1, "1: the loads use the bearing's own spin, from the probe connector; 0: they "
                                      "do not need it (uses_bearing_motion), the probe and torque connectors are off "
                                      "and the kernels take the spin as 0"),
+    Field("wear_code", 2, 5, 1, "a planar joint's wear (section 11): surface code + 4 pressure code + 8 nodes "
+                                "(wear_code; 0: no wear)"),
+    Field("wear_coefficient", 5, 3, 1, "k_D [1/Pa] of the wear's Archard law, eq. (79)"),
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
@@ -174,6 +179,18 @@ RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("i
 #: Film model name -> code in the parameter matrix (0: no film; exuclear/_kernel/layout.hpp ``FilmCode``).
 FILM_CODES = {"short": 1, "long": 2, "finite": 3}
 
+#: The surfaces that wear -> code in :func:`wear_code` (0: no wear; layout.hpp ``WearSurface``).
+WEAR_SURFACE_CODES = {"bearing": 1, "journal": 2, "both": 3}
+#: The pressure over the contact arc -> code in :func:`wear_code` (layout.hpp ``WearPressure``).
+WEAR_PRESSURE_CODES = {"winkler": 0, "hertz": 1}
+
+
+def wear_code(wear: Wear) -> float:
+    """The wear's surface, pressure and nodes in the one entry ``wear_code`` of the matrix:
+    ``surface + 4 pressure + 8 nodes`` (a whole number, exact in a double; the matrix has
+    no three free entries for them).  ``decode`` of layout.hpp takes it apart."""
+    return float(WEAR_SURFACE_CODES[wear.surface] + 4 * WEAR_PRESSURE_CODES[wear.pressure] + 8 * wear.nodes)
+
 
 def data_columns(lubricated: bool) -> tuple[str, ...]:
     """A planar joint's data-node entries: :data:`DATA_COLUMNS`, and
@@ -216,6 +233,8 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,
                       eps_film=joint.film.eps_film, eps_cap=joint.film.eps_cap)
+    if joint.wear is not None and slices == 0:  # wear is modelled for the planar joint (arguments.check_wear)
+        values.update(wear_code=wear_code(joint.wear), wear_coefficient=joint.wear.coefficient)
     if shoulders is not None:
         values.update(axial_clearance=shoulders.axial_clearance, friction_radius=shoulders.friction_radius,
                       face_stiffness=shoulders.face_stiffness(law.E_star))
