@@ -119,8 +119,8 @@ def main(argv: list[str] | None = None) -> int:
     picks = sorted({0, len(prediction.cycles) // 4, len(prediction.cycles) // 2, len(prediction.cycles) - 1})
     for k in picks:
         prediction.profiles[k].plot(ax, label=f"{prediction.cycles[k]:.3g} revolutions")
-    ax.legend(loc="upper left", bbox_to_anchor=(-0.15, 1.12), fontsize="small")
-    ax.set_title("bearing wear depth at B [um] (joint frame)", fontsize=10)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), ncol=2, fontsize="small")
+    ax.set_title("bearing wear depth at B [um] (joint frame)", fontsize=10, pad=14)
     map_png = os.path.join(args.out, "slider_crank_wear_map.png")
     plt.savefig(map_png, dpi=130)
 
@@ -133,17 +133,19 @@ def main(argv: list[str] | None = None) -> int:
     for label, model in (("unworn", unworn_model), (f"worn, {args.cycles:.3g} revolutions", worn_model)):
         cols = columns(model)
         second = cols["time"] >= 2.0 * math.pi / abs(params.crank_speed)
-        axes[0].plot(cols["crank_angle"], cols["contact_force"], lw=0.8, label=label)
+        angle = cols["crank_angle"][second] - 360.0
+        axes[0].plot(angle, cols["contact_force"][second], lw=0.8, label=label)
         axes[1].plot(cols["ecc_x"][second] / c, cols["ecc_y"][second] / c, lw=0.8, label=label)
-        axes[2].plot(cols["crank_angle"], cols["slider_a"], lw=0.8, label=label)
+        axes[2].plot(angle, cols["slider_a"][second], lw=0.8, label=label)
         impacts = len(model.joint.history.onset_times)
         rows.append([label, f"{cols['contact_force'].max():.1f}", f"{cols['contact_force'][second].max():.1f}",
                      str(impacts), f"{np.hypot(cols['ecc_x'], cols['ecc_y'])[second].max() / c:.3f}"])
     phi = np.linspace(0, 2 * np.pi, 200)
     axes[1].plot(np.cos(phi), np.sin(phi), "k", lw=0.6)
-    axes[0].set(xlabel="crank angle [deg]", ylabel="contact force at B [N]", yscale="symlog", title="joint force")
+    axes[0].set(xlabel="crank angle [deg]", ylabel="contact force at B [N]", title="joint force, second revolution")
     axes[1].set(xlabel="e_x / c", ylabel="e_y / c", aspect="equal", title="journal orbit, second revolution")
-    axes[2].set(xlabel="crank angle [deg]", ylabel="slider acceleration [m/s^2]", title="slider acceleration")
+    axes[2].set(xlabel="crank angle [deg]", ylabel="slider acceleration [m/s^2]",
+                title="slider acceleration, second revolution")
     for a in axes:
         a.legend(fontsize="small")
         a.grid(alpha=0.3)
