@@ -7,31 +7,22 @@ unworn one."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import exudyn as exu
 import numpy as np
 import pytest
-from exudyn.itemInterface import (
-    CoordinateConstraint,
-    Force,
-    MarkerBodyRigid,
-    MarkerNodeCoordinate,
-    NodePointGround,
-    NodeRigidBody2D,
-    ObjectGround,
-    ObjectRigidBody2D,
-    SensorNode,
-)
+from exudyn.itemInterface import SensorNode
 
 import exuclear
 from exuclear.engine import kernel
+from validation.wear import worn_in_journal as scene
 
 COMPILED = pytest.mark.skipif(kernel.STATUS != kernel.STATUS_DIRECT, reason=f"compiled kernel: {kernel.STATUS}")
 
-#: The spinning journal: the paper's bearing (R = 10 mm, c = 0.1 mm, L = 15 mm), a 1 kg journal
-#: turning at 100 rad/s, pressed along -x by 500 N.
-RADIUS, CLEARANCE, LENGTH = 10e-3, 0.1e-3, 15e-3
-FORCE, SPIN = 500.0, 100.0
+#: The spinning journal (validation.wear.worn_in_journal): the paper's bearing (R = 10 mm,
+#: c = 0.1 mm, L = 15 mm), a 1 kg journal turning at 100 rad/s, pressed along -x by 500 N.
+FORCE, SPIN = scene.FORCE, scene.SPIN
 #: What the kernels must agree to, relative to each quantity's largest magnitude in the run.
 ROUND_OFF = 1e-9
 PROFILES = ("bearing", "journal", "slip", "stability")
@@ -48,30 +39,13 @@ def spinning_journal(backend: str, end_time: float, wear: exuclear.Wear | None, 
     friction brakes it to a stick-slip rattle in the imprint, which amplifies round-off);
     the joint's outputs, the body's coordinates and their rates per accepted step, the worn
     profiles (where it wears), its failure, and whether the solve raised."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    r_j = RADIUS - CLEARANCE
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-CLEARANCE, 0.0, 0.0],
-                                       initialVelocities=[-velocity, 0.0, spin]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=0.5 * r_j**2))
-    m_body, m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
-    mbs.AddLoad(Force(markerNumber=m_body, loadVector=[-force, 0.0, 0.0]))
-    if hold_spin:
-        m_angle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
-        m_fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
-        mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
-    handle = exuclear.AddClearanceJoint(mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS,
-                                        length=LENGTH, law="lankarani-nikravesh", cr=0.5, friction=friction,
-                                        wear=wear, backend=backend, show=False)
+    mbs, handle, node = scene.build(wear, friction=friction, backend=backend, spin=spin, force=force,
+                                    velocity=velocity, hold_spin=hold_spin)
     sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False, outputVariableType=kind))
                for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
     mbs.Assemble()
-    s = exu.SimulationSettings()
-    s.timeIntegration.endTime = end_time
-    s.timeIntegration.numberOfSteps = int(round(end_time / step))
-    s.timeIntegration.adaptiveStep = adaptive
+    s = scene.settings(end_time, step, adaptive)
     s.timeIntegration.verboseMode = 0
-    s.solution.file.write = False
     s.solution.sensors.writePeriod = 1e-9  # every accepted step
     raised = False
     try:
@@ -172,14 +146,8 @@ def test_a_worn_joint_that_never_slips_runs_bit_for_bit_as_the_unworn_one():
 def test_the_compiled_backend_takes_a_new_joints_wear_between_runs():
     """The handle's joint setter gives the compiled kernel the new wear's initial profiles
     (CompiledBackend.set_joint), as the Python kernel's joint setter takes them."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=mbs.AddNode(NodeRigidBody2D()), mass=1.0, inertia=1e-4))
-    physics = {"journal_radius": RADIUS - CLEARANCE, "bearing_radius": RADIUS, "length": LENGTH, "cr": 0.5}
-    handle = exuclear.AddClearanceJoint(mbs, [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground)),
-                                              mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))],
-                                        wear=exuclear.Wear(coefficient=1e-10, nodes=16), show=False, **physics)
+    _, handle, _ = scene.build(exuclear.Wear(coefficient=1e-10, nodes=16), backend="compiled")
     assert handle.backend == "compiled" and np.all(handle.wear_profile().bearing == 0.0)
     start = tuple(1e-6 * (k % 3) for k in range(16))
-    handle.joint = exuclear.make_joint(**physics, wear=exuclear.Wear(coefficient=1e-10, nodes=16, bearing=start))
+    handle.joint = replace(handle.joint, wear=exuclear.Wear(coefficient=1e-10, nodes=16, bearing=start))
     assert tuple(handle.wear_profile().bearing) == start

@@ -58,6 +58,40 @@ class Run:
     handle: object
 
 
+def build(wear: exuclear.Wear | None, *, friction: str = "none", backend: str = "python", spin: float = SPIN,
+          force: float = FORCE, velocity: float = 0.0, hold_spin: bool = True) -> tuple:
+    """The worn-in journal's model, not yet assembled: the journal against the wall at
+    ``(-c, 0)``, moving along -x at ``velocity`` [m/s], turning at ``spin`` [rad/s] (held there
+    by a velocity constraint on its angle where ``hold_spin``), pressed along -x by ``force``
+    [N], in a joint with ``wear`` (None: none).  Returns ``(mbs, handle, node)``."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    r_j = RADIUS - CLEARANCE
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-CLEARANCE, 0.0, 0.0],
+                                       initialVelocities=[-velocity, 0.0, spin]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=0.5 * r_j**2))
+    m_body, m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
+    mbs.AddLoad(Force(markerNumber=m_body, loadVector=[-force, 0.0, 0.0]))
+    if hold_spin:
+        m_angle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
+        m_fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
+        mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
+    handle = exuclear.AddClearanceJoint(
+        mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS, length=LENGTH,
+        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear)
+    return mbs, handle, node
+
+
+def settings(end_time: float, step: float, adaptive: bool = True) -> exu.SimulationSettings:
+    """Exudyn's generalized-alpha over ``end_time`` [s] with steps of at most ``step`` [s]."""
+    s = exu.SimulationSettings()
+    s.timeIntegration.numberOfSteps = max(1, round(end_time / step))
+    s.timeIntegration.endTime = end_time
+    s.timeIntegration.adaptiveStep = adaptive
+    s.solution.file.write = False
+    return s
+
+
 def run(end_time: float, *, coefficient: float = COEFFICIENT, mu: float = 0.0, nodes: int = 720,
         surface: str = "bearing", pressure: str = "winkler", backend: str = "python", step: float = 1e-4,
         spin: float = SPIN, force: float = FORCE, adaptive: bool = True, wear: exuclear.Wear | None = None,
@@ -65,33 +99,16 @@ def run(end_time: float, *, coefficient: float = COEFFICIENT, mu: float = 0.0, n
     """The worn-in journal over ``end_time`` [s] with steps of at most ``step`` [s]; ``wear``
     replaces the one of ``coefficient``, ``surface``, ``nodes`` and ``pressure``; ``worn``
     False: the same joint without wear (its ``profile`` None)."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    r_j = RADIUS - CLEARANCE
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-CLEARANCE, 0.0, 0.0], initialVelocities=[0.0, 0.0, spin]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=0.5 * r_j**2))
-    m_body, m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
-    mbs.AddLoad(Force(markerNumber=m_body, loadVector=[-force, 0.0, 0.0]))
-    # the spin held constant: the angle's velocity constrained to `spin`
-    m_angle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
-    m_fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
-    mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
-    friction = "none" if mu == 0.0 else f"coulomb:{mu}"
     if wear is None and worn:
         wear = exuclear.Wear(coefficient=coefficient, surface=surface, nodes=nodes, pressure=pressure)
-    handle = exuclear.AddClearanceJoint(
-        mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS, length=LENGTH,
-        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear)
+    mbs, handle, _ = build(wear, friction="none" if mu == 0.0 else f"coulomb:{mu}", backend=backend, spin=spin,
+                           force=force)
     mbs.Assemble()
-    s = exu.SimulationSettings()
-    s.timeIntegration.numberOfSteps = max(1, round(end_time / step))
-    s.timeIntegration.endTime = end_time
-    s.timeIntegration.adaptiveStep = adaptive
-    s.solution.file.write = False
     start = time.perf_counter()
-    mbs.SolveDynamic(s)
+    mbs.SolveDynamic(settings(end_time, step, adaptive))
     wall = time.perf_counter() - start
-    return Run(handle.wear_profile() if worn else None, spin * r_j * end_time, handle.state(), wall, handle)
+    return Run(handle.wear_profile() if worn else None, spin * (RADIUS - CLEARANCE) * end_time, handle.state(), wall,
+               handle)
 
 
 def law_depth(slip: float, coefficient: float = COEFFICIENT, mu: float = 0.0, force: float = FORCE) -> float:
