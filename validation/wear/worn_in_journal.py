@@ -144,9 +144,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"mu = {mu:g}: done")
     fig, (ax, ax_p) = plt.subplots(1, 2, figsize=(10, 4.2))
     s_law = np.linspace(1e-4, max(series[0.0][0]), 60)
-    for mu, (slips, depths, _) in series.items():
-        ax.plot(s_law, [law_depth(x, mu=mu) * 1e6 for x in s_law], "-", lw=1, label=f"eq. (83), mu = {mu:g}")
-        ax.plot(slips, depths * 1e6, "o", label=f"exuclear, mu = {mu:g}")
+    for (mu, (slips, depths, _)), color in zip(series.items(), ("C0", "C3")):
+        ax.plot(s_law, [law_depth(x, mu=mu) * 1e6 for x in s_law], "-", color=color, lw=1,
+                label=f"eq. (83)-(84), mu = {mu:g}")
+        ax.plot(slips, depths * 1e6, "o", color=color, mfc="none", label=f"exuclear, mu = {mu:g}")
     early = [analytic.early_depth(x, FORCE, COEFFICIENT, RADIUS - CLEARANCE, CLEARANCE, LENGTH) * 1e6 for x in s_law]
     ax.plot(s_law, early, "k:", lw=1, label="early law (d0 << c)")
     ax.set_xlabel("slip s [m]")
@@ -154,8 +155,9 @@ def main(argv: list[str] | None = None) -> int:
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     profile = series[0.0][2]
-    ax_p.plot(np.degrees(profile.theta), profile.bearing * 1e6, label="mu = 0")
-    ax_p.plot(np.degrees(series[0.2][2].theta), series[0.2][2].bearing * 1e6, label="mu = 0.2")
+    ax_p.plot(np.degrees(profile.theta), profile.bearing * 1e6, "C0", label="mu = 0")
+    ax_p.plot(np.degrees(series[0.2][2].theta), series[0.2][2].bearing * 1e6, "C3", label="mu = 0.2")
+    ax_p.set_title(f"the worn bearing after s = {series[0.0][0][-1]:.3g} m of slip", fontsize=10)
     ax_p.set_xlim(90, 270)
     ax_p.set_xlabel("angle in the joint frame [deg] (load at 180)")
     ax_p.set_ylabel("bearing depth [um]")
