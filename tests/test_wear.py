@@ -199,3 +199,18 @@ def test_extrapolation_past_the_bound_diverges_and_is_refused():
     assert _ripples(p.final.bearing) >= 3
     with pytest.raises(ValueError, match=r"`dN` = 40 cycles breaks the stability bound"):
         _revolutions(400, dN=40)
+
+
+@pytest.mark.parametrize(("viscosity", "wears"), [(2.0, False), (0.01, True)])
+def test_a_lubricated_joint_wears_where_metal_touches(viscosity, wears):
+    """A journal started at the bearing's centre: oil of 2 Pa s carries the 500 N on a film
+    (Sommerfeld number 0.8, no metal contact): no wear; oil of 0.01 Pa s cannot (Sommerfeld
+    number 170): the journal touches the wall and the bearing wears (docs/physics.md
+    section 11.3)."""
+    mbs, handle, _ = scene.build(Wear(coefficient=1e-10), start=0.0,
+                                 lubrication=exuclear.Lubrication(viscosity=viscosity, model="finite"))
+    mbs.Assemble()
+    mbs.SolveDynamic(scene.settings(0.05, 1e-4))
+    touched = bool(np.any(handle.outputs()["regime"] == 2))
+    assert touched == wears
+    assert (handle.wear_profile().bearing.max() > 0.0) == wears

@@ -59,15 +59,17 @@ class Run:
 
 
 def build(wear: exuclear.Wear | None, *, friction: str = "none", backend: str = "python", spin: float = SPIN,
-          force: float = FORCE, velocity: float = 0.0, hold_spin: bool = True) -> tuple:
-    """The worn-in journal's model, not yet assembled: the journal against the wall at
-    ``(-c, 0)``, moving along -x at ``velocity`` [m/s], turning at ``spin`` [rad/s] (held there
+          force: float = FORCE, velocity: float = 0.0, hold_spin: bool = True,
+          lubrication: exuclear.Lubrication | None = None, start: float = CLEARANCE) -> tuple:
+    """The worn-in journal's model, not yet assembled: the journal at ``(-start, 0)`` (by
+    default against the wall), moving along -x at ``velocity`` [m/s], turning at ``spin`` [rad/s] (held there
     by a velocity constraint on its angle where ``hold_spin``), pressed along -x by ``force``
-    [N], in a joint with ``wear`` (None: none).  Returns ``(mbs, handle, node)``."""
+    [N], in a joint with ``wear`` (None: none) and ``lubrication`` (None: dry).  Returns
+    ``(mbs, handle, node)``."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     r_j = RADIUS - CLEARANCE
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-CLEARANCE, 0.0, 0.0],
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-start, 0.0, 0.0],
                                        initialVelocities=[-velocity, 0.0, spin]))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=0.5 * r_j**2))
     m_body, m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
@@ -78,7 +80,8 @@ def build(wear: exuclear.Wear | None, *, friction: str = "none", backend: str = 
         mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
     handle = exuclear.AddClearanceJoint(
         mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS, length=LENGTH,
-        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear)
+        law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear,
+        lubrication=lubrication)
     return mbs, handle, node
 
 
