@@ -258,7 +258,8 @@ class ClearanceJointHandle:
 
     def wear_profile(self) -> WearProfile:
         """The worn profiles after the last accepted step (before a run: those the joint's
-        :class:`exuclear.Wear` starts from); docs/physics.md section 11."""
+        :class:`exuclear.Wear` starts from); docs/physics.md section 11.  A spatial joint's
+        profiles are slices x nodes, one row per slice (section 11.8; :class:`WearProfile`)."""
         wear = self._joint.wear
         if wear is None:
             raise ValueError(f"joint {self.name!r} has no wear: give `wear=exuclear.Wear(coefficient=...)` to the joint")
