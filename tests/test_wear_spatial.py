@@ -1,4 +1,4 @@
-"""Wear per slice of the spatial joint (docs/physics.md section 11.8): an aligned journal
+"""Wear per slice of the spatial joint (docs/physics.md section 11.7): an aligned journal
 wears every slice as the planar joint wears its bearing (each slice carries 1/N of the force
 on L/N of the length: the same pressure); a misaligned journal wears the bearing's edges
 (Zhang et al., Chin. J. Mech. Eng. 36 (2023)); the two kernels agree to round-off; a joint
@@ -245,3 +245,11 @@ def test_predict_wear_extrapolates_the_slices_profiles():
     once = run_cycle(wear).wear_profile()
     assert out.profiles[0].bearing == pytest.approx(2 * once.bearing, rel=1e-12, abs=1e-18)
     assert final.bearing.max() > out.profiles[0].bearing.max()
+
+
+def test_a_new_joint_with_profiles_of_other_slices_is_refused():
+    run = worn_in_journal("python", 3, 1e-4, exuclear.Wear(coefficient=1e-15, nodes=16), spin=0.0)
+    with pytest.raises(ValueError, match="has 2 rows but the joint has 3 slices"):
+        run["handle"].joint = exuclear.make_joint(
+            journal_radius=R_J, bearing_radius=RADIUS, length=LENGTH, cr=0.5,
+            wear=exuclear.Wear(coefficient=1e-15, nodes=16, bearing=np.zeros((2, 16))))

@@ -213,7 +213,7 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
             s.kins[static_cast<size_t>(k)] =
                 slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
         }
-        if (wears(a, s)) {  // each slice's worn contact in its plane, psi its turn about the axis (section 11.8)
+        if (wears(a, s)) {  // each slice's worn contact in its plane, psi its turn about the axis (section 11.7)
             for (int k = 0; k < n_slices; ++k) {
                 size_t i = static_cast<size_t>(k);
                 s.kins[i] = s.wear[i].slice_kinematics(a, wear_profiles(s, t, i), s.kins[i], rotation[2], q.p, q.u, dv,

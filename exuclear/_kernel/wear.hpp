@@ -278,10 +278,11 @@ struct Profiles {
 };
 
 // wear.py WearState: a planar joint's wear, or one slice's of a spatial joint (on the slice's
-// length L / N with its share of the law's force, in its plane: section 11.8).  As the contact history, the profiles are kept at
-// the start (previous) and at the end (current) of the last accepted step: an evaluation of a
-// new step uses current, one of a step computed again previous, and a run's first evaluation
-// the initial profiles (exuclear.Wear's bearing and journal), set by the binding set_wear.
+// length L / N with its share of the law's force, in its plane: section 11.7).  As the contact
+// history, the profiles are kept at the start (previous) and at the end (current) of the last
+// accepted step: an evaluation of a new step uses current, one of a step computed again
+// previous, and a run's first evaluation the initial profiles (exuclear.Wear's bearing and
+// journal), set by the binding set_wear.
 struct WearState {
     Grid grid;            // n = 0: the joint does not wear
     double e_star = 0.0;  // E* [Pa] of the law, for the Hertz strip's half-width

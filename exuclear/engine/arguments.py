@@ -137,7 +137,7 @@ def physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJo
 def check_wear(joint: ClearanceJoint, slices: int, backend: str) -> None:
     """``ValueError`` where the joint's wear cannot be modelled as asked: a starting profile
     of slices x nodes (:class:`exuclear.Wear`) whose rows are not the spatial joint's slices,
-    or one given to the planar joint (docs/physics.md section 11.8)."""
+    or one given to the planar joint (docs/physics.md section 11.7)."""
     wear = joint.wear
     if wear is None:
         return

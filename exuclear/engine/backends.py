@@ -151,7 +151,7 @@ class CompiledBackend(Backend):
 
     def set_joint(self, joint: ClearanceJoint) -> None:
         """The physics is in the parameters, except what a joint's wear starts from: its
-        initial profiles (one row per slice of a spatial joint, section 11.8), the length each
+        initial profiles (one row per slice of a spatial joint, section 11.7), the length each
         row stands for (``L / N``) and the law's E* (for the Hertz strip), given here; its worn
         profiles so far are forgotten, as the Python kernel's ``JointState.joint`` does."""
         wear = joint.wear

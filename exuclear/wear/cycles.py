@@ -57,7 +57,7 @@ def predict_wear(run_cycle: Callable[[Wear], Any], wear: Wear, cycles: float, *,
         cycle and returns the joint's handle (whose ``wear_profile()`` is read).
     wear : Wear
         The joint's wear; its ``bearing`` and ``journal`` profiles are where it starts (a
-        spatial joint's: slices x nodes, docs/physics.md section 11.8).
+        spatial joint's: slices x nodes, docs/physics.md section 11.7).
     cycles : float
         How many cycles to predict.
     dN : float, optional
@@ -87,7 +87,7 @@ def predict_wear(run_cycle: Callable[[Wear], Any], wear: Wear, cycles: float, *,
     try:
         while done < cycles:
             profile = run_cycle(current).wear_profile()
-            # a spatial joint's profiles are slices x nodes (section 11.8): the start broadcast to them
+            # a spatial joint's profiles are slices x nodes (section 11.7): the start broadcast to them
             before_b = np.zeros_like(profile.bearing) + (current.bearing if current.bearing is not None else 0.0)
             before_j = np.zeros_like(profile.journal) + (current.journal if current.journal is not None else 0.0)
             largest = float(profile.stability.max())

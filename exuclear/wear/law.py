@@ -48,7 +48,7 @@ class Wear:
         Depth profiles [m] to start from (``nodes`` values each, >= 0; the bearing's in its
         joint frame, the journal's in its own), e.g. those :func:`exuclear.predict_wear`
         extrapolated; default unworn.  For a spatial joint also ``slices`` x ``nodes``
-        values, one row per slice (docs/physics.md section 11.8; the joint checks the rows
+        values, one row per slice (docs/physics.md section 11.7; the joint checks the rows
         against its slices); one row: every slice starts from it.
     """
 

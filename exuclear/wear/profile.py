@@ -13,7 +13,7 @@ class WearProfile:
     """A joint's worn profiles (``handle.wear_profile()``; docs/physics.md section 11).
 
     A planar joint's profiles are arrays of the nodes; a spatial joint's are 2D, slices x
-    nodes, one row per slice from the bearing's end at ``z = -L/2`` (section 11.8):
+    nodes, one row per slice from the bearing's end at ``z = -L/2`` (section 11.7):
     :attr:`slices` says how many, :meth:`slice` gives one slice's profiles.
 
     Attributes

@@ -111,7 +111,7 @@ class JointState:
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
         self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
-        # the planar joint's one wear state; a spatial joint's per slice, each on its length L / N (section 11.8)
+        # the planar joint's one wear state; a spatial joint's per slice, each on its length L / N (section 11.7)
         self.wear: list[WearState] | None = None
         if joint.wear is not None:
             slice_geometry = g if self.planar else BearingGeometry(g.journal_radius, g.bearing_radius,
@@ -196,7 +196,7 @@ class JointState:
         dv = (velocity[0], velocity[1], velocity[2])
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
         kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
-        if self.wear is not None:  # each slice's worn contact in its plane, psi its turn about the axis (section 11.8)
+        if self.wear is not None:  # each slice's worn contact in its plane, psi its turn about the axis (section 11.7)
             kins = [w.slice_kinematics(self.wear_profiles(t, k), kin, rotation[2], p, u, dv, dw, w_j)
                     for k, (w, kin) in enumerate(zip(self.wear, kins))]
         if self.film is not None:

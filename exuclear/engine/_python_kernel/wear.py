@@ -3,7 +3,7 @@ the worn contact's kinematics, and the wear of each accepted step.  The compiled
 ``wear.hpp``.
 
 The planar joint has one :class:`WearState`; the spatial joint one per slice (docs/physics.md
-section 11.8), each on the slice's length ``L / N`` with its share of the law's force, in the
+section 11.7), each on the slice's length ``L / N`` with its share of the law's force, in the
 slice's plane.
 
 As the contact history (package docstring), the profiles are kept at the start
