@@ -81,12 +81,12 @@ def worn_in_journal(backend: str, slices: int | None, end_time: float, wear: exu
 
 
 def tilted_journal(backend: str, slices: int, end_time: float, wear: exuclear.Wear, tilt: float,
-                   step: float = 1e-4) -> dict:
+                   step: float = 1e-4, friction: str = "none", adaptive: bool = True) -> dict:
     """A journal (a steel cylinder of the bearing's length) tilted by ``tilt`` [rad] about x,
     the axis normal to its load (500 N along -x), held in that tilt and along the axis by a
     generic joint that leaves it free to move across the axis and to turn about it; it
-    spins at 100 rad/s (no friction: the spin stays).  Each bearing edge sees the journal's
-    axis ``L/2 tilt`` further off the middle's."""
+    spins at 100 rad/s (without ``friction`` the spin stays).  Each bearing edge sees the
+    journal's axis ``L/2 tilt`` further off the middle's."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.CreateGround()
     rotation = RotationMatrixX(tilt)
@@ -105,15 +105,18 @@ def tilted_journal(backend: str, slices: int, end_time: float, wear: exuclear.We
     m_tilted = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=rotation, translation=[0, 0, 0])))
     mbs.AddObject(ObjectJointGeneric(markerNumbers=[m_tilted, m_body], constrainedAxes=[0, 0, 1, 1, 1, 0]))
     handle = exuclear.AddClearanceJoint(mbs, [m_ground, m_body], journal_radius=R_J, bearing_radius=RADIUS,
-                                        length=LENGTH, law="lankarani-nikravesh", cr=0.5, friction="none", wear=wear,
+                                        length=LENGTH, law="lankarani-nikravesh", cr=0.5, friction=friction, wear=wear,
                                         backend=backend, slices=slices, show=False)
     mbs.Assemble()
+    settings = _settings(end_time, step)
+    settings.timeIntegration.adaptiveStep = adaptive
     raised = False
     try:
-        mbs.SolveDynamic(_settings(end_time, step))
+        mbs.SolveDynamic(settings)
     except Exception:  # Exudyn's own error type, from the kernel's failure
         raised = True
-    return {"raised": raised, "handle": handle, "outputs": handle.outputs(), "profile": handle.wear_profile()}
+    return {"raised": raised, "handle": handle, "outputs": handle.outputs(), "profile": handle.wear_profile(),
+            "failure": handle.failure()}
 
 
 # -- physics -----------------------------------------------------------------------------------
@@ -158,22 +161,60 @@ def test_a_misaligned_journal_wears_the_bearing_edges():
 
 # -- the kernels -----------------------------------------------------------------------------
 @COMPILED
-def test_the_kernels_agree_on_the_worn_slices_of_a_misaligned_journal():
-    """The tilted journal with its bearing and journal wearing: the compiled kernel's profiles,
-    contact outputs and steps are the Python kernel's to round-off (1e-9 relative)."""
-    wear = exuclear.Wear(coefficient=1e-10, surface="both", nodes=360)
-    runs = {b: tilted_journal(b, 3, 0.004, wear, 5e-3) for b in ("compiled", "python")}
+@pytest.mark.parametrize(("surface", "pressure", "friction"), [("both", "winkler", "none"),
+                                                              ("bearing", "hertz", "coulomb:0.1")])
+def test_the_kernels_agree_on_the_worn_slices_of_a_misaligned_journal(surface, pressure, friction):
+    """The tilted journal with its bearing (and journal) wearing: the compiled kernel's
+    profiles, contact outputs and steps are the Python kernel's to round-off (1e-9 relative;
+    measured 2e-11 on the profiles, 8e-11 on the outputs)."""
+    wear = exuclear.Wear(coefficient=1e-10, surface=surface, nodes=360, pressure=pressure)
+    runs = {b: tilted_journal(b, 3, 0.004, wear, 5e-3, friction=friction) for b in ("compiled", "python")}
     c, p = runs["compiled"], runs["python"]
     assert not c["raised"] and not p["raised"]
-    assert p["profile"].bearing.max() > 1e-6 and p["profile"].journal.max() > 1e-6
+    assert p["profile"].bearing.max() > 5e-7 and (surface == "bearing" or p["profile"].journal.max() > 1e-6)
     for name in PROFILES:
         ref = getattr(p["profile"], name)
         assert getattr(c["profile"], name).shape == ref.shape == (3, 360)
-        assert np.abs(getattr(c["profile"], name) - ref).max() <= 1e-9 * np.abs(ref).max(), name
+        assert np.abs(getattr(c["profile"], name) - ref).max() <= 1e-9 * max(np.abs(ref).max(), 1e-300), name
     for name in ("time", "penetration", "normal_force", "slip_velocity", "ecc_x", "ecc_y"):
         ref = p["outputs"][name]
         assert c["outputs"][name].shape == ref.shape, name  # the same steps
         assert np.abs(c["outputs"][name] - ref).max() <= 1e-9 * np.abs(ref).max(), name
+
+
+@COMPILED
+@pytest.mark.filterwarnings("ignore:.*Exudyn's solver ended the run:exuclear.exceptions.AccuracyWarning")
+def test_an_unstable_update_in_a_slice_stops_both_kernels_with_the_same_message():
+    """A large coefficient at a long fixed step: a slice's k_D K ds > 1 (eq. (81)) stops the
+    run at the same step in both kernels, naming the cause and the step to take."""
+    wear = exuclear.Wear(coefficient=1e-7, nodes=180)
+    runs = [tilted_journal(b, 3, 0.01, wear, 5e-3, step=1e-3, adaptive=False) for b in ("compiled", "python")]
+    (message, time), (python_message, python_time) = (r["failure"] for r in runs)
+    assert all(r["raised"] for r in runs)
+    assert message.startswith("the wear update is unstable: k_D K ds = ") and "give a step of at most" in message
+    assert (message, time) == (python_message, python_time)
+
+
+@pytest.mark.parametrize("backend", ["python", pytest.param("compiled", marks=COMPILED)])
+def test_the_end_faces_of_an_axial_clearance_do_not_wear(backend):
+    """With an axial clearance the end faces follow the slices among the contacts; only the
+    slices have profiles."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.CreateGround()
+    journal = mbs.CreateRigidBody(inertia=InertiaCylinder(7800.0, LENGTH, R_J, 2), referencePosition=[0.0, 0.0, 0.0],
+                                  initialVelocity=[-0.2, 0.0, -0.3], initialAngularVelocity=[0.0, 0.0, SPIN],
+                                  returnDict=True)
+    handle = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, journal["bodyNumber"]], position=[0, 0, 0],
+                                           axis=[0, 0, 1], slices=3, journal_radius=R_J, bearing_radius=RADIUS,
+                                           length=LENGTH, cr=0.5, axial_clearance=2e-4, shoulder_radius=1.5 * RADIUS,
+                                           friction="coulomb:0.2", wear=exuclear.Wear(coefficient=1e-10, nodes=90),
+                                           backend=backend, show=False)
+    mbs.Assemble()
+    mbs.SolveDynamic(_settings(0.004, 1e-5))
+    out = handle.outputs()
+    assert out["face_in_contact"].any() and out["in_contact"].any()  # both kinds of contact touched
+    profile = handle.wear_profile()
+    assert profile.bearing.shape == (3, 90) and profile.bearing.max() > 0.0
 
 
 @COMPILED
