@@ -212,6 +212,7 @@ def test_an_unstable_update_in_a_slice_stops_both_kernels_with_the_same_message(
     (message, time), (python_message, python_time) = (r["failure"] for r in runs)
     assert all(r["raised"] for r in runs)
     assert message.startswith("the wear update is unstable: k_D K ds = ") and "give a step of at most" in message
+    assert "in one step of slice " in message
     assert (message, time) == (python_message, python_time)
 
 

@@ -287,7 +287,7 @@ void accept_wear(const Params& a, JointState& s, bool advance, const std::vector
         w.accept(a, advance ? w.current : w.previous, w.next, kin, psi, next[k].f_n, slip);
         if (advance) std::swap(w.previous, w.current);  // previous = the old current
         std::swap(w.current, w.next);                    // current = the new profiles; next is scratch
-        std::string why = w.unstable(slip, h);
+        std::string why = w.unstable(slip, h, a.slices == 0 ? "" : " of slice " + std::to_string(k));
         if (!why.empty()) fail(s, t, why);
     }
 }

@@ -369,17 +369,17 @@ struct WearState {
     }
 
     // WearState.unstable: why the last accepted step (slip [m] in h [s]) was too long for the
-    // profile's update, or ""
-    std::string unstable(double slip, double h) const {
+    // profile's update, or ""; where names the slice (" of slice k"; the planar joint: "")
+    std::string unstable(double slip, double h, const std::string& where) const {
         double stability = last_stability;
         if (stability <= STABILITY_LIMIT) return "";
         double longest = h * STABILITY_LIMIT / stability;
         char text[512];
         std::snprintf(text, sizeof text,
-                      "the wear update is unstable: k_D K ds = %.3g > %g in one step (slip %.3g m in %.3g s; "
+                      "the wear update is unstable: k_D K ds = %.3g > %g in one step%s (slip %.3g m in %.3g s; "
                       "docs/physics.md eq. (81)); give a step of at most %.3g s "
                       "(simulationSettings.timeIntegration.maxStepSize) or a smaller wear coefficient",
-                      stability, STABILITY_LIMIT, slip, h, longest);
+                      stability, STABILITY_LIMIT, where.c_str(), slip, h, longest);
         return text;
     }
 };

@@ -250,14 +250,14 @@ class JointState:
         computed again, as in ``post_newton``), slice by slice: each with its slip, ``|v_t| h``
         (planar) or ``|v_s| h`` (a spatial slice, eq. (42)), and its normal force; stops the
         run where a profile's update would be unstable (eq. (81))."""
-        for wear, kin, state in zip(self.wear, kins, states):
+        for k, (wear, kin, state) in enumerate(zip(self.wear, kins, states)):
             slip = (abs(kin.v_t) if self.planar else kin.speed) * h
             base = wear.current if advance else wear.previous
             new = wear.accept(base, kin, psi, state.normal_force, slip)
             if advance:
                 wear.previous = wear.current
             wear.current = new
-            why = wear.unstable(slip, h)
+            why = wear.unstable(slip, h, "" if self.planar else f" of slice {k}")
             if why:
                 self._fail(why, t)
 

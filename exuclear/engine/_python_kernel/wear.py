@@ -129,13 +129,13 @@ class WearState:
         loaded = step.loaded.astype(float)
         return base.plus(step.bearing, step.journal, slip * loaded, step.stability * loaded)
 
-    def unstable(self, slip: float, h: float) -> str:
+    def unstable(self, slip: float, h: float, where: str = "") -> str:
         """Why the last accepted step (``slip`` [m] in ``h`` [s]) was too long for the profile's
-        update, or ``""``."""
+        update, or ``""``; ``where`` names the slice (``" of slice k"``; the planar joint: ``""``)."""
         stability = self.last_stability
         if stability <= STABILITY_LIMIT:
             return ""
         longest = h * STABILITY_LIMIT / stability
-        return (f"the wear update is unstable: k_D K ds = {stability:.3g} > {STABILITY_LIMIT:g} in one step (slip "
+        return (f"the wear update is unstable: k_D K ds = {stability:.3g} > {STABILITY_LIMIT:g} in one step{where} (slip "
                 f"{slip:.3g} m in {h:.3g} s; docs/physics.md eq. (81)); give a step of at most {longest:.3g} s "
                 "(simulationSettings.timeIntegration.maxStepSize) or a smaller wear coefficient")
