@@ -89,14 +89,28 @@ class SliceKinematics(NamedTuple):
 
 def slice_kinematics(r_j: float, r_b: float, z: float, p: V3, u: V3, dv: V3, dw: V3, w_j: V3) -> SliceKinematics:
     """The kinematics of the slice at ``z`` (docs/physics.md eqs. (35)-(40))."""
-    s = (z - p[2]) / u[2]                                      # eq. (35)
-    ex = p[0] + s * u[0]
-    ey = p[1] + s * u[1]
+    s, ex, ey = slice_eccentricity(z, p, u)
     ecc = math.sqrt(ex * ex + ey * ey)
     if ecc > 0.0:
         nx, ny = ex / ecc, ey / ecc
     else:  # journal axis on the bearing axis: no contact, any normal keeps the values finite
         nx, ny = 1.0, 0.0
+    return slice_kinematics_along(r_j, r_b, s, ex, ey, ecc, nx, ny, p, u, dv, dw, w_j)
+
+
+def slice_eccentricity(z: float, p: V3, u: V3) -> tuple[float, float, float]:
+    """The journal-axis parameter ``s`` of the slice plane ``z`` and the eccentricity
+    ``(ex, ey)`` of the crossing point ``c = p + s u`` (eq. (35))."""
+    s = (z - p[2]) / u[2]                                      # eq. (35)
+    return s, p[0] + s * u[0], p[1] + s * u[1]
+
+
+def slice_kinematics_along(r_j: float, r_b: float, s: float, ex: float, ey: float, ecc: float, nx: float, ny: float,
+                           p: V3, u: V3, dv: V3, dw: V3, w_j: V3) -> SliceKinematics:
+    """The rest of :func:`slice_kinematics` once ``|e|`` (``ecc``) and the in-plane normal
+    ``n`` are known (eqs. (36)-(40)); a worn slice gives its own (the worn contact's normal,
+    eq. (75), and ``ecc = delta + c`` from its penetration, eq. (76)), as
+    :func:`exuclear.geometry.kinematics_along` for the planar joint."""
     delta = ecc - (r_b - r_j)                                   # eq. (36)
     a = (nx * u[0] + ny * u[1]) / u[2]                          # eq. (37)
     su = (s * u[0], s * u[1], s * u[2])

@@ -130,7 +130,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         set_film_outputs(s.next[i], film_load(a, s.finite, s.film_inputs[i]), film_share(a));
     }
     bool worn_joint = wears(a, s);
-    if (worn_joint) accept_wear(a, s, advance, s.kins[0], rotation[2], s.next[0].f_n, t - base[0].time, t);
+    if (worn_joint) accept_wear(a, s, advance, s.next, rotation[2], t - base[0].time, t);
     // the step before this one: free flight must have lasted both (a repeated step: unknown)
     double allow = advance ? step_growth(a, s.prev, base, s.next, t) : 0.0;
     double h = t - base[0].time;
@@ -144,7 +144,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
     // a worn joint in contact: its conformal contact asks for a Jacobian per step
-    bool conformal = worn_joint && s.cur[0].in_contact && s.wear.current.worn;
+    bool conformal = worn_joint && in_worn_contact(s);
     steer_jacobian(s, switched ? INF : h, conformal);
     report_growth(s, a.id, system, t, allow, h);
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
@@ -248,37 +248,53 @@ PYBIND11_MODULE(_ckernel, m) {
         JointState& s = state(id);
         py::object run_start = s.run_start;
         long runs = s.control.runs;
-        WearState wear = std::move(s.wear);  // the joint's wear (set_wear) stays, back at its initial profiles
+        std::vector<WearState> wear = std::move(s.wear);  // the joint's wear (set_wear) stays, back at its initial profiles
         leave_group(s);
         s = JointState();
         s.run_start = run_start;
         s.control.runs = runs;
         s.wear = std::move(wear);
-        s.wear.reset();
+        for (WearState& w : s.wear) w.reset();
     });
-    m.def("set_wear", [](long id, std::vector<double> bearing, std::vector<double> journal, double e_star) {
-        // the profiles a planar joint's wear starts from (exuclear.Wear's bearing and journal, or
-        // zeros; empty: the joint does not wear) and the law's E* for the Hertz strip; the joint's
-        // worn profiles so far are forgotten, as the Python kernel's joint setter does
-        if (bearing.size() != journal.size()) throw std::invalid_argument("set_wear: profiles of different nodes");
-        WearState& w = state(id).wear;
-        w = WearState();
-        w.grid = grid(static_cast<int>(bearing.size()));
-        w.e_star = e_star;
-        size_t n = bearing.size();
-        w.initial = Profiles{bearing, journal, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), false};
-        w.initial.update_worn();
-        w.reset();
-    }, "a joint's wear: its initial profiles [m] (empty: none) and E* [Pa] (CompiledBackend.set_joint)");
-    m.def("wear_profiles", [](long id) {  // after the last accepted step (before a run: the initial ones)
-        const Profiles& p = state(id).wear.current;
+    m.def("set_wear", [](long id, std::vector<std::vector<double>> bearing, std::vector<std::vector<double>> journal,
+                         double e_star, double length) {
+        // the profiles a joint's wear starts from, one row per slice (the planar joint: one;
+        // exuclear.Wear's bearing and journal, or zeros; none: the joint does not wear), the law's
+        // E* for the Hertz strip and the length [m] each row stands for (L, a slice's L / N); the
+        // joint's worn profiles so far are forgotten, as the Python kernel's joint setter does
+        if (bearing.size() != journal.size()) throw std::invalid_argument("set_wear: profiles of different slices");
+        std::vector<WearState>& wear = state(id).wear;
+        wear.clear();
+        for (size_t k = 0; k < bearing.size(); ++k) {
+            if (bearing[k].size() != journal[k].size()) throw std::invalid_argument("set_wear: profiles of different nodes");
+            WearState w;
+            w.grid = grid(static_cast<int>(bearing[k].size()));
+            w.e_star = e_star;
+            w.length = length;
+            size_t n = bearing[k].size();
+            w.initial = Profiles{bearing[k], journal[k], std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), false};
+            w.initial.update_worn();
+            w.reset();
+            wear.push_back(std::move(w));
+        }
+    }, "a joint's wear: its initial profiles [m] per slice (none: no wear), E* [Pa] and the slice's length [m] "
+       "(CompiledBackend.set_joint)");
+    m.def("wear_profiles", [](long id) {  // per slice, after the last accepted step (before a run: the initial ones)
         py::dict d;
-        d["bearing"] = p.bearing;
-        d["journal"] = p.journal;
-        d["slip"] = p.slip;
-        d["stability"] = p.stability;
+        py::list bearing, journal, slip, stability;
+        for (const WearState& w : state(id).wear) {
+            bearing.append(py::cast(w.current.bearing));
+            journal.append(py::cast(w.current.journal));
+            slip.append(py::cast(w.current.slip));
+            stability.append(py::cast(w.current.stability));
+        }
+        d["bearing"] = bearing;
+        d["journal"] = journal;
+        d["slip"] = slip;
+        d["stability"] = stability;
         return d;
     });
+    m.attr("SLICE_WEAR") = true;  // the spatial joint wears per slice (arguments.kernel_has_wear)
     m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
           "a callable called once per run start, returning layout.py's RunStart; hold no strong "
           "reference to the joint's handle in it");

@@ -64,7 +64,7 @@ struct JointState {
     StepControl control;
     const void* group = nullptr;  // the system whose step group the joint reports to (report_growth)
     py::object run_start;  // Python callable, once per run start: returns layout.py RunStart; None: none
-    WearState wear;        // a planar joint's wear (its grid empty: none), set by the binding set_wear
+    std::vector<WearState> wear;  // per slice (the planar joint: one; empty: no wear), set by the binding set_wear
 };
 
 std::vector<JointState> g_joints;
@@ -151,23 +151,27 @@ struct Pose {  // the journal's centre p and axis u in J0
     V3 p, u;
 };
 
-// Whether the joint wears: a planar joint whose parameters carry a wear (layout.py wear_code),
-// and whose profiles set_wear gave (on the same nodes; CompiledBackend.set_joint gives them).
+// Whether the joint wears: a joint whose parameters carry a wear (layout.py wear_code), and
+// whose profiles set_wear gave, one per slice on the same nodes (CompiledBackend.set_joint).
 bool wears(const Params& a, const JointState& s) {
-    if (a.slices != 0 || a.wear_surface == WEAR_NONE) return false;
-    if (s.wear.grid.n != a.wear_nodes) {
-        throw std::runtime_error("exuclear kernel: joint " + std::to_string(a.id) + " wears on " +
-                                 std::to_string(a.wear_nodes) + " nodes but set_wear gave it " +
-                                 std::to_string(s.wear.grid.n));
+    if (a.wear_surface == WEAR_NONE) return false;
+    int n_slices = slice_count(a);
+    int nodes = s.wear.empty() ? 0 : s.wear[0].grid.n;
+    if (static_cast<int>(s.wear.size()) != n_slices || nodes != a.wear_nodes) {
+        throw std::runtime_error("exuclear kernel: joint " + std::to_string(a.id) + " wears " +
+                                 std::to_string(n_slices) + " slices on " + std::to_string(a.wear_nodes) +
+                                 " nodes but set_wear gave it " + std::to_string(s.wear.size()) + " on " +
+                                 std::to_string(nodes));
     }
     return true;
 }
 
-// JointState.wear_profiles: the wear profiles an evaluation at time t uses, as history_for
-// chooses the history (read before history_for, which may start a run)
-const Profiles& wear_profiles(const JointState& s, double t) {
-    if (!s.started || t < s.prev[0].time) return s.wear.initial;
-    return t <= s.cur[0].time ? s.wear.previous : s.wear.current;
+// JointState.wear_profiles: the wear profiles of slice k an evaluation at time t uses, as
+// history_for chooses the history (read before history_for, which may start a run)
+const Profiles& wear_profiles(const JointState& s, double t, size_t k = 0) {
+    const WearState& w = s.wear[k];
+    if (!s.started || t < s.prev[0].time) return w.initial;
+    return t <= s.cur[0].time ? w.previous : w.current;
 }
 
 // JointState.joint_kinematics: every contact's kinematics into s.kins; a worn joint's slice is
@@ -197,8 +201,8 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
         s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
         if (wears(a, s)) {  // psi: the journal's turn about the axis
-            s.kins[0] = s.wear.kinematics(a, wear_profiles(s, t), s.kins[0], rotation[2], dv[0], dv[1], dw[2] + w_j[2],
-                                          w_j[2]);
+            s.kins[0] = s.wear[0].kinematics(a, wear_profiles(s, t), s.kins[0], rotation[2], dv[0], dv[1],
+                                             dw[2] + w_j[2], w_j[2]);
         }
         if (a.film_model != FILM_NONE) {
             s.film_inputs.resize(1);
@@ -208,6 +212,13 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
         for (int k = 0; k < n_slices; ++k) {
             s.kins[static_cast<size_t>(k)] =
                 slice_kinematics(a.r_j, a.r_b, slice_centre(a.length, n_slices, k), q.p, q.u, dv, dw, w_j);
+        }
+        if (wears(a, s)) {  // each slice's worn contact in its plane, psi its turn about the axis (section 11.7)
+            for (int k = 0; k < n_slices; ++k) {
+                size_t i = static_cast<size_t>(k);
+                s.kins[i] = s.wear[i].slice_kinematics(a, wear_profiles(s, t, i), s.kins[i], rotation[2], q.p, q.u, dv,
+                                                       dw, w_j);
+            }
         }
         if (a.film_model != FILM_NONE) {
             s.film_inputs.resize(static_cast<size_t>(n_slices));
@@ -244,7 +255,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
         s.records.assign(n, std::vector<Record>());
         s.failure.clear();
         start_run(s);
-        s.wear.reset();
+        for (WearState& w : s.wear) w.reset();
         s.cur.resize(n);
         for (size_t i = 0; i < n; ++i) {
             History fresh;
@@ -262,17 +273,31 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
     return t <= s.cur[0].time ? s.prev : s.cur;
 }
 
-// JointState.accept_wear: the wear of an accepted step of length h [s] ending at t in the state
-// kin with the normal force f_n (advance: a new step, else one computed again, as in
-// post_newton); stops the run where the profile's update would be unstable.
-void accept_wear(const Params& a, JointState& s, bool advance, const Kinematics& kin, double psi, double f_n, double h,
+// JointState.accept_wear: the wear of an accepted step of length h [s] ending at t in the states
+// s.kins with the contacts' histories `next` (their normal forces; advance: a new step, else one
+// computed again, as in post_newton), slice by slice: each with its slip, |v_t| h (planar) or
+// |v_s| h (a spatial slice, eq. (42)), and its normal force; stops the run where a profile's
+// update would be unstable (eq. (81)).
+void accept_wear(const Params& a, JointState& s, bool advance, const std::vector<History>& next, double psi, double h,
                  double t) {
-    WearState& w = s.wear;
-    w.accept(a, advance ? w.current : w.previous, w.next, kin, psi, f_n, h);
-    if (advance) std::swap(w.previous, w.current);  // previous = the old current
-    std::swap(w.current, w.next);                    // current = the new profiles; next is scratch
-    std::string why = w.unstable(kin.v_t, h);
-    if (!why.empty()) fail(s, t, why);
+    for (size_t k = 0; k < s.wear.size(); ++k) {
+        WearState& w = s.wear[k];
+        const Kinematics& kin = s.kins[k];
+        double slip = (a.slices == 0 ? std::fabs(kin.v_t) : kin.speed) * h;
+        w.accept(a, advance ? w.current : w.previous, w.next, kin, psi, next[k].f_n, slip);
+        if (advance) std::swap(w.previous, w.current);  // previous = the old current
+        std::swap(w.current, w.next);                    // current = the new profiles; next is scratch
+        std::string why = w.unstable(slip, h, a.slices == 0 ? "" : " of slice " + std::to_string(k));
+        if (!why.empty()) fail(s, t, why);
+    }
+}
+
+// JointState.in_worn_contact: whether a slice is in contact on a worn profile (its contact conformal, section 11.1)
+bool in_worn_contact(const JointState& s) {
+    for (size_t k = 0; k < s.wear.size(); ++k) {
+        if (s.cur[k].in_contact && s.wear[k].current.worn) return true;
+    }
+    return false;
 }
 
 V6 zeros6() { return V6{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; }

@@ -69,22 +69,20 @@ Kinematics contact_kinematics(double r_j, double r_b, double ex, double ey, doub
     return kinematics_along(r_j, r_b, ex, ey, ecc, 1.0, 0.0, dvx, dvy, omega_i, omega_j);
 }
 
-// spatial.py slice_kinematics, eqs. (35)-(40)
-Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv, const V3& dw,
-                            const V3& w_j) {
+// spatial.py slice_kinematics_along: the rest of slice_kinematics once |e| (ecc) and the in-plane
+// normal (nx, ny) are known (eqs. (36)-(40)); a worn slice gives its own (the worn contact's
+// normal, eq. (75), and ecc = delta + c from its penetration, eq. (76); wear.hpp
+// WearState::slice_kinematics), as kinematics_along for the planar joint
+Kinematics slice_kinematics_along(double r_j, double r_b, double s, double ex, double ey, double ecc, double nx,
+                                  double ny, const V3& p, const V3& u, const V3& dv, const V3& dw, const V3& w_j) {
     Kinematics k;
     k.side = 0;
-    k.s = (z - p[2]) / u[2];                                            // eq. (35)
-    k.ex = p[0] + k.s * u[0];
-    k.ey = p[1] + k.s * u[1];
-    k.ecc = std::sqrt(k.ex * k.ex + k.ey * k.ey);
-    if (k.ecc > 0.0) {
-        k.nx = k.ex / k.ecc;
-        k.ny = k.ey / k.ecc;
-    } else {  // journal axis on the bearing axis: no contact, any normal keeps the values finite
-        k.nx = 1.0;
-        k.ny = 0.0;
-    }
+    k.s = s;
+    k.ex = ex;
+    k.ey = ey;
+    k.ecc = ecc;
+    k.nx = nx;
+    k.ny = ny;
     k.delta = k.ecc - (r_b - r_j);                                      // eq. (36)
     k.a = (k.nx * u[0] + k.ny * u[1]) / u[2];                           // eq. (37)
     V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
@@ -101,6 +99,19 @@ Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const
     k.v_a = v[2];
     k.speed = std::sqrt(k.v_t * k.v_t + k.v_a * k.v_a);
     return k;
+}
+
+// spatial.py slice_kinematics, eqs. (35)-(40): the eccentricity of the slice plane z (eq. (35),
+// spatial.py slice_eccentricity), its direction the normal
+Kinematics slice_kinematics(double r_j, double r_b, double z, const V3& p, const V3& u, const V3& dv, const V3& dw,
+                            const V3& w_j) {
+    double s = (z - p[2]) / u[2];                                       // eq. (35)
+    double ex = p[0] + s * u[0];
+    double ey = p[1] + s * u[1];
+    double ecc = std::sqrt(ex * ex + ey * ey);
+    if (ecc > 0.0) return slice_kinematics_along(r_j, r_b, s, ex, ey, ecc, ex / ecc, ey / ecc, p, u, dv, dw, w_j);
+    // journal axis on the bearing axis: no contact, any normal keeps the values finite
+    return slice_kinematics_along(r_j, r_b, s, ex, ey, ecc, 1.0, 0.0, p, u, dv, dw, w_j);
 }
 
 const int FACE_SIDES[2] = {-1, 1};  // face 0 at z = -L/2, face 1 at z = +L/2

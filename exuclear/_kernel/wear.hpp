@@ -277,13 +277,16 @@ struct Profiles {
     }
 };
 
-// wear.py WearState: one planar joint's wear.  As the contact history, the profiles are kept at
-// the start (previous) and at the end (current) of the last accepted step: an evaluation of a
-// new step uses current, one of a step computed again previous, and a run's first evaluation
-// the initial profiles (exuclear.Wear's bearing and journal), set by the binding set_wear.
+// wear.py WearState: a planar joint's wear, or one slice's of a spatial joint (on the slice's
+// length L / N with its share of the law's force, in its plane: section 11.7).  As the contact
+// history, the profiles are kept at the start (previous) and at the end (current) of the last
+// accepted step: an evaluation of a new step uses current, one of a step computed again
+// previous, and a run's first evaluation the initial profiles (exuclear.Wear's bearing and
+// journal), set by the binding set_wear.
 struct WearState {
     Grid grid;            // n = 0: the joint does not wear
     double e_star = 0.0;  // E* [Pa] of the law, for the Hertz strip's half-width
+    double length = 0.0;  // the length [m] the profiles stand for: L, a slice's L / N
     Profiles initial, previous, current;
     double last_stability = 0.0;  // the last accepted step's k_D K ds
     // scratch, storage reused (no allocation per evaluation)
@@ -301,7 +304,7 @@ struct WearState {
     // WearState.field: the surfaces of `profiles` at the eccentricity (ex, ey) and the turn psi
     void field_of(const Params& a, const Profiles& profiles, double ex, double ey, double psi) {
         const std::vector<double>* journal = a.wear_surface != WEAR_BEARING ? &profiles.journal : nullptr;
-        surface_field(field, grid, a.r_j, a.r_b, a.length, ex, ey, psi, profiles.bearing, journal);
+        surface_field(field, grid, a.r_j, a.r_b, length, ex, ey, psi, profiles.bearing, journal);
     }
 
     // WearState.kinematics: the contact of the worn surfaces (eqs. (75), (76)) in place of the
@@ -316,6 +319,19 @@ struct WearState {
                                 omega_j);
     }
 
+    // WearState.slice_kinematics: a spatial slice's contact of the worn surfaces in its plane
+    // (eqs. (75), (76) at its eccentricity, eq. (35)), the rest of its kinematics along that
+    // normal (eqs. (36)-(40)); the unworn slice's own kin where nothing has worn yet
+    Kinematics slice_kinematics(const Params& a, const Profiles& profiles, const Kinematics& kin, double psi,
+                                const V3& p, const V3& u, const V3& dv, const V3& dw, const V3& w_j) {
+        if (!profiles.worn) return kin;
+        const std::vector<double>* journal = a.wear_surface != WEAR_BEARING ? &profiles.journal : nullptr;
+        field_of(a, profiles, kin.ex, kin.ey, psi);
+        WornContact c = worn_contact(field, grid, a.r_j, a.r_b, kin.ex, kin.ey, psi, profiles.bearing, journal);
+        return slice_kinematics_along(a.r_j, a.r_b, kin.s, kin.ex, kin.ey, c.delta + (a.r_b - a.r_j), c.nx, c.ny, p, u,
+                                      dv, dw, w_j);
+    }
+
     // WearState.exponent: the law's d ln F / d ln delta at delta (no rate), for the Winkler
     // modulus, by a central difference through the law's normal force (ContactLaw.normal_force
     // at delta_dot 0, v0 1: eq. (9) of the elastic force alone)
@@ -326,17 +342,17 @@ struct WearState {
         return std::log(hi / lo) / std::log((1.0 + EXPONENT_STEP) / (1.0 - EXPONENT_STEP));
     }
 
-    // WearState.accept: into `out`, the profiles after an accepted step of length h [s] that
-    // ends in the state kin with the normal force f_n, from the profiles `base` at its start
+    // WearState.accept: into `out`, the profiles after an accepted step that ends in the state
+    // kin with the normal force f_n (a slice's: its share), from the profiles `base` at its
+    // start; slip [m] the step's slip at the contact (|v_t| h; a slice's |v_s| h, eq. (42))
     void accept(const Params& a, const Profiles& base, Profiles& out, const Kinematics& kin, double psi, double f_n,
-                double h) {
-        double slip = std::fabs(kin.v_t) * h;
+                double slip) {
         last_stability = 0.0;
         out = base;
         if (f_n <= 0.0 || slip <= 0.0) return;
         field_of(a, base, kin.ex, kin.ey, psi);
         bool winkler = a.wear_pressure == WEAR_WINKLER;
-        double half_width = winkler ? 0.0 : hertz_half_width(f_n, a.r_j, a.r_b, a.length, e_star);
+        double half_width = winkler ? 0.0 : hertz_half_width(f_n, a.r_j, a.r_b, length, e_star);
         pressure_shape(q, field, grid, a.wear_pressure, kin.nx, kin.ny, half_width, a.r_b);
         double factor = winkler && kin.delta > 0.0 ? exponent(a, kin.delta) : 0.0;
         wear_step(step, field, grid, q, f_n, slip, a.wear_coefficient, a.wear_surface != WEAR_JOURNAL,
@@ -352,17 +368,18 @@ struct WearState {
         out.update_worn();
     }
 
-    // WearState.unstable: why the last accepted step was too long for the profile's update, or ""
-    std::string unstable(double v_t, double h) const {
+    // WearState.unstable: why the last accepted step (slip [m] in h [s]) was too long for the
+    // profile's update, or ""; where names the slice (" of slice k"; the planar joint: "")
+    std::string unstable(double slip, double h, const std::string& where) const {
         double stability = last_stability;
         if (stability <= STABILITY_LIMIT) return "";
         double longest = h * STABILITY_LIMIT / stability;
         char text[512];
         std::snprintf(text, sizeof text,
-                      "the wear update is unstable: k_D K ds = %.3g > %g in one step (slip %.3g m in %.3g s; "
+                      "the wear update is unstable: k_D K ds = %.3g > %g in one step%s (slip %.3g m in %.3g s; "
                       "docs/physics.md eq. (81)); give a step of at most %.3g s "
                       "(simulationSettings.timeIntegration.maxStepSize) or a smaller wear coefficient",
-                      stability, STABILITY_LIMIT, std::fabs(v_t) * h, h, longest);
+                      stability, STABILITY_LIMIT, where.c_str(), slip, h, longest);
         return text;
     }
 };

@@ -135,20 +135,32 @@ def physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJo
 
 
 def check_wear(joint: ClearanceJoint, slices: int, backend: str) -> None:
-    """``ValueError`` where the joint's wear cannot be modelled as asked."""
-    if joint.wear is None:
+    """``ValueError`` where the joint's wear cannot be modelled as asked: a starting profile
+    of slices x nodes (:class:`exuclear.Wear`) whose rows are not the spatial joint's slices,
+    or one given to the planar joint (docs/physics.md section 11.7)."""
+    wear = joint.wear
+    if wear is None:
         return
-    if slices:
-        raise ValueError("`wear` is modelled for the planar joint (slices=None); the spatial joint's wear per slice "
-                         "is not built yet")
-    if backend == "compiled" and not kernel_has_wear():
-        raise ValueError("`wear` needs backend='python': this build's compiled kernel has no wear")
+    for name in ("bearing", "journal"):
+        rows = wear.profile_rows(name)
+        if rows and not slices:
+            raise ValueError(f"the wear's `{name}` profile has {rows} rows (slices x nodes, a spatial joint's); the "
+                             f"planar joint (slices=None) takes one profile of {wear.nodes} depths")
+        if rows and rows != slices:
+            raise ValueError(f"the wear's `{name}` profile has {rows} rows but the joint has {slices} slices: give "
+                             f"one row per slice, or one profile of {wear.nodes} depths for every slice")
+    if backend == "compiled" and not kernel_has_wear(slices):
+        raise ValueError("`wear` needs backend='python': this build's compiled kernel has no wear"
+                         + (" per slice" if slices else ""))
 
 
-def kernel_has_wear() -> bool:
+def kernel_has_wear(slices: int = 0) -> bool:
+    """Whether the compiled kernel wears the joint (a spatial joint's slices: ``slices`` > 0)."""
     from . import kernel
 
-    return kernel.COMPILED is not None and hasattr(kernel.COMPILED, "wear_profiles")
+    if kernel.COMPILED is None or not hasattr(kernel.COMPILED, "wear_profiles"):
+        return False
+    return not slices or getattr(kernel.COMPILED, "SLICE_WEAR", False)
 
 
 def check_slices(slices: Any) -> int:

@@ -11,6 +11,8 @@ from __future__ import annotations
 import weakref
 from typing import Any
 
+import numpy as np
+
 from ..history import ContactState, ImpactRecord
 from ..joint import ClearanceJoint
 from ..spatial import ShoulderGeometry
@@ -75,7 +77,8 @@ class Backend:
 
     def wear_profiles(self) -> dict[str, Any]:
         """A worn joint's profiles after the last accepted step: ``bearing``, ``journal``,
-        ``slip`` and ``stability`` per node (the kernel's ``WearState``)."""
+        ``slip`` and ``stability`` per node (the kernel's ``WearState``); a spatial joint's
+        slices x nodes, one row per slice."""
         raise NotImplementedError
 
 
@@ -125,8 +128,11 @@ class PythonBackend(Backend):
         return self.kernel.control.as_dict()
 
     def wear_profiles(self) -> dict[str, Any]:
-        p = self.kernel.wear.current
-        return {"bearing": p.bearing, "journal": p.journal, "slip": p.slip, "stability": p.stability}
+        wears = self.kernel.wear
+        if self.kernel.planar:
+            p = wears[0].current
+            return {"bearing": p.bearing, "journal": p.journal, "slip": p.slip, "stability": p.stability}
+        return {k: np.array([getattr(w.current, k) for w in wears]) for k in ("bearing", "journal", "slip", "stability")}
 
 
 class CompiledBackend(Backend):
@@ -144,16 +150,20 @@ class CompiledBackend(Backend):
         self.set_joint(joint)
 
     def set_joint(self, joint: ClearanceJoint) -> None:
-        """The physics is in the parameters, except what a planar joint's wear starts from: its
-        initial profiles and the law's E* (for the Hertz strip), given here; its worn profiles
-        so far are forgotten, as the Python kernel's ``JointState.joint`` does."""
-        wear = joint.wear if self.slices == 0 else None  # wear is modelled for the planar joint
+        """The physics is in the parameters, except what a joint's wear starts from: its
+        initial profiles (one row per slice of a spatial joint, section 11.7), the length each
+        row stands for (``L / N``) and the law's E* (for the Hertz strip), given here; its worn
+        profiles so far are forgotten, as the Python kernel's ``JointState.joint`` does."""
+        wear = joint.wear
         if wear is None:
-            kernel.COMPILED.set_wear(self.joint_id, [], [], 0.0)
+            kernel.COMPILED.set_wear(self.joint_id, [], [], 0.0, 0.0)
             return
+        rows = max(self.slices, 1)
         zero = [0.0] * wear.nodes
-        kernel.COMPILED.set_wear(self.joint_id, list(zero if wear.bearing is None else wear.bearing),
-                                 list(zero if wear.journal is None else wear.journal), float(joint.law.E_star))
+        bearing = [list(wear.profile_row("bearing", k)) if wear.bearing is not None else zero for k in range(rows)]
+        journal = [list(wear.profile_row("journal", k)) if wear.journal is not None else zero for k in range(rows)]
+        length = joint.geometry.length if not self.slices else joint.geometry.length / self.slices
+        kernel.COMPILED.set_wear(self.joint_id, bearing, journal, float(joint.law.E_star), length)
 
     def user_functions(self) -> dict[str, Any]:
         c = kernel.COMPILED  # one function serves every role; the role is in the parameters
@@ -189,7 +199,8 @@ class CompiledBackend(Backend):
         return dict(kernel.COMPILED.step_control(self.joint_id))
 
     def wear_profiles(self) -> dict[str, Any]:
-        return dict(kernel.COMPILED.wear_profiles(self.joint_id))
+        rows = kernel.COMPILED.wear_profiles(self.joint_id)  # per slice (the planar joint: one)
+        return {k: np.array(v[0] if not self.slices else v) for k, v in dict(rows).items()}
 
 
 def make_backend(name: str, joint: ClearanceJoint, slices: int, axis_journal: V3,

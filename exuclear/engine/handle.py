@@ -21,6 +21,7 @@ from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..wear.profile import WearProfile
 from . import outputs as _outputs
+from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
 from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
@@ -149,6 +150,7 @@ class ClearanceJointHandle:
         if (joint.film is None) != (self._joint.film is None):
             raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
                              "create a new clearance joint")
+        check_wear(joint, self.slices, self.backend)  # a spatial joint's starting profiles: one row per slice
         self._joint = joint
         self._backend.set_joint(joint)
         self._write_parameters()
@@ -258,7 +260,8 @@ class ClearanceJointHandle:
 
     def wear_profile(self) -> WearProfile:
         """The worn profiles after the last accepted step (before a run: those the joint's
-        :class:`exuclear.Wear` starts from); docs/physics.md section 11."""
+        :class:`exuclear.Wear` starts from); docs/physics.md section 11.  A spatial joint's
+        profiles are slices x nodes, one row per slice (section 11.7; :class:`WearProfile`)."""
         wear = self._joint.wear
         if wear is None:
             raise ValueError(f"joint {self.name!r} has no wear: give `wear=exuclear.Wear(coefficient=...)` to the joint")

@@ -76,7 +76,7 @@ LAYOUT = (
     Field("bearing_motion", 4, 5, 1, "1: the loads use the bearing's own spin, from the probe connector; 0: they "
                                      "do not need it (uses_bearing_motion), the probe and torque connectors are off "
                                      "and the kernels take the spin as 0"),
-    Field("wear_code", 2, 5, 1, "a planar joint's wear (section 11): surface code + 4 pressure code + 8 nodes "
+    Field("wear_code", 2, 5, 1, "a joint's wear (section 11; a spatial joint's per slice, 11.7): surface code + 4 pressure code + 8 nodes "
                                 "(wear_code; 0: no wear)"),
     Field("wear_coefficient", 5, 3, 1, "k_D [1/Pa] of the wear's Archard law, eq. (79)"),
 )
@@ -233,7 +233,7 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,
                       eps_film=joint.film.eps_film, eps_cap=joint.film.eps_cap)
-    if joint.wear is not None and slices == 0:  # wear is modelled for the planar joint (arguments.check_wear)
+    if joint.wear is not None:  # the planar joint's wear, or a spatial joint's per slice (section 11.7)
         values.update(wear_code=wear_code(joint.wear), wear_coefficient=joint.wear.coefficient)
     if shoulders is not None:
         values.update(axial_clearance=shoulders.axial_clearance, friction_radius=shoulders.friction_radius,

@@ -56,7 +56,8 @@ def predict_wear(run_cycle: Callable[[Wear], Any], wear: Wear, cycles: float, *,
         ``run_cycle(wear)`` builds the model with ``wear=wear`` on its worn joint, runs one
         cycle and returns the joint's handle (whose ``wear_profile()`` is read).
     wear : Wear
-        The joint's wear; its ``bearing`` and ``journal`` profiles are where it starts.
+        The joint's wear; its ``bearing`` and ``journal`` profiles are where it starts (a
+        spatial joint's: slices x nodes, docs/physics.md section 11.7).
     cycles : float
         How many cycles to predict.
     dN : float, optional
@@ -86,8 +87,9 @@ def predict_wear(run_cycle: Callable[[Wear], Any], wear: Wear, cycles: float, *,
     try:
         while done < cycles:
             profile = run_cycle(current).wear_profile()
-            before_b = np.array(current.bearing) if current.bearing is not None else np.zeros(wear.nodes)
-            before_j = np.array(current.journal) if current.journal is not None else np.zeros(wear.nodes)
+            # a spatial joint's profiles are slices x nodes (section 11.7): the start broadcast to them
+            before_b = np.zeros_like(profile.bearing) + (current.bearing if current.bearing is not None else 0.0)
+            before_j = np.zeros_like(profile.journal) + (current.journal if current.journal is not None else 0.0)
             largest = float(profile.stability.max())
             bound = DIVERGENCE_BOUND / largest if largest > 0.0 else math.inf
             step = max(1.0, math.floor(safety * bound)) if dN is None else dN

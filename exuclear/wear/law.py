@@ -4,9 +4,10 @@ docs/physics.md section 11 states the physics.  Pure Python (no exudyn).
 """
 from __future__ import annotations
 
-import math
-from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
 
 from ..checks import check_positive, warn_unit
 
@@ -46,15 +47,17 @@ class Wear:
     bearing, journal : sequence of float, optional
         Depth profiles [m] to start from (``nodes`` values each, >= 0; the bearing's in its
         joint frame, the journal's in its own), e.g. those :func:`exuclear.predict_wear`
-        extrapolated; default unworn.
+        extrapolated; default unworn.  For a spatial joint also ``slices`` x ``nodes``
+        values, one row per slice (docs/physics.md section 11.7; the joint checks the rows
+        against its slices); one row: every slice starts from it.
     """
 
     coefficient: float
     surface: str = "bearing"
     nodes: int = NODES_DEFAULT
     pressure: str = "winkler"
-    bearing: tuple[float, ...] | None = None
-    journal: tuple[float, ...] | None = None
+    bearing: tuple[float, ...] | tuple[tuple[float, ...], ...] | None = None
+    journal: tuple[float, ...] | tuple[tuple[float, ...], ...] | None = None
 
     def __post_init__(self) -> None:
         k = check_positive("coefficient", self.coefficient)
@@ -71,10 +74,10 @@ class Wear:
             value = getattr(self, name)
             if value is not None:
                 object.__setattr__(self, name, _profile(name, value, self.nodes))
-        if self.journal is not None and not self.wears_journal and any(self.journal):
+        if self.journal is not None and not self.wears_journal and _worn(self.journal):
             raise ValueError("a worn `journal` profile is given but only the bearing wears (`surface='bearing'`): "
                              "give surface='journal' or 'both', or leave `journal` out")
-        if self.bearing is not None and not self.wears_bearing and any(self.bearing):
+        if self.bearing is not None and not self.wears_bearing and _worn(self.bearing):
             raise ValueError("a worn `bearing` profile is given but only the journal wears (`surface='journal'`): "
                              "give surface='bearing' or 'both', or leave `bearing` out")
 
@@ -86,20 +89,41 @@ class Wear:
     def wears_journal(self) -> bool:
         return self.surface in ("journal", "both")
 
-    def starting_from(self, bearing: Sequence[float] | None, journal: Sequence[float] | None) -> Wear:
-        """The same wear, starting from the depth profiles ``bearing`` and ``journal`` [m]."""
-        return replace(self, bearing=None if bearing is None else tuple(bearing),
-                       journal=None if journal is None else tuple(journal))
+    def starting_from(self, bearing: Any, journal: Any) -> Wear:
+        """The same wear, starting from the depth profiles ``bearing`` and ``journal`` [m]
+        (``nodes`` values, or ``slices`` x ``nodes`` for a spatial joint)."""
+        return replace(self, bearing=bearing, journal=journal)
+
+    def profile_rows(self, name: str) -> int:
+        """The rows of the starting profile ``name`` (``"bearing"`` or ``"journal"``): 0 where
+        it is one profile (or none), else its slices."""
+        value = getattr(self, name)
+        return len(value) if value is not None and isinstance(value[0], tuple) else 0
+
+    def profile_row(self, name: str, row: int) -> tuple[float, ...]:
+        """The starting profile ``name`` of slice ``row``: its row of a slices x nodes
+        profile, the one profile for every slice."""
+        value = getattr(self, name)
+        return value[row] if self.profile_rows(name) else value
 
 
-def _profile(name: str, values: Sequence[float], nodes: int) -> tuple[float, ...]:
-    """``values`` as a tuple of ``nodes`` finite depths >= 0, or ``ValueError`` naming ``name``."""
+def _worn(value: tuple) -> bool:
+    return any(any(row) if isinstance(row, tuple) else row for row in value)
+
+
+def _profile(name: str, values: Any, nodes: int) -> tuple[float, ...] | tuple[tuple[float, ...], ...]:
+    """``values`` as a tuple of ``nodes`` finite depths >= 0, or as a tuple of such rows
+    (slices x nodes), or ``ValueError`` naming ``name``."""
     try:
-        out = tuple(float(v) for v in values)
+        array = np.array(values, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"`{name}` must be a sequence of {nodes} depths [m]") from None
-    if len(out) != nodes:
-        raise ValueError(f"`{name}` must have `nodes` = {nodes} depths, got {len(out)}")
-    if not all(math.isfinite(v) and v >= 0.0 for v in out):
+        raise ValueError(f"`{name}` must be a sequence of {nodes} depths [m] (or slices x {nodes})") from None
+    if array.ndim not in (1, 2) or array.shape[-1] != nodes or array.shape[0] == 0:
+        got = array.shape[0] if array.ndim == 1 else f"shape {array.shape}"
+        raise ValueError(f"`{name}` must have `nodes` = {nodes} depths, got {got} (a spatial joint's: slices x "
+                         f"{nodes})")
+    if not np.all(np.isfinite(array) & (array >= 0.0)):
         raise ValueError(f"`{name}` depths must be finite and >= 0 [m]")
-    return out
+    if array.ndim == 1:
+        return tuple(float(v) for v in array)
+    return tuple(tuple(float(v) for v in row) for row in array)

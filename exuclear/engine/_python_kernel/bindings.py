@@ -82,7 +82,7 @@ class JointKernel(JointStepControl):
             return [REDO_STEP_ERROR, redo, *data]
         states = self._accept_all(base, kins, t)
         if self.wear is not None:
-            self.accept_wear(advance, kins[0], rotation[2], states[0].normal_force, t - base[0].time, t)
+            self.accept_wear(advance, kins, rotation[2], states, t - base[0].time, t)
         # the step before this one: free flight must have lasted both (a repeated step: unknown)
         before = self.previous if advance else None
         allow = self.step_growth(before, base, states, t, read(stiffness, "rate_limit"))
@@ -92,7 +92,7 @@ class JointKernel(JointStepControl):
         h = t - base[0].time
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
-        conformal = self.wear is not None and states[0].in_contact and self.wear.current.worn
+        conformal = self.in_worn_contact(states)
         self.steer_jacobian(math.inf if switched else h, conformal)
         self.report_growth(mbs, t, allow, h)
         return [0.0, -1.0, *self.data_values(t, u, p[2], states)]

@@ -9,6 +9,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from ...geometry import BearingGeometry
 from ...history import ContactState, ImpactRecord
 from ...joint import ClearanceJoint
 from ...spatial import ShoulderGeometry
@@ -110,7 +111,12 @@ class JointState:
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
         self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
-        self.wear = WearState(joint.wear, g, joint.law) if joint.wear is not None and self.planar else None
+        # the planar joint's one wear state; a spatial joint's per slice, each on its length L / N (section 11.7)
+        self.wear: list[WearState] | None = None
+        if joint.wear is not None:
+            slice_geometry = g if self.planar else BearingGeometry(g.journal_radius, g.bearing_radius,
+                                                                   g.length / self.slices)
+            self.wear = [WearState(joint.wear, slice_geometry, joint.law, k) for k in range(self.slices)]
 
     def reset(self) -> None:
         self.started = False
@@ -123,8 +129,8 @@ class JointState:
         self.initial_axis, self.initial_axial = (0.0, 0.0, 1.0), 0.0
         self.failure, self.failure_time = "", 0.0
         self.control = StepControl(self.control.runs)  # the run-start callback is kept
-        if self.wear is not None:
-            self.wear.reset()
+        for w in self.wear or ():
+            w.reset()
 
     def _fail(self, message: str, t: float) -> None:
         """Record why and when the run cannot go on, and raise (the compiled kernel's ``fail``)."""
@@ -157,12 +163,13 @@ class JointState:
                 pass
 
     # -- bookkeeping -------------------------------------------------------------------
-    def wear_profiles(self, t: float) -> Any:
-        """The wear profiles an evaluation at time ``t`` uses (as :meth:`history_for` chooses
-        the history, module docstring of :mod:`.wear`)."""
+    def wear_profiles(self, t: float, k: int = 0) -> Any:
+        """The wear profiles of slice ``k`` an evaluation at time ``t`` uses (as :meth:`history_for`
+        chooses the history, module docstring of :mod:`.wear`)."""
+        w = self.wear[k]
         if not self.started or t < self.previous[0].time:
-            return self.wear.initial
-        return self.wear.previous if t <= self.current[0].time else self.wear.current
+            return w.initial
+        return w.previous if t <= self.current[0].time else w.current
 
     def joint_kinematics(self, displacement: Any, rotation: Any, velocity: Any, angular_velocity: Any,
                          bearing_motion: bool = True, t: float = 0.0) -> tuple[V3, V3, list[Kinematics]]:
@@ -178,8 +185,8 @@ class JointState:
             kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
                                      omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
             if self.wear is not None:
-                kin = self.wear.kinematics(self.wear_profiles(t), kin, rotation[2], velocity[0], velocity[1], omega_i,
-                                           omega_j)
+                kin = self.wear[0].kinematics(self.wear_profiles(t), kin, rotation[2], velocity[0], velocity[1],
+                                              omega_i, omega_j)
             if self.film is not None:
                 self.film_inputs = [FilmInput(displacement[0], displacement[1], velocity[0], velocity[1], omega_i,
                                               omega_j)]
@@ -189,6 +196,9 @@ class JointState:
         dv = (velocity[0], velocity[1], velocity[2])
         dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
         kins: list[Kinematics] = [slice_kinematics(self.r_j, self.r_b, z, p, u, dv, dw, w_j) for z in self.centres]
+        if self.wear is not None:  # each slice's worn contact in its plane, psi its turn about the axis (section 11.7)
+            kins = [w.slice_kinematics(self.wear_profiles(t, k), kin, rotation[2], p, u, dv, dw, w_j)
+                    for k, (w, kin) in enumerate(zip(self.wear, kins))]
         if self.film is not None:
             self.film_inputs = [slice_film_input(k, p, u, dv, dw, w_j) for k in kins]
         if self.shoulders is not None:
@@ -221,8 +231,8 @@ class JointState:
             self.records = [[] for _ in range(self.n_contacts)]
             self.failure = ""
             self.start_run()
-            if self.wear is not None:
-                self.wear.reset()
+            for w in self.wear or ():
+                w.reset()
             self.current = tuple(ContactState(time=t).accept(c.accepted(k), c, t)[0]
                                  for k, c in zip(kins, self.contacts))
             if self.film is not None:
@@ -234,19 +244,26 @@ class JointState:
                 self._fail(DIVERGED, t)
         return self.previous if t <= self.current[0].time else self.current
 
-    def accept_wear(self, advance: bool, kin: Kinematics, psi: float, f_n: float, h: float, t: float) -> None:
-        """The wear of an accepted step of length ``h`` [s] ending at ``t`` in the state ``kin``
-        with the normal force ``f_n`` (``advance``: a new step, else one computed again, as
-        in ``post_newton``); stops the run where the profile's update would be unstable."""
-        wear = self.wear
-        base = wear.current if advance else wear.previous
-        new = wear.accept(base, kin, psi, f_n, h)
-        if advance:
-            wear.previous = wear.current
-        wear.current = new
-        why = wear.unstable(kin.v_t, h)
-        if why:
-            self._fail(why, t)
+    def accept_wear(self, advance: bool, kins: list[Kinematics], psi: float, states: Any, h: float, t: float) -> None:
+        """The wear of an accepted step of length ``h`` [s] ending at ``t`` in the states ``kins``
+        with the contacts' ``states`` (their normal forces; ``advance``: a new step, else one
+        computed again, as in ``post_newton``), slice by slice: each with its slip, ``|v_t| h``
+        (planar) or ``|v_s| h`` (a spatial slice, eq. (42)), and its normal force; stops the
+        run where a profile's update would be unstable (eq. (81))."""
+        for k, (wear, kin, state) in enumerate(zip(self.wear, kins, states)):
+            slip = (abs(kin.v_t) if self.planar else kin.speed) * h
+            base = wear.current if advance else wear.previous
+            new = wear.accept(base, kin, psi, state.normal_force, slip)
+            if advance:
+                wear.previous = wear.current
+            wear.current = new
+            why = wear.unstable(slip, h, "" if self.planar else f" of slice {k}")
+            if why:
+                self._fail(why, t)
+
+    def in_worn_contact(self, states: Any) -> bool:
+        """Whether a slice is in contact on a worn profile (its contact conformal, section 11.1)."""
+        return self.wear is not None and any(s.in_contact and w.current.worn for w, s in zip(self.wear, states))
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the

@@ -2,6 +2,10 @@
 the worn contact's kinematics, and the wear of each accepted step.  The compiled kernel's
 ``wear.hpp``.
 
+The planar joint has one :class:`WearState`; the spatial joint one per slice (docs/physics.md
+section 11.7), each on the slice's length ``L / N`` with its share of the law's force, in the
+slice's plane.
+
 As the contact history (package docstring), the profiles are kept at the start
 (``previous``) and at the end (``current``) of the last accepted step: an evaluation of a
 new step uses ``current``, one of a step computed again ``previous``, and a run's first
@@ -14,6 +18,7 @@ import math
 import numpy as np
 
 from ...geometry import BearingGeometry, ContactKinematics, kinematics_along
+from ...spatial import V3, SliceKinematics, slice_kinematics_along
 from ...wear.law import Wear
 from ...wear.surface import (
     SurfaceField,
@@ -45,15 +50,21 @@ class Profiles:
 
 
 class WearState:
-    """One planar joint's wear (module docstring)."""
+    """The wear of a planar joint, or of one slice of a spatial joint (module docstring).
 
-    def __init__(self, wear: Wear, geometry: BearingGeometry, law: object) -> None:
+    ``geometry``: the joint's, with the slice's length ``L / N`` for a slice; ``row``: the
+    slice's index, which row of a slices x nodes starting profile (:class:`exuclear.Wear`'s
+    ``bearing``, ``journal``) it starts from (a one-row profile: every slice's).
+    """
+
+    def __init__(self, wear: Wear, geometry: BearingGeometry, law: object, row: int = 0) -> None:
         self.wear, self.geometry, self.law = wear, geometry, law
         self.grid = grid(wear.nodes)
         n = wear.nodes
         zero = np.zeros(n)
-        self.initial = Profiles(np.array(wear.bearing if wear.bearing is not None else zero),
-                                np.array(wear.journal if wear.journal is not None else zero), zero, zero)
+        self.initial = Profiles(np.array(wear.profile_row("bearing", row) if wear.bearing is not None else zero),
+                                np.array(wear.profile_row("journal", row) if wear.journal is not None else zero),
+                                zero, zero)
         self.reset()
 
     def reset(self) -> None:
@@ -78,16 +89,30 @@ class WearState:
         return kinematics_along(self.geometry, kin.ex, kin.ey, c.delta + self.geometry.clearance, c.nx, c.ny, dvx, dvy,
                                 omega_i, omega_j)
 
+    def slice_kinematics(self, profiles: Profiles, kin: SliceKinematics, psi: float, p: V3, u: V3, dv: V3, dw: V3,
+                         w_j: V3) -> SliceKinematics:
+        """A spatial slice's contact of the worn surfaces in its plane (eqs. (75), (76) at its
+        eccentricity, eq. (35)), the rest of its kinematics along that normal (eqs.
+        (36)-(40)); the unworn slice's own ``kin`` where nothing has worn yet."""
+        if not profiles.worn:
+            return kin
+        g, journal = self.geometry, profiles.journal if self.wear.wears_journal else None
+        c = worn_contact(self.field(profiles, kin.ex, kin.ey, psi), self.grid, g.journal_radius, g.bearing_radius,
+                         kin.ex, kin.ey, psi, profiles.bearing, journal)
+        return slice_kinematics_along(g.journal_radius, g.bearing_radius, kin.s, kin.ex, kin.ey,
+                                      c.delta + g.clearance, c.nx, c.ny, p, u, dv, dw, w_j)
+
     def exponent(self, delta: float) -> float:
         """The law's ``d ln F / d ln delta`` at ``delta`` (no rate), for the Winkler modulus."""
         hi = self.law.normal_force(delta * (1.0 + EXPONENT_STEP), 0.0, 1.0)
         lo = self.law.normal_force(delta * (1.0 - EXPONENT_STEP), 0.0, 1.0)
         return math.log(hi / lo) / math.log((1.0 + EXPONENT_STEP) / (1.0 - EXPONENT_STEP))
 
-    def accept(self, base: Profiles, kin: ContactKinematics, psi: float, f_n: float, h: float) -> Profiles:
-        """The profiles after an accepted step of length ``h`` [s] that ends in the state ``kin``
-        with the normal force ``f_n``, from the profiles ``base`` at its start."""
-        slip = abs(kin.v_t) * h
+    def accept(self, base: Profiles, kin: ContactKinematics | SliceKinematics, psi: float, f_n: float,
+               slip: float) -> Profiles:
+        """The profiles after an accepted step that ends in the state ``kin`` with the normal
+        force ``f_n`` (a slice's: its share), from the profiles ``base`` at its start; ``slip``
+        [m] the step's slip at the contact (``|v_t| h``; a slice's ``|v_s| h``, eq. (42))."""
         self.last_stability = 0.0
         if f_n <= 0.0 or slip <= 0.0:
             return base
@@ -104,12 +129,13 @@ class WearState:
         loaded = step.loaded.astype(float)
         return base.plus(step.bearing, step.journal, slip * loaded, step.stability * loaded)
 
-    def unstable(self, v_t: float, h: float) -> str:
-        """Why the last accepted step was too long for the profile's update, or ``""``."""
+    def unstable(self, slip: float, h: float, where: str = "") -> str:
+        """Why the last accepted step (``slip`` [m] in ``h`` [s]) was too long for the profile's
+        update, or ``""``; ``where`` names the slice (``" of slice k"``; the planar joint: ``""``)."""
         stability = self.last_stability
         if stability <= STABILITY_LIMIT:
             return ""
         longest = h * STABILITY_LIMIT / stability
-        return (f"the wear update is unstable: k_D K ds = {stability:.3g} > {STABILITY_LIMIT:g} in one step (slip "
-                f"{abs(v_t) * h:.3g} m in {h:.3g} s; docs/physics.md eq. (81)); give a step of at most {longest:.3g} s "
+        return (f"the wear update is unstable: k_D K ds = {stability:.3g} > {STABILITY_LIMIT:g} in one step{where} (slip "
+                f"{slip:.3g} m in {h:.3g} s; docs/physics.md eq. (81)); give a step of at most {longest:.3g} s "
                 "(simulationSettings.timeIntegration.maxStepSize) or a smaller wear coefficient")
