@@ -10,11 +10,8 @@ import exudyn as exu
 import numpy as np
 import pytest
 from exudyn.itemInterface import (
-    CoordinateConstraint,
     Force,
     MarkerBodyRigid,
-    MarkerNodeCoordinate,
-    NodePointGround,
     NodeRigidBody2D,
     ObjectGround,
     ObjectJointGeneric,
@@ -26,13 +23,14 @@ from exudyn.utilities import InertiaCylinder, RigidBodyInertia
 
 import exuclear
 from exuclear.engine import kernel
+from validation.wear import worn_in_journal as scene
 
 COMPILED = pytest.mark.skipif(kernel.STATUS != kernel.STATUS_DIRECT, reason=f"compiled kernel: {kernel.STATUS}")
 
 #: The worn-in journal of validation/wear/worn_in_journal.py: the paper's bearing (R = 10 mm,
 #: c = 0.1 mm, L = 15 mm), a journal turning at 100 rad/s, pressed along -x by 500 N.
-RADIUS, CLEARANCE, LENGTH = 10e-3, 0.1e-3, 15e-3
-FORCE, SPIN = 500.0, 100.0
+RADIUS, CLEARANCE, LENGTH = scene.RADIUS, scene.CLEARANCE, scene.LENGTH
+FORCE, SPIN = scene.FORCE, scene.SPIN
 R_J = RADIUS - CLEARANCE
 PROFILES = ("bearing", "journal", "slip", "stability")
 
@@ -54,19 +52,7 @@ def worn_in_journal(backend: str, slices: int | None, end_time: float, wear: exu
     slices: with the planar body the journal's axis stays parallel to the bearing's (the
     aligned spatial joint of tests/test_spatial_joint.py).  Its outputs, the body's
     coordinates per accepted step, its profiles (where it wears) and whether the solve raised."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[-CLEARANCE, 0.0, 0.0],
-                                       initialVelocities=[-velocity, 0.0, spin]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=0.5 * R_J**2))
-    m_body, m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)), mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground))
-    mbs.AddLoad(Force(markerNumber=m_body, loadVector=[-force, 0.0, 0.0]))
-    m_angle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
-    m_fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
-    mbs.AddObject(CoordinateConstraint(markerNumbers=[m_fixed, m_angle], offset=spin, velocityLevel=True))
-    handle = exuclear.AddClearanceJoint(mbs, [m_ground, m_body], journal_radius=R_J, bearing_radius=RADIUS,
-                                        length=LENGTH, law="lankarani-nikravesh", cr=0.5, friction="none", wear=wear,
-                                        backend=backend, slices=slices, show=False)
+    mbs, handle, node = scene.build(wear, backend=backend, spin=spin, force=force, velocity=velocity, slices=slices)
     sensor = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False,
                                       outputVariableType=exu.OutputVariableType.Coordinates))
     mbs.Assemble()

@@ -60,12 +60,14 @@ class Run:
 
 def build(wear: exuclear.Wear | None, *, friction: str = "none", backend: str = "python", spin: float = SPIN,
           force: float = FORCE, velocity: float = 0.0, hold_spin: bool = True,
-          lubrication: exuclear.Lubrication | None = None, start: float = CLEARANCE) -> tuple:
+          lubrication: exuclear.Lubrication | None = None, start: float = CLEARANCE,
+          slices: int | None = None) -> tuple:
     """The worn-in journal's model, not yet assembled: the journal at ``(-start, 0)`` (by
     default against the wall), moving along -x at ``velocity`` [m/s], turning at ``spin`` [rad/s] (held there
     by a velocity constraint on its angle where ``hold_spin``), pressed along -x by ``force``
-    [N], in a joint with ``wear`` (None: none) and ``lubrication`` (None: dry).  Returns
-    ``(mbs, handle, node)``."""
+    [N], in a joint with ``wear`` (None: none) and ``lubrication`` (None: dry), planar or of
+    ``slices`` slices (the planar body keeps the journal's axis parallel to the bearing's: an
+    aligned spatial joint).  Returns ``(mbs, handle, node)``."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     r_j = RADIUS - CLEARANCE
@@ -81,7 +83,7 @@ def build(wear: exuclear.Wear | None, *, friction: str = "none", backend: str = 
     handle = exuclear.AddClearanceJoint(
         mbs, [m_ground, m_body], journal_radius=r_j, bearing_radius=RADIUS, length=LENGTH,
         law="lankarani-nikravesh", cr=0.5, friction=friction, backend=backend, show=False, wear=wear,
-        lubrication=lubrication)
+        lubrication=lubrication, slices=slices)
     return mbs, handle, node
 
 
