@@ -150,18 +150,51 @@ struct WornContact {  // surface.py WornContact: the penetration the law takes, 
     double delta, nx, ny;
 };
 
+// surface.py surface_field and worn_contact's resultant in one pass over the window, for the
+// force evaluations: a node whose surfaces do not overlap adds nothing to the resultant of
+// eq. (75) (its term is an exact zero), so its normal and area are not computed, and nothing
+// is stored.  The resultant's sums are those of worn_contact over surface_field, node by
+// node in the same order: the same bits.
+void overlap_resultant(std::vector<int>& nodes, const Grid& g, double r_j, double r_b, double length, double ex,
+                       double ey, double psi, const std::vector<double>& bearing, const std::vector<double>* journal,
+                       double& rx, double& ry) {
+    window(nodes, g, ex, ey, r_b - r_j);
+    rx = 0.0;
+    ry = 0.0;
+    double e2 = ex * ex + ey * ey;
+    for (int node : nodes) {
+        size_t k = static_cast<size_t>(node);
+        double cos_t = g.cos[k], sin_t = g.sin[k], depth = bearing[k];
+        double a = ex * cos_t + ey * sin_t;
+        double b = std::sqrt(np_maximum(r_j * r_j - e2 + a * a, 0.0));
+        double rho = a + b;
+        double cos_gamma = b / r_j;
+        double w = (rho - r_b - depth) * cos_gamma;                                      // eq. (73)
+        double nx = 0.0, ny = 0.0;
+        if (journal != nullptr) {
+            nx = (rho * cos_t - ex) / r_j;
+            ny = (rho * sin_t - ey) / r_j;
+            w = w - periodic_value(*journal, std::atan2(ny, nx) - psi, g.dtheta);
+        }
+        if (!(w > 0.0)) continue;
+        if (journal == nullptr) {
+            nx = (rho * cos_t - ex) / r_j;
+            ny = (rho * sin_t - ey) / r_j;
+        }
+        double q = w * (length * (r_b + depth) * g.dtheta / np_maximum(cos_gamma, 1e-12));  // eq. (74)
+        rx += q * nx;
+        ry += q * ny;
+    }
+}
+
 // surface.py worn_contact: the normal is that of the resultant sum w_k+ n_k A_k of the
 // overlaps (eq. (75)), the eccentricity's direction where the surfaces do not overlap; the
 // penetration is the overlap on the ray along that normal (eq. (76)).  Both move
 // continuously with the journal, as Newton's iterations on the contact force need.
-WornContact worn_contact(const SurfaceField& f, const Grid& g, double r_j, double r_b, double ex, double ey,
-                         double psi, const std::vector<double>& bearing, const std::vector<double>* journal) {
-    double rx = 0.0, ry = 0.0;
-    for (size_t i = 0; i < f.nodes.size(); ++i) {
-        double q = np_maximum(f.w[i], 0.0) * f.area[i];
-        rx += q * f.nx[i];
-        ry += q * f.ny[i];
-    }
+WornContact worn_contact(std::vector<int>& nodes, const Grid& g, double r_j, double r_b, double length, double ex,
+                         double ey, double psi, const std::vector<double>& bearing, const std::vector<double>* journal) {
+    double rx, ry;
+    overlap_resultant(nodes, g, r_j, r_b, length, ex, ey, psi, bearing, journal, rx, ry);
     double r = std::sqrt(rx * rx + ry * ry);
     WornContact c;
     if (r > 0.0) {
@@ -313,8 +346,8 @@ struct WearState {
                           double dvy, double omega_i, double omega_j) {
         if (!profiles.worn) return kin;
         const std::vector<double>* journal = a.wear_surface != WEAR_BEARING ? &profiles.journal : nullptr;
-        field_of(a, profiles, kin.ex, kin.ey, psi);
-        WornContact c = worn_contact(field, grid, a.r_j, a.r_b, kin.ex, kin.ey, psi, profiles.bearing, journal);
+        WornContact c = worn_contact(field.nodes, grid, a.r_j, a.r_b, length, kin.ex, kin.ey, psi, profiles.bearing,
+                                     journal);
         return kinematics_along(a.r_j, a.r_b, kin.ex, kin.ey, c.delta + (a.r_b - a.r_j), c.nx, c.ny, dvx, dvy, omega_i,
                                 omega_j);
     }
@@ -326,8 +359,8 @@ struct WearState {
                                 const V3& p, const V3& u, const V3& dv, const V3& dw, const V3& w_j) {
         if (!profiles.worn) return kin;
         const std::vector<double>* journal = a.wear_surface != WEAR_BEARING ? &profiles.journal : nullptr;
-        field_of(a, profiles, kin.ex, kin.ey, psi);
-        WornContact c = worn_contact(field, grid, a.r_j, a.r_b, kin.ex, kin.ey, psi, profiles.bearing, journal);
+        WornContact c = worn_contact(field.nodes, grid, a.r_j, a.r_b, length, kin.ex, kin.ey, psi, profiles.bearing,
+                                     journal);
         return slice_kinematics_along(a.r_j, a.r_b, kin.s, kin.ex, kin.ey, c.delta + (a.r_b - a.r_j), c.nx, c.ny, p, u,
                                       dv, dw, w_j);
     }
