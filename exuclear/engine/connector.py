@@ -36,11 +36,13 @@ from exudyn.itemInterface import (
     MarkerBodyRigid,
     MarkerKinematicTreeRigid,
     NodeGenericData,
+    ObjectConnectorDistance,
     ObjectConnectorRigidBodySpringDamper,
     ObjectGround,
     ObjectJointGeneric,
     SensorNode,
     SensorObject,
+    VObjectConnectorDistance,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
     VObjectJointGeneric,
@@ -51,6 +53,7 @@ from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
 from . import kernel
+from ._python_kernel.follow import FollowState
 from .arguments import (
     AXIS_UNIT_TOLERANCE,
     DEFAULT_SLICES,
@@ -89,6 +92,12 @@ BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default
 
 #: The backend used where none is given: ``"compiled"`` where its self-test passed.
 DEFAULT_BACKEND = kernel.default_backend()
+
+
+#: How the joint carries a sustained contact (``contact_mode``): docs/guide/contact_following.md.
+CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
+                 "follow": "a sustained contact carried by a distance constraint at the law's static penetration "
+                           "(opt-in prototype: planar joint, Python kernel, implicit solvers)"}
 
 
 #: Largest entry of ``R - I`` below which two markers' reference frames are taken as one:
@@ -181,6 +190,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     record: bool = True,
     show: bool = True,
     slices: int | None = None,
+    contact_mode: str = "compliant",
     _frame: np.ndarray | None = None,
     _drawing: dict | None = None,
     **joint_parameters: Any,
@@ -204,6 +214,10 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
+    contact_mode = check_choice("contact_mode", contact_mode, CONTACT_MODES)
+    if contact_mode == "follow":
+        _check_follow(joint, slices, backend)
+        backend = "python"
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
@@ -258,6 +272,13 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
         springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
         visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
+    if contact_mode == "follow":
+        # the following mode's constraint, off until a contact is sustained (_python_kernel/follow.py)
+        follow = FollowState(joint.law, joint.geometry.clearance)
+        follow.object = handle.followNumber = mbs.AddObject(ObjectConnectorDistance(
+            name=f"{name}:follow" if name else "", markerNumbers=[m_bearing, m_journal],
+            distance=joint.geometry.clearance, activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
+        handle._backend.kernel.follow = follow
     if handle.probeNumber is not None:
         handle.torqueNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
             name=f"{name}:torque" if name else "", markerNumbers=[m_bearing, m_ground], rotationMarker0=rotation0,
@@ -303,6 +324,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     bearingRotates: bool | None = None,
     record: bool = True,
     slices: int | None = None,
+    contact_mode: str = "compliant",
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
@@ -478,7 +500,18 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         markers.append(marker)
     return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
                              constrainAxial=constrainAxial, bearingRotates=bearingRotates, record=record, show=show,
-                             slices=slices, _frame=frame0, _drawing=draw, **joint_parameters)
+                             slices=slices, contact_mode=contact_mode, _frame=frame0, _drawing=draw,
+                             **joint_parameters)
+
+
+def _check_follow(joint: ClearanceJoint, slices: int | None, backend: str | None) -> None:
+    """What the following mode's prototype does not cover yet is refused, with the reason."""
+    if slices:
+        raise ValueError("contact_mode='follow' is for the planar joint only so far (no `slices`)")
+    if joint.film is not None or joint.wear is not None:
+        raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
+    if backend == "compiled":
+        raise ValueError("contact_mode='follow' runs on the Python kernel only so far: give backend='python' or none")
 
 
 def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:
