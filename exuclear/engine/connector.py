@@ -99,6 +99,12 @@ CONTACT_MODES = {"compliant": "the compliant contact law at every step (the defa
                  "follow": "a sustained contact carried by a distance constraint at the law's static penetration "
                            "(opt-in prototype: planar joint, Python kernel, implicit solvers)"}
 
+#: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
+#: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
+#: comes from here runs on the Python kernel whatever its ``backend`` asks while the mode is
+#: "follow" (the prototype has no compiled side).
+DEFAULT_CONTACT_MODE = "compliant"
+
 
 #: Largest entry of ``R - I`` below which two markers' reference frames are taken as one:
 #: the round-off of composing and reading back rotation matrices (1e-16 per product),
@@ -190,7 +196,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     record: bool = True,
     show: bool = True,
     slices: int | None = None,
-    contact_mode: str = "compliant",
+    contact_mode: str | None = None,
     _frame: np.ndarray | None = None,
     _drawing: dict | None = None,
     **joint_parameters: Any,
@@ -214,9 +220,10 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
-    contact_mode = check_choice("contact_mode", contact_mode, CONTACT_MODES)
+    inherited = contact_mode is None
+    contact_mode = check_choice("contact_mode", DEFAULT_CONTACT_MODE if inherited else contact_mode, CONTACT_MODES)
     if contact_mode == "follow":
-        _check_follow(joint, slices, backend)
+        _check_follow(joint, slices, None if inherited else backend)
         backend = "python"
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
@@ -324,7 +331,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     bearingRotates: bool | None = None,
     record: bool = True,
     slices: int | None = None,
-    contact_mode: str = "compliant",
+    contact_mode: str | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
