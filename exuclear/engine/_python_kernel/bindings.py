@@ -4,6 +4,7 @@ torque connector's.  The compiled kernel's ``bindings.cpp``."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from .follow import FollowState
@@ -37,7 +38,7 @@ class JointKernel(JointStepControl):
         loads = [0.0] * 9
         if follow is not None and follow.active:  # the constraint holds the contact: friction from its multiplier
             kin, h, c = kins[0], history[0], self.contacts[0]
-            lam = follow.normal_force(mbs)
+            lam = follow.friction_force(mbs)
             f_t = c.friction.coefficient(kin.v_t) * lam if c.friction.active and lam > 0.0 else 0.0
             c.add_loads(loads, u, kin, ContactResponse(0.0, f_t, h.v0))
             self.torque_correction = (loads[6], loads[7], loads[8])
@@ -119,6 +120,9 @@ class JointKernel(JointStepControl):
             follow.after_step(mbs, t, h, states[0].delta, base[0].delta_dot, states[0].delta_dot, states[0].in_contact,
                               states[0].onset_time, states[0].normal_force, self.control.impact_mass)
             switched = switched or follow.active != was
+            if was and follow.active:  # a followed step: the normal force is the constraint's (two-step mean)
+                states = (replace(states[0], normal_force=follow.multiplier), *states[1:])
+                self.current = states
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
         conformal = self.wear is not None and states[0].in_contact and self.wear.current.worn
         self.steer_jacobian(math.inf if switched else h, conformal)

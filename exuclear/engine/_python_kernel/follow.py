@@ -79,6 +79,10 @@ RELEASE_FILTERED = True
 #: Redo the step in which the two-step mean turned tensile so the release lands at its end
 #: (off with RELEASE_FILTERED: a shorter step does not place the low-passed zero).
 RELEASE_REDO = False
+#: The normal force friction acts from while following: "filtered" (the low-passed multiplier
+#: of the accepted steps, explicit), "iterate" (Newton's present multiplier) or "mean" (the
+#: mean of the present and the last accepted multiplier).
+FRICTION_FROM = "filtered"
 #: A release found at this fraction of the step or later is accepted where it is (no redo).
 RELEASE_LATE = 0.9
 
@@ -109,6 +113,14 @@ class FollowState:
         self.switch_off_times: list[float] = []
 
     # -- reading and setting the constraint --------------------------------------------
+    def friction_force(self, mbs: Any) -> float:
+        """The normal force friction acts from while following (FRICTION_FROM)."""
+        if FRICTION_FROM == "filtered":
+            return self.filtered
+        if FRICTION_FROM == "iterate":
+            return self.read_multiplier(mbs)
+        return self.normal_force(mbs)
+
     def normal_force(self, mbs: Any) -> float:
         """The normal force the friction acts from: the mean of the multiplier at the present
         state and at the last accepted step.  Exudyn's generalized-alpha multiplier of a
