@@ -433,6 +433,14 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         with its own history: a linear flat-punch stiffness ``2 E* shoulder_radius`` with
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
+    contact_mode : str, optional
+        ``"compliant"`` (the default, :data:`DEFAULT_CONTACT_MODE` where None): the contact
+        law at every step.  ``"follow"`` (opt-in prototype of issue 34,
+        docs/guide/contact_following.md): a contact sustained for several contact periods
+        is carried by an ``ObjectConnectorDistance`` at the law's static penetration under
+        its multiplier, with friction from that multiplier, and let go where it turns
+        tensile; the planar joint on the Python kernel, dry and unworn, implicit solvers
+        only (``handle.follow_counts()`` says what it did).
 
     Returns
     -------
