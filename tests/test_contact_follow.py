@@ -154,7 +154,7 @@ def test_slider_crank_follows_its_permanent_contact():
     the compliant force within 2 % of its peak once the switch's transient has passed
     (10 ms after it; measured: 0.8 N of 49 N), up to the run's last step (whose two-step
     mean straddles the shortened final step)."""
-    from exuclear.engine import connector
+    from exuclear.engine import following
     from exuclear.models import _slider_crank_run as run_module
     from exuclear.models.slider_crank import SliderCrankParams, run
 
@@ -170,13 +170,13 @@ def test_slider_crank_follows_its_permanent_contact():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for mode in ("compliant", "follow"):
-            saved = connector.DEFAULT_CONTACT_MODE
-            connector.DEFAULT_CONTACT_MODE = mode
+            saved = following.DEFAULT_CONTACT_MODE
+            following.DEFAULT_CONTACT_MODE = mode
             run_module.build = build
             try:
                 results[mode] = run(params)
             finally:
-                connector.DEFAULT_CONTACT_MODE = saved
+                following.DEFAULT_CONTACT_MODE = saved
                 run_module.build = original
             if mode == "follow":
                 counts = built["model"].joint.follow_counts()

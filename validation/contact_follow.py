@@ -25,7 +25,7 @@ import numpy as np
 from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
 
 import exuclear
-from exuclear.engine import connector
+from exuclear.engine import following
 from exuclear.timescales import penetration_at
 
 ZOO = ("double_pendulum_2d", "double_pendulum_2d_friction", "rigid_body_tutorial3_friction", "beam_pendulum_2d")
@@ -84,17 +84,17 @@ def slider_crank(mode: str, revolutions: float, step: float | None) -> tuple:
     settings = run_module.default_settings(params)
     if step:
         settings = replace(settings, step=step)
-    built, original, saved = {}, run_module.build, connector.DEFAULT_CONTACT_MODE
+    built, original, saved = {}, run_module.build, following.DEFAULT_CONTACT_MODE
 
     def build(p: object) -> object:
         built["model"] = original(p)
         return built["model"]
 
-    connector.DEFAULT_CONTACT_MODE, run_module.build = mode, build
+    following.DEFAULT_CONTACT_MODE, run_module.build = mode, build
     try:
         result = run_module.run(params, settings)
     finally:
-        connector.DEFAULT_CONTACT_MODE, run_module.build = saved, original
+        following.DEFAULT_CONTACT_MODE, run_module.build = saved, original
     model = built["model"]
     return result, model.mbs.sys["dynamicSolver"].it, model.joint.follow_counts()
 
@@ -131,7 +131,10 @@ def zoo(name: str, mode: str, end: float, refine: int = 1, index2: bool = False)
 
 
 def run_zoo(args: argparse.Namespace) -> None:
-    print(_row("model", "run", "t reached", "steps", "Newton / step", "switches on/off", "probe off reference [c]"))
+    from exuclear.engine.bodies import joint_contact_period
+
+    print(_row("model", "run", "h / T_c", "t reached", "steps", "Newton / step", "switches on/off",
+               "probe off reference [c]"))
     for name in args.models.split(","):
         ref, _, ref_probe, _ = zoo(name, "compliant", args.end_time, 4, args.index2)
         for mode in ("compliant", "follow"):
@@ -140,7 +143,9 @@ def run_zoo(args: argparse.Namespace) -> None:
             counts = model.joint.follow_counts()
             switches = f"{counts['on']} / {counts['off']}" if counts else ""
             off = np.abs(probe - ref_probe).max() / ref.clearance
-            print(_row(name, mode, f"{model.mbs.systemData.GetTime():.4g}", steps, _counts(it, steps), switches,
+            ti = model.simulation_settings.timeIntegration
+            ratio = ti.endTime / ti.numberOfSteps / joint_contact_period(model.mbs, model.joint)
+            print(_row(name, mode, f"{ratio:.2g}", f"{model.mbs.systemData.GetTime():.4g}", steps, _counts(it, steps), switches,
                        f"{off:.2f}" + (f" ({message})" if message else "")), flush=True)
 
 

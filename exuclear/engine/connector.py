@@ -36,13 +36,11 @@ from exudyn.itemInterface import (
     MarkerBodyRigid,
     MarkerKinematicTreeRigid,
     NodeGenericData,
-    ObjectConnectorDistance,
     ObjectConnectorRigidBodySpringDamper,
     ObjectGround,
     ObjectJointGeneric,
     SensorNode,
     SensorObject,
-    VObjectConnectorDistance,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
     VObjectJointGeneric,
@@ -52,8 +50,7 @@ from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
 from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
-from . import kernel
-from ._python_kernel.follow import FollowState
+from . import following, kernel
 from .arguments import (
     AXIS_UNIT_TOLERANCE,
     DEFAULT_SLICES,
@@ -73,7 +70,7 @@ from .arguments import (
     physics,
     vector3,
 )
-from .drawing import drawing_function
+from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
@@ -92,18 +89,6 @@ BACKENDS = {"compiled": "C++ kernel called by Exudyn without Python (the default
 
 #: The backend used where none is given: ``"compiled"`` where its self-test passed.
 DEFAULT_BACKEND = kernel.default_backend()
-
-
-#: How the joint carries a sustained contact (``contact_mode``): docs/guide/contact_following.md.
-CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
-                 "follow": "a sustained contact carried by a distance constraint at the law's static penetration "
-                           "(opt-in prototype: planar joint, Python kernel, implicit solvers)"}
-
-#: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
-#: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
-#: comes from here runs on the Python kernel whatever its ``backend`` asks while the mode is
-#: "follow" (the prototype has no compiled side).
-DEFAULT_CONTACT_MODE = "compliant"
 
 
 #: Largest entry of ``R - I`` below which two markers' reference frames are taken as one:
@@ -220,11 +205,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
-    inherited = contact_mode is None
-    contact_mode = check_choice("contact_mode", DEFAULT_CONTACT_MODE if inherited else contact_mode, CONTACT_MODES)
-    if contact_mode == "follow":
-        _check_follow(joint, slices, None if inherited else backend)
-        backend = "python"
+    contact_mode, backend = following.resolve(contact_mode, joint, slices, backend)
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
@@ -280,12 +261,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
         visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
     if contact_mode == "follow":
-        # the following mode's constraint, off until a contact is sustained (_python_kernel/follow.py)
-        follow = FollowState(joint.law, joint.geometry.clearance)
-        follow.object = handle.followNumber = mbs.AddObject(ObjectConnectorDistance(
-            name=f"{name}:follow" if name else "", markerNumbers=[m_bearing, m_journal],
-            distance=joint.geometry.clearance, activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
-        handle._backend.kernel.follow = follow
+        following.add_constraint(mbs, handle, name)
     if handle.probeNumber is not None:
         handle.torqueNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
             name=f"{name}:torque" if name else "", markerNumbers=[m_bearing, m_ground], rotationMarker0=rotation0,
@@ -434,13 +410,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
     contact_mode : str, optional
-        ``"compliant"`` (the default, :data:`DEFAULT_CONTACT_MODE` where None): the contact
-        law at every step.  ``"follow"`` (opt-in prototype of issue 34,
-        docs/guide/contact_following.md): a contact sustained for several contact periods
-        is carried by an ``ObjectConnectorDistance`` at the law's static penetration under
-        its multiplier, with friction from that multiplier, and let go where it turns
-        tensile; the planar joint on the Python kernel, dry and unworn, implicit solvers
-        only (``handle.follow_counts()`` says what it did).
+        ``"compliant"`` (default) or ``"follow"``, the opt-in prototype of
+        :mod:`exuclear.engine.following` (docs/guide/contact_following.md).
 
     Returns
     -------
@@ -459,7 +430,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                          f"got {itemNumbers!r}")
     if not isinstance(useGlobalFrame, bool):
         raise ValueError(f"`useGlobalFrame` must be True or False, got {useGlobalFrame!r}")
-    draw = _drawing_sizes(axisRadius, axisLength, color)
+    draw = drawing_sizes(axisRadius, axisLength, color)
     kinds = []
     for k, (role, item) in enumerate(zip(("bearing", "journal"), itemNumbers)):
         if item is None:
@@ -519,16 +490,6 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                              **joint_parameters)
 
 
-def _check_follow(joint: ClearanceJoint, slices: int | None, backend: str | None) -> None:
-    """What the following mode's prototype does not cover yet is refused, with the reason."""
-    if slices:
-        raise ValueError("contact_mode='follow' is for the planar joint only so far (no `slices`)")
-    if joint.film is not None or joint.wear is not None:
-        raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
-    if backend == "compiled":
-        raise ValueError("contact_mode='follow' runs on the Python kernel only so far: give backend='python' or none")
-
-
 def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:
     """A rigid marker whose frame is ``marker``'s turned by ``rotation`` (in its own frame):
     the marker itself for the unit rotation, else a copy with the composed ``localHT``;
@@ -541,24 +502,6 @@ def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> An
     copy = {key: value for key, value in data.items() if key not in ("name", "localPosition") and key[0] != "V"}
     copy["localHT"] = exu.HT(data["localHT"]) @ exu.HT(rotation=rotation)
     return mbs.AddMarker(copy)
-
-
-def _drawing_sizes(radius: Any, length: Any, color: Any) -> dict:
-    """``axisRadius``, ``axisLength`` and ``color`` of :func:`CreateClearanceJoint`, checked."""
-    out: dict[str, Any] = {}
-    if radius is not None:
-        out["radius"] = check_positive("axisRadius", radius)
-    if length is not None:
-        out["length"] = check_positive("axisLength", length)
-    if color is not None:
-        try:
-            rgba = [float(v) for v in color]
-        except (TypeError, ValueError):
-            rgba = []
-        if len(rgba) != 4 or not all(0.0 <= v <= 1.0 for v in rgba):
-            raise ValueError(f"`color` must be 4 numbers in [0, 1] (RGBA), got {color!r}")
-        out["color"] = rgba
-    return out
 
 
 def add_clearance_joint(

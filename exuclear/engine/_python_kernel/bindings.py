@@ -7,7 +7,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from .follow import FollowState
+from ..following import FollowState
 from .joint_state import DIVERGED
 from .kinematics import finish_loads, finite
 from .laws import ContactResponse
@@ -21,7 +21,7 @@ class JointKernel(JointStepControl):
     (:class:`~.step_control.JointStepControl`); the package docstring says which history an
     evaluation uses."""
 
-    #: The contact-following mode (:mod:`.follow`), None where the joint is compliant only.
+    #: The contact-following mode (:mod:`exuclear.engine.following`), None where the joint is compliant only.
     follow: FollowState | None = None
 
     def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,

@@ -1,18 +1,29 @@
-"""The contact-following mode of a planar joint (issue 34, opt-in: ``contact_mode="follow"``).
+"""The joint's contact mode (``contact_mode`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`).
 
-A contact that has lasted several contact periods with a small penetration rate is carried
-by an ``ObjectConnectorDistance`` between the joint's two markers (docs/guide/contact_following.md):
-the journal centre is held at ``|e| = c + delta(lambda)`` from the bearing centre, where
-``delta(lambda)`` is the law's static penetration at the constraint's multiplier ``lambda``
-(the normal force), set once per accepted step; the compliant normal force is not applied
-while the constraint holds, friction acts from ``lambda``.  The constraint is switched on
-and off with its ``activeConnector`` flag between accepted steps (from the joint's
-post-Newton function, whose accepted state is the next step's start), and switched on only
-where position and normal rate agree with it (its distance set to the present ``|e|``, the
-rate below ``v_min``): a switch in an inconsistent state is an impulse
-(/work/shared/research/contact-following.md).  It releases where the multiplier turns
-tensile; the step in which it turns is redone shorter once, so that the release lands
-near the step's end.
+- ``"compliant"`` (the default): the contact law at every step.
+- ``"follow"``: the opt-in prototype of issue 34 (docs/guide/contact_following.md, which
+  says what was tried for each choice and what it measured).  The planar joint, dry and
+  unworn, on the Python kernel, with implicit solvers only (the constraint is an algebraic
+  equation); ``handle.follow_counts()`` says what it did.
+
+The following mode (:class:`FollowState`, held by the Python kernel's joint, which calls it
+from its force and post-Newton functions):
+
+- **Switching on.** A contact that has lasted FOLLOW_MIN_STEPS accepted steps and
+  FOLLOW_PERIODS contact periods, with a penetration rate below FOLLOW_RATE ``v_min``, is
+  handed to an ``ObjectConnectorDistance`` between the joint's markers, its distance set to
+  the present ``|e|`` so that the switch is no impulse (a switch in an inconsistent state
+  is one: /work/shared/research/contact-following.md).
+- **While it holds.** The compliant normal force is not applied; the constraint's
+  multiplier ``lambda`` is the normal force (the mean of two steps: Exudyn's index-3
+  multiplier oscillates from step to step); friction acts from its low-passed value; the
+  distance follows ``c + delta(lambda)``, the law's static penetration, with a loop gain
+  below 1 (FOLLOW_GAIN).
+- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED; the redo
+  of the releasing step is an option, RELEASE_REDO).
+- **Exudyn.** The flag ``activeConnector`` and the distance are set between steps, from the
+  joint's post-Newton function at an accepted step; each switch requests a Jacobian, and
+  Newton's absolute tolerance is scaled to the penetration while the constraint holds.
 """
 from __future__ import annotations
 
@@ -20,8 +31,23 @@ import math
 from typing import Any
 
 import exudyn as exu
+from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
 
-from ...timescales import contact_period, contact_stiffness, penetration_at
+from ..checks import check_choice
+from ..joint import ClearanceJoint
+from ..timescales import contact_period, contact_stiffness, penetration_at
+
+#: How the joint carries a sustained contact.
+CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
+                 "follow": "a sustained contact carried by a distance constraint at the law's static penetration "
+                           "(opt-in prototype: planar joint, Python kernel, implicit solvers)"}
+
+#: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
+#: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
+#: comes from here runs on the Python kernel whatever its ``backend`` asks while the mode is
+#: "follow" (the prototype has no compiled side).
+DEFAULT_CONTACT_MODE = "compliant"
+
 
 #: Contact periods a contact must have lasted before the constraint takes it over: the
 #: compliant contact's own oscillation after an impact has decayed by then (cr < 1), and a
@@ -262,3 +288,32 @@ def _request_jacobian(mbs: Any) -> None:
         mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
     except Exception:  # not in a SolveDynamic run
         pass
+
+
+def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None, backend: str | None
+            ) -> tuple[str, str | None]:
+    """The joint's mode (``contact_mode``, or :data:`DEFAULT_CONTACT_MODE` where None) and its
+    backend ("python" for the following mode); refuses, with the reason, what the following
+    mode's prototype does not cover yet."""
+    inherited = contact_mode is None
+    mode = check_choice("contact_mode", DEFAULT_CONTACT_MODE if inherited else contact_mode, CONTACT_MODES)
+    if mode != "follow":
+        return mode, backend
+    if slices:
+        raise ValueError("contact_mode='follow' is for the planar joint only so far (no `slices`)")
+    if joint.film is not None or joint.wear is not None:
+        raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
+    if backend == "compiled" and not inherited:
+        raise ValueError("contact_mode='follow' runs on the Python kernel only so far: give backend='python' or none")
+    return mode, "python"
+
+
+def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
+    """The following mode's constraint between the joint's markers, off until a contact is
+    sustained, and its state on the joint's (Python) kernel."""
+    geometry = handle.joint.geometry
+    follow = FollowState(handle.joint.law, geometry.clearance)
+    follow.object = handle.followNumber = mbs.AddObject(ObjectConnectorDistance(
+        name=f"{name}:follow" if name else "", markerNumbers=list(handle.markerNumbers), distance=geometry.clearance,
+        activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
+    handle._backend.kernel.follow = follow
