@@ -50,7 +50,7 @@ from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
 from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
-from . import kernel
+from . import following, kernel
 from .arguments import (
     AXIS_UNIT_TOLERANCE,
     DEFAULT_SLICES,
@@ -70,7 +70,7 @@ from .arguments import (
     physics,
     vector3,
 )
-from .drawing import drawing_function
+from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
@@ -181,6 +181,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     record: bool = True,
     show: bool = True,
     slices: int | None = None,
+    contact_mode: str | None = None,
     _frame: np.ndarray | None = None,
     _drawing: dict | None = None,
     **joint_parameters: Any,
@@ -204,6 +205,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
+    contact_mode, backend = following.resolve(contact_mode, joint, slices, backend)
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
@@ -258,6 +260,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
         springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
         visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
+    if contact_mode == "follow":
+        following.add_constraint(mbs, handle, name)
     if handle.probeNumber is not None:
         handle.torqueNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
             name=f"{name}:torque" if name else "", markerNumbers=[m_bearing, m_ground], rotationMarker0=rotation0,
@@ -303,6 +307,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     bearingRotates: bool | None = None,
     record: bool = True,
     slices: int | None = None,
+    contact_mode: str | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
@@ -404,6 +409,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         with its own history: a linear flat-punch stiffness ``2 E* shoulder_radius`` with
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
+    contact_mode : str, optional
+        ``"compliant"`` (default) or ``"follow"``, the opt-in prototype of
+        :mod:`exuclear.engine.following` (docs/guide/contact_following.md).
 
     Returns
     -------
@@ -422,7 +430,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                          f"got {itemNumbers!r}")
     if not isinstance(useGlobalFrame, bool):
         raise ValueError(f"`useGlobalFrame` must be True or False, got {useGlobalFrame!r}")
-    draw = _drawing_sizes(axisRadius, axisLength, color)
+    draw = drawing_sizes(axisRadius, axisLength, color)
     kinds = []
     for k, (role, item) in enumerate(zip(("bearing", "journal"), itemNumbers)):
         if item is None:
@@ -478,7 +486,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         markers.append(marker)
     return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
                              constrainAxial=constrainAxial, bearingRotates=bearingRotates, record=record, show=show,
-                             slices=slices, _frame=frame0, _drawing=draw, **joint_parameters)
+                             slices=slices, contact_mode=contact_mode, _frame=frame0, _drawing=draw,
+                             **joint_parameters)
 
 
 def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:
@@ -493,24 +502,6 @@ def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> An
     copy = {key: value for key, value in data.items() if key not in ("name", "localPosition") and key[0] != "V"}
     copy["localHT"] = exu.HT(data["localHT"]) @ exu.HT(rotation=rotation)
     return mbs.AddMarker(copy)
-
-
-def _drawing_sizes(radius: Any, length: Any, color: Any) -> dict:
-    """``axisRadius``, ``axisLength`` and ``color`` of :func:`CreateClearanceJoint`, checked."""
-    out: dict[str, Any] = {}
-    if radius is not None:
-        out["radius"] = check_positive("axisRadius", radius)
-    if length is not None:
-        out["length"] = check_positive("axisLength", length)
-    if color is not None:
-        try:
-            rgba = [float(v) for v in color]
-        except (TypeError, ValueError):
-            rgba = []
-        if len(rgba) != 4 or not all(0.0 <= v <= 1.0 for v in rgba):
-            raise ValueError(f"`color` must be 4 numbers in [0, 1] (RGBA), got {color!r}")
-        out["color"] = rgba
-    return out
 
 
 def add_clearance_joint(

@@ -7,6 +7,8 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 
+from ..checks import check_positive
+
 #: Colours of the drawing (RGBA).
 JOURNAL_COLOR, BEARING_COLOR = [0.3, 0.3, 0.8, 1.0], [0.7, 0.7, 0.7, 1.0]
 #: Outer radius of the drawn bearing ring, relative to the bearing radius.
@@ -43,3 +45,21 @@ def drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Vis
         return out
 
     return draw
+
+
+def drawing_sizes(radius: Any, length: Any, color: Any) -> dict:
+    """``axisRadius``, ``axisLength`` and ``color`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`, checked."""
+    out: dict[str, Any] = {}
+    if radius is not None:
+        out["radius"] = check_positive("axisRadius", radius)
+    if length is not None:
+        out["length"] = check_positive("axisLength", length)
+    if color is not None:
+        try:
+            rgba = [float(v) for v in color]
+        except (TypeError, ValueError):
+            rgba = []
+        if len(rgba) != 4 or not all(0.0 <= v <= 1.0 for v in rgba):
+            raise ValueError(f"`color` must be 4 numbers in [0, 1] (RGBA), got {color!r}")
+        out["color"] = rgba
+    return out

@@ -82,6 +82,7 @@ class ClearanceJointHandle:
         self.probeNumber: Any = None
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
+        self.followNumber: Any = None  # contact_mode="follow": its ObjectConnectorDistance
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
@@ -289,6 +290,13 @@ class ClearanceJointHandle:
         state, impacts = self.state(), self.impacts()
         onset_times = [r.onset_time for r in impacts] + ([state.onset_time] if state.in_contact else [])
         return JointHistory(state, impacts, onset_times)
+
+    def follow_counts(self) -> dict[str, Any]:
+        """contact_mode="follow": how often the constraint took a contact over (``on``), let it go
+        (``off``), the steps it held (``followed_steps``) and the steps redone for a release
+        (``redone``); an empty dict for the compliant mode."""
+        follow = getattr(getattr(self._backend, "kernel", None), "follow", None)
+        return {} if follow is None else follow.counts()
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""

@@ -1,0 +1,319 @@
+"""The joint's contact mode (``contact_mode`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`).
+
+- ``"compliant"`` (the default): the contact law at every step.
+- ``"follow"``: the opt-in prototype of issue 34 (docs/guide/contact_following.md, which
+  says what was tried for each choice and what it measured).  The planar joint, dry and
+  unworn, on the Python kernel, with implicit solvers only (the constraint is an algebraic
+  equation); ``handle.follow_counts()`` says what it did.
+
+The following mode (:class:`FollowState`, held by the Python kernel's joint, which calls it
+from its force and post-Newton functions):
+
+- **Switching on.** A contact that has lasted FOLLOW_MIN_STEPS accepted steps and
+  FOLLOW_PERIODS contact periods, with a penetration rate below FOLLOW_RATE ``v_min``, is
+  handed to an ``ObjectConnectorDistance`` between the joint's markers, its distance set to
+  the present ``|e|`` so that the switch is no impulse (a switch in an inconsistent state
+  is one: /work/shared/research/contact-following.md).
+- **While it holds.** The compliant normal force is not applied; the constraint's
+  multiplier ``lambda`` is the normal force (the mean of two steps: Exudyn's index-3
+  multiplier oscillates from step to step); friction acts from its low-passed value; the
+  distance follows ``c + delta(lambda)``, the law's static penetration, with a loop gain
+  below 1 (FOLLOW_GAIN).
+- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED; the redo
+  of the releasing step is an option, RELEASE_REDO).
+- **Exudyn.** The flag ``activeConnector`` and the distance are set between steps, from the
+  joint's post-Newton function at an accepted step; each switch requests a Jacobian, and
+  Newton's absolute tolerance is scaled to the penetration while the constraint holds.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import exudyn as exu
+from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
+
+from ..checks import check_choice
+from ..joint import ClearanceJoint
+from ..timescales import contact_period, contact_stiffness, penetration_at
+
+#: How the joint carries a sustained contact.
+CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
+                 "follow": "a sustained contact carried by a distance constraint at the law's static penetration "
+                           "(opt-in prototype: planar joint, Python kernel, implicit solvers)"}
+
+#: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
+#: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
+#: comes from here runs on the Python kernel whatever its ``backend`` asks while the mode is
+#: "follow" (the prototype has no compiled side).
+DEFAULT_CONTACT_MODE = "compliant"
+
+
+#: Contact periods a contact must have lasted before the constraint takes it over: the
+#: compliant contact's own oscillation after an impact has decayed by then (cr < 1), and a
+#: journal that only grazes the wall never switches.
+FOLLOW_PERIODS = 5.0
+#: ... and at least this many accepted steps in contact (where the contact period is unknown,
+#: this alone): the penetration rate of two steps must agree before the switch.
+FOLLOW_MIN_STEPS = 3
+#: ... and a penetration rate below this fraction of the law's ``v_min`` at the step's end:
+#: the constraint removes the normal rate in one step, an impulse ``m delta_dot`` that starts
+#: the multiplier's two-step oscillation (below); at ``v_min`` itself (1e-3 m/s) the orbiting
+#: journal's multiplier swung between 0.3 and 1.7 times the load.
+FOLLOW_RATE = 0.1
+#: The constraint's distance moves to ``c + delta(lambda)`` by the share ``omega`` of its
+#: offset per step, ``omega = min(1, FOLLOW_GAIN beta h^2 k / m)`` (``k`` the law's tangent
+#: stiffness at the penetration, ``m`` the joint's effective mass, ``beta`` = 1/4): the
+#: distance set between steps is reached in the next step, a jump that the index-3 multiplier
+#: answers with about ``m jump / (beta h^2)``, while the target moves by ``d lambda / k`` for
+#: a change ``d lambda`` of the multiplier.  The loop's gain is ``omega m / (beta h^2 k)``:
+#: at most FOLLOW_GAIN.  At steps far longer than the contact period (``h^2 k / m >> 1``,
+#: the regime the mode is for) omega is 1: the distance is the target.  Tried first: a rate
+#: limit of ``v_min`` per step, then a limit on the rate's change per step; both jittered
+#: with the multiplier at the paper's slider-crank (steps 0.08 contact periods), whose
+#: multiplier they swung to +-2 kN about 30 N.  Where the effective mass is not known the
+#: distance stays where it was switched on.
+FOLLOW_GAIN = 0.25
+GA_BETA = 0.25
+#: The distance stays where it is while it is within this fraction of the static penetration
+#: of its target ``c + delta(lambda)`` (a dead band): a tracker without one moves it up and
+#: down every step, following the multiplier's two-step oscillation, which pumps the
+#: oscillation up (measured on the orbiting journal: +-1e5 N about 4.6 kN within 0.15 ms).
+FOLLOW_DEAD_BAND = 5e-3
+#: The target follows the multiplier low-passed over some steps (an exponential mean of
+#: the two-step means with this weight on the newest): the distance then moves one way to
+#: its target, not with the oscillation.
+FOLLOW_FILTER = 0.2
+#: Newton's absolute tolerance while the constraint holds: this fraction of the static
+#: penetration (and no less than ``FOLLOW_ATOL_FORCE`` times the normal force, the round-off of
+#: the force residual).  Exudyn's residual is one norm over the force residuals [N] and the
+#: constraint equations [m], and the joint's own absolute tolerance (1e-8, for the compliant
+#: contact's round-off, steering.py) accepts a distance constraint violated by 1e-8 m: at steps
+#: where the free journal drifts off the circle by less than that, Newton stops at its first
+#: iterate with a zero multiplier, and the violation grows until a later step corrects it by an
+#: impulse (measured: the orbiting journal at 1e-5 s, lambda 0, then 261 N, then -874 N about
+#: 12.5 N, released).
+FOLLOW_ATOL_SHARE = 1e-4
+FOLLOW_ATOL_FORCE = 1e-13
+#: Release where the low-passed multiplier (FOLLOW_FILTER) turns tensile (True), not the
+#: two-step mean (False).  Measured on the paper's redundant slider-crank (2 revolutions,
+#: generalized-alpha at its defaults): on the two-step mean the constraint let go 29 times,
+#: where the compliant contact still pressed (its force 20-50 N), each a new impact (124
+#: impacts against 22), 38091 steps against 15272: when the step changes, the two-step
+#: oscillation of the multiplier is no longer cancelled by the mean.
+RELEASE_FILTERED = True
+#: Redo the step in which the two-step mean turned tensile so the release lands at its end
+#: (off with RELEASE_FILTERED: a shorter step does not place the low-passed zero).
+RELEASE_REDO = False
+#: The normal force friction acts from while following: "filtered" (the low-passed multiplier
+#: of the accepted steps, explicit), "iterate" (Newton's present multiplier) or "mean" (the
+#: mean of the present and the last accepted multiplier).
+FRICTION_FROM = "filtered"
+#: A release found at this fraction of the step or later is accepted where it is (no redo).
+RELEASE_LATE = 0.9
+
+
+class FollowState:
+    """One joint's following mode: the distance connector, whether it holds, its
+    multiplier at the last accepted step, and counts of what it did."""
+
+    def __init__(self, law: Any, clearance: float) -> None:
+        self.law, self.clearance = law, clearance
+        self.mbs: Any = None
+        self.object: Any = None  # the ObjectConnectorDistance (set by AddClearanceJoint)
+        self.reset()
+
+    def reset(self) -> None:
+        self.active = False
+        self.multiplier = 0.0  # lambda, mean of the last two accepted steps [N] (contact sense: > 0 presses)
+        self.raw = 0.0  # lambda at the last accepted step
+        self.filtered = 0.0  # the low-passed lambda the distance's target is set from
+        self.steps_in_contact = 0
+        self.on_count = self.off_count = self.redone = 0
+        self.followed_steps = 0
+        self.last_redo = -math.inf
+        self.distance = 0.0  # the constraint's distance [m]
+
+        self.saved_tolerance: float | None = None  # Newton's absolute tolerance before the switch
+        self.switch_on_times: list[float] = []
+        self.switch_off_times: list[float] = []
+
+    # -- reading and setting the constraint --------------------------------------------
+    def friction_force(self, mbs: Any) -> float:
+        """The normal force friction acts from while following (FRICTION_FROM)."""
+        if FRICTION_FROM == "filtered":
+            return self.filtered
+        if FRICTION_FROM == "iterate":
+            return self.read_multiplier(mbs)
+        return self.normal_force(mbs)
+
+    def normal_force(self, mbs: Any) -> float:
+        """The normal force the friction acts from: the mean of the multiplier at the present
+        state and at the last accepted step.  Exudyn's generalized-alpha multiplier of a
+        position constraint (index 3) oscillates from step to step about the physical force
+        (measured on the orbiting journal: 5077, 3637, 6020, 2749 ... N about 4620 N after the
+        switch, the amplitude decaying slowly at spectral radius 0.9); the mean of two steps
+        is the physical force (4600 N)."""
+        return 0.5 * (self.read_multiplier(mbs) + self.raw)
+
+    def read_multiplier(self, mbs: Any) -> float:
+        """The constraint's multiplier at the present state (Newton's iterate during a step):
+        the normal force [N], positive where the wall presses the journal inwards (the
+        connector's ``Force``, positive in tension)."""
+        return float(mbs.GetObjectOutput(self.object, exu.OutputVariableType.Force))
+
+    def _set(self, mbs: Any, active: bool, distance: float | None = None) -> None:
+        if distance is not None:
+            self.distance = float(distance)
+            mbs.SetObjectParameter(self.object, "distance", self.distance)
+        if active != self.active:
+            mbs.SetObjectParameter(self.object, "activeConnector", bool(active))
+            _request_jacobian(mbs)
+        self.active = active
+
+    def static_penetration(self, force: float) -> float:
+        """``delta(lambda)``: the law's static penetration at the normal force ``force`` [m]."""
+        return penetration_at(self.law, force) if force > 0.0 else 0.0
+
+    # -- the decisions, once per step ----------------------------------------------------
+    def restart(self, mbs: Any) -> None:
+        """A new run begins (from the initial state): the compliant contact, the constraint off."""
+        if self.active:
+            self._set(mbs, False)
+        self.reset()
+
+    def _tolerance(self, mbs: Any, delta: float, force: float) -> None:
+        """Newton's absolute tolerance for the constraint (FOLLOW_ATOL_SHARE), the user's back
+        where ``delta`` is None."""
+        try:
+            newton = mbs.sys["dynamicSolver"].newton
+        except Exception:  # not in a SolveDynamic run
+            return
+        if self.saved_tolerance is None:
+            self.saved_tolerance = newton.absoluteTolerance
+        newton.absoluteTolerance = min(self.saved_tolerance, max(FOLLOW_ATOL_SHARE * delta, FOLLOW_ATOL_FORCE * force))
+
+    def _restore_tolerance(self, mbs: Any) -> None:
+        if self.saved_tolerance is None:
+            return
+        try:
+            mbs.sys["dynamicSolver"].newton.absoluteTolerance = self.saved_tolerance
+        except Exception:  # the run is gone
+            pass
+        self.saved_tolerance = None
+
+    def release_step(self, mbs: Any, h: float, start: float, can_shorten: bool) -> float:
+        """While following, at the end of the step of length ``h`` from ``start``: 0 to accept
+        it, else the shorter step to redo it with, so that a release lands near its end; once
+        per step start.  Only with RELEASE_REDO: the release is decided on the low-passed
+        multiplier (:meth:`after_step`), whose zero a shorter step does not place (module
+        docstring of the guide, "Release")."""
+        if not RELEASE_REDO:
+            return 0.0
+        lam = self.normal_force(mbs)
+        if lam >= 0.0 or not can_shorten or not self.multiplier > 0.0:
+            return 0.0
+        share = self.multiplier / (self.multiplier - lam)  # lambda's zero, linear over the step
+        if share >= RELEASE_LATE or start == self.last_redo:
+            return 0.0
+        self.last_redo = start
+        self.redone += 1
+        return max(share, 0.05) * h
+
+    def _track(self, mbs: Any, h: float, lam: float, mass: float) -> None:
+        """Move the distance towards ``c + delta(lambda)`` (the low-passed multiplier), outside
+        the dead band, by the share ``omega`` of its offset (FOLLOW_GAIN)."""
+        self.filtered += FOLLOW_FILTER * (lam - self.filtered)
+        if not (mass > 0.0 and math.isfinite(mass) and h > 0.0 and self.filtered > 0.0):
+            return
+        delta_lam = self.static_penetration(self.filtered)
+        off = self.clearance + delta_lam - self.distance
+        if abs(off) <= FOLLOW_DEAD_BAND * delta_lam:
+            return
+        k = contact_stiffness(self.law, delta_lam)
+        omega = min(1.0, FOLLOW_GAIN * GA_BETA * h * h * k / mass)
+        self._set(mbs, True, self.distance + omega * off)
+
+    def after_step(self, mbs: Any, t: float, h: float, delta: float, delta_dot_start: float, delta_dot: float,
+                   in_contact: bool, onset_time: float, normal_force: float, mass: float) -> None:
+        """An accepted step of length ``h`` ending at ``t``: release, update ``delta(lambda)``, or switch on."""
+        if self.active:
+            raw = self.read_multiplier(mbs)
+            lam = 0.5 * (raw + self.raw)
+            self.raw = raw
+            filtered = self.filtered + FOLLOW_FILTER * (lam - self.filtered)
+            if (filtered if RELEASE_FILTERED else lam) <= 0.0:
+                self._set(mbs, False)
+                self._restore_tolerance(mbs)
+                self.off_count += 1
+                self.switch_off_times.append(t)
+                self.multiplier = self.raw = 0.0
+                self.steps_in_contact = 0
+                return
+            self.multiplier = lam
+            self.followed_steps += 1
+            self._track(mbs, h, lam, mass)
+            self._tolerance(mbs, self.distance - self.clearance, lam)
+            return
+        self.steps_in_contact = self.steps_in_contact + 1 if in_contact and delta > 0.0 else 0
+        if self.steps_in_contact < FOLLOW_MIN_STEPS or not normal_force > 0.0:
+            return
+        v_min = self.law.v_min
+        if abs(delta_dot) > FOLLOW_RATE * v_min:
+            return
+        if mass > 0.0 and math.isfinite(mass):
+            if t - onset_time < FOLLOW_PERIODS * contact_period(self.law, mass, normal_force):
+                return
+        # consistent: the distance is the present |e|, the rate is small
+        self._set(mbs, True, self.clearance + delta)
+        self._tolerance(mbs, delta, normal_force)
+        self.multiplier = self.raw = self.filtered = normal_force
+
+        self.on_count += 1
+        self.switch_on_times.append(t)
+
+    def counts(self) -> dict[str, Any]:
+        return {"on": self.on_count, "off": self.off_count, "redone": self.redone, "followed_steps": self.followed_steps,
+                "active": self.active}
+
+
+def _request_jacobian(mbs: Any) -> None:
+    """A Jacobian at the next Newton iteration: the switched constraint's row changes from
+    ``lambda = 0`` to the distance condition (or back).  Without it Exudyn's modified Newton
+    keeps the Jacobian of the inactive constraint, finds ``lambda = 0`` and accepts the step
+    on its relative tolerance, the constraint's residual (metres, 6e-10) negligible beside
+    the forces' (measured: the slider-crank at 5e-6 s steps, the constraint unmet and let go
+    at every engagement, 31 switches)."""
+    try:
+        mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
+    except Exception:  # not in a SolveDynamic run
+        pass
+
+
+def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None, backend: str | None
+            ) -> tuple[str, str | None]:
+    """The joint's mode (``contact_mode``, or :data:`DEFAULT_CONTACT_MODE` where None) and its
+    backend ("python" for the following mode); refuses, with the reason, what the following
+    mode's prototype does not cover yet."""
+    inherited = contact_mode is None
+    mode = check_choice("contact_mode", DEFAULT_CONTACT_MODE if inherited else contact_mode, CONTACT_MODES)
+    if mode != "follow":
+        return mode, backend
+    if slices:
+        raise ValueError("contact_mode='follow' is for the planar joint only so far (no `slices`)")
+    if joint.film is not None or joint.wear is not None:
+        raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
+    if backend == "compiled" and not inherited:
+        raise ValueError("contact_mode='follow' runs on the Python kernel only so far: give backend='python' or none")
+    return mode, "python"
+
+
+def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
+    """The following mode's constraint between the joint's markers, off until a contact is
+    sustained, and its state on the joint's (Python) kernel."""
+    geometry = handle.joint.geometry
+    follow = FollowState(handle.joint.law, geometry.clearance)
+    follow.object = handle.followNumber = mbs.AddObject(ObjectConnectorDistance(
+        name=f"{name}:follow" if name else "", markerNumbers=list(handle.markerNumbers), distance=geometry.clearance,
+        activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
+    handle._backend.kernel.follow = follow

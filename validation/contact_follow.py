@@ -1,0 +1,168 @@
+"""``python -m validation.contact_follow [orbit|slider-crank|zoo] [options]``: the measurements of
+docs/guide/contact_following.md (issue 34's contact-following mode against the compliant
+contact): solver steps, Newton iterations per step, switches and the agreement with a
+compliant reference, on the Python kernel.
+
+- ``orbit``: a journal orbiting on its wall under its centripetal load (frictionless, cr 1),
+  at fixed generalized-alpha steps; the reference is the compliant run at 1e-6 s.
+- ``slider-crank``: the paper's redundant slider-crank through ``exuclear.simulate`` at its
+  defaults (``--step`` overrides the largest step); the reference is the compliant run at 2e-6 s.
+- ``zoo``: zoo models at their own settings (``--models``, ``--end-time``); the reference is
+  the compliant run at 4 times the example's steps; ``--index2`` runs every model with
+  Exudyn's index-2 constraints (Newmark).
+
+Cost is counted, not timed: the machine is shared.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from dataclasses import replace
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
+
+import exuclear
+from exuclear.engine import following
+from exuclear.timescales import penetration_at
+
+ZOO = ("double_pendulum_2d", "double_pendulum_2d_friction", "rigid_body_tutorial3_friction", "beam_pendulum_2d")
+
+
+def _row(*cells: object) -> str:
+    return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+def _counts(it: object, steps: int) -> str:
+    return f"{it.newtonStepsCount / max(steps, 1):.2f}"
+
+
+def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: float = 0.05) -> dict:
+    """The orbiting journal of tests/test_contact_follow.py; returns its path and counts."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    joint = exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=1.0, friction="none")
+    c = r = joint.geometry.clearance
+    for _ in range(3):
+        r = c + penetration_at(joint.law, mass * speed**2 / r)
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[r, 0, 0],
+                                       initialVelocities=[0, speed, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=1e-5))
+    handle = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], joint=joint,
+                                           backend="python", contact_mode=mode)
+    sensor = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
+                                      outputVariableType=exu.OutputVariableType.Position))
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = end, int(round(end / step))
+    ss.timeIntegration.verboseMode, ss.solution.file.write = 0, False
+    mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    it = mbs.sys["dynamicSolver"].it
+    return {"path": mbs.GetSensorStoredData(sensor), "steps": it.currentStepIndex - 1, "it": it, "c": c,
+            "counts": handle.follow_counts(), "static": r - c}
+
+
+def run_orbit(args: argparse.Namespace) -> None:
+    ref = orbit("compliant", 1e-6)
+    print(_row("run", "steps", "Newton / step", "path off reference [c]", "|e| - c / static", "switches"))
+    for mode, step in (("compliant", 1e-4), ("follow", 1e-4), ("compliant", 1e-5), ("follow", 1e-5)):
+        r = orbit(mode, step)
+        p, q = r["path"], ref["path"]
+        off = np.hypot(p[:, 1] - np.interp(p[:, 0], q[:, 0], q[:, 1]), p[:, 2] - np.interp(p[:, 0], q[:, 0], q[:, 2]))
+        pen = (np.hypot(p[:, 1], p[:, 2]) - r["c"]) / r["static"]
+        print(_row(f"{mode}, {step:g} s", r["steps"], _counts(r["it"], r["steps"]), f"{off.max() / r['c']:.4f}",
+                   f"{pen.min():.4f}..{pen.max():.4f}", r["counts"] or "-"))
+
+
+def slider_crank(mode: str, revolutions: float, step: float | None) -> tuple:
+    from exuclear.models import _slider_crank_run as run_module
+    from exuclear.models.slider_crank import SliderCrankParams
+
+    params = replace(SliderCrankParams.paper(), formulation="redundant", backend="python", revolutions=revolutions)
+    settings = run_module.default_settings(params)
+    if step:
+        settings = replace(settings, step=step)
+    built, original, saved = {}, run_module.build, following.DEFAULT_CONTACT_MODE
+
+    def build(p: object) -> object:
+        built["model"] = original(p)
+        return built["model"]
+
+    following.DEFAULT_CONTACT_MODE, run_module.build = mode, build
+    try:
+        result = run_module.run(params, settings)
+    finally:
+        following.DEFAULT_CONTACT_MODE, run_module.build = saved, original
+    model = built["model"]
+    return result, model.mbs.sys["dynamicSolver"].it, model.joint.follow_counts()
+
+
+def run_slider_crank(args: argparse.Namespace) -> None:
+    ref, _, _ = slider_crank("compliant", args.revolutions, 2e-6)
+    a = ref.columns
+    print(_row("run", "steps", "Newton / step", "impacts", "path off reference [c]", "switches"))
+    for mode in ("compliant", "follow"):
+        result, it, counts = slider_crank(mode, args.revolutions, args.step)
+        b = result.columns
+        off = np.hypot(a["ecc_x"] - np.interp(a["time"], b["time"], b["ecc_x"]),
+                       a["ecc_y"] - np.interp(a["time"], b["time"], b["ecc_y"]))
+        print(_row(mode, result.steps, _counts(it, result.steps), result.impacts, f"{off.max() / 1e-4:.4f}",
+                   counts or "-"))
+
+
+def zoo(name: str, mode: str, end: float, refine: int = 1, index2: bool = False) -> tuple:
+    from validation.exudyn_examples._common import load_models
+
+    model = load_models()[name](clearance=True, end_time=end, backend="python", contact_mode=mode)
+    ss = model.simulation_settings
+    ss.timeIntegration.numberOfSteps *= refine
+    if index2:
+        ss.timeIntegration.generalizedAlpha.useIndex2Constraints = True
+        ss.timeIntegration.generalizedAlpha.useNewmark = True
+    message = ""
+    try:
+        model.mbs.SolveDynamic(ss, solverType=model.solver_type)
+    except Exception as err:  # Exudyn raises its own error types when it stops
+        message = str(err).splitlines()[0][:60]
+    it = model.mbs.sys["dynamicSolver"].it
+    return model, it, np.asarray(model.probe(model.mbs)), message
+
+
+def run_zoo(args: argparse.Namespace) -> None:
+    from exuclear.engine.bodies import joint_contact_period
+
+    print(_row("model", "run", "h / T_c", "t reached", "steps", "Newton / step", "switches on/off",
+               "probe off reference [c]"))
+    for name in args.models.split(","):
+        ref, _, ref_probe, _ = zoo(name, "compliant", args.end_time, 4, args.index2)
+        for mode in ("compliant", "follow"):
+            model, it, probe, message = zoo(name, mode, args.end_time, 1, args.index2)
+            steps = it.currentStepIndex - 1
+            counts = model.joint.follow_counts()
+            switches = f"{counts['on']} / {counts['off']}" if counts else ""
+            off = np.abs(probe - ref_probe).max() / ref.clearance
+            ti = model.simulation_settings.timeIntegration
+            ratio = ti.endTime / ti.numberOfSteps / joint_contact_period(model.mbs, model.joint)
+            print(_row(name, mode, f"{ratio:.2g}", f"{model.mbs.systemData.GetTime():.4g}", steps, _counts(it, steps), switches,
+                       f"{off:.2f}" + (f" ({message})" if message else "")), flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m validation.contact_follow", description=__doc__.split("\n\n")[0])
+    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo"])
+    parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
+    parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
+    parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
+    parser.add_argument("--end-time", type=float, default=0.5, help="zoo end time [s] (default 0.5)")
+    parser.add_argument("--index2", action="store_true", help="zoo: Exudyn's index-2 constraints (Newmark)")
+    args = parser.parse_args(argv)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo}[args.case](args)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
