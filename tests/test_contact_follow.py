@@ -165,6 +165,17 @@ def test_follow_refuses_what_it_does_not_cover(options, message):
                                       bearing_radius=R_B, length=L, cr=0.9, **kwargs)
 
 
+def test_choosing_the_prototype_is_told():
+    """contact_mode='follow' warns where it is chosen that it is a prototype whose path can
+    differ from the compliant one (the zoo's rigid-body tutorial with friction)."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=mbs.AddNode(NodeRigidBody2D()), mass=1.0, inertia=1e-4))
+    with pytest.warns(exuclear.AccuracyWarning, match="prototype.*compare a run with the compliant contact"):
+        exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], journal_radius=R_J,
+                                      bearing_radius=R_B, length=L, cr=0.9, contact_mode="follow")
+
+
 def test_slider_crank_follows_its_permanent_contact():
     """The paper's redundant slider-crank over one revolution at its default settings: the
     same 22 impacts as the compliant model, then one switch into the following mode (none

@@ -28,12 +28,14 @@ from its force and post-Newton functions):
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import exudyn as exu
 from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
 
 from ..checks import check_choice
+from ..exceptions import AccuracyWarning
 from ..joint import ClearanceJoint
 from ..timescales import contact_period, contact_stiffness, penetration_at
 
@@ -305,6 +307,11 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
         raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
     if backend == "compiled" and not inherited:
         raise ValueError("contact_mode='follow' runs on the Python kernel only so far: give backend='python' or none")
+    # a prototype whose paths are not yet right in every model: said where it is chosen
+    warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): with friction it can lose "
+                  "the compliant path (the zoo's rigid-body tutorial with friction) and it saves no steps on the "
+                  "paper's slider-crank; compare a run with the compliant contact before trusting it",
+                  AccuracyWarning, stacklevel=4)
     return mode, "python"
 
 
