@@ -126,10 +126,17 @@ Params decode(const M6& p) {  // every field but the token (which only the Pytho
     a.eps_cap = field(p, EPS_CAP);
     a.rate_limit = field(p, RATE_LIMIT);
     a.bearing_motion = field(p, BEARING_MOTION) != 0.0;
-    long wear = static_cast<long>(field(p, WEAR_CODE));  // surface + 4 pressure + 8 nodes (layout.py wear_code)
-    a.wear_surface = static_cast<int>(wear % 4);
-    a.wear_pressure = static_cast<int>((wear / 4) % 2);
-    a.wear_nodes = static_cast<int>(wear / 8);
+    double code = field(p, WEAR_CODE);  // surface + 4 pressure + 8 nodes (layout.py wear_code); 0: no wear
+    if (code == 0.0) {  // the unworn joint: no integer divisions in its every evaluation
+        a.wear_surface = WEAR_NONE;
+        a.wear_pressure = WEAR_WINKLER;
+        a.wear_nodes = 0;
+    } else {
+        long wear = static_cast<long>(code);
+        a.wear_surface = static_cast<int>(wear % 4);
+        a.wear_pressure = static_cast<int>((wear / 4) % 2);
+        a.wear_nodes = static_cast<int>(wear / 8);
+    }
     a.wear_coefficient = field(p, WEAR_COEFFICIENT);
     return a;
 }
