@@ -133,10 +133,10 @@ def main(argv: list[str] | None = None) -> int:
     for label, model in (("unworn", unworn_model), (f"worn, {args.cycles:.3g} revolutions", worn_model)):
         cols = columns(model)
         second = cols["time"] >= 2.0 * math.pi / abs(params.crank_speed)
-        angle = cols["crank_angle"][second] - 360.0
-        axes[0].plot(angle, cols["contact_force"][second], lw=0.8, label=label)
+        crank = cols["crank_angle"][second] - 360.0
+        axes[0].plot(crank, cols["contact_force"][second], lw=0.8, label=label)
         axes[1].plot(cols["ecc_x"][second] / c, cols["ecc_y"][second] / c, lw=0.8, label=label)
-        axes[2].plot(angle, cols["slider_a"][second], lw=0.8, label=label)
+        axes[2].plot(crank, cols["slider_a"][second], lw=0.8, label=label)
         impacts = len(model.joint.history.onset_times)
         rows.append([label, f"{cols['contact_force'].max():.1f}", f"{cols['contact_force'][second].max():.1f}",
                      str(impacts), f"{np.hypot(cols['ecc_x'], cols['ecc_y'])[second].max() / c:.3f}"])
