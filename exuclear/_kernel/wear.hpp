@@ -89,11 +89,10 @@ void window(std::vector<int>& nodes, const Grid& g, double ex, double ey, double
 
 // surface.py SurfaceField: the two surfaces along the rays of the window's nodes (eqs.
 // (72)-(74)): w the penetration [m] along the journal's normal (> 0: overlap), (nx, ny) that
-// normal, cos_gamma its cosine to the ray, area the bearing's surface element [m^2], phi the
-// journal's own angle of the point [rad] (only where the journal wears: nothing else reads it).
+// normal, cos_gamma its cosine to the ray, area the bearing's surface element [m^2].
 struct SurfaceField {
     std::vector<int> nodes;
-    std::vector<double> w, nx, ny, cos_gamma, area, phi;
+    std::vector<double> w, nx, ny, cos_gamma, area;
 };
 
 // surface.py surface_field: along the ray n_k from the bearing's centre the unworn journal's
@@ -110,7 +109,6 @@ void surface_field(SurfaceField& f, const Grid& g, double r_j, double r_b, doubl
     f.ny.resize(m);
     f.cos_gamma.resize(m);
     f.area.resize(m);
-    f.phi.resize(journal != nullptr ? m : 0);
     for (size_t i = 0; i < m; ++i) {
         size_t k = static_cast<size_t>(f.nodes[i]);
         double cos_t = g.cos[k], sin_t = g.sin[k], depth = bearing[k];
@@ -122,8 +120,7 @@ void surface_field(SurfaceField& f, const Grid& g, double r_j, double r_b, doubl
         f.cos_gamma[i] = b / r_j;
         double w = (rho - r_b - depth) * f.cos_gamma[i];                                // eq. (73)
         if (journal != nullptr) {
-            f.phi[i] = std::atan2(f.ny[i], f.nx[i]) - psi;
-            w = w - periodic_value(*journal, f.phi[i], g.dtheta);
+            w = w - periodic_value(*journal, std::atan2(f.ny[i], f.nx[i]) - psi, g.dtheta);
         }
         f.w[i] = w;
         f.area[i] = length * (r_b + depth) * g.dtheta / np_maximum(f.cos_gamma[i], 1e-12);  // eq. (74)

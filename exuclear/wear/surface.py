@@ -61,7 +61,7 @@ class SurfaceField(NamedTuple):
     ``w`` the penetration [m] at each node along the journal's normal (> 0: the surfaces
     overlap there); ``nx``, ``ny`` that normal (outward from the journal's centre);
     ``cos_gamma`` the cosine of its angle to the ray; ``area`` the bearing's surface
-    element [m^2] of each node; ``phi`` the journal's own angle of the point [rad].
+    element [m^2] of each node.
     """
 
     w: np.ndarray
@@ -69,7 +69,6 @@ class SurfaceField(NamedTuple):
     ny: np.ndarray
     cos_gamma: np.ndarray
     area: np.ndarray
-    phi: np.ndarray
     nodes: np.ndarray
 
 
@@ -91,12 +90,11 @@ def surface_field(g: Grid, r_j: float, r_b: float, length: float, ex: float, ey:
     rho = a + b
     nx, ny = (rho * cos_t - ex) / r_j, (rho * sin_t - ey) / r_j
     cos_gamma = b / r_j
-    phi = np.arctan2(ny, nx) - psi
     w = (rho - r_b - depth) * cos_gamma
-    if journal is not None:
-        w = w - periodic_value(journal, phi, g.dtheta)
+    if journal is not None:  # the journal's depth at the point's own angle in its frame
+        w = w - periodic_value(journal, np.arctan2(ny, nx) - psi, g.dtheta)
     area = length * (r_b + depth) * g.dtheta / np.maximum(cos_gamma, 1e-12)                     # eq. (74)
-    return SurfaceField(w, nx, ny, cos_gamma, area, phi, nodes)
+    return SurfaceField(w, nx, ny, cos_gamma, area, nodes)
 
 
 class WornContact(NamedTuple):
