@@ -292,10 +292,12 @@ void accept_wear(const Params& a, JointState& s, bool advance, const std::vector
     }
 }
 
-// JointState.in_worn_contact: whether a slice is in contact on a worn profile (its contact conformal, section 11.1)
+// JointState.in_worn_contact: whether a slice is in contact on profiles deeper than
+// CONFORMAL_DEPTH of its penetration (its contact conformal, section 11.1)
 bool in_worn_contact(const JointState& s) {
     for (size_t k = 0; k < s.wear.size(); ++k) {
-        if (s.cur[k].in_contact && s.wear[k].current.worn) return true;
+        const Profiles& p = s.wear[k].current;
+        if (s.cur[k].in_contact && p.worn && p.deepest > CONFORMAL_DEPTH * s.cur[k].delta) return true;
     }
     return false;
 }

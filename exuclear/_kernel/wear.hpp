@@ -291,6 +291,9 @@ void wear_step(WearStep& out, const SurfaceField& f, const Grid& g, const std::v
 // An accepted step's stability number k_D K ds (eq. (81)) above which the profile's update
 // overshoots (its error changes sign each step; above 2 it grows).
 const double STABILITY_LIMIT = 1.0;
+// wear.py CONFORMAL_DEPTH: a worn contact is conformal (the joint asks for a Jacobian per step)
+// where the profiles are deeper than this share of the contact's penetration.
+const double CONFORMAL_DEPTH = 0.1;
 // The relative change of the penetration for the law's exponent d ln F / d ln delta.
 const double EXPONENT_STEP = 1e-3;
 
@@ -299,11 +302,13 @@ const double EXPONENT_STEP = 1e-3;
 struct Profiles {
     std::vector<double> bearing, journal, slip, stability;
     bool worn = false;
+    double deepest = 0.0;  // the largest depth of the two profiles [m]
 
     void update_worn() {
-        worn = false;
-        for (double d : bearing) worn = worn || d > 0.0;
-        for (double d : journal) worn = worn || d > 0.0;
+        deepest = 0.0;
+        for (double d : bearing) deepest = d > deepest ? d : deepest;
+        for (double d : journal) deepest = d > deepest ? d : deepest;
+        worn = deepest > 0.0;
     }
 };
 

@@ -27,7 +27,7 @@ from .kinematics import (
     slice_kinematics,
 )
 from .layout import RunStart
-from .wear import WearState
+from .wear import CONFORMAL_DEPTH, WearState
 
 DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
 
@@ -262,8 +262,11 @@ class JointState:
                 self._fail(why, t)
 
     def in_worn_contact(self, states: Any) -> bool:
-        """Whether a slice is in contact on a worn profile (its contact conformal, section 11.1)."""
-        return self.wear is not None and any(s.in_contact and w.current.worn for w, s in zip(self.wear, states))
+        """Whether a slice is in contact on profiles deeper than CONFORMAL_DEPTH of its
+        penetration (its contact conformal, section 11.1)."""
+        return self.wear is not None and any(s.in_contact and w.current.worn
+                                             and w.current.deepest > CONFORMAL_DEPTH * s.delta
+                                             for w, s in zip(self.wear, states))
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the
