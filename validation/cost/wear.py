@@ -2,7 +2,7 @@
 
 Source problems: the worn-in journal (:mod:`validation.wear.worn_in_journal`; 0.2 s, a
 journal turning at 100 rad/s under 500 N, wearing the bearing 61 um deep at k_D = 1e-10
-1/Pa, and at a steel-like k_D = 1e-14 1/Pa, 6 nm) and the paper's slider-crank (two
+1/Pa, and at a steel-like k_D = 1e-14 1/Pa, 24 nm) and the paper's slider-crank (two
 revolutions; wear at B with k_D = 1e-14 1/Pa).  Each run in each kernel, median of
 ``--repeats`` wall times taken in turn; prints the ratio with wear / without.  Run nothing
 else meanwhile::
@@ -41,7 +41,7 @@ def _slider_crank(coefficient: float | None, backend: str) -> Callable[[], float
 
 CASES = (
     ("worn-in journal, k_D 1e-10 (61 um)", _journal, 1e-10),
-    ("worn-in journal, k_D 1e-14 (6 nm)", _journal, 1e-14),
+    ("worn-in journal, k_D 1e-14 (24 nm)", _journal, 1e-14),
     ("slider-crank at B, k_D 1e-14", _slider_crank, 1e-14),
 )
 
