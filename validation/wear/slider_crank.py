@@ -43,13 +43,13 @@ CYCLES = 1e6
 
 
 class _SteadyCycle:
-    """What :func:`exuclear.predict_wear` reads of one run: the profiles the run started from
-    plus the wear of its second revolution (``start`` + ``end`` - ``mid``)."""
+    """What :func:`exuclear.predict_wear` reads of one run: the profiles the run started from,
+    ``bearing`` and ``journal``, plus the wear of its second revolution (``end`` - ``mid``)."""
 
-    def __init__(self, start: WearProfile, mid: WearProfile, end: WearProfile) -> None:
-        self.profile = WearProfile(end.theta, start.bearing + end.bearing - mid.bearing,
-                                   start.journal + end.journal - mid.journal, end.slip - mid.slip,
-                                   end.stability - mid.stability, end.journal_radius, end.bearing_radius, end.length)
+    def __init__(self, bearing: np.ndarray, journal: np.ndarray, mid: WearProfile, end: WearProfile) -> None:
+        self.profile = WearProfile(end.theta, bearing + end.bearing - mid.bearing, journal + end.journal - mid.journal,
+                                   end.slip - mid.slip, end.stability - mid.stability, end.journal_radius,
+                                   end.bearing_radius, end.length)
 
     def wear_profile(self) -> WearProfile:
         return self.profile
@@ -99,11 +99,8 @@ def main(argv: list[str] | None = None) -> int:
     def one_cycle(current: exuclear.Wear) -> _SteadyCycle:
         model, _sim, mid = run_worn(params, current)
         runs[0] += 1
-        start = model.joint.wear_profile()  # replaced below by the profiles the run started from
-        start = WearProfile(start.theta, np.array(current.bearing or np.zeros(wear.nodes)),
-                            np.array(current.journal or np.zeros(wear.nodes)), start.slip * 0.0, start.stability * 0.0,
-                            start.journal_radius, start.bearing_radius, start.length)
-        return _SteadyCycle(start, mid, model.joint.wear_profile())
+        start = [np.array(p) if p is not None else np.zeros(wear.nodes) for p in (current.bearing, current.journal)]
+        return _SteadyCycle(*start, mid, model.joint.wear_profile())
 
     t0 = time.perf_counter()
     prediction = exuclear.predict_wear(one_cycle, wear, args.cycles)
