@@ -82,7 +82,7 @@ class ClearanceJointHandle:
         self.probeNumber: Any = None
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
-        self.followNumber: Any = None  # contact_mode="follow": its ObjectConnectorDistance
+        self.followNumber: Any = None  # contact_mode="follow": the Exudyn item of its condition
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)

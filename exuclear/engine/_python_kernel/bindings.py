@@ -37,6 +37,7 @@ class JointKernel(JointStepControl):
         history = self.history_for(kins, t, u, p[2])
         loads = [0.0] * 9
         if follow is not None and follow.active:  # the constraint holds the contact: friction from its multiplier
+            follow.condition.fit(mbs, t)
             kin, h, c = kins[0], history[0], self.contacts[0]
             lam = follow.friction_force(mbs)
             f_t = c.friction.coefficient(kin.v_t) * lam if c.friction.active and lam > 0.0 else 0.0
@@ -117,8 +118,11 @@ class JointKernel(JointStepControl):
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
         if follow is not None:
             was = follow.active
+            follow.onset_rate = states[0].v0
+            turn = math.atan2(base[0].ecc_x * states[0].ecc_y - base[0].ecc_y * states[0].ecc_x,
+                              base[0].ecc_x * states[0].ecc_x + base[0].ecc_y * states[0].ecc_y)
             follow.after_step(mbs, t, h, states[0].delta, base[0].delta_dot, states[0].delta_dot, states[0].in_contact,
-                              states[0].onset_time, states[0].normal_force, self.control.impact_mass)
+                              states[0].onset_time, states[0].normal_force, self.control.impact_mass, turn)
             switched = switched or follow.active != was
             if was and follow.active:  # a followed step: the normal force is the constraint's (two-step mean)
                 states = (replace(states[0], normal_force=follow.multiplier), *states[1:])
