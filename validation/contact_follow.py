@@ -10,8 +10,11 @@ compliant reference, on the Python kernel.
 - ``zoo``: zoo models at their own settings (``--models``, ``--end-time``); the reference is
   the compliant run at 4 times the example's steps; ``--index2`` runs every model with
   Exudyn's index-2 constraints (Newmark).
+- ``cost``: the zoo models' wall time against their ideal models, side by side in one run
+  (medians of ``--repeats``): compliant on the compiled and the Python kernel, following.
 
-Cost is counted, not timed: the machine is shared.
+``orbit``, ``slider-crank`` and ``zoo`` count cost (steps, Newton iterations); only ``cost``
+times it: run it with nothing else on the machine.
 """
 from __future__ import annotations
 
@@ -19,6 +22,7 @@ import argparse
 import sys
 import warnings
 from dataclasses import replace
+from functools import partial
 
 import exudyn as exu
 import numpy as np
@@ -62,7 +66,8 @@ def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: f
     ss.timeIntegration.verboseMode, ss.solution.file.write = 0, False
     mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
     it = mbs.sys["dynamicSolver"].it
-    return {"path": mbs.GetSensorStoredData(sensor), "velocity": mbs.GetSensorStoredData(velocity), "steps": it.currentStepIndex - 1, "it": it, "c": c,
+    return {"path": mbs.GetSensorStoredData(sensor), "velocity": mbs.GetSensorStoredData(velocity),
+            "steps": it.currentStepIndex - 1, "it": it, "c": c,
             "counts": handle.follow_counts(), "static": r - c}
 
 
@@ -157,18 +162,54 @@ def run_zoo(args: argparse.Namespace) -> None:
                        f"{off:.2f}" + (f" ({message})" if message else "")), flush=True)
 
 
+def _wall(build: object, repeats: int, **options: object) -> tuple[float, int, float]:
+    """Median wall time [s] of ``repeats`` plain ``SolveDynamic`` runs of a fresh
+    ``build(**options)``, the steps and Newton iterations per step of the last."""
+    import statistics
+    import time
+
+    walls = []
+    for _ in range(repeats):
+        model = build(**options)
+        start = time.perf_counter()
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+        walls.append(time.perf_counter() - start)
+    it = model.mbs.sys["dynamicSolver"].it
+    steps = it.currentStepIndex - 1
+    return statistics.median(walls), steps, it.newtonStepsCount / max(steps, 1)
+
+
+def run_cost(args: argparse.Namespace) -> None:
+    """Wall time against the ideal model, side by side in one run (medians of ``--repeats``):
+    the compliant joint on the compiled kernel (the default) and on the Python kernel, and
+    the following mode (Python kernel)."""
+    from validation.exudyn_examples._common import load_models
+
+    models = load_models()
+    print(_row("model", "run", "wall [s]", "/ ideal", "steps", "Newton / step"))
+    for name in args.models.split(","):
+        build = partial(models[name], end_time=args.end_time)
+        ideal, steps, newton = _wall(build, args.repeats, clearance=False)
+        print(_row(name, "ideal", f"{ideal:.3f}", "1", steps, f"{newton:.2f}"), flush=True)
+        for label, options in (("compliant, compiled", {}), ("compliant, Python", {"backend": "python"}),
+                               ("follow, Python", {"backend": "python", "contact_mode": "follow"})):
+            wall, steps, newton = _wall(build, args.repeats, clearance=True, **options)
+            print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{newton:.2f}"), flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m validation.contact_follow", description=__doc__.split("\n\n")[0])
-    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo"])
+    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost"])
     parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
     parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
     parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
     parser.add_argument("--end-time", type=float, default=0.5, help="zoo end time [s] (default 0.5)")
     parser.add_argument("--index2", action="store_true", help="zoo: Exudyn's index-2 constraints (Newmark)")
+    parser.add_argument("--repeats", type=int, default=3, help="cost: runs per median (default 3)")
     args = parser.parse_args(argv)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo}[args.case](args)
+        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost}[args.case](args)
     return 0
 
 
