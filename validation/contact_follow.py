@@ -188,7 +188,7 @@ def run_cost(args: argparse.Namespace) -> None:
     models = load_models()
     print(_row("model", "run", "wall [s]", "/ ideal", "steps", "Newton / step"))
     for name in args.models.split(","):
-        build = partial(models[name], end_time=args.end_time)
+        build = partial(models[name], end_time=args.end_time if args.end_time > 0.0 else None)
         ideal, steps, newton = _wall(build, args.repeats, clearance=False)
         print(_row(name, "ideal", f"{ideal:.3f}", "1", steps, f"{newton:.2f}"), flush=True)
         for label, options in (("compliant, compiled", {}), ("compliant, Python", {"backend": "python"}),
@@ -203,7 +203,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
     parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
     parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
-    parser.add_argument("--end-time", type=float, default=0.5, help="zoo end time [s] (default 0.5)")
+    parser.add_argument("--end-time", type=float, default=0.5, help="zoo end time [s] (default 0.5; cost: 0 for each example's own)")
     parser.add_argument("--index2", action="store_true", help="zoo: Exudyn's index-2 constraints (Newmark)")
     parser.add_argument("--repeats", type=int, default=3, help="cost: runs per median (default 3)")
     args = parser.parse_args(argv)
