@@ -262,8 +262,36 @@ def _convergence(entry: Entry, model: ZooModel, result: Any, time_limit: float, 
     return _convergence_verdict(check)
 
 
-def run_model(name: str, quick: bool = False, convergence: bool = True, end_time: float | None = None) -> dict[str, Any]:
-    """Run one registered model (module docstring); every failure becomes a field of the row."""
+def _newton_per_step(model: ZooModel) -> float:
+    it = model.mbs.sys["dynamicSolver"].it
+    return it.newtonStepsCount / max(it.currentStepIndex - 1, 1)
+
+
+def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, ideal_run: _Run, own: _Run,
+            own_model: ZooModel) -> dict[str, Any]:
+    """The following mode's columns (``--follow``, issue 34's prototype, on the Python kernel):
+    its wall time against the ideal model's, steps, Newton iterations per step, engagements,
+    and its probe's difference from the compliant run at the same settings [c]."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", exuclear.AccuracyWarning)  # the prototype's warning, said once per joint
+        run, model = _median_wall(lambda: entry(True, end_time, backend="python", contact_mode="follow"), repeats, limit)
+    counts = model.joint.follow_counts()
+    fields: dict[str, Any] = {
+        "follow_reached": run.reached, "follow_wall": run.wall, "follow_steps": run.steps,
+        "follow_newton": _newton_per_step(model), "follow_message": run.message,
+        "follow_switches": f"{counts['on']}/{counts['off']}" + (f" ({counts['lost']} lost)" if counts["lost"] else ""),
+        "follow_ratio": run.wall / ideal_run.wall if ideal_run.reached and run.reached else math.nan}
+    if run.reached and own.reached:
+        fields["follow_probe_c"] = float(np.abs(np.asarray(model.probe(model.mbs), dtype=float)
+                                                - np.asarray(own_model.probe(own_model.mbs), dtype=float)).max()
+                                         / model.clearance)
+    return fields
+
+
+def run_model(name: str, quick: bool = False, convergence: bool = True, end_time: float | None = None,
+              follow: bool = False) -> dict[str, Any]:
+    """Run one registered model (module docstring); every failure becomes a field of the row.
+    ``follow``: also the following mode's columns (:func:`_follow`)."""
     entry = REGISTRY[name]
     repeats = 1 if quick else 3
     limit = QUICK_TIME_LIMIT if quick else TIME_LIMIT
@@ -285,6 +313,9 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
         if own.reached and probe_ideal is not None:
             row["probe_diff"] = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))
         row["own_ratio"] = own.wall / ideal_run.wall if ideal_run.reached and own.reached else math.nan
+        row["own_newton"] = _newton_per_step(model)
+        if follow:
+            row.update(_follow(entry, end_time, repeats, limit, ideal_run, own, own_model))
 
         model = entry(True, end_time)
         sim, result = _solve_simulate(model, limit)
