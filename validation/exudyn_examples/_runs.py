@@ -274,7 +274,11 @@ def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, id
     and its probe's difference from the compliant run at the same settings [c]."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", exuclear.AccuracyWarning)  # the prototype's warning, said once per joint
-        run, model = _median_wall(lambda: entry(True, end_time, backend="python", contact_mode="follow"), repeats, limit)
+        try:
+            run, model = _median_wall(lambda: entry(True, end_time, backend="python", contact_mode="follow"),
+                                      repeats, limit)
+        except ValueError as err:  # a joint the prototype does not cover (a film, wear, slices)
+            return {"follow_reached": False, "follow_message": f"refused: {_first_line(err)}"}
     counts = model.joint.follow_counts()
     fields: dict[str, Any] = {
         "follow_reached": run.reached, "follow_wall": run.wall, "follow_steps": run.steps,

@@ -7,7 +7,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from ..following import FollowState
+from ..following import STICK_MARGIN, FollowState, stick_speed
 from .joint_state import DIVERGED
 from .kinematics import finish_loads, finite
 from .laws import ContactResponse
@@ -97,7 +97,9 @@ class JointKernel(JointStepControl):
         rate_limit = read(stiffness, "rate_limit")
         if follow is not None and follow.active:  # the constraint sets the normal rate: no rate criterion
             rate_limit = 0.0
-            redo = follow.release_step(mbs, t - base[0].time, base[0].time, self.control.can_shorten)
+            redo = follow.release_step(mbs, t - base[0].time, base[0].time, self.control.can_shorten) \
+                or follow.hold_step(kins[0].delta, t - base[0].time, base[0].time, self.control.can_shorten,
+                                    self.control.min_step)
             if redo > 0.0:
                 self.steer_jacobian(math.inf)
                 return [REDO_STEP_ERROR, redo, *data]
@@ -122,7 +124,9 @@ class JointKernel(JointStepControl):
             turn = math.atan2(base[0].ecc_x * states[0].ecc_y - base[0].ecc_y * states[0].ecc_x,
                               base[0].ecc_x * states[0].ecc_x + base[0].ecc_y * states[0].ecc_y)
             follow.after_step(mbs, t, h, states[0].delta, base[0].delta_dot, states[0].delta_dot, states[0].in_contact,
-                              states[0].onset_time, states[0].normal_force, self.control.impact_mass, turn)
+                              states[0].onset_time, states[0].normal_force, self.control.impact_mass, turn,
+                              self.contacts[0].friction.active
+                              and abs(states[0].slip_velocity) < STICK_MARGIN * stick_speed(self.contacts[0].friction))
             switched = switched or follow.active != was
             if was and follow.active:  # a followed step: the normal force is the constraint's (two-step mean)
                 states = (replace(states[0], normal_force=follow.multiplier), *states[1:])
