@@ -13,8 +13,9 @@ from its force and post-Newton functions):
   FOLLOW_PERIODS contact periods, at steps of at least FOLLOW_STEP contact periods, with a
   penetration rate below FOLLOW_RATE ``v_min`` and a normal that turned by less than
   FOLLOW_TURN over the step, is handed to a condition (CONDITION) that holds ``|e| = d``,
-  ``d`` set to the present ``|e|`` so that the switch is no impulse (a switch in an
-  inconsistent state is one: /work/shared/research/contact-following.md).
+  ``d`` set to the present ``|e|`` so that the switch is no impulse (an Exudyn constraint
+  switched on in an inconsistent state corrects it by an impulse: a mass point 1 mm beyond
+  a distance constraint, switched on, drew 15.5 kN, then -358 kN, where its physical force is 1-30 N).
 - **The condition.** :class:`VelocityCondition` (the kept one): the normal rate at velocity
   level, ``n . (v_journal - v_bearing) = r``, in the normal predicted for the step's end,
   its rows set again at the step Exudyn actually takes; the rate ``r`` brings ``|e|`` back
@@ -24,9 +25,11 @@ from its force and post-Newton functions):
   ``lambda`` is the normal force; friction acts from it (FRICTION_FROM); the distance
   follows ``c + delta(lambda)``, the law's penetration at that force (with its damping at
   the rate it asks, DAMPED_TARGET), with a loop gain below 1 (FOLLOW_GAIN).
-- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED), or where
-  ``|e|`` has left ``d`` by FOLLOW_HOLD of the penetration (``lost``; that contact then stays
-  compliant until it ends).
+- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED), or where the
+  slip comes within STICK_MARGIN of the friction law's smoothing band.  A step on which
+  ``|e|`` left ``d`` by more than FOLLOW_HOLD of the penetration is redone at half its length
+  (HOLD_REDOS times at most); then the contact is let go (``lost``) and stays compliant
+  until it ends.
 - **Exudyn.** The flag ``activeConnector`` and the condition's parameters are set from the
   joint's post-Newton function at an accepted step (and its rows from the force function
   where the step differs); each switch requests a Jacobian, and Newton's absolute tolerance
