@@ -67,6 +67,12 @@ class FrictionLaw(ABC):
     def coefficient(self, v_t: float) -> float:
         """Friction coefficient ``mu`` for the tangential slip ``v_t`` [m/s]; odd in ``v_t``."""
 
+    @property
+    def smoothing_speed(self) -> float:
+        """Half-width [m/s] of the band ``|v_t| <`` it where ``mu`` is the smoothed sign, a
+        steep function of the slip (0: none)."""
+        return 0.0
+
     def __call__(self, v_t: float) -> float:
         return self.coefficient(v_t)
 
@@ -106,6 +112,10 @@ class Coulomb(FrictionLaw):
     def __post_init__(self) -> None:
         _check_coefficient("mu", self.mu)
         check_positive("v_eps", self.v_eps)
+
+    @property
+    def smoothing_speed(self) -> float:
+        return self.v_eps
 
     def coefficient(self, v_t: float) -> float:
         # S(v; -a, -mu, a, mu) is odd in v; evaluating it at |v| keeps that exact in floats
@@ -147,6 +157,10 @@ class ModifiedCoulomb(FrictionLaw):
     def paper(cls) -> ModifiedCoulomb:
         """The paper's Table 1: mu_s = 0.3, mu_d = 0.25, v_s = 0.1 mm/s, v_d = 10 mm/s."""
         return cls(mu_s=0.3, mu_d=0.25, v_s=1e-4, v_d=1e-2)
+
+    @property
+    def smoothing_speed(self) -> float:
+        return self.v_s
 
     def coefficient(self, v_t: float) -> float:
         speed = abs(v_t)

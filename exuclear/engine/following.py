@@ -79,7 +79,8 @@ FOLLOW_STEP = 0.2
 #: penetration within a few steps).
 FOLLOW_TURN = 0.1
 #: A contact whose slip is within STICK_MARGIN times its friction law's smoothing band
-#: (:func:`stick_speed`) stays compliant, and a followed one is let go there (in a consistent state: ``|e| = d``,
+#: (``smoothing_speed`` of :mod:`exuclear.friction`'s laws) stays compliant, and a followed
+#: one is let go there (in a consistent state: ``|e| = d``,
 #: no normal rate, the compliant force the multiplier): friction is a steep function of the
 #: slip there, and Newton's iteration of the multiplier through it alternated (the 2D double
 #: pendulum with friction at rest on its wall after 4.7 s, +-40 N about 27 N, until Exudyn
@@ -305,6 +306,11 @@ class FollowState:
         self.redone += 1
         return max(share, 0.05) * h
 
+    @staticmethod
+    def sticking(friction: Any, slip: float) -> bool:
+        """Whether the slip lies within STICK_MARGIN times the friction law's smoothing band."""
+        return friction.active and abs(slip) < STICK_MARGIN * friction.smoothing_speed
+
     def hold_step(self, delta: float, h: float, start: float, can_shorten: bool, min_step: float) -> float:
         """While following, at the end of the step of length ``h`` from ``start`` where the
         penetration is ``delta``: 0 to accept it, else the shorter step to redo it with where
@@ -401,13 +407,6 @@ class FollowState:
         return {"on": self.on_count, "off": self.off_count, "lost": self.lost, "redone": self.redone,
                 "followed_steps": self.followed_steps,
                 "active": self.active}
-
-
-def stick_speed(friction: Any) -> float:
-    """The slip speed below which the friction law's coefficient is a steep smoothing of its
-    sign (``v_s`` of the modified Coulomb law, ``v_eps`` of the smoothed Coulomb law; 0 for
-    others)."""
-    return float(getattr(friction, "v_s", getattr(friction, "v_eps", 0.0)))
 
 
 def _request_jacobian(mbs: Any) -> None:

@@ -7,7 +7,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from ..following import STICK_MARGIN, FollowState, stick_speed
+from ..following import FollowState
 from .joint_state import DIVERGED
 from .kinematics import finish_loads, finite
 from .laws import ContactResponse
@@ -125,8 +125,7 @@ class JointKernel(JointStepControl):
                               base[0].ecc_x * states[0].ecc_x + base[0].ecc_y * states[0].ecc_y)
             follow.after_step(mbs, t, h, states[0].delta, base[0].delta_dot, states[0].delta_dot, states[0].in_contact,
                               states[0].onset_time, states[0].normal_force, self.control.impact_mass, turn,
-                              self.contacts[0].friction.active
-                              and abs(states[0].slip_velocity) < STICK_MARGIN * stick_speed(self.contacts[0].friction))
+                              follow.sticking(self.contacts[0].friction, states[0].slip_velocity))
             switched = switched or follow.active != was
             if was and follow.active:  # a followed step: the normal force is the constraint's (two-step mean)
                 states = (replace(states[0], normal_force=follow.multiplier), *states[1:])
