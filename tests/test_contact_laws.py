@@ -115,6 +115,17 @@ def test_implicit_models_solve_their_defining_equation(name, geometry, e_star):
     assert math.isnan(m.elastic_force(1.001 * m.max_penetration))  # beyond its largest penetration: no force
 
 
+@pytest.mark.parametrize("name", IMPLICIT)
+def test_implicit_models_have_a_force_up_to_the_last_float_below_their_peak(name, geometry, e_star):
+    # at the peak ds/d(delta) is infinite (the defining equation's slope ln(C/s) + beta - 1 is 0
+    # there); a bisection over (0, c] reaches the last float below it, where Newton's step was a
+    # division by zero in the Python kernel: the force there is the peak's, F = pi L E* s_peak
+    m = C.stiffness_model(name, geometry, e_star)
+    ks, c, beta = m.kernel_parameters()[:3]
+    s_peak = c * math.exp(beta - 1.0)
+    assert m.elastic_force(math.nextafter(m.max_penetration, 0.0)) == pytest.approx(ks * s_peak, rel=1e-6)
+
+
 def test_johnson_is_the_two_cylinder_formula_with_the_hertz_half_width(geometry, e_star):
     # Johnson (1985) for the approach of two cylinders, written with both radii and the Hertz
     # half-width b = 2 sqrt(F R* / (pi L E*)), R* = R_J R_B / (R_B - R_J) for the conforming pair;

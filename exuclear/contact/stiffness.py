@@ -315,8 +315,9 @@ class _LogLineContact(StiffnessModel):
                 hi = s
             else:
                 lo = s
-            s_new = s - r / (log_term - 1.0)
-            if not lo < s_new < hi:
+            slope = log_term - 1.0  # d(s ln(C/s) + beta s)/ds: 0 at the peak, where Newton has no step
+            s_new = s - r / slope if slope > 0.0 else math.nan
+            if not lo < s_new < hi:  # NaN included: bisect
                 s_new = 0.5 * (lo + hi)
             if abs(s_new - s) <= IMPLICIT_RTOL * s_new:
                 return s_new
