@@ -1,4 +1,4 @@
-"""``python -m validation.contact_follow [orbit|slider-crank|zoo] [options]``: the measurements of
+"""``python -m validation.contact_follow [orbit|slider-crank|zoo|cost|anatomy] [options]``: the measurements of
 docs/guide/contact_following.md (issue 34's contact-following mode against the compliant
 contact): solver steps, Newton iterations per step, switches and the agreement with a
 compliant reference, on the Python kernel.
@@ -12,9 +12,13 @@ compliant reference, on the Python kernel.
   Exudyn's index-2 constraints (Newmark).
 - ``cost``: the zoo models' wall time against their ideal models, side by side in one run
   (medians of ``--repeats``): compliant on the compiled and the Python kernel, following.
+- ``anatomy``: where one run of each (ideal, compliant compiled, following) spends its time:
+  microseconds per step, Newton iterations and Jacobians per step, and the shares of
+  Exudyn's own timers (Jacobian, right-hand side, post-Newton); the per-step budget a
+  following mode must meet to reach a wall-time ratio.
 
-``orbit``, ``slider-crank`` and ``zoo`` count cost (steps, Newton iterations); only ``cost``
-times it: run it with nothing else on the machine.
+``orbit``, ``slider-crank`` and ``zoo`` count cost (steps, Newton iterations); ``cost`` and
+``anatomy`` time it: run them with nothing else on the machine.
 """
 from __future__ import annotations
 
@@ -197,19 +201,53 @@ def run_cost(args: argparse.Namespace) -> None:
             print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{newton:.2f}"), flush=True)
 
 
+def run_anatomy(args: argparse.Namespace) -> None:
+    """One run each (the ideal model, the compliant joint compiled, the following mode):
+    microseconds per step, Newton iterations and Jacobians per step, and the shares of
+    Exudyn's timers (``displayComputationTime``).  The last column is the per-step cost a run
+    with the clearance run's steps may have to stay at twice the ideal model's wall time."""
+    import time
+
+    from validation.exudyn_examples._common import load_models
+
+    models = load_models()
+    print(_row("model", "run", "wall [s]", "/ ideal", "steps", "us / step", "Newton / step", "Jacobians / step",
+               "Jacobian %", "RHS %", "post-Newton %", "us / step for 2x ideal"))
+    for name in args.models.split(","):
+        ideal = None
+        for label, options in (("ideal", {"clearance": False}), ("compliant, compiled", {"clearance": True}),
+                               ("follow, Python", {"clearance": True, "backend": "python", "contact_mode": "follow"})):
+            model = models[name](end_time=args.end_time if args.end_time > 0.0 else None, **options)
+            model.simulation_settings.displayComputationTime = True  # fills the solver's timers
+            start = time.perf_counter()
+            model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+            wall = time.perf_counter() - start
+            solver = model.mbs.sys["dynamicSolver"]
+            it, timer = solver.it, solver.timer
+            steps = it.currentStepIndex - 1
+            ideal = ideal or wall
+            share = [f"{100.0 * x / max(timer.total, 1e-12):.0f}" for x in
+                     (timer.totalJacobian, timer.ODE2RHS, timer.postNewton)]
+            print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{1e6 * wall / steps:.1f}",
+                       _counts(it, steps), f"{it.newtonJacobiCount / max(steps, 1):.2f}", *share,
+                       f"{1e6 * 2.0 * ideal / steps:.1f}"), flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m validation.contact_follow", description=__doc__.split("\n\n")[0])
-    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost"])
+    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost", "anatomy"])
     parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
     parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
     parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
-    parser.add_argument("--end-time", type=float, default=0.5, help="zoo end time [s] (default 0.5; cost: 0 for each example's own)")
+    parser.add_argument("--end-time", type=float, default=0.5,
+                        help="zoo end time [s] (default 0.5; cost, anatomy: 0 for each example's own)")
     parser.add_argument("--index2", action="store_true", help="zoo: Exudyn's index-2 constraints (Newmark)")
     parser.add_argument("--repeats", type=int, default=3, help="cost: runs per median (default 3)")
     args = parser.parse_args(argv)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost}[args.case](args)
+        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost,
+         "anatomy": run_anatomy}[args.case](args)
     return 0
 
 

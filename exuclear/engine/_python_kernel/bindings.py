@@ -29,9 +29,14 @@ class JointKernel(JointStepControl):
         """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in J0, F the
         force on the bearing, T minus the journal's moment about its marker point
         (docs/physics.md eqs. (41)-(45), (54); the planar eqs. (24)-(26))."""
+        follow = self.follow
+        if follow is not None and follow.active and not self.contacts[0].friction.active \
+                and t >= self.previous[0].time:  # the condition holds a frictionless contact: no load
+            follow.condition.fit(mbs, t)
+            self.torque_correction = (0.0, 0.0, 0.0)
+            return [0.0] * 6
         p, u, kins = self.joint_kinematics(displacement, rotation, velocity, angular_velocity,
                                            read(stiffness, "bearing_motion") != 0.0, t)
-        follow = self.follow
         if follow is not None and (not self.started or t < self.previous[0].time):
             follow.restart(mbs)  # a new run: compliant from its initial state
         history = self.history_for(kins, t, u, p[2])
@@ -40,7 +45,7 @@ class JointKernel(JointStepControl):
             follow.condition.fit(mbs, t)
             kin, h, c = kins[0], history[0], self.contacts[0]
             lam = follow.friction_force(mbs)
-            f_t = c.friction.coefficient(kin.v_t) * lam if c.friction.active and lam > 0.0 else 0.0
+            f_t = c.friction.coefficient(kin.v_t) * lam if lam > 0.0 else 0.0
             c.add_loads(loads, u, kin, ContactResponse(0.0, f_t, h.v0))
             self.torque_correction = (loads[6], loads[7], loads[8])
             return loads[:6]
