@@ -411,7 +411,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
     contact_mode : str, optional
         ``"compliant"`` (default) or ``"follow"``, the opt-in prototype of
-        :mod:`exuclear.engine.following` (docs/guide/contact_following.md).
+        :mod:`exuclear.engine.following` (docs/guide/contact_following.md): the planar
+        dry joint on the Python kernel, under an implicit solver with a spectral radius of
+        at most 0.9 (else it stays compliant and says so).
 
     Returns
     -------
