@@ -255,7 +255,17 @@ def test_interrupt_then_resume_loses_and_repeats_nothing(tmp_path: Path, workers
 
 def test_ctrl_c_in_serial_study_finishes_the_run_and_stops(tmp_path: Path):
     """A Ctrl-C inside a run (where a solver callback would swallow KeyboardInterrupt)
-    lets that run finish and be recorded, then stops the study."""
+    lets that run finish and be recorded, then stops the study.  Python's own Ctrl-C handler
+    is installed for the test: a shell that starts the tests as a background job has them
+    ignore SIGINT, where no Ctrl-C can reach the study."""
+    handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        _ctrl_c_in_serial_study(tmp_path)
+    finally:
+        signal.signal(signal.SIGINT, handler)
+
+
+def _ctrl_c_in_serial_study(tmp_path: Path) -> None:
     stop = tmp_path / "stop"
     stop.touch()
     out = tmp_path / "t.csv"
