@@ -203,16 +203,18 @@ def run_cost(args: argparse.Namespace) -> None:
 
 def run_anatomy(args: argparse.Namespace) -> None:
     """One run each (the ideal model, the compliant joint compiled, the following mode):
-    microseconds per step, Newton iterations and Jacobians per step, and the shares of
-    Exudyn's timers (``displayComputationTime``).  The last column is the per-step cost a run
+    microseconds per step, Newton iterations and Jacobians per step, the steps redone at a
+    post-Newton function's request (Exudyn's discontinuous iterations beyond one per step:
+    the joint's own step control), and the shares of Exudyn's timers
+    (``displayComputationTime``).  The last column is the per-step cost a run
     with the clearance run's steps may have to stay at twice the ideal model's wall time."""
     import time
 
     from validation.exudyn_examples._common import load_models
 
     models = load_models()
-    print(_row("model", "run", "wall [s]", "/ ideal", "steps", "us / step", "Newton / step", "Jacobians / step",
-               "Jacobian %", "RHS %", "post-Newton %", "us / step for 2x ideal"))
+    print(_row("model", "run", "wall [s]", "/ ideal", "steps", "redone", "us / step", "Newton / step",
+               "Jacobians / step", "Jacobian %", "RHS %", "post-Newton %", "us / step for 2x ideal"))
     for name in args.models.split(","):
         ideal = None
         for label, options in (("ideal", {"clearance": False}), ("compliant, compiled", {"clearance": True}),
@@ -228,7 +230,8 @@ def run_anatomy(args: argparse.Namespace) -> None:
             ideal = ideal or wall
             share = [f"{100.0 * x / max(timer.total, 1e-12):.0f}" for x in
                      (timer.totalJacobian, timer.ODE2RHS, timer.postNewton)]
-            print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{1e6 * wall / steps:.1f}",
+            redone = it.discontinuousIterationsCount - steps
+            print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, redone, f"{1e6 * wall / steps:.1f}",
                        _counts(it, steps), f"{it.newtonJacobiCount / max(steps, 1):.2f}", *share,
                        f"{1e6 * 2.0 * ideal / steps:.1f}"), flush=True)
 
