@@ -203,7 +203,6 @@ class FollowState:
 
     def __init__(self, law: Any, clearance: float, name: str = "") -> None:
         self.law, self.clearance, self.name = law, clearance, name
-        self.mbs: Any = None
         self.condition: Any = None  # DistanceCondition or VelocityCondition (set by AddClearanceJoint)
         self.reset()
 
@@ -352,6 +351,11 @@ class FollowState:
         """Whether the slip lies within STICK_MARGIN times the friction law's smoothing band."""
         return friction.active and abs(slip) < STICK_MARGIN * friction.smoothing_speed
 
+    def holds(self, delta: float) -> bool:
+        """Whether the penetration ``delta`` (``|e| - c``) is within FOLLOW_HOLD of the held ``d - c``."""
+        held = self.distance - self.clearance
+        return abs(delta - held) <= FOLLOW_HOLD * held
+
     def hold_step(self, delta: float, h: float, start: float, can_shorten: bool, min_step: float) -> float:
         """While following, at the end of the step of length ``h`` from ``start`` where the
         penetration is ``delta``: 0 to accept it, else the shorter step to redo it with where
@@ -359,8 +363,7 @@ class FollowState:
         falls with the fourth power of the normal's turn per step; the force function sets
         its rows for the shorter step).  At most HOLD_REDOS halvings per step start; then
         :meth:`after_step` lets the contact go (``lost``)."""
-        held = self.distance - self.clearance
-        if abs(delta - held) <= FOLLOW_HOLD * held or not can_shorten or 0.5 * h < min_step:
+        if self.holds(delta) or not can_shorten or 0.5 * h < min_step:
             return 0.0
         if start != self.hold_start:
             self.hold_start, self.hold_redos = start, 0
@@ -404,15 +407,14 @@ class FollowState:
         smoothing band: release, update ``delta(lambda)``, or switch on."""
         if self.active:
             raw = self.read_multiplier(mbs)
-            lam = 0.5 * (raw + self.raw) if self.condition.two_step_mean else raw
             mean = 0.5 * (raw + self.raw)  # the distance's target: a two-step oscillation fed back through it grows
+            lam = mean if self.condition.two_step_mean else raw
             self.raw = raw
             filtered = self.filtered + FOLLOW_FILTER * (lam - self.filtered)
             if (filtered if RELEASE_FILTERED else lam) <= 0.0 or sticking:
                 self._release(mbs, t)  # sticking: |e| = d and no normal rate, the compliant force is lambda
                 return
-            held = self.distance - self.clearance
-            if abs(delta - held) > FOLLOW_HOLD * held:  # the condition no longer holds |e| = d
+            if not self.holds(delta):  # the condition no longer holds |e| = d
                 self.lost += 1
                 self.barred = True
                 self._release(mbs, t)
