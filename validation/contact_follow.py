@@ -1,4 +1,4 @@
-"""``python -m validation.contact_follow [orbit|slider-crank|zoo|cost|anatomy] [options]``: the measurements of
+"""``python -m validation.contact_follow [orbit|slider-crank|zoo|cost|anatomy|phases] [options]``: the measurements of
 docs/guide/contact_following.md (issue 34's contact-following mode against the compliant
 contact): solver steps, Newton iterations per step, switches and the agreement with a
 compliant reference, on the Python kernel.
@@ -16,13 +16,22 @@ compliant reference, on the Python kernel.
   microseconds per step, Newton iterations and Jacobians per step, and the shares of
   Exudyn's own timers (Jacobian, right-hand side, post-Newton); the per-step budget a
   following mode must meet to reach a wall-time ratio.
+- ``phases``: where the accepted steps of one run of each (compliant compiled, following) fall:
+  free flight, a contact's first FOLLOW_PERIODS contact periods, then the sustained contact
+  followed, compliant near stick (the slip within STICK_MARGIN times the friction law's
+  smoothing band) or compliant sliding; each phase's steps, time and median step in
+  contact periods; and the compliant run again at ``--refine`` times the steps.  A second
+  table gives the normal force over the stretches of sustained contact (mean, standard
+  deviation, strongest frequencies): a vibration that the refined run has too is the
+  model's, not the step's.
 
-``orbit``, ``slider-crank`` and ``zoo`` count cost (steps, Newton iterations); ``cost`` and
+``orbit``, ``slider-crank``, ``zoo`` and ``phases`` count cost (steps, Newton iterations); ``cost`` and
 ``anatomy`` time it: run them with nothing else on the machine.
 """
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import warnings
 from dataclasses import replace
@@ -236,21 +245,115 @@ def run_anatomy(args: argparse.Namespace) -> None:
                        f"{1e6 * 2.0 * ideal / steps:.1f}"), flush=True)
 
 
+#: The phases of ``phases``, in the order printed.
+PHASES = ("free flight", "contact, first periods", "sustained, followed", "sustained, compliant near stick",
+          "sustained, compliant sliding")
+
+
+class PhaseRecorder:
+    """A post-step function: each accepted step's end time, length and phase (:data:`PHASES`),
+    and the joint's normal force, from the joint's state at the step's end."""
+
+    def __init__(self, joint: object, period: float) -> None:
+        self.joint, self.period, self.last = joint, period, 0.0
+        self.friction = joint.joint.friction
+        self.steps: list[tuple[float, float, int, float]] = []
+
+    def __call__(self, mbs: object, t: float) -> bool:
+        state = self.joint.state()
+        if not state.in_contact:
+            phase = 0
+        elif t - state.onset_time < following.FOLLOW_PERIODS * self.period:
+            phase = 1
+        elif self.joint.follow_counts().get("active"):
+            phase = 2
+        else:
+            phase = 3 if following.FollowState.sticking(self.friction, state.slip_velocity) else 4
+        self.steps.append((t, t - self.last, phase, state.normal_force))
+        self.last = t
+        return True
+
+
+#: ``phases``: the normal force's spectrum over windows of this length [s] in which the
+#: contact is sustained throughout, sampled at WINDOW / 2500.
+WINDOW = 0.05
+
+
+def force_spectrum(steps: np.ndarray) -> tuple[int, float, float, list[float]]:
+    """Over the WINDOW-long stretches of a run in which the contact is sustained throughout
+    (``steps``: rows of :class:`PhaseRecorder`): their count, the normal force's mean and
+    standard deviation there, and the three strongest frequencies [Hz] of its summed power
+    spectrum (mean removed per window, Hann window), between 20 Hz and 2 kHz."""
+    samples = 2500
+    dt = WINDOW / samples
+    grid = np.arange(0.0, steps[-1, 0], dt)
+    sustained = np.interp(grid, steps[:, 0], (steps[:, 2] >= 2).astype(float)) > 0.5
+    force = np.interp(grid, steps[:, 0], steps[:, 3])
+    power, values = 0.0, []
+    for start in range(0, len(grid) - samples, samples):
+        window = slice(start, start + samples)
+        if sustained[window].all():
+            x = force[window]
+            values.append(x)
+            power = power + np.abs(np.fft.rfft((x - x.mean()) * np.hanning(samples))) ** 2
+    if not values:
+        return 0, math.nan, math.nan, []
+    frequencies = np.fft.rfftfreq(samples, dt)
+    band = (frequencies > 20.0) & (frequencies < 2000.0)
+    strongest = frequencies[band][np.argsort(power[band])[::-1][:3]]
+    x = np.concatenate(values)
+    return len(values), float(x.mean()), float(x.std()), [float(f) for f in strongest]
+
+
+def run_phases(args: argparse.Namespace) -> None:
+    from exuclear.engine.bodies import joint_contact_period
+    from validation.exudyn_examples._common import load_models
+
+    models = load_models()
+    spectra = []
+    print(_row("model", "run", "phase", "steps", "time [s]", "median step / T_c"))
+    for name in args.models.split(","):
+        runs = [("compliant, compiled", 1, {}), ("follow, Python", 1, {"backend": "python", "contact_mode": "follow"})]
+        if args.refine > 1:
+            runs.append((f"compliant, compiled, {args.refine}x steps", args.refine, {}))
+        for label, refine, options in runs:
+            model = models[name](clearance=True, end_time=args.end_time if args.end_time > 0.0 else None, **options)
+            model.simulation_settings.timeIntegration.numberOfSteps *= refine
+            period = joint_contact_period(model.mbs, model.joint)
+            recorder = PhaseRecorder(model.joint, period)
+            model.mbs.SetPostStepUserFunction(recorder)
+            model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+            steps = np.asarray(recorder.steps)
+            for number, phase in enumerate(PHASES):
+                h = steps[steps[:, 2] == number, 1]
+                if h.size:
+                    print(_row(name, label, phase, h.size, f"{h.sum():.3f}", f"{np.median(h) / period:.2g}"),
+                          flush=True)
+            spectra.append((name, label, *force_spectrum(steps)))
+    print()
+    print(_row("model", "run", f"sustained {WINDOW * 1e3:g} ms windows", "mean F_n [N]", "std F_n [N]",
+               "strongest frequencies [Hz]"))
+    for name, label, count, mean, std, strongest in spectra:
+        print(_row(name, label, count, f"{mean:.3g}", f"{std:.3g}", ", ".join(f"{f:.0f}" for f in strongest)))
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m validation.contact_follow", description=__doc__.split("\n\n")[0])
-    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost", "anatomy"])
+    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost", "anatomy", "phases"])
     parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
     parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
     parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
     parser.add_argument("--end-time", type=float, default=0.5,
-                        help="zoo end time [s] (default 0.5; cost, anatomy: 0 for each example's own)")
+                        help="zoo end time [s] (default 0.5; cost, anatomy, phases: 0 for each example's own)")
     parser.add_argument("--index2", action="store_true", help="zoo: Exudyn's index-2 constraints (Newmark)")
     parser.add_argument("--repeats", type=int, default=3, help="cost: runs per median (default 3)")
+    parser.add_argument("--refine", type=int, default=16,
+                        help="phases: the compliant run again at this many times the example's steps (default 16; 1: none)")
     args = parser.parse_args(argv)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost,
-         "anatomy": run_anatomy}[args.case](args)
+         "anatomy": run_anatomy, "phases": run_phases}[args.case](args)
     return 0
 
 
