@@ -6,7 +6,8 @@ compliant reference, on the Python kernel.
 - ``orbit``: a journal orbiting on its wall under its centripetal load (frictionless, cr 1),
   at fixed generalized-alpha steps; the reference is the compliant run at 1e-6 s.
 - ``slider-crank``: the paper's redundant slider-crank through ``exuclear.simulate`` at its
-  defaults (``--step`` overrides the largest step); the reference is the compliant run at 2e-6 s.
+  defaults (``--step`` overrides the largest step); the reference is the compliant run at 2e-6 s;
+  the ideal mechanism's steps and Newton iterations at the same settings head the table.
 - ``zoo``: zoo models at their own settings (``--models``, ``--end-time``); the reference is
   the compliant run at 4 times the example's steps; ``--index2`` runs every model with
   Exudyn's index-2 constraints (Newmark).
@@ -19,11 +20,11 @@ compliant reference, on the Python kernel.
 - ``phases``: where the accepted steps of one run of each (compliant compiled, following) fall:
   free flight, a contact's first FOLLOW_PERIODS contact periods, then the sustained contact
   followed, compliant near stick (the slip within STICK_MARGIN times the friction law's
-  smoothing band) or compliant sliding; each phase's steps, time and median step in
-  contact periods; and the compliant run again at ``--refine`` times the steps.  A second
-  table gives the normal force over the stretches of sustained contact (mean, standard
-  deviation, strongest frequencies): a vibration that the refined run has too is the
-  model's, not the step's.
+  smoothing band) or compliant sliding; each phase's steps, time, steps in contact periods
+  (percentiles) and the share of its time in steps over 10 contact periods; and the
+  compliant run again at ``--refine`` times the steps.  A second table gives the normal
+  force over the stretches of sustained contact (mean, standard deviation, strongest
+  frequencies): a vibration that the refined run has too is the model's, not the step's.
 
 ``orbit``, ``slider-crank``, ``zoo`` and ``phases`` count cost (steps, Newton iterations); ``cost`` and
 ``anatomy`` time it: run them with nothing else on the machine.
@@ -101,12 +102,13 @@ def run_orbit(args: argparse.Namespace) -> None:
                        r["counts"] or "-"))
 
 
-def slider_crank(mode: str, revolutions: float, step: float | None) -> tuple:
+def slider_crank(mode: str, revolutions: float, step: float | None, ideal: bool = False) -> tuple:
     from exuclear.models import _slider_crank_run as run_module
     from exuclear.models.slider_crank import SliderCrankParams
 
     params = replace(SliderCrankParams.paper(), formulation="redundant", backend="python", revolutions=revolutions)
     settings = run_module.default_settings(params)
+    params = replace(params, ideal=ideal)  # the ideal mechanism at the clearance model's settings
     if step:
         settings = replace(settings, step=step)
     built, original, saved = {}, run_module.build, following.DEFAULT_CONTACT_MODE
@@ -121,13 +123,15 @@ def slider_crank(mode: str, revolutions: float, step: float | None) -> tuple:
     finally:
         following.DEFAULT_CONTACT_MODE, run_module.build = saved, original
     model = built["model"]
-    return result, model.mbs.sys["dynamicSolver"].it, model.joint.follow_counts()
+    return result, model.mbs.sys["dynamicSolver"].it, model.joint.follow_counts() if model.joint else {}
 
 
 def run_slider_crank(args: argparse.Namespace) -> None:
     ref, _, _ = slider_crank("compliant", args.revolutions, 2e-6)
     a = ref.columns
     print(_row("run", "steps", "Newton / step", "impacts", "path off reference [c]", "switches"))
+    result, it, _ = slider_crank("compliant", args.revolutions, args.step, ideal=True)
+    print(_row("ideal mechanism", result.steps, _counts(it, result.steps), "-", "-", "-"))
     for mode in ("compliant", "follow"):
         result, it, counts = slider_crank(mode, args.revolutions, args.step)
         b = result.columns
@@ -311,7 +315,8 @@ def run_phases(args: argparse.Namespace) -> None:
 
     models = load_models()
     spectra = []
-    print(_row("model", "run", "phase", "steps", "time [s]", "median step / T_c"))
+    print(_row("model", "run", "phase", "steps", "time [s]", "step / T_c: 10th, 50th, 90th percentile",
+               "time in steps over 10 T_c"))
     for name in args.models.split(","):
         runs = [("compliant, compiled", 1, {}), ("follow, Python", 1, {"backend": "python", "contact_mode": "follow"})]
         if args.refine > 1:
@@ -327,8 +332,10 @@ def run_phases(args: argparse.Namespace) -> None:
             for number, phase in enumerate(PHASES):
                 h = steps[steps[:, 2] == number, 1]
                 if h.size:
-                    print(_row(name, label, phase, h.size, f"{h.sum():.3f}", f"{np.median(h) / period:.2g}"),
-                          flush=True)
+                    share = h[h > 10.0 * period].sum() / h.sum()
+                    print(_row(name, label, phase, h.size, f"{h.sum():.3f}",
+                               ", ".join(f"{x:.2g}" for x in np.percentile(h, [10, 50, 90]) / period),
+                               f"{100.0 * share:.0f} %"), flush=True)
             spectra.append((name, label, *force_spectrum(steps)))
     print()
     print(_row("model", "run", f"sustained {WINDOW * 1e3:g} ms windows", "mean F_n [N]", "std F_n [N]",
