@@ -56,10 +56,13 @@ def _settings(end_time, rtol=1e-10, atol=1e-14):
                                    output_step=1e-6)
 
 
+@pytest.mark.parametrize("after_a_dynamic_run", [False, True], ids=["static", "static after dynamic"])
 @pytest.mark.parametrize("backend", BACKENDS)
-def test_a_journal_pushed_axially_rests_at_the_face_with_the_flat_punch_penetration(backend):
+def test_a_journal_pushed_axially_rests_at_the_face_with_the_flat_punch_penetration(backend, after_a_dynamic_run):
     # eq. (53) at rest: K_f delta = P. The journal held radially and in tilt, pushed along -z:
-    # its upper shoulder (face 1, z = +L/2) carries P
+    # its upper shoulder (face 1, z = +L/2) carries P.  After a dynamic run of the same system
+    # too: a static solve's load step is no time, and the joint's step rules (the held
+    # contact's cap in contact periods) must not reject it (steering.static_run)
     load = 500.0
     mbs, handle, body, ground = _journal(backend, law="wang-liu", cr=0.7, displacement=(0, 0, -0.5 * PLAY - 1e-7))
     mg = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
@@ -73,6 +76,9 @@ def test_a_journal_pushed_axially_rests_at_the_face_with_the_flat_punch_penetrat
     # the residual's round-off floor: eq. (49) subtracts numbers of size L/2, so K_f ulp(L/2) = 2.4e-9 N
     ss.staticSolver.newton.absoluteTolerance = 1e-8
     ss.staticSolver.verboseMode = 0
+    if after_a_dynamic_run:
+        ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps, ss.timeIntegration.verboseMode = 1e-5, 10, 0
+        mbs.SolveDynamic(ss)
     assert mbs.SolveStatic(ss)
     q = mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Coordinates)
     delta = load / K_FACE  # 0.16 um

@@ -291,3 +291,65 @@ def test_a_convergence_checks_tighter_plain_run_refines_the_joints_steps():
             assert joint.rate_limit == kappa  # the joint's own value is kept
         rejected.append(joint.counts["rejected_steps"])
     assert rejected[0] == rejected[1] > 20
+
+
+
+def _orbiting(backend: str, step_periods: float, end_time: float = 0.5, joint_refinement: float | None = None):
+    """A 0.5 kg journal orbiting inside a ground bearing (c = 0.1 mm) at 0.05 m/s, pressed on
+    the wall by its centripetal load alone and started at the law's static penetration under
+    it: a contact held throughout, whose load does not change, at user steps of
+    ``step_periods`` contact periods (the period under the journal's weight at standard
+    gravity, as the joint estimates it where the model has no gravity load,
+    exuclear.engine.bodies; the formula of exuclear.timescales).  Returns
+    the period and the accepted steps through which the contact was held."""
+    from exuclear.engine.bodies import STANDARD_GRAVITY
+    from exuclear.timescales import contact_period, penetration_at
+
+    mass, speed = 0.5, 0.05
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    law = exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=1.0).law
+    r = 1e-4
+    for _ in range(3):  # |e| = c + delta(m v^2 / |e|)
+        r = 1e-4 + penetration_at(law, mass * speed**2 / r)
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[r, 0, 0],
+                                       initialVelocities=[0, speed, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=1e-5))
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], journal_radius=9.9e-3,
+                                          bearing_radius=10e-3, length=15e-3, cr=1.0, name="pin", backend=backend)
+    mbs.Assemble()
+    period = contact_period(law, mass, mass * STANDARD_GRAVITY)
+    held, last = [], [0.0, False]
+
+    def post_step(mbs, t):
+        state = joint.state()
+        if last[1] and state.in_contact:
+            held.append(t - last[0])
+        last[:] = [t, state.in_contact]
+        return True
+
+    mbs.SetPostStepUserFunction(post_step)
+    solve(mbs, round(end_time / (step_periods * period)), end_time=end_time, joint_refinement=joint_refinement)
+    return period, held
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_held_contact_takes_steps_of_at_most_its_cap(backend):
+    # the user's step is 20 contact periods; a step through which the contact is held lasts at
+    # most HELD_CONTACT_PERIODS of them (steering.py has what longer ones cost the beam pendulum)
+    from exuclear.engine.steering import HELD_CONTACT_PERIODS
+
+    period, held = _orbiting(backend, 20.0)
+    cap = HELD_CONTACT_PERIODS * period
+    assert len(held) > 50
+    assert max(held) <= cap * (1.0 + 1e-9)
+    assert max(held) > 0.9 * cap  # the cap sets the held steps: the steady load leaves the rate rule nothing
+    # a convergence check's tighter run divides it with the joints' rate_limit
+    period, held = _orbiting(backend, 20.0, joint_refinement=2.0)
+    assert max(held) <= 0.5 * cap * (1.0 + 1e-9)
+
+
+@pytest.mark.skipif(kernel.COMPILED is None, reason="no compiled kernel")
+def test_both_kernels_hold_the_same_steps():
+    runs = [_orbiting(backend, 20.0, end_time=0.1)[1] for backend in ("compiled", "python")]
+    assert len(runs[0]) == len(runs[1]) and max(runs[0]) == pytest.approx(max(runs[1]), rel=1e-9)

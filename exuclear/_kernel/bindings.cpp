@@ -309,6 +309,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["group_size"] = c.group_size;
         d["rate_scale"] = c.rate_scale;
         d["growth_cap"] = c.growth_cap;
+        d["contact_cap"] = c.contact_cap;
         d["jacobian_step"] = c.jacobian_step;
         d["jacobian_on"] = c.jacobian_on;
         d["separation_step"] = c.separation_step;
@@ -387,7 +388,7 @@ PYBIND11_MODULE(_ckernel, m) {
     // the run-start record's fields start_run reads (layout.py RunStart), and the step
     // control's constants (_python_kernel/step_control.py), which tests keep equal to Python's
     py::list run_start_fields;
-    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap",
+    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap", "contact_cap",
                              "jacobian_step", "separation_step", "impact_mass"}) {
         run_start_fields.append(name);
     }

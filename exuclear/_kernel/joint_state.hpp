@@ -26,7 +26,8 @@ struct StepControl {
     std::string label;        // the joint's name, for messages (from the run-start callback)
     int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
     double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
-    double growth_cap = INF;  // the longest step free flight may grow to [s] (handle.py GROWTH_CONTACT_PERIODS)
+    double growth_cap = INF;  // the longest step free flight may grow to [s] (steering.py GROWTH_CONTACT_PERIODS)
+    double contact_cap = INF;  // the longest step a held contact may take [s] (steering.py HELD_CONTACT_PERIODS)
     double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
     bool jacobian_on = false;    // whether it asks now
     double separation_step = INF;  // a contact that ends in a longer step is not resolved [s] (handle.py)
@@ -105,6 +106,7 @@ void start_run(JointState& s) {
         c.group_size = r.attr("group_size").cast<int>();
         c.rate_scale = r.attr("rate_scale").cast<double>();
         c.growth_cap = r.attr("growth_cap").cast<double>();
+        c.contact_cap = r.attr("contact_cap").cast<double>();
         c.jacobian_step = r.attr("jacobian_step").cast<double>();
         c.separation_step = r.attr("separation_step").cast<double>();
         c.impact_mass = r.attr("impact_mass").cast<double>();

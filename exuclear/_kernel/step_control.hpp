@@ -101,7 +101,9 @@ bool resolves_impact(const Params& a, const StepControl& c, double h, double v0)
 //          began or ended in the step): several steps per velocity reversal, with neither the
 //          mass nor the law in the criterion.  Settled contacts (|v0| at the v_min floor) are
 //          limited too (exempting them left 5x simulate's penetration on the zoo's piston
-//          engine, and more steps; _python_kernel/step_control.py step_control has the numbers).
+//          engine, and more steps; _python_kernel/step_control.py step_control has the numbers);
+//   held:  a step through which a contact is held (in contact at both ends), longer than
+//          contact_cap (steering.py HELD_CONTACT_PERIODS contact periods), is redone at it.
 double step_control(const Params& a, JointState& s, const std::vector<History>& base, double t) {
     StepControl& c = s.control;
     double h = t - base[0].time;
@@ -152,6 +154,9 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
                 double h_on = onset_step(h, share);
                 h_rec = h_on < h_rec ? h_on : h_rec;
             }
+        }
+        if (b.in_contact && k.delta > 0.0 && h > c.contact_cap * (1.0 + STEP_SLACK)) {
+            h_rec = c.contact_cap < h_rec ? c.contact_cap : h_rec;  // a held contact: HELD_CONTACT_PERIODS
         }
         double change = std::fabs(k.delta_dot - b.delta_dot);
         double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);

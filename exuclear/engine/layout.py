@@ -167,13 +167,15 @@ class RunStart(NamedTuple):
     group_size: int  #: the clearance joints of the joint's system (the kernel's step group)
     rate_scale: float  #: the factor on ``rate_limit`` for this run (below 1 in a convergence check's tighter run)
     growth_cap: float  #: the longest step free flight may grow to [s]
+    contact_cap: float  #: the longest step a contact held through it may take [s] (inf: none)
     jacobian_step: float  #: the step above which the joint asks for a Jacobian per step [s] (inf: never)
     separation_step: float  #: a contact that ends in a longer step is not resolved [s] (inf: not counted)
     impact_mass: float  #: the effective mass of the joint's impacts [kg] (nan: unknown)
 
 
 #: What a kernel assumes where its handle gives no run-start record (a kernel used without a handle).
-RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("inf"), float("inf"), float("nan"))
+RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("inf"), float("inf"), float("inf"),
+                             float("nan"))
 
 
 #: Film model name -> code in the parameter matrix (0: no film; exuclear/_kernel/layout.hpp ``FilmCode``).

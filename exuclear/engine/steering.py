@@ -7,7 +7,8 @@ that the joint sets or asks of the solver, read by its kernel through the run-st
   number of clearance joints of the system (the kernels' step group), the factor on the
   joint's ``rate_limit`` for the run (:func:`joint_refinement`: below 1 in a convergence
   check's tighter run), the longest step free flight may grow to
-  (:data:`GROWTH_CONTACT_PERIODS`), the step above which the joint asks for a Jacobian per
+  (:data:`GROWTH_CONTACT_PERIODS`), the longest step a held contact may take
+  (:data:`HELD_CONTACT_PERIODS`), the step above which the joint asks for a Jacobian per
   step (:func:`steer_newton`), the step in which a contact's end counts as unresolved
   (:func:`separation_step`) and the effective mass of its impacts
   (:func:`~exuclear.engine.bodies.joint_mass`).
@@ -248,6 +249,24 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 #: change of a bounce gives these chaotic models (the piston engine: 4694 and 10472 steps
 #: at restitutions 0.90 and 0.91).
 GROWTH_CONTACT_PERIODS = 10.0
+#: A step through which a contact is held (in contact at both its ends) lasts at most this
+#: many of the joint's contact periods (under its weight; divided like ``rate_limit`` in a
+#: convergence check's tighter run): the joint's step control redoes a longer one at this
+#: length.  At a step of many contact periods generalized-alpha neither resolves the held
+#: contact's stiff mode nor damps it much (a tenth per step at spectral radius 0.9), and the
+#: load's change between the step's ends sets it ringing.  Measured on the zoo's beam
+#: pendulum (its example's step is 59 contact periods; the joint's rate rule let held steps
+#: grow back to 15 periods and more) against its run at 64 times the steps, over its 5 s
+#: (``python -m validation.held_contact``): without a cap 519 c off, at 8, 6, 4, 3 and 2
+#: periods 23, 13, 5.7, 3.2 and 1.3 c, in about the same wall time (Newton's iterations per
+#: step fall from 7.8 to 6.2 at 3 periods as the steps grow shorter).  Below 3 periods the
+#: cap reaches the steps of the examples that rest on the wall at 2 contact periods (the
+#: zoo's 2D double pendulum: 14377 steps instead of 11069 at 2).  The piston engine (steps of
+#: 7.8 periods) is chaotic (a 1e-9 m/s kick moves its run at 64 times the steps by 4.6 c,
+#: ``python -m validation.contact_follow_long --models piston_engine``): its peak normal
+#: force, 37.2 N at 64 times the steps and 36.7 N kicked, is 35.5 N at 3 periods and 23.2 N
+#: without a cap, with 4737 steps against 3966.
+HELD_CONTACT_PERIODS = 3.0
 
 
 class RefinedSimulationSettings(exu.SimulationSettings):
@@ -291,7 +310,20 @@ def separation_step(mbs: exu.MainSystem, period: float) -> float:
         explicit = explicit_solver(mbs.sys["dynamicSolver"])
     except Exception:  # no SolveDynamic run: nothing to count against
         return math.inf
+    if static_run(mbs):  # load steps, not time
+        return math.inf
     return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf
+
+
+def static_run(mbs: exu.MainSystem) -> bool:
+    """Whether the run starting is ``mbs.SolveStatic``'s, where an earlier ``SolveDynamic`` left
+    its solver in ``mbs.sys`` too: each solver object is new per run, and the one starting has
+    the lower step index (1 at its first step; a finished run's is its steps plus one)."""
+    try:
+        static, dynamic = mbs.sys["staticSolver"], mbs.sys.get("dynamicSolver")
+        return dynamic is None or static.it.currentStepIndex < dynamic.it.currentStepIndex
+    except Exception:  # no SolveStatic run
+        return False
 
 
 class _RunStart:
@@ -300,7 +332,8 @@ class _RunStart:
     (whether the solver can shorten steps, its minimum step, the joint's label, how many
     clearance joints the system has, the factor on its ``rate_limit`` for the run,
     :func:`joint_refinement`, the longest step its free flight may
-    grow to, :data:`GROWTH_CONTACT_PERIODS`, the step above which it asks for a Jacobian per
+    grow to, :data:`GROWTH_CONTACT_PERIODS`, the longest step a held contact may take,
+    :data:`HELD_CONTACT_PERIODS`, the step above which it asks for a Jacobian per
     step, :func:`steer_newton`, where finite it asks at the run's
     first step, the step above which a contact's end counts as unresolved,
     :func:`separation_step`, and the effective mass of its impacts, the reduced mass of its
@@ -329,8 +362,12 @@ class _RunStart:
         growth_cap = GROWTH_CONTACT_PERIODS * period if period > 0.0 else math.inf
         # a convergence check's tighter run refines the joints' own steps with the solver's
         rate_scale = 1.0 / joint_refinement(mbs)
+        separation = separation_step(mbs, period)
+        # only in an implicit dynamic run (a static solve's load steps are no time; an explicit
+        # solver's error control sets its step): where separations are counted
+        contact_cap = HELD_CONTACT_PERIODS * period * rate_scale if separation < math.inf else math.inf
         return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                        rate_scale, growth_cap, jacobian_step, separation_step(mbs, period), mass)
+                        rate_scale, growth_cap, contact_cap, jacobian_step, separation, mass)
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's

@@ -48,6 +48,7 @@ class StepControl:
         self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
         self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
         self.growth_cap = math.inf  # the longest step free flight may grow to [s] (steering.GROWTH_CONTACT_PERIODS)
+        self.contact_cap = math.inf  # the longest step a held contact may take [s] (steering.HELD_CONTACT_PERIODS)
         self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
         self.jacobian_on = False  # whether it asks now
         self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
@@ -65,7 +66,7 @@ class StepControl:
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
             "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
-            "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
+            "contact_cap", "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
             "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
 
 

@@ -209,7 +209,10 @@ class JointStepControl(JointState):
           integrator's damping took care of their stiff oscillation, left penetrations 5x
           simulate's on the zoo's piston engine and cost more steps (measured: piston engine
           0.027 c in 19463 steps exempt, 0.0042 c in 9432 limited; beam pendulum 87796 and
-          31981 steps over 0.05 s).
+          31981 steps over 0.05 s);
+        - held: a step through which a contact is held (in contact at both ends), longer than
+          the run-start callback's ``contact_cap`` (steering.HELD_CONTACT_PERIODS contact
+          periods), is redone at ``contact_cap``.
         """
         c = self.control
         h = t - base[0].time
@@ -253,6 +256,8 @@ class JointStepControl(JointState):
                 share = b.delta / (b.delta - kin.delta)  # the onset's fraction of the step
                 if 1.0 - share > ONSET_TAIL and share > ONSET_FLOOR:
                     h_rec = min(h_rec, onset_step(h, share))
+            if b.in_contact and kin.delta > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
+                h_rec = min(h_rec, c.contact_cap)  # a held contact: at most HELD_CONTACT_PERIODS
             change = abs(kin.delta_dot - b.delta_dot)
             allowed = kappa * (abs(v0) if impact else v_min)
             if change > allowed:
