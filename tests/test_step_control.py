@@ -294,7 +294,8 @@ def test_a_convergence_checks_tighter_plain_run_refines_the_joints_steps():
 
 
 
-def _orbiting(backend: str, step_periods: float, end_time: float = 0.5, joint_refinement: float | None = None):
+def _orbiting(backend: str, step_periods: float, end_time: float = 0.5, joint_refinement: float | None = None,
+              adaptive: bool = True):
     """A 0.5 kg journal orbiting inside a ground bearing (c = 0.1 mm) at 0.05 m/s, pressed on
     the wall by its centripetal load alone and started at the law's static penetration under
     it: a contact held throughout, whose load does not change, at user steps of
@@ -329,8 +330,9 @@ def _orbiting(backend: str, step_periods: float, end_time: float = 0.5, joint_re
         return True
 
     mbs.SetPostStepUserFunction(post_step)
-    solve(mbs, round(end_time / (step_periods * period)), end_time=end_time, joint_refinement=joint_refinement)
-    return period, held
+    solve(mbs, round(end_time / (step_periods * period)), end_time=end_time, joint_refinement=joint_refinement,
+          adaptive=adaptive)
+    return period, held, joint
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -339,14 +341,29 @@ def test_a_held_contact_takes_steps_of_at_most_its_cap(backend):
     # most HELD_CONTACT_PERIODS of them (steering.py has what longer ones cost the beam pendulum)
     from exuclear.engine.steering import HELD_CONTACT_PERIODS
 
-    period, held = _orbiting(backend, 20.0)
+    period, held, joint = _orbiting(backend, 20.0)
     cap = HELD_CONTACT_PERIODS * period
     assert len(held) > 50
     assert max(held) <= cap * (1.0 + 1e-9)
     assert max(held) > 0.9 * cap  # the cap sets the held steps: the steady load leaves the rate rule nothing
     # a convergence check's tighter run divides it with the joints' rate_limit
-    period, held = _orbiting(backend, 20.0, joint_refinement=2.0)
+    period, held, joint = _orbiting(backend, 20.0, joint_refinement=2.0)
     assert max(held) <= 0.5 * cap * (1.0 + 1e-9)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_held_contact_at_a_fixed_step_over_its_cap_is_told(backend):
+    # adaptiveStep False: the cap cannot shorten the step; the joint accepts it and says so
+    # once, naming itself, what it held and the step the cap asks for
+    from exuclear.engine.steering import HELD_CONTACT_PERIODS
+
+    with pytest.warns(exuclear.AccuracyWarning, match="'pin'.*held the contact through more than") as caught:
+        period, held, joint = _orbiting(backend, 20.0, end_time=0.05, adaptive=False)
+    assert min(held) > 5.0 * HELD_CONTACT_PERIODS * period  # the user's fixed steps, held through, over the cap
+    assert joint.counts["held_long_steps"] == len(held)
+    note = [str(w.message) for w in caught if "held the contact" in str(w.message)]
+    advice = float(note[0].split("use a step of at most ")[1].split(" s")[0])
+    assert advice == pytest.approx(HELD_CONTACT_PERIODS * period, rel=1e-2)  # 3 significant digits in the note
 
 
 @pytest.mark.skipif(kernel.COMPILED is None, reason="no compiled kernel")

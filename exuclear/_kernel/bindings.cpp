@@ -318,6 +318,9 @@ PYBIND11_MODULE(_ckernel, m) {
         d["long_separations"] = c.long_separations;
         d["rejected"] = c.rejected;
         d["unresolved"] = c.unresolved;
+        d["held_long"] = c.held_long;
+        d["held_time"] = c.held_time;
+        d["held_step"] = c.held_step;
         d["unresolved_time"] = c.unresolved_time;
         d["unresolved_step"] = c.unresolved_step;
         d["unresolved_advice"] = c.unresolved_advice;

@@ -38,6 +38,8 @@ struct StepControl {
     long runs = 0;            // runs started since the joint was created
     long rejected = 0;        // steps rejected by the joint and redone shorter
     long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
+    long held_long = 0;       // steps accepted through a held contact although longer than contact_cap
+    double held_time = 0.0, held_step = 0.0;  // the first of them
     double unresolved_time = 0.0, unresolved_step = 0.0, unresolved_advice = INF;  // the first; smallest advice
     long over_limit = 0;      // steps accepted with a penetration beyond the limit
     double over_time = 0.0, over_step = 0.0, deepest = 0.0;

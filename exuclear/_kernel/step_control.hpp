@@ -141,6 +141,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
     double h_rec = INF;
     double h_need = INF;  // the rate criterion's estimate without the cap: the advice of a note
     bool rate_exceeded = false;
+    bool held_over = false;  // a held contact through a step longer than contact_cap
     for (size_t i = 0; i < s.kins.size(); ++i) {
         const Kinematics& k = s.kins[i];
         const History& b = base[i];
@@ -157,6 +158,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         }
         if (b.in_contact && k.delta > 0.0 && h > c.contact_cap * (1.0 + STEP_SLACK)) {
             h_rec = c.contact_cap < h_rec ? c.contact_cap : h_rec;  // a held contact: HELD_CONTACT_PERIODS
+            held_over = true;
         }
         double change = std::fabs(k.delta_dot - b.delta_dot);
         double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);
@@ -178,6 +180,14 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         c.last_time = t;
         c.last_step = h;
         return h_rec > c.min_step ? h_rec : c.min_step * (1.0 + STEP_SLACK);
+    }
+    if (held_over) {  // accepted through a held contact longer than the cap: say so
+        if (c.held_long == 0) {
+            c.held_time = t;
+            c.held_step = h;
+        }
+        c.held_long++;
+        if (c.held_long == 1) tell(s);
     }
     if (rate_exceeded) {  // accepted unresolved: say so after the run
         if (c.unresolved == 0) {

@@ -34,7 +34,7 @@ from ..settings import NEWTON_RTOL_DEFAULT
 from ..timescales import STEPS_PER_CONTACT_PERIOD
 from .bodies import body_label, body_mass, joint_contact_period
 from .registry import joints_of, label
-from .steering import ABSOLUTE_TOLERANCE, explicit_solver, solver_steps
+from .steering import ABSOLUTE_TOLERANCE, HELD_CONTACT_PERIODS, explicit_solver, solver_steps
 
 if TYPE_CHECKING:
     from .handle import ClearanceJointHandle
@@ -272,7 +272,7 @@ def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: b
     can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
     5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
     stopped = [] if running else stopped_note(handle) + chatter_note(handle, control)
-    if not control["unresolved"] and not control["over_limit"]:
+    if not control["unresolved"] and not control["over_limit"] and not control["held_long"]:
         return stopped
     _can, _min, why, _rate = solver_steps(handle.mbs)
     period = math.nan
@@ -288,11 +288,15 @@ def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: b
                                            "the joint's step control allows)", "the same step came back unshortened"),
             ("over_limit", control["over_limit"], control["over_time"], control["over_step"], control["over_step"] / 4,
              f"let the penetration reach {control['deepest'] / c:.3g} c, beyond the joint's limit "
-             f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it")):
+             f"{handle.max_penetration / c:.3g} c", "4 shorter attempts did not remove it"),
+            ("held", control["held_long"], control["held_time"], control["held_step"], control["contact_cap"],
+             f"held the contact through more than {HELD_CONTACT_PERIODS:g} of the joint's contact periods (there "
+             "the contact's stiff mode is neither resolved nor damped, and its ringing can move the joint by "
+             "clearances)", "the same step came back unshortened")):
         if not count:
             continue
-        if period > 0.0:  # a tenth of the contact period under the weight, as step="auto"; an
-            advice = min(advice, period / 10)  # impact is faster: the kernel's worst step is then shorter
+        if period > 0.0 and kind != "held":  # a tenth of the contact period under the weight, as step="auto";
+            advice = min(advice, period / 10)  # an impact is faster: the kernel's worst step is then shorter
         notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
                      f"of the run{' so far' if running else ''}, which could not be shortened enough "
                      f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "

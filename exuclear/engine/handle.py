@@ -309,11 +309,13 @@ class ClearanceJointHandle:
         ``mbs.SolveDynamic`` needs no solver internals: ``impacts`` (contacts begun, as
         :attr:`history`'s ``onsets``), ``rejected_steps`` (steps the joint's step control
         sent back shorter), ``unresolved_steps`` (steps it could not have shortened enough:
-        see :attr:`notes`) and ``over_limit_steps`` (accepted with a penetration beyond
-        ``maxPenetration``)."""
+        see :attr:`notes`), ``over_limit_steps`` (accepted with a penetration beyond
+        ``maxPenetration``) and ``held_long_steps`` (accepted through a held contact although
+        longer than :data:`~exuclear.engine.steering.HELD_CONTACT_PERIODS` contact periods)."""
         control = self._backend.step_control()
         return {"impacts": self.history.onsets, "rejected_steps": int(control["rejected"]),
-                "unresolved_steps": int(control["unresolved"]), "over_limit_steps": int(control["over_limit"])}
+                "unresolved_steps": int(control["unresolved"]), "over_limit_steps": int(control["over_limit"]),
+                "held_long_steps": int(control["held_long"])}
 
     @property
     def notes(self) -> list[str]:

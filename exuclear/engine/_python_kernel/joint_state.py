@@ -59,6 +59,7 @@ class StepControl:
         self.rejected = 0
         self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
         self.unresolved_advice = math.inf
+        self.held_long, self.held_time, self.held_step = 0, 0.0, 0.0  # held contacts through steps over contact_cap
         self.over_limit, self.over_time, self.over_step, self.deepest = 0, 0.0, 0.0, 0.0
         self.last_time, self.last_step = -math.inf, 0.0  # the last rejected step
         self.retry_start, self.retries = -math.inf, 0
@@ -67,7 +68,8 @@ class StepControl:
         return {k: getattr(self, k) for k in (
             "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
             "contact_cap", "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
-            "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "over_limit", "over_time", "over_step", "deepest")}
+            "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "held_long", "held_time",
+            "held_step", "over_limit", "over_time", "over_step", "deepest")}
 
 
 

@@ -243,7 +243,7 @@ class JointStepControl(JointState):
             kappa = 0.0
         if not kappa > 0.0:
             return 0.0
-        h_rec, rate_exceeded = math.inf, False
+        h_rec, rate_exceeded, held_over = math.inf, False, False
         h_need = math.inf  # the rate criterion's estimate without the cap: the advice of a note
         v_min = self._joint.law.v_min
         for kin, b in zip(kins, base):
@@ -258,6 +258,7 @@ class JointStepControl(JointState):
                     h_rec = min(h_rec, onset_step(h, share))
             if b.in_contact and kin.delta > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
                 h_rec = min(h_rec, c.contact_cap)  # a held contact: at most HELD_CONTACT_PERIODS
+                held_over = True
             change = abs(kin.delta_dot - b.delta_dot)
             allowed = kappa * (abs(v0) if impact else v_min)
             if change > allowed:
@@ -276,6 +277,12 @@ class JointStepControl(JointState):
             c.rejected += 1
             c.last_time, c.last_step = t, h
             return h_rec if h_rec > c.min_step else c.min_step * (1.0 + STEP_SLACK)
+        if held_over:  # accepted through a held contact longer than the cap: say so
+            if c.held_long == 0:
+                c.held_time, c.held_step = t, h
+            c.held_long += 1
+            if c.held_long == 1:
+                self.tell()
         if rate_exceeded:  # accepted unresolved: say so after the run
             if c.unresolved == 0:
                 c.unresolved_time, c.unresolved_step = t, h
