@@ -333,3 +333,33 @@ def test_the_long_run_study_compares_against_its_refinements():
     assert np.nanmax(off) < np.nanmax(own) + 0.01
     assert np.nanmax(long_runs.difference(follow, compiled)[0]) < 0.05
     assert follow.stats["mean_force"] == pytest.approx(finer.stats["mean_force"], rel=0.05)
+
+
+
+def test_a_followed_contact_takes_steps_of_at_most_the_held_contacts_cap():
+    """The cap on a held contact's step (steering.HELD_CONTACT_PERIODS of the joint's contact
+    periods) holds for a contact the condition carries too: the zoo's beam pendulum (the
+    example's steps are 59 contact periods) is followed over 0.5 s, and no followed step
+    exceeds the cap (without it on followed steps: up to 16 contact periods)."""
+    from exuclear.engine.bodies import joint_contact_period
+    from exuclear.engine.steering import HELD_CONTACT_PERIODS
+    from validation.exudyn_examples._common import load_models
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = load_models()["beam_pendulum_2d"](clearance=True, end_time=0.5, backend="python",
+                                                  contact_mode="follow")
+        joint, followed, last = model.joint, [], [0.0, False]
+
+        def post_step(mbs, t):
+            active = joint.follow_counts()["active"]
+            if last[1] and active:
+                followed.append(t - last[0])
+            last[:] = [t, active]
+            return True
+
+        model.mbs.SetPostStepUserFunction(post_step)
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    cap = HELD_CONTACT_PERIODS * joint_contact_period(model.mbs, joint)
+    assert len(followed) > 100
+    assert max(followed) <= cap * (1.0 + 1e-9)

@@ -105,6 +105,7 @@ class JointKernel(JointStepControl):
             redo = follow.release_step(mbs, t - base[0].time, base[0].time, self.control.can_shorten) \
                 or follow.hold_step(kins[0].delta, t - base[0].time, base[0].time, self.control.can_shorten,
                                     self.control.min_step)
+            redo = redo or self.held_cap(t - base[0].time, impact_step)  # held by the condition: capped too
             if redo > 0.0:
                 self.steer_jacobian(math.inf)
                 return [REDO_STEP_ERROR, redo, *data]
