@@ -96,16 +96,21 @@ def test_orbit_at_resolved_steps_stays_compliant(orbits):
     assert np.abs(run["pos"] - ref["pos"]).max() < 1e-12
 
 
-def test_orbit_penetration_is_the_static_penetration(orbits):
-    """While following, |e| - c is the law's static penetration at the centripetal load
-    m v^2 / |e| (the multiplier's), within 1 % (measured 0.2 %)."""
-    run = orbits[("follow", 1e-4)]
+def _off_static_penetration(run):
+    """The largest relative difference of |e| - c from the law's static penetration at the
+    centripetal load m v^2 / |e|, over the run's second half."""
     t, x, y = _ecc(run)
     e = np.hypot(x, y)
     v = np.hypot(run["vel"][:, 1], run["vel"][:, 2])
     late = t > 0.5 * t[-1]
     static = np.array([penetration_at(run["law"], MASS * vi**2 / ei) for vi, ei in zip(v[late], e[late])])
-    assert np.abs((e[late] - C) / static - 1.0).max() < 0.01
+    return np.abs((e[late] - C) / static - 1.0).max()
+
+
+def test_orbit_penetration_is_the_static_penetration(orbits):
+    """While following, |e| - c is the law's static penetration at the centripetal load
+    m v^2 / |e| (the multiplier's), within 1 % (measured 0.2 %)."""
+    assert _off_static_penetration(orbits[("follow", 1e-4)]) < 0.01
 
 
 def test_simulate_runs_the_mode_as_solve_dynamic_does():
@@ -117,12 +122,7 @@ def test_simulate_runs_the_mode_as_solve_dynamic_does():
         run = _orbit("follow", 1e-4, end=0.02, simulate=True)
     counts = run["handle"].follow_counts()
     assert counts["on"] == 1 and counts["off"] == 0 and counts["active"]
-    t, x, y = _ecc(run)
-    e = np.hypot(x, y)
-    v = np.hypot(run["vel"][:, 1], run["vel"][:, 2])
-    late = t > 0.5 * t[-1]
-    static = np.array([penetration_at(run["law"], MASS * vi**2 / ei) for vi, ei in zip(v[late], e[late])])
-    assert np.abs((e[late] - C) / static - 1.0).max() < 0.01
+    assert _off_static_penetration(run) < 0.01
 
 
 def test_orbit_energy_is_kept(orbits):
