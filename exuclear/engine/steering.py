@@ -261,7 +261,8 @@ GROWTH_CONTACT_PERIODS = 10.0
 #: periods 23, 13, 5.7, 3.2 and 1.3 c, in about the same wall time (Newton's iterations per
 #: step fall from 7.8 to 6.2 at 3 periods as the steps grow shorter).  Below 3 periods the
 #: cap reaches the steps of the examples that rest on the wall at 2 contact periods (the
-#: zoo's 2D double pendulum: 14377 steps instead of 11069 at 2).  The piston engine (steps of
+#: zoo's 2D double pendulum: 14377 steps instead of 11069 at 2, ``python -m
+#: validation.held_contact --models double_pendulum_2d --caps inf,3,2 --reference 1``).  The piston engine (steps of
 #: 7.8 periods) is chaotic (a 1e-9 m/s kick moves its run at 64 times the steps by 4.6 c,
 #: ``python -m validation.contact_follow_long --models piston_engine``): its peak normal
 #: force, 37.2 N at 64 times the steps and 36.7 N kicked, is 35.5 N at 3 periods and 23.2 N
