@@ -391,8 +391,8 @@ PYBIND11_MODULE(_ckernel, m) {
     // the run-start record's fields start_run reads (layout.py RunStart), and the step
     // control's constants (_python_kernel/step_control.py), which tests keep equal to Python's
     py::list run_start_fields;
-    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap", "contact_cap",
-                             "jacobian_step", "separation_step", "impact_mass"}) {
+    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap",
+                             "contact_cap", "jacobian_step", "separation_step", "impact_mass"}) {
         run_start_fields.append(name);
     }
     m.attr("RUN_START_FIELDS") = run_start_fields;

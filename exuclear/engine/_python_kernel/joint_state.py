@@ -67,9 +67,9 @@ class StepControl:
     def as_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in (
             "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
-            "contact_cap", "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations", "long_separations", "rejected",
-            "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice", "held_long", "held_time",
-            "held_step", "over_limit", "over_time", "over_step", "deepest")}
+            "contact_cap", "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations",
+            "long_separations", "rejected", "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice",
+            "held_long", "held_time", "held_step", "over_limit", "over_time", "over_step", "deepest")}
 
 
 

@@ -256,7 +256,7 @@ class JointStepControl(JointState):
                 share = b.delta / (b.delta - kin.delta)  # the onset's fraction of the step
                 if 1.0 - share > ONSET_TAIL and share > ONSET_FLOOR:
                     h_rec = min(h_rec, onset_step(h, share))
-            if b.in_contact and kin.delta > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
+            if b.in_contact and kin.delta > 0.0 and self._over_cap(h):
                 h_rec = min(h_rec, c.contact_cap)  # a held contact: at most HELD_CONTACT_PERIODS
                 held_over = True
             change = abs(kin.delta_dot - b.delta_dot)
@@ -300,9 +300,13 @@ class JointStepControl(JointState):
         256 times the steps (python -m validation.contact_follow_long): the following run
         3.81 c off with it, 11.6 c without (the compliant run under the cap: 3.69 c)."""
         c = self.control
-        if c.can_shorten and c.rate and not impact_step > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
+        if c.can_shorten and c.rate and not impact_step > 0.0 and self._over_cap(h):
             return c.contact_cap
         return 0.0
+
+    def _over_cap(self, h: float) -> bool:
+        """Whether a step ``h`` through a held contact exceeds the run's ``contact_cap``."""
+        return h > self.control.contact_cap * (1.0 + STEP_SLACK)
 
     def _resolves_impact(self, h: float, v0: float) -> bool:
         """Whether a step ``h`` resolves an impact at ``v0``: at most the impact's duration
