@@ -4,7 +4,9 @@ contact): solver steps, Newton iterations per step, switches and the agreement w
 compliant reference, on the Python kernel.
 
 - ``orbit``: a journal orbiting on its wall under its centripetal load (frictionless, cr 1),
-  at fixed generalized-alpha steps; the reference is the compliant run at 1e-6 s.
+  at fixed generalized-alpha steps; the reference is the compliant run at 1e-6 s.  Then the
+  same journal with Coulomb friction, too heavy in rotation to spin up, against its
+  analytic slowing-down ``v = v0 / (1 + mu v0 t / r)``.
 - ``slider-crank``: the paper's redundant slider-crank through ``exuclear.simulate`` at its
   defaults (``--step`` overrides the largest step); the reference is the compliant run at 2e-6 s;
   the ideal mechanism's steps and Newton iterations at the same settings head the table.
@@ -57,17 +59,18 @@ def _counts(it: object, steps: int) -> str:
     return f"{it.newtonStepsCount / max(steps, 1):.2f}"
 
 
-def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: float = 0.05) -> dict:
+def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: float = 0.05, cr: float = 1.0,
+          friction: str = "none", inertia: float = 1e-5) -> dict:
     """The orbiting journal of tests/test_contact_follow.py; returns its path and counts."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
-    joint = exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=1.0, friction="none")
+    joint = exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=cr, friction=friction)
     c = r = joint.geometry.clearance
     for _ in range(3):
         r = c + penetration_at(joint.law, mass * speed**2 / r)
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[r, 0, 0],
                                        initialVelocities=[0, speed, 0]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=1e-5))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=inertia))
     handle = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], joint=joint,
                                            backend="python", contact_mode=mode)
     sensor = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
@@ -100,6 +103,18 @@ def run_orbit(args: argparse.Namespace) -> None:
             print(_row(f"{mode}, {step:g} s", r["steps"], _counts(r["it"], r["steps"]), f"{off.max() / r['c']:.4f}",
                        f"{pen.min():.4f}..{pen.max():.4f}", f"{(speed[-1] / speed[0]) ** 2 - 1:+.2e}",
                        r["counts"] or "-"))
+    # Coulomb friction mu on a journal too heavy in rotation to spin up: its slip is its
+    # centre's speed, and dv/dt = -mu v^2 / r gives v = v0 / (1 + mu v0 t / r).
+    mu, speed0 = 0.1, 0.05
+    print()
+    print(_row("Coulomb friction 0.1, cr 0.9, 1e-4 s", "steps", "Newton / step", "speed off v0 / (1 + mu v0 t / r)",
+               "switches"))
+    for mode in ("compliant", "follow"):
+        r = orbit(mode, 1e-4, speed=speed0, cr=0.9, friction=f"coulomb:{mu}", inertia=1e3)
+        v, p = r["velocity"], r["path"]
+        exact = speed0 / (1.0 + mu * speed0 * v[:, 0] / np.hypot(p[0, 1], p[0, 2]))
+        off = np.abs(np.hypot(v[:, 1], v[:, 2]) / exact - 1.0).max()
+        print(_row(mode, r["steps"], _counts(r["it"], r["steps"]), f"{100 * off:.3f} %", r["counts"] or "-"))
 
 
 def slider_crank(mode: str, revolutions: float, step: float | None, ideal: bool = False) -> tuple:

@@ -505,7 +505,7 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
     # a prototype whose paths are not yet right in every model: said where it is chosen
     warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): over seconds it is as near "
                   "a converged run as the compliant contact where the motion is regular and frictionless, but with "
-                  "friction it dissipated 2 % less and reached peak forces up to 2.5 times a converged run's (the "
+                  "friction it dissipated 2 % less than a converged run and reached peak forces up to 2.4 times its (the "
                   "zoo's 2D double pendulum over 10 s); it saves Newton iterations, not steps, and runs on the Python "
                   "kernel; compare a run with the compliant contact before trusting it", AccuracyWarning, stacklevel=4)
     return mode, "python"
