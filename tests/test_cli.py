@@ -340,3 +340,19 @@ def test_spectral_radius_with_an_explicit_method_is_refused():
         exuclear.SolverSettings(end_time=0.1, method="dopri5", spectral_radius=0.5)
     exuclear.SolverSettings(end_time=0.1, method="dopri5")  # the default 0.9 is not a choice of the user
     exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", spectral_radius=0.5)
+
+
+def test_contact_mode_option_puts_the_scene_joint_in_that_mode():
+    """``--contact-mode follow`` builds the scene's joint in the following mode (a joint in
+    it counts its engagements; a compliant one has no such counts), on the Python kernel the
+    mode runs on; with the scenes' compiled default it is refused with the backend to give,
+    and a mode that does not exist is refused by name."""
+    status, _, err = cli(jb, "--contact-mode", "follow")
+    assert status == 2 and "backend='python'" in err
+    status, _, err = cli(jb, "--contact-mode", "folow")
+    assert status == 2 and "'compliant', 'follow'" in err
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the mode's prototype warning
+        following = jb.build(jb.JournalBearingParams.paper(contact_mode="follow", backend="python"))
+    assert following.joint.follow_counts()["on"] == 0
+    assert jb.build(jb.JournalBearingParams.paper()).joint.follow_counts() == {}
