@@ -45,7 +45,7 @@ import numpy as np
 from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
 
 import exuclear
-from exuclear.engine import following
+from exuclear.engine import follow_conditions, following
 from exuclear.timescales import penetration_at
 
 ZOO = ("double_pendulum_2d", "double_pendulum_2d_friction", "rigid_body_tutorial3_friction", "beam_pendulum_2d")
@@ -81,6 +81,7 @@ def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: f
     ss = exu.SimulationSettings()
     ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = end, int(round(end / step))
     ss.timeIntegration.verboseMode, ss.solution.file.write = 0, False
+    ss.solution.sensors.writePeriod = step  # every step (Exudyn's default: every 0.01 s)
     mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
     it = mbs.sys["dynamicSolver"].it
     return {"path": mbs.GetSensorStoredData(sensor), "velocity": mbs.GetSensorStoredData(velocity),
@@ -92,17 +93,23 @@ def run_orbit(args: argparse.Namespace) -> None:
     ref = orbit("compliant", 1e-6)
     print(_row("run", "steps", "Newton / step", "path off reference [c]", "|e| - c / static", "kinetic energy change",
                "switches"))
-    for step in (4e-4, 1e-4, 1e-5):
-        for mode in ("compliant", "follow"):
+    runs = [(mode, step, True) for step in (4e-4, 1e-4, 1e-5) for mode in ("compliant", "follow")]
+    runs.insert(4, ("follow", 1e-4, False))  # the step end's normal predicted to second order
+    for mode, step, predict in runs:
+        saved = follow_conditions.PREDICT_JERK
+        follow_conditions.PREDICT_JERK = predict
+        try:
             r = orbit(mode, step)
-            p, q = r["path"], ref["path"]
-            off = np.hypot(p[:, 1] - np.interp(p[:, 0], q[:, 0], q[:, 1]),
-                           p[:, 2] - np.interp(p[:, 0], q[:, 0], q[:, 2]))
-            pen = (np.hypot(p[:, 1], p[:, 2]) - r["c"]) / r["static"]
-            speed = np.hypot(r["velocity"][:, 1], r["velocity"][:, 2])
-            print(_row(f"{mode}, {step:g} s", r["steps"], _counts(r["it"], r["steps"]), f"{off.max() / r['c']:.4f}",
-                       f"{pen.min():.4f}..{pen.max():.4f}", f"{(speed[-1] / speed[0]) ** 2 - 1:+.2e}",
-                       r["counts"] or "-"))
+        finally:
+            follow_conditions.PREDICT_JERK = saved
+        p, q = r["path"], ref["path"]
+        off = np.hypot(p[:, 1] - np.interp(p[:, 0], q[:, 0], q[:, 1]),
+                       p[:, 2] - np.interp(p[:, 0], q[:, 0], q[:, 2]))
+        pen = (np.hypot(p[:, 1], p[:, 2]) - r["c"]) / r["static"]
+        speed = np.hypot(r["velocity"][:, 1], r["velocity"][:, 2])
+        label = f"{mode}, {step:g} s" + ("" if predict else ", PREDICT_JERK off")
+        print(_row(label, r["steps"], _counts(r["it"], r["steps"]), f"{off.max() / r['c']:.4f}",
+                   f"{pen.min():.4f}..{pen.max():.4f}", f"{(speed[-1] / speed[0]) ** 2 - 1:+.2e}", r["counts"] or "-"))
     # Coulomb friction mu on a journal too heavy in rotation to spin up: its slip is its
     # centre's speed, and dv/dt = -mu v^2 / r gives v = v0 / (1 + mu v0 t / r).
     mu, speed0 = 0.1, 0.05
