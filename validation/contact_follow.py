@@ -1,4 +1,4 @@
-"""``python -m validation.contact_follow [orbit|slider-crank|zoo|cost|anatomy|phases] [options]``: the measurements of
+"""``python -m validation.contact_follow [orbit|loop|slider-crank|zoo|cost|anatomy|phases] [options]``: the measurements of
 docs/guide/contact_following.md (issue 34's contact-following mode against the compliant
 contact): solver steps, Newton iterations per step, switches and the agreement with a
 compliant reference, on the Python kernel.
@@ -7,6 +7,11 @@ compliant reference, on the Python kernel.
   at fixed generalized-alpha steps; the reference is the compliant run at 1e-6 s.  Then the
   same journal with Coulomb friction, too heavy in rotation to spin up, against its
   analytic slowing-down ``v = v0 / (1 + mu v0 t / r)``.
+- ``loop``: a journal looping inside its bearing under gravity, fast enough at the bottom to
+  leave the wall at 120 deg (a point mass on a rigid circle): where it leaves at fixed steps,
+  compliant and following, the latter released on the low-passed multiplier (the default)
+  and on the multiplier itself (``RELEASE_FILTERED`` off); the reference is the compliant run
+  at 1e-6 s.
 - ``slider-crank``: the paper's redundant slider-crank through ``exuclear.simulate`` at its
   defaults (``--step`` overrides the largest step); the reference is the compliant run at 2e-6 s;
   the ideal mechanism's steps and Newton iterations at the same settings head the table.
@@ -28,7 +33,7 @@ compliant reference, on the Python kernel.
   force over the stretches of sustained contact (mean, standard deviation, strongest
   frequencies): a vibration that the refined run has too is the model's, not the step's.
 
-``orbit``, ``slider-crank``, ``zoo`` and ``phases`` count cost (steps, Newton iterations); ``cost`` and
+``orbit``, ``loop``, ``slider-crank``, ``zoo`` and ``phases`` count cost (steps, Newton iterations); ``cost`` and
 ``anatomy`` time it: run them with nothing else on the machine.
 """
 from __future__ import annotations
@@ -42,7 +47,14 @@ from functools import partial
 
 import exudyn as exu
 import numpy as np
-from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D, SensorNode
+from exudyn.itemInterface import (
+    LoadForceVector,
+    MarkerNodePosition,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectRigidBody2D,
+    SensorNode,
+)
 
 import exuclear
 from exuclear.engine import follow_conditions, following
@@ -60,17 +72,24 @@ def _counts(it: object, steps: int) -> str:
 
 
 def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: float = 0.05, cr: float = 1.0,
-          friction: str = "none", inertia: float = 1e-5) -> dict:
-    """The orbiting journal of tests/test_contact_follow.py; returns its path and counts."""
+          friction: str = "none", inertia: float = 1e-5, gravity: float = 0.0,
+          radii: tuple[float, float] = (9.9e-3, 10e-3)) -> dict:
+    """The orbiting journal of tests/test_contact_follow.py (journal and bearing ``radii``),
+    started on its wall at +x with ``speed`` along +y at the law's static penetration under
+    its load, ``gravity`` [m/s^2] along +x (the start is the bottom); returns its path and counts."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
-    joint = exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, length=15e-3, cr=cr, friction=friction)
+    joint = exuclear.make_joint(journal_radius=radii[0], bearing_radius=radii[1], length=15e-3, cr=cr,
+                                friction=friction)
     c = r = joint.geometry.clearance
     for _ in range(3):
-        r = c + penetration_at(joint.law, mass * speed**2 / r)
+        r = c + penetration_at(joint.law, mass * (speed**2 / r + gravity))
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[r, 0, 0],
                                        initialVelocities=[0, speed, 0]))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=inertia))
+    if gravity:
+        marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=node))
+        mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=[mass * gravity, 0, 0]))
     handle = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], joint=joint,
                                            backend="python", contact_mode=mode)
     sensor = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
@@ -122,6 +141,53 @@ def run_orbit(args: argparse.Namespace) -> None:
         exact = speed0 / (1.0 + mu * speed0 * v[:, 0] / np.hypot(p[0, 1], p[0, 2]))
         off = np.abs(np.hypot(v[:, 1], v[:, 2]) / exact - 1.0).max()
         print(_row(mode, r["steps"], _counts(r["it"], r["steps"]), f"{100 * off:.3f} %", r["counts"] or "-"))
+
+
+#: The looping journal: a journal of 19 mm in a bearing of 20 mm (c = 1 mm), 0.5 kg, under
+#: gravity, started at the bottom of its wall fast enough to leave it at LOOP_RELEASE_DEG.
+LOOP_RADII, LOOP_RELEASE_DEG, LOOP_GRAVITY = (19e-3, 20e-3), 120.0, 9.81
+
+
+def loop(mode: str, step: float, end: float = 0.03) -> dict:
+    """The looping journal (LOOP_RADII), frictionless with cr 0.9, at fixed steps: where it
+    leaves its wall.  On a wall of radius ``r`` the normal force of a point mass started at
+    the bottom at ``v0`` is ``m (v0^2 - 2 g r + 3 g r cos(theta)) / r`` at the angle ``theta``
+    from the bottom: it leaves at ``cos(theta) = (2 g r - v0^2) / (3 g r)``, so
+    ``v0^2 = g r (2 - 3 cos(theta))`` (``r = c``; the penetration adds micrometres).  Returns
+    the angle [deg] and time [s] where ``|e|`` first falls below c (linear between steps),
+    with the run's counts."""
+    c = LOOP_RADII[1] - LOOP_RADII[0]
+    speed = math.sqrt(LOOP_GRAVITY * c * (2.0 - 3.0 * math.cos(math.radians(LOOP_RELEASE_DEG))))
+    run = orbit(mode, step, end, speed=speed, cr=0.9, gravity=LOOP_GRAVITY, radii=LOOP_RADII)
+    t, x, y = run["path"][:, 0], run["path"][:, 1], run["path"][:, 2]
+    e, angle = np.hypot(x, y), np.unwrap(np.arctan2(y, x))
+    i = int(np.argmax(e < run["c"]))
+    if i == 0:
+        raise RuntimeError(f"the looping journal ({mode}, {step:g} s) did not leave its wall by {end:g} s")
+    share = (e[i - 1] - run["c"]) / (e[i - 1] - e[i])
+    run["release_deg"] = math.degrees(angle[i - 1] + share * (angle[i] - angle[i - 1]))
+    run["release_time"] = t[i - 1] + share * (t[i] - t[i - 1])
+    return run
+
+
+def run_loop(args: argparse.Namespace) -> None:
+    ref = loop("compliant", 1e-6)
+    print(f"Leaves the wall at {LOOP_RELEASE_DEG:g} deg (analytic, path radius c); the compliant contact at 1e-6 s: "
+          f"{ref['release_deg']:.2f} deg at {1e3 * ref['release_time']:.3f} ms")
+    print()
+    print(_row("step [s]", "compliant [deg]", "follow [deg]", "follow, released on the multiplier itself [deg]",
+               "follow: steps, switches on / off, steps redone", "the same, on the multiplier itself"))
+    for step in (1.6e-4, 2e-4, 2.5e-4, 3e-4, 4e-4, 5e-4):
+        compliant, follow = loop("compliant", step), loop("follow", step)
+        saved = following.RELEASE_FILTERED
+        following.RELEASE_FILTERED = False  # the step redone to end at the multiplier's zero (RELEASE_REDO)
+        try:
+            raw = loop("follow", step)
+        finally:
+            following.RELEASE_FILTERED = saved
+        print(_row(f"{step:g}", f"{compliant['release_deg']:.2f}", f"{follow['release_deg']:.2f}",
+                   f"{raw['release_deg']:.2f}", *(f"{r['steps']}, {r['counts']['on']} / {r['counts']['off']}, "
+                                                  f"{r['counts']['redone']}" for r in (follow, raw))), flush=True)
 
 
 def slider_crank(mode: str, revolutions: float, step: float | None, ideal: bool = False) -> tuple:
@@ -368,7 +434,7 @@ def run_phases(args: argparse.Namespace) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m validation.contact_follow", description=__doc__.split("\n\n")[0])
-    parser.add_argument("case", choices=["orbit", "slider-crank", "zoo", "cost", "anatomy", "phases"])
+    parser.add_argument("case", choices=["orbit", "loop", "slider-crank", "zoo", "cost", "anatomy", "phases"])
     parser.add_argument("--revolutions", type=float, default=2.0, help="slider-crank revolutions (default 2)")
     parser.add_argument("--step", type=float, default=None, help="slider-crank largest step [s] (default its own)")
     parser.add_argument("--models", default=",".join(ZOO), help=f"zoo models (default {','.join(ZOO)})")
@@ -381,7 +447,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        {"orbit": run_orbit, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost,
+        {"orbit": run_orbit, "loop": run_loop, "slider-crank": run_slider_crank, "zoo": run_zoo, "cost": run_cost,
          "anatomy": run_anatomy, "phases": run_phases}[args.case](args)
     return 0
 

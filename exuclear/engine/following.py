@@ -26,8 +26,9 @@ from its force and post-Newton functions):
   ``lambda`` is the normal force; friction acts from it (FRICTION_FROM); the distance
   follows ``c + delta(lambda)``, the law's penetration at that force (with its damping at
   the rate it asks, DAMPED_TARGET), with a loop gain below 1 (FOLLOW_GAIN).
-- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED), or where the
-  slip comes within STICK_MARGIN of the friction law's smoothing band.  A step on which
+- **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED; or the
+  multiplier itself, the step redone to end there, RELEASE_REDO), or where the slip comes
+  within STICK_MARGIN of the friction law's smoothing band.  A step on which
   ``|e|`` left ``d`` by more than FOLLOW_HOLD of the penetration is redone at half its length
   (HOLD_REDOS times at most); then the contact is let go (``lost``) and stays compliant
   until it ends.
@@ -150,16 +151,25 @@ FOLLOW_FILTER = 0.2
 #: 12.5 N, released).
 FOLLOW_ATOL_SHARE = 1e-4
 FOLLOW_ATOL_FORCE = 1e-13
-#: Release where the low-passed multiplier (FOLLOW_FILTER) turns tensile (True), not the
-#: two-step mean (False).  Measured on the paper's redundant slider-crank (2 revolutions,
-#: generalized-alpha at its defaults): on the two-step mean the constraint let go 29 times,
-#: where the compliant contact still pressed (its force 20-50 N), each a new impact (124
-#: impacts against 22), 38091 steps against 15272: when the step changes, the two-step
-#: oscillation of the multiplier is no longer cancelled by the mean.
+#: Release where the low-passed multiplier (FOLLOW_FILTER) turns tensile (True), or the
+#: multiplier itself (False: the velocity condition's, the distance condition's two-step
+#: mean) with the step redone to end there (RELEASE_REDO).  On a journal looping inside its
+#: bearing under gravity (``python -m validation.contact_follow loop``; it leaves the wall at
+#: 120.45 deg) the low-pass lets it go 3.4 to 7.8 deg late, the multiplier itself within
+#: 0.7 deg.  Kept for the zoo's 3D double pendulum with friction, whose path over 0.5 s ends
+#: 0.52 c off the reference with it and 2.0 c off without: the mode engages there at about
+#: 0.2 contact periods, where the held distance lags the unloading (FOLLOW_GAIN), and the
+#: compliant contact that takes over at the multiplier's zero pushes the journal off from the
+#: lagging penetration (docs/guide/contact_following.md, "Release").
 RELEASE_FILTERED = True
-#: Redo the step in which the two-step mean turned tensile so the release lands at its end
-#: (off with RELEASE_FILTERED: a shorter step does not place the low-passed zero).
-RELEASE_REDO = False
+#: Redo the step in which the multiplier turned tensile at the share of it where its
+#: straight line between the step's ends crosses zero (no less than RELEASE_SHORTEST of the
+#: step), so that the release lands at the redone step's end, where the contact is let go
+#: whatever the multiplier then (``release_due``).  Once per step start, and only without
+#: RELEASE_FILTERED (a shorter step does not place the low-passed zero).
+RELEASE_REDO = True
+#: The shortest share of a step a release redoes it to.
+RELEASE_SHORTEST = 0.05
 #: The normal force friction acts from while following: "filtered" (the low-passed multiplier
 #: of the accepted steps, explicit), "iterate" (Newton's present multiplier), "mean" (the
 #: mean of the present and the last accepted multiplier) or "accepted" (the last accepted
@@ -218,6 +228,7 @@ class FollowState:
         self.damping_checked = False  # the integrator's spectral radius, read at the run's first contact
         self.undamped = False  # ... above FOLLOW_MAX_RHO: the run stays compliant
         self.hold_start, self.hold_redos = -math.inf, 0
+        self.release_due = False  # a step redone to end where the multiplier turns tensile (release_step)
         self.followed_steps = 0
         self.last_redo = -math.inf
         self.distance = 0.0  # the constraint's distance [m]
@@ -330,13 +341,12 @@ class FollowState:
 
     def release_step(self, mbs: Any, h: float, start: float, can_shorten: bool) -> float:
         """While following, at the end of the step of length ``h`` from ``start``: 0 to accept
-        it, else the shorter step to redo it with, so that a release lands near its end; once
-        per step start.  Only with RELEASE_REDO: the release is decided on the low-passed
-        multiplier (:meth:`after_step`), whose zero a shorter step does not place (module
-        docstring of the guide, "Release")."""
-        if not RELEASE_REDO:
+        it, else the shorter step to redo it with, so that the release lands at its end
+        (RELEASE_REDO); once per step start.  Marks the contact to be let go at the redone
+        step's end (:meth:`after_step`)."""
+        if not RELEASE_REDO or RELEASE_FILTERED:
             return 0.0
-        lam = self.normal_force(mbs)
+        lam = self.normal_force(mbs) if self.condition.two_step_mean else self.read_multiplier(mbs)
         if lam >= 0.0 or not can_shorten or not self.multiplier > 0.0:
             return 0.0
         share = self.multiplier / (self.multiplier - lam)  # lambda's zero, linear over the step
@@ -344,7 +354,8 @@ class FollowState:
             return 0.0
         self.last_redo = start
         self.redone += 1
-        return max(share, 0.05) * h
+        self.release_due = True
+        return max(share, RELEASE_SHORTEST) * h
 
     @staticmethod
     def sticking(friction: Any, slip: float) -> bool:
@@ -398,6 +409,7 @@ class FollowState:
         self.switch_off_times.append(t)
         self.multiplier = self.raw = 0.0
         self.steps_in_contact = 0
+        self.release_due = False
 
     def after_step(self, mbs: Any, t: float, h: float, delta: float, delta_dot_start: float, delta_dot: float,
                    in_contact: bool, onset_time: float, normal_force: float, mass: float, turn: float = 0.0,
@@ -411,7 +423,7 @@ class FollowState:
             lam = mean if self.condition.two_step_mean else raw
             self.raw = raw
             filtered = self.filtered + FOLLOW_FILTER * (lam - self.filtered)
-            if (filtered if RELEASE_FILTERED else lam) <= 0.0 or sticking:
+            if self.release_due or (filtered if RELEASE_FILTERED else lam) <= 0.0 or sticking:
                 self._release(mbs, t)  # sticking: |e| = d and no normal rate, the compliant force is lambda
                 return
             if not self.holds(delta):  # the condition no longer holds |e| = d
