@@ -42,6 +42,7 @@ import argparse
 import math
 import sys
 import warnings
+from contextlib import contextmanager
 from dataclasses import replace
 from functools import partial
 
@@ -65,6 +66,17 @@ ZOO = ("double_pendulum_2d", "double_pendulum_2d_friction", "rigid_body_tutorial
 
 def _row(*cells: object) -> str:
     return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+@contextmanager
+def _constant(module: object, name: str, value: object):
+    """``module.name`` set to ``value`` for the block (a rule of the following mode)."""
+    saved = getattr(module, name)
+    setattr(module, name, value)
+    try:
+        yield
+    finally:
+        setattr(module, name, saved)
 
 
 def _counts(it: object, steps: int) -> str:
@@ -115,12 +127,8 @@ def run_orbit(args: argparse.Namespace) -> None:
     runs = [(mode, step, True) for step in (4e-4, 1e-4, 1e-5) for mode in ("compliant", "follow")]
     runs.insert(4, ("follow", 1e-4, False))  # the step end's normal predicted to second order
     for mode, step, predict in runs:
-        saved = follow_conditions.PREDICT_JERK
-        follow_conditions.PREDICT_JERK = predict
-        try:
+        with _constant(follow_conditions, "PREDICT_JERK", predict):
             r = orbit(mode, step)
-        finally:
-            follow_conditions.PREDICT_JERK = saved
         p, q = r["path"], ref["path"]
         off = np.hypot(p[:, 1] - np.interp(p[:, 0], q[:, 0], q[:, 1]),
                        p[:, 2] - np.interp(p[:, 0], q[:, 0], q[:, 2]))
@@ -179,12 +187,8 @@ def run_loop(args: argparse.Namespace) -> None:
                "follow: steps, switches on / off, steps redone", "the same, on the multiplier itself"))
     for step in (1.6e-4, 2e-4, 2.5e-4, 3e-4, 4e-4, 5e-4):
         compliant, follow = loop("compliant", step), loop("follow", step)
-        saved = following.RELEASE_FILTERED
-        following.RELEASE_FILTERED = False  # the step redone to end at the multiplier's zero (RELEASE_REDO)
-        try:
+        with _constant(following, "RELEASE_FILTERED", False):  # the step redone to end at the zero (RELEASE_REDO)
             raw = loop("follow", step)
-        finally:
-            following.RELEASE_FILTERED = saved
         print(_row(f"{step:g}", f"{compliant['release_deg']:.2f}", f"{follow['release_deg']:.2f}",
                    f"{raw['release_deg']:.2f}", *(f"{r['steps']}, {r['counts']['on']} / {r['counts']['off']}, "
                                                   f"{r['counts']['redone']}" for r in (follow, raw))), flush=True)
