@@ -33,28 +33,6 @@
 
 #include "step_control.hpp"
 
-namespace pybind11 {
-namespace detail {
-// Lets pybind11 bind functions that take Exudyn's MainSystem, which this module does not
-// know.  A call from Python (the self-test's fallback check) passes any object; the
-// functions never touch it.
-template <> class type_caster<MainSystem> {
-public:
-    bool load(handle src, bool) {
-        ptr_ = reinterpret_cast<MainSystem*>(src.ptr());
-        return true;
-    }
-    static constexpr auto name = const_name("exudyn.MainSystem");
-    template <typename T> using cast_op_type = MainSystem&;
-    operator MainSystem&() { return *ptr_; }
-    static handle cast(const MainSystem&, return_value_policy, handle) { return none().release(); }
-
-private:
-    MainSystem* ptr_ = nullptr;
-};
-}  // namespace detail
-}  // namespace pybind11
-
 namespace {
 
 V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, V3 velocity, V3 angularVelocity,

@@ -1,7 +1,7 @@
 // The parameters of a clearance joint as its connector's `stiffness` matrix carries them
 // (exuclear/engine/layout.py LAYOUT, field by field: Params and decode), and the size of its
 // data node (layout.py DATA_COLUMNS, FILM_DATA_COLUMNS).  Python: exuclear/engine/layout.py and
-// exuclear/engine/_python_kernel/layout.py.
+// exuclear/engine/_python_kernel/layout.py.  Also Exudyn's MainSystem as the signatures name it.
 
 #pragma once
 
@@ -16,6 +16,29 @@
 #include <vector>
 
 class MainSystem;  // Exudyn's; only its name enters the signatures, it is never dereferenced
+
+// Lets pybind11 bind functions that take Exudyn's MainSystem, which this module does not
+// know (the kernel's bindings.cpp, and the probe module of validation/cost/compiled_condition.py).
+// A call from Python (a self-test's fallback check) passes any object; the functions never
+// touch it.
+namespace pybind11 {
+namespace detail {
+template <> class type_caster<MainSystem> {
+public:
+    bool load(handle src, bool) {
+        ptr_ = reinterpret_cast<MainSystem*>(src.ptr());
+        return true;
+    }
+    static constexpr auto name = const_name("exudyn.MainSystem");
+    template <typename T> using cast_op_type = MainSystem&;
+    operator MainSystem&() { return *ptr_; }
+    static handle cast(const MainSystem&, return_value_policy, handle) { return none().release(); }
+
+private:
+    MainSystem* ptr_ = nullptr;
+};
+}  // namespace detail
+}  // namespace pybind11
 
 namespace py = pybind11;
 

@@ -63,7 +63,8 @@ def build_probe(directory: str):
     except ImportError:
         sys.exit('compiled_condition needs pybind11: pip install "pybind11>=2.10,<3"')
     target = Path(directory) / ("compiled_condition_probe" + sysconfig.get_config_var("EXT_SUFFIX"))
-    includes = [f"-I{pybind11.get_include()}", f"-I{sysconfig.get_paths()['include']}"]
+    kernel = Path(__file__).resolve().parents[2] / "exuclear" / "_kernel"  # layout.hpp: the MainSystem caster
+    includes = [f"-I{pybind11.get_include()}", f"-I{sysconfig.get_paths()['include']}", f"-I{kernel}"]
     command = [*shlex.split(os.environ.get("CXX", "c++")), "-O2", "-shared", "-fPIC", "-std=c++17", *includes,
                str(SOURCE), "-o", str(target)]
     try:

@@ -8,7 +8,7 @@
 //              std::vector<double> q_t, bool velocityLevel)
 // (q: the coordinates of the connector's two markers in turn; here marker 0 is a ground
 // node with none).  Counts its calls, and the calls that came through pybind11's Python
-// dispatcher (the only path on which pybind11 converts the MainSystem argument).
+// dispatcher (as the kernel's self-test does, exuclear/_kernel/bindings.cpp).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -16,33 +16,16 @@
 #include <cmath>
 #include <vector>
 
-namespace py = pybind11;
+#include "layout.hpp"  // exuclear/_kernel: Exudyn's MainSystem and its pybind11 type caster
 
-class MainSystem;  // Exudyn's; only its name enters the signature
+namespace py = pybind11;
 
 namespace {
 long g_dispatch_calls = 0, g_constraint_calls = 0, g_jacobian_calls = 0;
-}
-
-namespace pybind11 {
-namespace detail {
-template <> class type_caster<MainSystem> {
-public:
-    bool load(handle src, bool) {
-        ++g_dispatch_calls;
-        ptr_ = reinterpret_cast<MainSystem*>(src.ptr());
-        return true;
-    }
-    static constexpr auto name = const_name("exudyn.MainSystem");
-    template <typename T> using cast_op_type = MainSystem&;
-    operator MainSystem&() { return *ptr_; }
-    static handle cast(const MainSystem&, return_value_policy, handle) { return none().release(); }
-
-private:
-    MainSystem* ptr_ = nullptr;
+struct DispatchCounter {  // constructed only when a call comes through pybind11's Python dispatcher
+    DispatchCounter() { ++g_dispatch_calls; }
 };
-}  // namespace detail
-}  // namespace pybind11
+}  // namespace
 
 namespace {
 std::vector<double> constraint(const MainSystem&, double, int, std::vector<double> q, std::vector<double> q_t,
@@ -65,7 +48,7 @@ py::object jacobian(const MainSystem&, double, int, std::vector<double> q, std::
 }  // namespace
 
 PYBIND11_MODULE(compiled_condition_probe, m) {
-    m.def("constraint", &constraint);
-    m.def("jacobian", &jacobian);
+    m.def("constraint", &constraint, py::call_guard<DispatchCounter>());
+    m.def("jacobian", &jacobian, py::call_guard<DispatchCounter>());
     m.def("counts", []() { return py::make_tuple(g_dispatch_calls, g_constraint_calls, g_jacobian_calls); });
 }
