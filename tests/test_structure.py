@@ -169,7 +169,7 @@ def test_the_two_kernels_split_into_modules_of_the_same_names():
     # exuclear/_kernel/layout.hpp ... bindings.cpp mirror exuclear/engine/_python_kernel/layout.py ... bindings.py
     compiled = {p.stem for p in (PACKAGE / "_kernel").iterdir() if p.suffix in (".hpp", ".cpp")}
     python = {p.stem for p in (PACKAGE / "engine" / "_python_kernel").glob("*.py")} - {"__init__"}
-    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "wear", "joint_state",
+    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "wear", "joint_state", "following",
                                   "step_control", "bindings"}
 
 

@@ -59,6 +59,7 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear.engine import follow_conditions, following
+from exuclear.engine._python_kernel import following as rules
 from exuclear.timescales import penetration_at
 
 ZOO = ("double_pendulum_2d", "double_pendulum_2d_friction", "rigid_body_tutorial3_friction", "beam_pendulum_2d")
@@ -85,10 +86,11 @@ def _counts(it: object, steps: int) -> str:
 
 def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: float = 0.05, cr: float = 1.0,
           friction: str = "none", inertia: float = 1e-5, gravity: float = 0.0,
-          radii: tuple[float, float] = (9.9e-3, 10e-3)) -> dict:
+          radii: tuple[float, float] = (9.9e-3, 10e-3), backend: str = "python") -> dict:
     """The orbiting journal of tests/test_contact_follow.py (journal and bearing ``radii``),
     started on its wall at +x with ``speed`` along +y at the law's static penetration under
-    its load, ``gravity`` [m/s^2] along +x (the start is the bottom); returns its path and counts."""
+    its load, ``gravity`` [m/s^2] along +x (the start is the bottom), on the ``backend``
+    kernel; returns its path and counts."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     joint = exuclear.make_joint(journal_radius=radii[0], bearing_radius=radii[1], length=15e-3, cr=cr,
@@ -103,7 +105,7 @@ def orbit(mode: str, step: float, end: float = 0.05, mass: float = 0.5, speed: f
         marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=node))
         mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=[mass * gravity, 0, 0]))
     handle = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], joint=joint,
-                                           backend="python", contact_mode=mode)
+                                           backend=backend, contact_mode=mode)
     sensor = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
                                       outputVariableType=exu.OutputVariableType.Position))
     velocity = mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
@@ -156,17 +158,17 @@ def run_orbit(args: argparse.Namespace) -> None:
 LOOP_RADII, LOOP_RELEASE_DEG, LOOP_GRAVITY = (19e-3, 20e-3), 120.0, 9.81
 
 
-def loop(mode: str, step: float, end: float = 0.03) -> dict:
+def loop(mode: str, step: float, end: float = 0.03, backend: str = "python") -> dict:
     """The looping journal (LOOP_RADII), frictionless with cr 0.9, at fixed steps: where it
     leaves its wall.  On a wall of radius ``r`` the normal force of a point mass started at
     the bottom at ``v0`` is ``m (v0^2 - 2 g r + 3 g r cos(theta)) / r`` at the angle ``theta``
     from the bottom: it leaves at ``cos(theta) = (2 g r - v0^2) / (3 g r)``, so
     ``v0^2 = g r (2 - 3 cos(theta))`` (``r = c``; the penetration adds micrometres).  Returns
     the angle [deg] and time [s] where ``|e|`` first falls below c (linear between steps),
-    with the run's counts."""
+    with the run's counts, on the ``backend`` kernel."""
     c = LOOP_RADII[1] - LOOP_RADII[0]
     speed = math.sqrt(LOOP_GRAVITY * c * (2.0 - 3.0 * math.cos(math.radians(LOOP_RELEASE_DEG))))
-    run = orbit(mode, step, end, speed=speed, cr=0.9, gravity=LOOP_GRAVITY, radii=LOOP_RADII)
+    run = orbit(mode, step, end, speed=speed, cr=0.9, gravity=LOOP_GRAVITY, radii=LOOP_RADII, backend=backend)
     t, x, y = run["path"][:, 0], run["path"][:, 1], run["path"][:, 2]
     e, angle = np.hypot(x, y), np.unwrap(np.arctan2(y, x))
     i = int(np.argmax(e < run["c"]))
@@ -187,7 +189,7 @@ def run_loop(args: argparse.Namespace) -> None:
                "follow: steps, switches on / off, steps redone", "the same, on the multiplier itself"))
     for step in (1.6e-4, 2e-4, 2.5e-4, 3e-4, 4e-4, 5e-4):
         compliant, follow = loop("compliant", step), loop("follow", step)
-        with _constant(following, "RELEASE_FILTERED", False):  # the step redone to end at the zero (RELEASE_REDO)
+        with _constant(rules, "RELEASE_FILTERED", False):  # the step redone to end at the zero (RELEASE_REDO)
             raw = loop("follow", step)
         print(_row(f"{step:g}", f"{compliant['release_deg']:.2f}", f"{follow['release_deg']:.2f}",
                    f"{raw['release_deg']:.2f}", *(f"{r['steps']}, {r['counts']['on']} / {r['counts']['off']}, "
@@ -271,9 +273,15 @@ def run_zoo(args: argparse.Namespace) -> None:
                        f"{off:.2f}" + (f" ({message})" if message else "")), flush=True)
 
 
-def _wall(build: object, repeats: int, **options: object) -> tuple[float, int, float]:
+def _kernel_of(model: object) -> str:
+    """Which kernel the model's clearance joint ran on."""
+    return "compiled" if getattr(model.joint._backend, "compiled", False) else "Python"
+
+
+def _wall(build: object, repeats: int, **options: object) -> tuple[float, int, float, str]:
     """Median wall time [s] of ``repeats`` plain ``SolveDynamic`` runs of a fresh
-    ``build(**options)``, the steps and Newton iterations per step of the last."""
+    ``build(**options)``, the steps and Newton iterations per step of the last, and the
+    kernel its joint ran on."""
     import statistics
     import time
 
@@ -285,29 +293,33 @@ def _wall(build: object, repeats: int, **options: object) -> tuple[float, int, f
         walls.append(time.perf_counter() - start)
     it = model.mbs.sys["dynamicSolver"].it
     steps = it.currentStepIndex - 1
-    return statistics.median(walls), steps, it.newtonStepsCount / max(steps, 1)
+    kernel = _kernel_of(model) if model.joint is not None else "-"
+    return statistics.median(walls), steps, it.newtonStepsCount / max(steps, 1), kernel
 
 
 def run_cost(args: argparse.Namespace) -> None:
     """Wall time against the ideal model, side by side in one run (medians of ``--repeats``):
     the compliant joint on the compiled kernel (the default) and on the Python kernel, and
-    the following mode (Python kernel)."""
+    the following mode on the Python kernel and on the default one (the compiled kernel
+    where it can follow the joint: frictionless, 2D rigid bodies)."""
     from validation.exudyn_examples._common import load_models
 
     models = load_models()
-    print(_row("model", "run", "wall [s]", "/ ideal", "steps", "Newton / step"))
+    print(_row("model", "run", "kernel", "wall [s]", "/ ideal", "steps", "Newton / step"))
     for name in args.models.split(","):
         build = partial(models[name], end_time=args.end_time if args.end_time > 0.0 else None)
-        ideal, steps, newton = _wall(build, args.repeats, clearance=False)
-        print(_row(name, "ideal", f"{ideal:.3f}", "1", steps, f"{newton:.2f}"), flush=True)
-        for label, options in (("compliant, compiled", {}), ("compliant, Python", {"backend": "python"}),
-                               ("follow, Python", {"backend": "python", "contact_mode": "follow"})):
-            wall, steps, newton = _wall(build, args.repeats, clearance=True, **options)
-            print(_row(name, label, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{newton:.2f}"), flush=True)
+        ideal, steps, newton, _ = _wall(build, args.repeats, clearance=False)
+        print(_row(name, "ideal", "-", f"{ideal:.3f}", "1", steps, f"{newton:.2f}"), flush=True)
+        for label, options in (("compliant", {}), ("compliant", {"backend": "python"}),
+                               ("follow", {"backend": "python", "contact_mode": "follow"}),
+                               ("follow", {"contact_mode": "follow"})):
+            wall, steps, newton, kernel = _wall(build, args.repeats, clearance=True, **options)
+            print(_row(name, label, kernel, f"{wall:.3f}", f"{wall / ideal:.2f}", steps, f"{newton:.2f}"), flush=True)
 
 
 def run_anatomy(args: argparse.Namespace) -> None:
-    """One run each (the ideal model, the compliant joint compiled, the following mode):
+    """One run each (the ideal model, the compliant joint compiled, the following mode on the
+    Python kernel and on the default one):
     microseconds per step, Newton iterations and Jacobians per step, the steps redone at a
     post-Newton function's request (Exudyn's discontinuous iterations beyond one per step:
     the joint's own step control), and the shares of Exudyn's timers
@@ -322,9 +334,12 @@ def run_anatomy(args: argparse.Namespace) -> None:
                "Jacobians / step", "Jacobian %", "RHS %", "post-Newton %", "us / step for 2x ideal"))
     for name in args.models.split(","):
         ideal = None
-        for label, options in (("ideal", {"clearance": False}), ("compliant, compiled", {"clearance": True}),
-                               ("follow, Python", {"clearance": True, "backend": "python", "contact_mode": "follow"})):
+        for label, options in (("ideal", {"clearance": False}), ("compliant", {"clearance": True}),
+                               ("follow", {"clearance": True, "backend": "python", "contact_mode": "follow"}),
+                               ("follow", {"clearance": True, "contact_mode": "follow"})):
             model = models[name](end_time=args.end_time if args.end_time > 0.0 else None, **options)
+            if model.joint is not None:
+                label = f"{label}, {_kernel_of(model)}"
             model.simulation_settings.displayComputationTime = True  # fills the solver's timers
             start = time.perf_counter()
             model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
@@ -359,12 +374,12 @@ class PhaseRecorder:
         state = self.joint.state()
         if not state.in_contact:
             phase = 0
-        elif t - state.onset_time < following.FOLLOW_PERIODS * self.period:
+        elif t - state.onset_time < rules.FOLLOW_PERIODS * self.period:
             phase = 1
         elif self.joint.follow_counts().get("active"):
             phase = 2
         else:
-            phase = 3 if following.FollowState.sticking(self.friction, state.slip_velocity) else 4
+            phase = 3 if rules.FollowState.sticking(self.friction, state.slip_velocity) else 4
         self.steps.append((t, t - self.last, phase, state.normal_force))
         self.last = t
         return True

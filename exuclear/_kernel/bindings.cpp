@@ -31,7 +31,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "step_control.hpp"
+#include "following.hpp"
 
 namespace {
 
@@ -46,8 +46,19 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
             const V3& c = state(a.id).torque_correction;
             return V6{0.0, 0.0, 0.0, c[0], c[1], c[2]};
         }
-        default:
+        default: {
+            Follow* f = follow_of(a.id);
+            if (f != nullptr) {  // JointKernel.force_torque's following mode
+                JointState& s = state(a.id);
+                if (!s.started || t < s.prev[0].time) {
+                    follow_restart(*f);  // a new run: compliant from its initial state
+                } else if (f->active) {  // the condition holds the (frictionless) contact: no load
+                    s.torque_correction = V3{0.0, 0.0, 0.0};
+                    return zeros6();
+                }
+            }
             return joint_force(a, t, displacement, rotation, velocity, angularVelocity);
+        }
     }
 }
 
@@ -90,7 +101,22 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
             }
         }
     }
-    double redo = step_control(a, s, base, t);
+    Follow* f = follow_of(a.id);
+    Params rule = a;
+    if (f != nullptr && f->active) {  // the condition sets the normal rate: no rate criterion
+        rule.rate_limit = 0.0;
+        double h = t - base[0].time;
+        double redo = follow_hold_step(*f, a.r_b - a.r_j, s.kins[0].delta, h, base[0].time, s.control);
+        if (!(redo > 0.0)) redo = held_cap(s.control, h, a.impact_step);  // held by the condition: capped too
+        if (redo > 0.0) {
+            steer_jacobian(s, INF);
+            out[0] = REDO_STEP_ERROR;
+            out[1] = redo;
+            out.insert(out.end(), data.begin(), data.end());
+            return out;
+        }
+    }
+    double redo = step_control(rule, s, base, t);
     if (redo > 0.0) {
         steer_jacobian(s, INF);
         out[0] = REDO_STEP_ERROR;
@@ -119,8 +145,15 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         if (base[i].in_contact && !s.next[i].in_contact) ended++;
     }
     count_separations(s.control, advance, ended, h);
+    History before = base[0];
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
+    if (f != nullptr) {  // the following mode's decisions (FollowState.after_step)
+        bool was = f->active;
+        follow_after_step(*f, a, s.control, system, t, h, before, s.cur[0]);
+        switched = switched || f->active != was;
+        if (was && f->active) s.cur[0].f_n = f->multiplier;  // a followed step: the condition's normal force
+    }
     // a worn joint in contact: its conformal contact asks for a Jacobian per step
     bool conformal = worn_joint && in_worn_contact(s);
     steer_jacobian(s, switched ? INF : h, conformal);
@@ -216,6 +249,7 @@ PYBIND11_MODULE(_ckernel, m) {
         return static_cast<long>(g_joints.size() - 1);
     }, "a new joint's id in the kernel's table");
     m.def("release", [](long id) {
+        forget_follow(id);
         leave_group(state(id));
         state(id) = JointState();
         g_joints[static_cast<size_t>(id)].in_use = false;
@@ -233,6 +267,7 @@ PYBIND11_MODULE(_ckernel, m) {
         s.control.runs = runs;
         s.wear = std::move(wear);
         for (WearState& w : s.wear) w.reset();
+        if (Follow* f = follow_of(id)) follow_restart(*f);
     });
     m.def("set_wear", [](long id, std::vector<std::vector<double>> bearing, std::vector<std::vector<double>> journal,
                          double e_star, double length) {
@@ -309,6 +344,41 @@ PYBIND11_MODULE(_ckernel, m) {
         return d;
     });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
+    m.def("follow_constraint", &condition_constraint, py::call_guard<DispatchCounter>(),
+          "constraintUserFunction of a followed joint's condition (ObjectConnectorCoordinateVector)");
+    m.def("follow_jacobian", &condition_jacobian, py::call_guard<DispatchCounter>(),
+          "jacobianUserFunction of a followed joint's condition");
+    m.def("set_follow", [](long id, int item, py::object events, bool rigid0, std::vector<double> local0, bool rigid1,
+                           std::vector<double> local1) {
+        // the following mode of joint `id`: its condition's object number, the Python object the
+        // kernel tells of events (exuclear.engine.following.CompiledEvents) and the condition's two
+        // sides, each a 2D rigid body with the marker at local (x, y), or the ground with it at (x, y)
+        state(id);
+        if (local0.size() != 2 || local1.size() != 2) throw std::invalid_argument("set_follow: local positions are (x, y)");
+        Follow f;
+        f.item = item;
+        f.events = events;
+        f.sides[0].rigid = rigid0;
+        f.sides[1].rigid = rigid1;
+        for (int i = 0; i < 2; ++i) {
+            f.sides[0].local[i] = local0[static_cast<size_t>(i)];
+            f.sides[1].local[i] = local1[static_cast<size_t>(i)];
+        }
+        forget_follow(id);
+        g_follow[id] = f;
+    }, "a joint's compiled following mode (exuclear.engine.following)");
+    m.def("follow_counts", [](long id) {  // FollowState.counts
+        py::dict d;
+        Follow* f = follow_of(id);
+        if (f == nullptr) return d;
+        d["on"] = f->on_count;
+        d["off"] = f->off_count;
+        d["lost"] = f->lost;
+        d["redone"] = f->redone;
+        d["followed_steps"] = f->followed_steps;
+        d["active"] = f->active;
+        return d;
+    });
     m.def("impact_duration", [](M6 parameters, double mass, double speed) {
         return impact_duration(decode(parameters), mass, speed);
     }, "timescales.impact_duration of the joint whose parameter matrix is given (a test hook)");
@@ -391,4 +461,25 @@ PYBIND11_MODULE(_ckernel, m) {
     constants["PENETRATION_CUT"] = PENETRATION_CUT;
     constants["PENETRATION_RETRIES"] = PENETRATION_RETRIES;
     m.attr("STEP_CONSTANTS") = constants;
+    py::dict follow;  // the following mode's rules (_python_kernel/following.py), which tests keep equal
+    follow["FOLLOW_PERIODS"] = FOLLOW_PERIODS;
+    follow["FOLLOW_STEP"] = FOLLOW_STEP;
+    follow["FOLLOW_TURN"] = FOLLOW_TURN;
+    follow["FOLLOW_HOLD"] = FOLLOW_HOLD;
+    follow["HOLD_REDOS"] = HOLD_REDOS;
+    follow["FOLLOW_MIN_STEPS"] = FOLLOW_MIN_STEPS;
+    follow["FOLLOW_RATE"] = FOLLOW_RATE;
+    follow["FOLLOW_GAIN"] = FOLLOW_GAIN;
+    follow["GA_BETA"] = GA_BETA;
+    follow["FOLLOW_DEAD_BAND"] = FOLLOW_DEAD_BAND;
+    follow["FOLLOW_FILTER"] = FOLLOW_FILTER;
+    follow["FOLLOW_ATOL_SHARE"] = FOLLOW_ATOL_SHARE;
+    follow["FOLLOW_ATOL_FORCE"] = FOLLOW_ATOL_FORCE;
+    follow["DAMPED_RTOL"] = DAMPED_RTOL;
+    follow["DAMPED_MAX_ITER"] = DAMPED_MAX_ITER;
+    follow["DAMPED_FIRST"] = DAMPED_FIRST;
+    follow["RATE_GAIN"] = RATE_GAIN;
+    follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
+    follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;
+    m.attr("FOLLOW_CONSTANTS") = follow;
 }

@@ -205,7 +205,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
-    contact_mode, backend = following.resolve(contact_mode, joint, slices, backend)
+    contact_mode, backend = following.resolve(contact_mode, joint, slices, backend, mbs, list(markerNumbers))
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
@@ -412,8 +412,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     contact_mode : str, optional
         ``"compliant"`` (default) or ``"follow"``, the opt-in prototype of
         :mod:`exuclear.engine.following` (docs/guide/contact_following.md): the planar
-        dry joint on the Python kernel, under an implicit solver with a spectral radius of
-        at most 0.9 (else it stays compliant and says so).
+        dry joint under an implicit solver with a spectral radius of at most 0.9 (else it
+        stays compliant and says so); on the compiled kernel where the joint is
+        frictionless between 2D rigid bodies or the ground, else on the Python kernel.
 
     Returns
     -------

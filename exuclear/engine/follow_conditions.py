@@ -1,6 +1,7 @@
 """The conditions that hold a followed contact at ``|e| = d``
 (:mod:`exuclear.engine.following`): :class:`VelocityCondition` (kept) and
-:class:`DistanceCondition` (the first prototype's).  Each is one Exudyn item between the
+:class:`DistanceCondition` (the first prototype's) on the Python kernel, and
+:class:`CompiledCondition` on the compiled one.  Each is one Exudyn item between the
 joint's bodies, off until the following mode switches it on; ``hold`` sets it for the
 next step at an accepted step, ``fit`` again during a step of another length, and
 ``multiplier`` reads the normal force it carries."""
@@ -220,6 +221,59 @@ class VelocityCondition:
         mbs.SetObjectParameter(self.number, "activeConnector", bool(active))
         if not active:
             self.start = None
+
+
+class CompiledCondition:
+    """The velocity condition of the compiled kernel's following mode (``following.hpp``):
+    ``n . (v_journal - v_bearing) = r`` as :class:`VelocityCondition`, an
+    ``ObjectConnectorCoordinateVector`` whose constraint and Jacobian functions are the
+    kernel's, called by Exudyn without Python.  They take the rows ``n^T dv/dq_t`` at Newton's
+    first iterate of each step, for 2D rigid bodies and the ground; the kernel keeps the
+    distance and the rate.  Here: the switch and the multiplier."""
+
+    two_step_mean = False
+
+    def __init__(self, mbs: exu.MainSystem, markers: list[int], name: str, functions: tuple[Any, Any]) -> None:
+        coordinate_markers = [mbs.AddMarker(MarkerObjectODE2Coordinates(objectNumber=_coordinate_owner(mbs, m)[1]))
+                              for m in markers]
+        # one algebraic equation: Exudyn counts them from scalingMarker0's rows
+        self.number = mbs.AddObject(ObjectConnectorCoordinateVector(
+            name=name, markerNumbers=coordinate_markers, scalingMarker0=np.zeros((1, 1)), velocityLevel=True,
+            activeConnector=False, constraintUserFunction=functions[0], jacobianUserFunction=functions[1],
+            visualization=VObjectConnectorCoordinateVector()))
+
+    def multiplier(self, mbs: Any) -> float:
+        return float(np.ravel(mbs.GetObjectOutput(self.number, exu.OutputVariableType.Force))[0])
+
+    def hold(self, mbs: Any, distance: float, h: float) -> None:
+        """Nothing: the kernel holds the distance and sets the rows."""
+
+    def switch(self, mbs: Any, active: bool) -> None:
+        mbs.SetObjectParameter(self.number, "activeConnector", bool(active))
+
+    def fit(self, mbs: Any, t: float) -> None:
+        """Nothing: the rows are Newton's first iterate's, whatever the step."""
+
+
+def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[bool, list[float]]] | None:
+    """The compiled condition's two sides (``following.hpp`` ConditionSide): per marker, whether
+    it is on a 2D rigid body and its (x, y) there, or on the ground and its global (x, y); None
+    where a marker is on another body (the Python kernel's condition takes any)."""
+    sides = []
+    for m in markers:
+        info = mbs.GetMarker(m)
+        if info.get("markerType") not in ("BodyRigid", "BodyPosition") or "bodyNumber" not in info:
+            return None
+        body = mbs.GetObject(int(info["bodyNumber"]))
+        local = [float(v) for v in np.ravel(info.get("localPosition", [0.0, 0.0, 0.0]))[:2]]
+        if body["objectType"] == "RigidBody2D":
+            sides.append((True, local))
+        elif body["objectType"] == "Ground":
+            origin = np.ravel(body.get("referencePosition", [0.0, 0.0, 0.0]))
+            sides.append((False, [local[0] + float(origin[0]), local[1] + float(origin[1])]))
+        else:
+            return None
+    return sides
 
 
 def _integrator_state(mbs: Any, t: float, shape: tuple) -> tuple | None:

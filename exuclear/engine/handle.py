@@ -296,7 +296,9 @@ class ClearanceJointHandle:
         (``off``), the steps it held (``followed_steps``) and the steps redone for a release
         (``redone``); an empty dict for the compliant mode."""
         follow = getattr(getattr(self._backend, "kernel", None), "follow", None)
-        return {} if follow is None else follow.counts()
+        if follow is not None:
+            return follow.counts()
+        return self._backend.follow_counts() if getattr(self._backend, "compiled", False) else {}
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""

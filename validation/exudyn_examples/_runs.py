@@ -269,21 +269,23 @@ def _newton_per_step(model: ZooModel) -> float:
 
 def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, ideal_run: _Run, own: _Run,
             own_model: ZooModel) -> dict[str, Any]:
-    """The following mode's columns (``--follow``, issue 34's prototype, on the Python kernel):
-    its wall time against the ideal model's, steps, Newton iterations per step, engagements,
-    and its probe's difference from the compliant run at the same settings [c]."""
+    """The following mode's columns (``--follow``, issue 34's prototype, on the default kernel:
+    the compiled one where it can follow the joint, frictionless between 2D rigid bodies, else
+    the Python one; the switches column names it): its wall time against the ideal model's,
+    steps, Newton iterations per step, engagements, and its probe's difference from the
+    compliant run at the same settings [c]."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", exuclear.AccuracyWarning)  # the prototype's warning, said once per joint
         try:
-            run, model = _median_wall(lambda: entry(True, end_time, backend="python", contact_mode="follow"),
-                                      repeats, limit)
+            run, model = _median_wall(lambda: entry(True, end_time, contact_mode="follow"), repeats, limit)
         except ValueError as err:  # a joint the prototype does not cover (a film, wear, slices)
             return {"follow_reached": False, "follow_message": f"refused: {_first_line(err)}"}
     counts = model.joint.follow_counts()
     fields: dict[str, Any] = {
         "follow_reached": run.reached, "follow_wall": run.wall, "follow_steps": run.steps,
         "follow_newton": _newton_per_step(model), "follow_message": run.message,
-        "follow_switches": f"{counts['on']}/{counts['off']}" + (f" ({counts['lost']} lost)" if counts["lost"] else ""),
+        "follow_switches": f"{counts['on']}/{counts['off']}" + (f" ({counts['lost']} lost)" if counts["lost"] else "")
+                           + (", compiled" if getattr(model.joint._backend, "compiled", False) else ", Python"),
         "follow_ratio": run.wall / ideal_run.wall if ideal_run.reached and run.reached else math.nan}
     if run.reached and own.reached:
         fields["follow_probe_c"] = float(np.abs(np.asarray(model.probe(model.mbs), dtype=float)

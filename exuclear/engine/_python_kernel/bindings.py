@@ -7,7 +7,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from ..following import FollowState
+from .following import FollowState
 from .joint_state import DIVERGED
 from .kinematics import finish_loads, finite
 from .laws import ContactResponse

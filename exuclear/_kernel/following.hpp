@@ -1,0 +1,399 @@
+// The contact-following mode on the compiled kernel (contact_mode="follow", issue 34): a planar,
+// dry, unworn, frictionless joint between 2D rigid bodies (or the ground).  Python:
+// exuclear/engine/_python_kernel/following.py FollowState (the per-step decisions, whose rules
+// and constants these mirror) and exuclear/engine/follow_conditions.py (the condition).
+//
+// What differs from the Python kernel's mode, and why:
+// - The condition's rows n^T dv/dq_t are taken at Newton's first iterate of each step (the
+//   condition's own constraint and Jacobian functions, which Exudyn calls without Python),
+//   not at the configuration the Python kernel predicts from the integrator's state (which
+//   would need the whole system's coordinates from Python at every step).
+// - Python is called at events only (a switch, a run start, Newton's tolerance where it moves
+//   by more than TOLERANCE_MOVE), and once per followed step for the condition's multiplier.
+
+#pragma once
+
+#include <pybind11/numpy.h>
+
+#include <map>
+#include <utility>
+
+#include "step_control.hpp"
+
+namespace {
+
+// ---- the rules: _python_kernel/following.py and follow_conditions.py (a test keeps them equal) ----
+const double FOLLOW_PERIODS = 5.0;
+const double FOLLOW_STEP = 0.2;
+const double FOLLOW_TURN = 0.1;
+const double FOLLOW_HOLD = 0.5;
+const int HOLD_REDOS = 3;
+const int FOLLOW_MIN_STEPS = 3;
+const double FOLLOW_RATE = 0.1;
+const double FOLLOW_GAIN = 0.25;
+const double GA_BETA = 0.25;
+const double FOLLOW_DEAD_BAND = 5e-3;
+const double FOLLOW_FILTER = 0.2;
+const double FOLLOW_ATOL_SHARE = 1e-4;
+const double FOLLOW_ATOL_FORCE = 1e-13;
+const double DAMPED_RTOL = 1e-12;
+const int DAMPED_MAX_ITER = 200;
+const double DAMPED_FIRST = 1e-3;
+const double RATE_GAIN = 0.5;          // follow_conditions.py
+const double PENETRATION_RTOL = 1e-12;  // timescales.py
+const int PENETRATION_MAX_ITER = 200;
+const double STIFFNESS_EPS = 1e-6;
+// Newton's absolute tolerance (FOLLOW_ATOL_SHARE) is passed to Python where it moves by more
+// than this share since it was last set, not at every step as the Python kernel does.
+const double TOLERANCE_MOVE = 0.05;
+
+// ---- physics: timescales.py penetration_at, contact_stiffness, contact_period -------------
+double penetration_at(const Params& a, double force) {
+    double hi = a.r_b - a.r_j;
+    if (elastic_force(a, hi) <= force) return hi;
+    double lo = 0.0;
+    for (int i = 0; i < PENETRATION_MAX_ITER; ++i) {
+        double mid = 0.5 * (lo + hi);
+        double f = elastic_force(a, mid);
+        if (std::isnan(f) || f >= force) hi = mid; else lo = mid;
+        if (hi - lo <= PENETRATION_RTOL * hi) break;
+    }
+    return 0.5 * (lo + hi);
+}
+
+double contact_stiffness(const Params& a, double delta) {
+    double h = STIFFNESS_EPS * delta;
+    return (elastic_force(a, delta + h) - elastic_force(a, delta - h)) / (2.0 * h);
+}
+
+double contact_period(const Params& a, double mass, double force) {
+    return 2.0 * M_PI * std::sqrt(mass / contact_stiffness(a, penetration_at(a, force)));
+}
+
+// One side of the condition: a 2D rigid body (its node's x, y, phi, reference included, as
+// Exudyn passes a MarkerObjectODE2Coordinates' coordinates) with the marker at `local` in it,
+// or the ground with the marker at `local` (global).
+struct ConditionSide {
+    bool rigid = false;
+    double local[2] = {0.0, 0.0};
+};
+
+// FollowState: one joint's following mode.
+struct Follow {
+    int item = -1;  // the condition's object number
+    ConditionSide sides[2];
+    py::object events;  // Python: exuclear.engine.following.CompiledEvents
+    // the state of _python_kernel/following.py FollowState.reset
+    bool active = false;
+    double multiplier = 0.0, raw = 0.0, filtered = 0.0;
+    long steps_in_contact = 0;
+    long on_count = 0, off_count = 0, redone = 0, lost = 0, followed_steps = 0;
+    bool barred = false, damping_checked = false, undamped = false;
+    double hold_start = -INF;
+    int hold_redos = 0;
+    double distance = 0.0;
+    double tolerance = 0.0;  // the last absolute tolerance passed to Python (0: none)
+    // the condition: the step's start, |e| there, the rows for the step ending at rows_time
+    double start = 0.0, norm = 0.0, rows_time = -INF;
+    std::vector<double> rows;
+    // the bodies' coordinates and velocities at the condition's last evaluation (Newton's last
+    // iterate: Exudyn evaluates the residual at each iterate and stops at one that converged),
+    // and the velocities at the last three accepted followed steps (accepted_count of them so far)
+    double last_time = NAN;
+    std::vector<double> last_q, last_v;
+    double accepted_time[3] = {0.0, 0.0, 0.0};
+    std::vector<double> accepted_v[3];
+    int accepted_count = 0;
+    // Exudyn's first iterate of a step takes the end acceleration as 0; its share in the end's
+    // position is guess_share h^2 a_1 (generalized-alpha: beta (1 - alpha_f) / (1 - alpha_m))
+    double guess_share = 0.0;
+};
+
+std::map<long, Follow> g_follow;  // by joint id
+std::map<std::pair<const void*, int>, long> g_conditions;  // (system, condition's item) -> joint id
+
+Follow* follow_of(long id) {
+    auto it = g_follow.find(id);
+    return it == g_follow.end() ? nullptr : &it->second;
+}
+
+void forget_follow(long id) {
+    g_follow.erase(id);
+    for (auto it = g_conditions.begin(); it != g_conditions.end();) {
+        it = it->second == id ? g_conditions.erase(it) : std::next(it);
+    }
+}
+
+// A call into the joint's Python events object; an exception there stops the run, as it
+// would in the Python kernel.
+template <typename... Args> py::object tell(Follow& f, const char* what, Args... args) {
+    return f.events.attr(what)(args...);
+}
+
+// FollowState.reset and restart: a new run begins, compliant, the condition off
+void follow_restart(Follow& f) {
+    if (!f.events.is_none()) tell(f, "restart");
+    Follow fresh;
+    fresh.item = f.item;
+    fresh.sides[0] = f.sides[0];
+    fresh.sides[1] = f.sides[1];
+    fresh.events = f.events;
+    f = fresh;
+}
+
+// FollowState.damped_penetration: the penetration x where the law's force, elastic and
+// damping at the rate (x - delta) / h, is `force` (secant inside a narrowing bracket on (0, c])
+double damped_penetration(const Params& a, double force, double delta, double h, double v0) {
+    auto excess = [&](double x) {
+        double f = damped_normal_force(elastic_force(a, x), a.damping_factor, a.v_min, (x - delta) / h, v0);
+        return std::isnan(f) ? INF : f - force;
+    };
+    double lo = 0.0, hi = a.r_b - a.r_j;
+    double x = std::min(std::max(delta, DAMPED_RTOL * hi), hi);
+    double x0 = NAN, g0 = NAN;
+    for (int i = 0; i < DAMPED_MAX_ITER; ++i) {
+        double g = excess(x);
+        if (g >= 0.0) hi = x; else lo = x;
+        if (hi - lo <= DAMPED_RTOL * hi) break;
+        double step;
+        if (std::isnan(x0)) {
+            step = x * (g >= 0.0 ? -DAMPED_FIRST : DAMPED_FIRST);
+        } else if (std::isfinite(g) && std::isfinite(g0) && g != g0) {
+            step = -g * (x - x0) / (g - g0);
+        } else {
+            step = NAN;
+        }
+        x0 = x;
+        g0 = g;
+        if (std::isfinite(step) && std::fabs(step) <= DAMPED_RTOL * x) return x + step;
+        x = (lo < x + step && x + step < hi) ? x + step : 0.5 * (lo + hi);
+    }
+    return 0.5 * (lo + hi);
+}
+
+bool follow_holds(const Follow& f, double clearance, double delta) {  // FollowState.holds
+    double held = f.distance - clearance;
+    return std::fabs(delta - held) <= FOLLOW_HOLD * held;
+}
+
+// FollowState.hold_step: the shorter step to redo a followed step with, 0 to accept it
+double follow_hold_step(Follow& f, double clearance, double delta, double h, double start, const StepControl& c) {
+    if (follow_holds(f, clearance, delta) || !c.can_shorten || 0.5 * h < c.min_step) return 0.0;
+    if (start != f.hold_start) {
+        f.hold_start = start;
+        f.hold_redos = 0;
+    }
+    if (f.hold_redos >= HOLD_REDOS) return 0.0;
+    f.hold_redos++;
+    f.redone++;
+    return 0.5 * h;
+}
+
+// JointStepControl.held_cap: a followed step longer than the run's contact_cap is redone at it
+double held_cap(const StepControl& c, double h, double impact_step) {
+    if (c.can_shorten && c.rate && !(impact_step > 0.0) && h > c.contact_cap * (1.0 + STEP_SLACK)) return c.contact_cap;
+    return 0.0;
+}
+
+// The condition holds for the step after the accepted state at t, |e| = norm there; keeps the
+// bodies' state at t where the condition's last evaluation was at t (a followed step)
+void follow_hold(Follow& f, double t, double norm) {
+    f.start = t;
+    f.norm = norm;
+    f.rows_time = -INF;
+    if (f.last_time != t) {
+        f.accepted_count = 0;
+        return;
+    }
+    if (f.accepted_count == 3) {
+        for (int i = 0; i < 2; ++i) {
+            std::swap(f.accepted_v[i], f.accepted_v[i + 1]);
+            f.accepted_time[i] = f.accepted_time[i + 1];
+        }
+        f.accepted_count = 2;
+    }
+    int i = f.accepted_count++;
+    f.accepted_time[i] = t;
+    f.accepted_v[i] = f.last_v;
+}
+
+void follow_tolerance(Follow& f, double delta, double force) {  // FollowState._tolerance, where it moved
+    double wanted = std::max(FOLLOW_ATOL_SHARE * delta, FOLLOW_ATOL_FORCE * force);
+    if (f.tolerance > 0.0 && std::fabs(wanted - f.tolerance) <= TOLERANCE_MOVE * f.tolerance) return;
+    f.tolerance = wanted;
+    tell(f, "tolerance", delta, force);
+}
+
+void follow_release(Follow& f) {  // FollowState._release
+    tell(f, "switch", false);
+    f.active = false;
+    f.tolerance = 0.0;
+    f.off_count++;
+    f.multiplier = f.raw = 0.0;
+    f.steps_in_contact = 0;
+}
+
+// FollowState._track: the distance towards c + delta(lambda), outside the dead band
+void follow_track(Follow& f, const Params& a, double h, double lam, double mean, double mass, double v0) {
+    f.filtered += FOLLOW_FILTER * (lam - f.filtered);
+    double clearance = a.r_b - a.r_j;
+    if (!(mass > 0.0 && std::isfinite(mass) && h > 0.0 && mean > 0.0)) return;
+    double delta_lam = damped_penetration(a, mean, f.distance - clearance, h, v0);
+    double off = clearance + delta_lam - f.distance;
+    if (std::fabs(off) <= FOLLOW_DEAD_BAND * delta_lam) return;
+    double k = contact_stiffness(a, delta_lam);
+    double omega = std::min(1.0, FOLLOW_GAIN * GA_BETA * h * h * k / mass);
+    f.distance += omega * off;
+}
+
+// FollowState.after_step: an accepted step of length h ending at t (the contact's state `now`,
+// `before` at the step's start): release, update delta(lambda), or switch on.
+void follow_after_step(Follow& f, const Params& a, const StepControl& c, const void* system, double t, double h,
+                       const History& before, const History& now) {
+    double clearance = a.r_b - a.r_j;
+    double mass = c.impact_mass;
+    if (f.active) {
+        double raw = tell(f, "multiplier").cast<double>();
+        double mean = 0.5 * (raw + f.raw);
+        double lam = raw;
+        f.raw = raw;
+        double filtered = f.filtered + FOLLOW_FILTER * (lam - f.filtered);
+        if (filtered <= 0.0) {  // RELEASE_FILTERED
+            follow_release(f);
+            return;
+        }
+        if (!follow_holds(f, clearance, now.delta)) {  // the condition no longer holds |e| = d
+            f.lost++;
+            f.barred = true;
+            follow_release(f);
+            return;
+        }
+        f.multiplier = lam;
+        f.followed_steps++;
+        follow_track(f, a, h, lam, mean, mass, now.v0);
+        follow_hold(f, t, clearance + now.delta);
+        follow_tolerance(f, f.distance - clearance, lam);
+        return;
+    }
+    f.steps_in_contact = now.in_contact && now.delta > 0.0 ? f.steps_in_contact + 1 : 0;
+    if (f.steps_in_contact == 0) f.barred = false;
+    if (f.barred) return;
+    if (f.steps_in_contact < FOLLOW_MIN_STEPS || !(now.f_n > 0.0)) return;
+    if (!f.damping_checked) {
+        f.damping_checked = true;
+        f.undamped = !tell(f, "damped").cast<bool>();
+        f.guess_share = tell(f, "guess_share").cast<double>();
+    }
+    if (f.undamped) return;
+    double turn = std::atan2(before.ex * now.ey - before.ey * now.ex, before.ex * now.ex + before.ey * now.ey);
+    if (std::fabs(now.delta_dot) > FOLLOW_RATE * a.v_min || std::fabs(turn) > FOLLOW_TURN) return;
+    if (mass > 0.0 && std::isfinite(mass)) {
+        double period = contact_period(a, mass, now.f_n);
+        if (t - now.onset_time < FOLLOW_PERIODS * period || h < FOLLOW_STEP * period) return;
+    }
+    // consistent: the distance is the present |e|, the rate is small
+    f.distance = clearance + now.delta;
+    follow_hold(f, t, f.distance);
+    g_conditions[{system, f.item}] = a.id;
+    tell(f, "switch", true);
+    f.active = true;
+    f.tolerance = 0.0;
+    follow_tolerance(f, now.delta, now.f_n);
+    f.multiplier = f.raw = f.filtered = now.f_n;
+    f.on_count++;
+}
+
+// ---- the condition's functions (ObjectConnectorCoordinateVector, velocityLevel) ----------
+// follow_conditions.py VelocityCondition: n . (v_journal - v_bearing) = r, r = RATE_GAIN (d - |e_0|) / h,
+// in rows n^T dv/dq_t taken at Newton's first iterate of the step (the first call at a new t).
+Follow* condition_of(const MainSystem& mbs, int item) {
+    auto it = g_conditions.find({&mbs, item});
+    return it == g_conditions.end() ? nullptr : follow_of(it->second);
+}
+
+// The coordinates at the step's end t: Newton's first iterate `q`, whose end acceleration
+// (taken as 0 there) is extrapolated from the mean accelerations of the last two accepted
+// followed steps ((v_1 - v_0) / h at their middles; the last one's where only one is known)
+const std::vector<double>& predicted(Follow& f, double t, const std::vector<double>& q, std::vector<double>& out) {
+    int n = f.accepted_count;
+    if (n < 2 || f.guess_share == 0.0 || f.accepted_v[0].size() != q.size()) return q;
+    const double* tt = f.accepted_time;
+    double h = t - tt[n - 1];
+    double t_b = 0.5 * (tt[n - 2] + tt[n - 1]), t_a = n == 3 ? 0.5 * (tt[0] + tt[1]) : t_b;
+    out.resize(q.size());
+    for (size_t i = 0; i < q.size(); ++i) {
+        double a_b = (f.accepted_v[n - 1][i] - f.accepted_v[n - 2][i]) / (tt[n - 1] - tt[n - 2]);
+        double a_end = a_b;
+        if (n == 3) {
+            double a_a = (f.accepted_v[1][i] - f.accepted_v[0][i]) / (tt[1] - tt[0]);
+            a_end = a_b + (t - t_b) * (a_b - a_a) / (t_b - t_a);
+        }
+        out[i] = q[i] + f.guess_share * h * h * a_end;
+    }
+    return out;
+}
+
+void condition_rows(Follow& f, double t, const std::vector<double>& first_iterate) {
+    if (t == f.rows_time) return;
+    static std::vector<double> scratch;
+    const std::vector<double>& q = predicted(f, t, first_iterate, scratch);
+    double p[2][2], r[2][2];  // the markers' positions; their offsets from the node, turned
+    size_t at = 0;
+    for (int k = 0; k < 2; ++k) {
+        const ConditionSide& s = f.sides[k];
+        if (s.rigid) {
+            double c = std::cos(q[at + 2]), sn = std::sin(q[at + 2]);
+            r[k][0] = c * s.local[0] - sn * s.local[1];
+            r[k][1] = sn * s.local[0] + c * s.local[1];
+            p[k][0] = q[at] + r[k][0];
+            p[k][1] = q[at + 1] + r[k][1];
+            at += 3;
+        } else {
+            r[k][0] = r[k][1] = 0.0;
+            p[k][0] = s.local[0];
+            p[k][1] = s.local[1];
+        }
+    }
+    double ex = p[1][0] - p[0][0], ey = p[1][1] - p[0][1];
+    double norm = std::sqrt(ex * ex + ey * ey);
+    double nx = norm > 0.0 ? ex / norm : 1.0, ny = norm > 0.0 ? ey / norm : 0.0;
+    f.rows.clear();
+    for (int k = 0; k < 2; ++k) {  // v = v_node + omega e_z x r: dv/dq_t = [[1, 0, -r_y], [0, 1, r_x]]
+        if (!f.sides[k].rigid) continue;
+        double sign = k == 0 ? -1.0 : 1.0;  // Exudyn's X_1 q_1 - X_0 q_0
+        f.rows.push_back(sign * nx);
+        f.rows.push_back(sign * ny);
+        f.rows.push_back(sign * (-nx * r[k][1] + ny * r[k][0]));
+    }
+    f.rows_time = t;
+}
+
+std::vector<double> condition_constraint(const MainSystem& mbs, double t, int item, std::vector<double> q,
+                                         std::vector<double> q_t, bool) {
+    Follow* f = condition_of(mbs, item);
+    if (f == nullptr) return {0.0};  // not switched on in this system yet: Exudyn evaluates it inactive
+    condition_rows(*f, t, q);
+    f->last_time = t;
+    f->last_q = q;
+    f->last_v = q_t;
+    double h = t - f->start;
+    double rate = h > 0.0 ? RATE_GAIN * (f->distance - f->norm) / h : 0.0;
+    double c = -rate;
+    for (size_t i = 0; i < f->rows.size() && i < q_t.size(); ++i) c += f->rows[i] * q_t[i];
+    return {c};
+}
+
+py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::vector<double> q, std::vector<double>,
+                              bool) {
+    Follow* f = condition_of(mbs, item);
+    py::array_t<double> jac({static_cast<py::ssize_t>(1), static_cast<py::ssize_t>(q.size())});
+    auto m = jac.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < static_cast<py::ssize_t>(q.size()); ++i) m(0, i) = 0.0;
+    if (f != nullptr) {
+        condition_rows(*f, t, q);
+        for (size_t i = 0; i < f->rows.size() && i < q.size(); ++i) m(0, static_cast<py::ssize_t>(i)) = f->rows[i];
+    }
+    return std::move(jac);
+}
+
+}  // namespace
