@@ -348,22 +348,21 @@ PYBIND11_MODULE(_ckernel, m) {
           "constraintUserFunction of a followed joint's condition (ObjectConnectorCoordinateVector)");
     m.def("follow_jacobian", &condition_jacobian, py::call_guard<DispatchCounter>(),
           "jacobianUserFunction of a followed joint's condition");
-    m.def("set_follow", [](long id, int item, py::object events, bool rigid0, std::vector<double> local0, bool rigid1,
-                           std::vector<double> local1) {
+    m.def("set_follow", [](long id, int item, py::object events, int kind0, V3 local0, V3 axis0, int kind1,
+                           V3 local1) {
         // the following mode of joint `id`: its condition's object number, the Python object the
         // kernel tells of events (exuclear.engine.following.CompiledEvents) and the condition's two
-        // sides, each a 2D rigid body with the marker at local (x, y), or the ground with it at (x, y)
+        // sides (following.hpp ConditionSide: kind, the marker's position in the body, and the
+        // bearing marker's z axis there)
         state(id);
-        if (local0.size() != 2 || local1.size() != 2) throw std::invalid_argument("set_follow: local positions are (x, y)");
+        for (int kind : {kind0, kind1}) {
+            if (kind < SIDE_GROUND || kind > SIDE_RIGID_EP) throw std::invalid_argument("set_follow: unknown side kind");
+        }
         Follow f;
         f.item = item;
         f.events = events;
-        f.sides[0].rigid = rigid0;
-        f.sides[1].rigid = rigid1;
-        for (int i = 0; i < 2; ++i) {
-            f.sides[0].local[i] = local0[static_cast<size_t>(i)];
-            f.sides[1].local[i] = local1[static_cast<size_t>(i)];
-        }
+        f.sides[0] = ConditionSide{kind0, local0, axis0};
+        f.sides[1] = ConditionSide{kind1, local1, V3{0.0, 0.0, 1.0}};
         forget_follow(id);
         g_follow[id] = f;
     }, "a joint's compiled following mode (exuclear.engine.following)");
@@ -481,5 +480,6 @@ PYBIND11_MODULE(_ckernel, m) {
     follow["RATE_GAIN"] = RATE_GAIN;
     follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
     follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;
+    m.attr("FOLLOW_SIDE_KINDS") = py::make_tuple("ground", "rigid 2D", "rigid Euler parameters");  // SideKind
     m.attr("FOLLOW_CONSTANTS") = follow;
 }

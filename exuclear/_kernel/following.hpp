@@ -1,5 +1,6 @@
 // The contact-following mode on the compiled kernel (contact_mode="follow", issue 34): a planar,
-// dry, unworn, frictionless joint between 2D rigid bodies (or the ground).  Python:
+// dry, unworn, frictionless joint between 2D rigid bodies, 3D rigid bodies with Euler
+// parameters, or the ground.  Python:
 // exuclear/engine/_python_kernel/following.py FollowState (the per-step decisions, whose rules
 // and constants these mirror) and exuclear/engine/follow_conditions.py (the condition).
 //
@@ -70,12 +71,17 @@ double contact_period(const Params& a, double mass, double force) {
     return 2.0 * M_PI * std::sqrt(mass / contact_stiffness(a, penetration_at(a, force)));
 }
 
-// One side of the condition: a 2D rigid body (its node's x, y, phi, reference included, as
-// Exudyn passes a MarkerObjectODE2Coordinates' coordinates) with the marker at `local` in it,
-// or the ground with the marker at `local` (global).
+// One side of the condition: the ground, a 2D rigid body (its node's x, y, phi) or a 3D rigid
+// body with Euler parameters (its node's x, y, z, e0 ... e3), coordinates with their reference
+// values, as Exudyn passes a MarkerObjectODE2Coordinates' coordinates; the marker at `local` in
+// the body (the ground: global), and its frame's z axis there (side 0 only: the bearing's axis).
+enum SideKind { SIDE_GROUND = 0, SIDE_RIGID_2D = 1, SIDE_RIGID_EP = 2 };
+const int SIDE_COORDINATES[3] = {0, 3, 7};
+
 struct ConditionSide {
-    bool rigid = false;
-    double local[2] = {0.0, 0.0};
+    int kind = SIDE_GROUND;
+    V3 local{0.0, 0.0, 0.0};
+    V3 axis{0.0, 0.0, 1.0};
 };
 
 // FollowState: one joint's following mode.
@@ -333,37 +339,72 @@ const std::vector<double>& predicted(Follow& f, double t, const std::vector<doub
     return out;
 }
 
+// A rigid body's rotation matrix from its coordinates at q (2D: phi about z; Euler parameters,
+// normalised, A = (2 e0^2 - 1) I + 2 (e e^T + e0 [e]x)), and for Euler parameters the matrix G
+// of omega = 2 G p_t (global angular velocity)
+M3 side_rotation(int kind, const double* q, double g[3][4]) {
+    if (kind == SIDE_RIGID_2D) {
+        double c = std::cos(q[2]), s = std::sin(q[2]);
+        return M3{V3{c, -s, 0.0}, V3{s, c, 0.0}, V3{0.0, 0.0, 1.0}};
+    }
+    double len = std::sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+    double e0 = q[3] / len, e1 = q[4] / len, e2 = q[5] / len, e3 = q[6] / len;
+    double rows[3][4] = {{-e1, e0, -e3, e2}, {-e2, e3, e0, -e1}, {-e3, -e2, e1, e0}};
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 4; ++j) g[i][j] = rows[i][j];
+    }
+    return M3{V3{e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2.0 * (e1 * e2 - e0 * e3), 2.0 * (e1 * e3 + e0 * e2)},
+              V3{2.0 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2.0 * (e2 * e3 - e0 * e1)},
+              V3{2.0 * (e1 * e3 - e0 * e2), 2.0 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3}};
+}
+
+V3 turn(const M3& a, const V3& x) { return V3{dot(a[0], x), dot(a[1], x), dot(a[2], x)}; }
+
+// The rows n^T dv/dq_t of both sides at the coordinates predicted for the step's end t, n the
+// unit eccentricity in the bearing's plane: v = x_t + omega x r, so n . v = n . x_t + (r x n) . omega
 void condition_rows(Follow& f, double t, const std::vector<double>& first_iterate) {
     if (t == f.rows_time) return;
     static std::vector<double> scratch;
     const std::vector<double>& q = predicted(f, t, first_iterate, scratch);
-    double p[2][2], r[2][2];  // the markers' positions; their offsets from the node, turned
+    V3 p[2], r[2], axis{0.0, 0.0, 1.0};
+    double g[2][3][4] = {};
     size_t at = 0;
     for (int k = 0; k < 2; ++k) {
         const ConditionSide& s = f.sides[k];
-        if (s.rigid) {
-            double c = std::cos(q[at + 2]), sn = std::sin(q[at + 2]);
-            r[k][0] = c * s.local[0] - sn * s.local[1];
-            r[k][1] = sn * s.local[0] + c * s.local[1];
-            p[k][0] = q[at] + r[k][0];
-            p[k][1] = q[at + 1] + r[k][1];
-            at += 3;
-        } else {
-            r[k][0] = r[k][1] = 0.0;
-            p[k][0] = s.local[0];
-            p[k][1] = s.local[1];
+        if (s.kind == SIDE_GROUND) {
+            r[k] = V3{0.0, 0.0, 0.0};
+            p[k] = s.local;
+            if (k == 0) axis = s.axis;
+            continue;
         }
+        M3 a = side_rotation(s.kind, &q[at], g[k]);
+        r[k] = turn(a, s.local);
+        double z = s.kind == SIDE_RIGID_2D ? 0.0 : q[at + 2];
+        p[k] = V3{q[at] + r[k][0], q[at + 1] + r[k][1], z + r[k][2]};
+        if (k == 0) axis = turn(a, s.axis);
+        at += static_cast<size_t>(SIDE_COORDINATES[s.kind]);
     }
-    double ex = p[1][0] - p[0][0], ey = p[1][1] - p[0][1];
-    double norm = std::sqrt(ex * ex + ey * ey);
-    double nx = norm > 0.0 ? ex / norm : 1.0, ny = norm > 0.0 ? ey / norm : 0.0;
+    V3 e{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    double along = dot(e, axis);
+    e = V3{e[0] - along * axis[0], e[1] - along * axis[1], e[2] - along * axis[2]};
+    double norm = std::sqrt(dot(e, e));
+    V3 n = norm > 0.0 ? V3{e[0] / norm, e[1] / norm, e[2] / norm} : V3{1.0, 0.0, 0.0};
     f.rows.clear();
-    for (int k = 0; k < 2; ++k) {  // v = v_node + omega e_z x r: dv/dq_t = [[1, 0, -r_y], [0, 1, r_x]]
-        if (!f.sides[k].rigid) continue;
+    for (int k = 0; k < 2; ++k) {
+        int kind = f.sides[k].kind;
+        if (kind == SIDE_GROUND) continue;
         double sign = k == 0 ? -1.0 : 1.0;  // Exudyn's X_1 q_1 - X_0 q_0
-        f.rows.push_back(sign * nx);
-        f.rows.push_back(sign * ny);
-        f.rows.push_back(sign * (-nx * r[k][1] + ny * r[k][0]));
+        V3 rn = cross(r[k], n);
+        f.rows.push_back(sign * n[0]);
+        f.rows.push_back(sign * n[1]);
+        if (kind == SIDE_RIGID_2D) {  // omega = phi_t e_z
+            f.rows.push_back(sign * rn[2]);
+            continue;
+        }
+        f.rows.push_back(sign * n[2]);
+        for (int j = 0; j < 4; ++j) {  // omega = 2 G p_t
+            f.rows.push_back(sign * 2.0 * (rn[0] * g[k][0][j] + rn[1] * g[k][1][j] + rn[2] * g[k][2][j]));
+        }
     }
     f.rows_time = t;
 }

@@ -228,8 +228,9 @@ class CompiledCondition:
     ``n . (v_journal - v_bearing) = r`` as :class:`VelocityCondition`, an
     ``ObjectConnectorCoordinateVector`` whose constraint and Jacobian functions are the
     kernel's, called by Exudyn without Python.  They take the rows ``n^T dv/dq_t`` at Newton's
-    first iterate of each step, for 2D rigid bodies and the ground; the kernel keeps the
-    distance and the rate.  Here: the switch and the multiplier."""
+    first iterate of each step with its end acceleration extrapolated, for the bodies of
+    :func:`compiled_sides`; the kernel keeps the distance and the rate.  Here: the switch
+    and the multiplier."""
 
     two_step_mean = False
 
@@ -255,24 +256,31 @@ class CompiledCondition:
         """Nothing: the rows are Newton's first iterate's, whatever the step."""
 
 
-def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[bool, list[float]]] | None:
-    """The compiled condition's two sides (``following.hpp`` ConditionSide): per marker, whether
-    it is on a 2D rigid body and its (x, y) there, or on the ground and its global (x, y); None
-    where a marker is on another body (the Python kernel's condition takes any)."""
+#: The compiled condition's side kinds (``following.hpp`` SideKind): the object type and, for
+#: a 3D rigid body, its node type.
+COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2}
+
+
+def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], list[float]]] | None:
+    """The compiled condition's two sides (``following.hpp`` ConditionSide): per marker, its
+    kind (:data:`COMPILED_SIDES`), its position in its body (on the ground: global) and its
+    frame's z axis there; None where a marker is on another body (the Python kernel's
+    condition takes any)."""
     sides = []
     for m in markers:
         info = mbs.GetMarker(m)
         if info.get("markerType") not in ("BodyRigid", "BodyPosition") or "bodyNumber" not in info:
             return None
         body = mbs.GetObject(int(info["bodyNumber"]))
-        local = [float(v) for v in np.ravel(info.get("localPosition", [0.0, 0.0, 0.0]))[:2]]
-        if body["objectType"] == "RigidBody2D":
-            sides.append((True, local))
-        elif body["objectType"] == "Ground":
-            origin = np.ravel(body.get("referencePosition", [0.0, 0.0, 0.0]))
-            sides.append((False, [local[0] + float(origin[0]), local[1] + float(origin[1])]))
-        else:
+        node = mbs.GetNode(int(body["nodeNumber"]))["nodeType"] if "nodeNumber" in body else ""
+        kind = COMPILED_SIDES.get((body["objectType"], node))
+        if kind is None:
             return None
+        frame = np.asarray(info["localHT"], dtype=float) if "localHT" in info else np.eye(4)
+        local = np.ravel(info.get("localPosition", frame[:3, 3])).astype(float)
+        if kind == 0:
+            local = local + np.ravel(body.get("referencePosition", [0.0, 0.0, 0.0]))
+        sides.append((kind, [float(v) for v in local], [float(v) for v in frame[:3, 2]]))
     return sides
 
 

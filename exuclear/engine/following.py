@@ -6,9 +6,9 @@
   unworn, with implicit solvers only (the condition is an algebraic equation) that damp its
   step-to-step mode (FOLLOW_MAX_RHO; elsewhere it stays compliant and says so);
   ``handle.follow_counts()`` says what it did.  On the compiled kernel where the joint is
-  frictionless between 2D rigid bodies or the ground (:func:`compiled_refusal`; its
-  ``following.hpp`` takes the same decisions, :class:`CompiledEvents` is its way to
-  Exudyn), else on the Python kernel.
+  frictionless between rigid bodies (2D, or 3D with Euler parameters) or the ground
+  (:func:`compiled_refusal`; its ``following.hpp`` takes the same decisions,
+  :class:`CompiledEvents` is its way to Exudyn), else on the Python kernel.
 
 The following mode (:class:`FollowState` in the Python kernel's ``following.py``, held by the
 Python kernel's joint, which calls it from its force and post-Newton functions):
@@ -59,7 +59,7 @@ from .follow_conditions import CompiledCondition, DistanceCondition, VelocityCon
 CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
                  "follow": "a sustained contact carried by a velocity-level condition at the law's penetration "
                            "(opt-in prototype: planar dry joint, implicit solvers; compiled where frictionless "
-                           "between 2D rigid bodies)"}
+                           "between rigid bodies)"}
 
 #: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
 #: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
@@ -71,14 +71,16 @@ DEFAULT_CONTACT_MODE = "compliant"
 
 def compiled_refusal(mbs: exu.MainSystem, markers: list[int], joint: ClearanceJoint) -> str:
     """Why the compiled kernel cannot follow this joint ("" where it can): its following mode
-    (``following.hpp``) is for a frictionless joint between 2D rigid bodies or the ground,
+    (``following.hpp``) is for a frictionless joint between rigid bodies (2D, or 3D with Euler
+    parameters) or the ground,
     with the compiled kernel called without Python."""
     if kernel.STATUS != kernel.STATUS_DIRECT:
         return f"the compiled kernel is not available ({kernel.STATUS})"
     if joint.friction.active:
         return "the joint has friction"
     if compiled_sides(mbs, markers) is None:
-        return "a marker is not on a 2D rigid body (ObjectRigidBody2D) or the ground"
+        return ("a marker is not on a 2D rigid body (ObjectRigidBody2D), a 3D one with Euler parameters "
+                "(NodeRigidBodyEP) or the ground")
     return ""
 
 
@@ -99,7 +101,8 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
     refusal = compiled_refusal(mbs, markers, joint) if backend != "python" else "backend='python'"
     if backend == "compiled" and refusal and not inherited:
         raise ValueError(f"contact_mode='follow' runs on the compiled kernel only for a frictionless joint between "
-                         f"2D rigid bodies or the ground so far, and here {refusal}: give backend='python' or none")
+                         f"rigid bodies (2D, or 3D with Euler parameters) or the ground so far, and here {refusal}: "
+                         "give backend='python' or none")
     # a prototype whose paths are not yet right in every model: said where it is chosen
     warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): over seconds it is as near "
                   "a converged run as the compliant contact where the motion is regular and frictionless, but with "
@@ -177,9 +180,9 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
         compiled = kernel.COMPILED
         follow.condition = CompiledCondition(mbs, markers, condition_name,
                                              (compiled.follow_constraint, compiled.follow_jacobian))
-        (rigid0, local0), (rigid1, local1) = compiled_sides(mbs, markers)
+        (kind0, local0, axis0), (kind1, local1, _) = compiled_sides(mbs, markers)
         compiled.set_follow(handle._backend.joint_id, follow.condition.number, CompiledEvents(mbs, follow),
-                            rigid0, local0, rigid1, local1)
+                            kind0, local0, axis0, kind1, local1)
         handle.followNumber = follow.condition.number
         return
     kind = {"distance": DistanceCondition, "velocity": VelocityCondition}[CONDITION]
