@@ -19,8 +19,10 @@ compliant reference, on the Python kernel.
   the compliant run at 4 times the example's steps; ``--index2`` runs every model with
   Exudyn's index-2 constraints (Newmark).
 - ``cost``: the zoo models' wall time against their ideal models, side by side in one run
-  (medians of ``--repeats``): compliant on the compiled and the Python kernel, following.
-- ``anatomy``: where one run of each (ideal, compliant compiled, following) spends its time:
+  (medians of ``--repeats``): compliant on the compiled and the Python kernel, following on
+  the Python kernel and on the default one (compiled where it covers the joint).
+- ``anatomy``: where one run of each (ideal, compliant compiled, following on the Python and
+  on the default kernel) spends its time:
   microseconds per step, Newton iterations and Jacobians per step, and the shares of
   Exudyn's own timers (Jacobian, right-hand side, post-Newton); the per-step budget a
   following mode must meet to reach a wall-time ratio.
@@ -126,17 +128,18 @@ def run_orbit(args: argparse.Namespace) -> None:
     ref = orbit("compliant", 1e-6)
     print(_row("run", "steps", "Newton / step", "path off reference [c]", "|e| - c / static", "kinetic energy change",
                "switches"))
-    runs = [(mode, step, True) for step in (4e-4, 1e-4, 1e-5) for mode in ("compliant", "follow")]
-    runs.insert(4, ("follow", 1e-4, False))  # the step end's normal predicted to second order
-    for mode, step, predict in runs:
+    runs = [(mode, step, True, "python") for step in (4e-4, 1e-4, 1e-5) for mode in ("compliant", "follow")]
+    runs.insert(4, ("follow", 1e-4, False, "python"))  # the step end's normal predicted to second order
+    runs.insert(5, ("follow", 1e-4, True, "compiled"))  # following.hpp: the first iterate, its end acceleration added
+    for mode, step, predict, backend in runs:
         with _constant(follow_conditions, "PREDICT_JERK", predict):
-            r = orbit(mode, step)
+            r = orbit(mode, step, backend=backend)
         p, q = r["path"], ref["path"]
         off = np.hypot(p[:, 1] - np.interp(p[:, 0], q[:, 0], q[:, 1]),
                        p[:, 2] - np.interp(p[:, 0], q[:, 0], q[:, 2]))
         pen = (np.hypot(p[:, 1], p[:, 2]) - r["c"]) / r["static"]
         speed = np.hypot(r["velocity"][:, 1], r["velocity"][:, 2])
-        label = f"{mode}, {step:g} s" + ("" if predict else ", PREDICT_JERK off")
+        label = f"{mode}, {step:g} s" + ("" if predict else ", PREDICT_JERK off") + (", compiled" if backend == "compiled" else "")
         print(_row(label, r["steps"], _counts(r["it"], r["steps"]), f"{off.max() / r['c']:.4f}",
                    f"{pen.min():.4f}..{pen.max():.4f}", f"{(speed[-1] / speed[0]) ** 2 - 1:+.2e}", r["counts"] or "-"))
     # Coulomb friction mu on a journal too heavy in rotation to spin up: its slip is its
@@ -275,7 +278,7 @@ def run_zoo(args: argparse.Namespace) -> None:
 
 def _kernel_of(model: object) -> str:
     """Which kernel the model's clearance joint ran on."""
-    return "compiled" if getattr(model.joint._backend, "compiled", False) else "Python"
+    return "compiled" if model.joint.backend == "compiled" else "Python"
 
 
 def _wall(build: object, repeats: int, **options: object) -> tuple[float, int, float, str]:

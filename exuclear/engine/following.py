@@ -176,7 +176,7 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
     follow = FollowState(handle.joint.law, geometry.clearance, name or str(handle.objectNumber))
     condition_name = f"{name}:follow" if name else ""
     markers = list(handle.markerNumbers)
-    if getattr(handle._backend, "compiled", False):
+    if handle.backend == "compiled":
         compiled = kernel.COMPILED
         follow.condition = CompiledCondition(mbs, markers, condition_name,
                                              (compiled.follow_constraint, compiled.follow_jacobian))

@@ -298,7 +298,7 @@ class ClearanceJointHandle:
         follow = getattr(getattr(self._backend, "kernel", None), "follow", None)
         if follow is not None:
             return follow.counts()
-        return self._backend.follow_counts() if getattr(self._backend, "compiled", False) else {}
+        return self._backend.follow_counts() if self.backend == "compiled" else {}
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""

@@ -285,7 +285,7 @@ def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, id
         "follow_reached": run.reached, "follow_wall": run.wall, "follow_steps": run.steps,
         "follow_newton": _newton_per_step(model), "follow_message": run.message,
         "follow_switches": f"{counts['on']}/{counts['off']}" + (f" ({counts['lost']} lost)" if counts["lost"] else "")
-                           + (", compiled" if getattr(model.joint._backend, "compiled", False) else ", Python"),
+                           + (", compiled" if model.joint.backend == "compiled" else ", Python"),
         "follow_ratio": run.wall / ideal_run.wall if ideal_run.reached and run.reached else math.nan}
     if run.reached and own.reached:
         fields["follow_probe_c"] = float(np.abs(np.asarray(model.probe(model.mbs), dtype=float)
