@@ -375,7 +375,7 @@ PYBIND11_MODULE(_ckernel, m) {
         d["lost"] = f->lost;
         d["redone"] = f->redone;
         d["followed_steps"] = f->followed_steps;
-        d["active"] = f->active;
+        d["active"] = f->active || f->parked;
         return d;
     });
     m.def("impact_duration", [](M6 parameters, double mass, double speed) {
@@ -477,6 +477,7 @@ PYBIND11_MODULE(_ckernel, m) {
     follow["DAMPED_RTOL"] = DAMPED_RTOL;
     follow["DAMPED_MAX_ITER"] = DAMPED_MAX_ITER;
     follow["DAMPED_FIRST"] = DAMPED_FIRST;
+    follow["END_SLACK"] = END_SLACK;
     follow["RATE_GAIN"] = RATE_GAIN;
     follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
     follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;

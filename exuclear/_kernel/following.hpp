@@ -40,6 +40,7 @@ const double FOLLOW_ATOL_FORCE = 1e-13;
 const double DAMPED_RTOL = 1e-12;
 const int DAMPED_MAX_ITER = 200;
 const double DAMPED_FIRST = 1e-3;
+const double END_SLACK = 1e-12;
 const double RATE_GAIN = 0.5;          // follow_conditions.py
 const double PENETRATION_RTOL = 1e-12;  // timescales.py
 const int PENETRATION_MAX_ITER = 200;
@@ -95,6 +96,8 @@ struct Follow {
     long steps_in_contact = 0;
     long on_count = 0, off_count = 0, redone = 0, lost = 0, followed_steps = 0;
     bool barred = false, damping_checked = false, undamped = false;
+    double end_time = INF;  // the run's end time, read with the damping
+    bool parked = false;    // the condition switched off at the run's last step, holding the contact
     double hold_start = -INF;
     int hold_redos = 0;
     double distance = 0.0;
@@ -211,6 +214,9 @@ void follow_hold(Follow& f, double t, double norm) {
         f.accepted_count = 0;
         return;
     }
+    while (f.accepted_count > 0 && f.accepted_time[f.accepted_count - 1] >= t) {
+        f.accepted_count--;  // a step accepted, then redone for another joint: its state is gone
+    }
     if (f.accepted_count == 3) {
         for (int i = 0; i < 2; ++i) {
             std::swap(f.accepted_v[i], f.accepted_v[i + 1]);
@@ -252,10 +258,10 @@ void follow_track(Follow& f, const Params& a, double h, double lam, double mean,
     f.distance += omega * off;
 }
 
-// FollowState.after_step: an accepted step of length h ending at t (the contact's state `now`,
+// FollowState._decide: an accepted step of length h ending at t (the contact's state `now`,
 // `before` at the step's start): release, update delta(lambda), or switch on.
-void follow_after_step(Follow& f, const Params& a, const StepControl& c, const void* system, double t, double h,
-                       const History& before, const History& now) {
+void follow_decide(Follow& f, const Params& a, const StepControl& c, const void* system, double t, double h,
+                   const History& before, const History& now) {
     double clearance = a.r_b - a.r_j;
     double mass = c.impact_mass;
     if (f.active) {
@@ -289,6 +295,7 @@ void follow_after_step(Follow& f, const Params& a, const StepControl& c, const v
         f.damping_checked = true;
         f.undamped = !tell(f, "damped").cast<bool>();
         f.guess_share = tell(f, "guess_share").cast<double>();
+        f.end_time = tell(f, "end_time").cast<double>();
     }
     if (f.undamped) return;
     double turn = std::atan2(before.ex * now.ey - before.ey * now.ex, before.ex * now.ex + before.ey * now.ey);
@@ -307,6 +314,23 @@ void follow_after_step(Follow& f, const Params& a, const StepControl& c, const v
     follow_tolerance(f, now.delta, now.f_n);
     f.multiplier = f.raw = f.filtered = now.f_n;
     f.on_count++;
+}
+
+// FollowState.after_step: the decisions, then the condition parked at the run's last step where it
+// holds the contact (FollowState._park: a run started again on the same system finds it off)
+void follow_after_step(Follow& f, const Params& a, const StepControl& c, const void* system, double t, double h,
+                       const History& before, const History& now) {
+    if (f.parked) {  // the run's last step redone for another joint after the park: compliant since
+        f.parked = false;
+        f.off_count++;
+    }
+    follow_decide(f, a, c, system, t, h, before, now);
+    if (f.active && t >= f.end_time - END_SLACK * std::max(1.0, std::fabs(f.end_time))) {
+        tell(f, "switch", false);
+        f.active = false;
+        f.tolerance = 0.0;
+        f.parked = true;
+    }
 }
 
 // ---- the condition's functions (ObjectConnectorCoordinateVector, velocityLevel) ----------

@@ -140,6 +140,8 @@ class VelocityCondition:
         self.start = (data.GetTime(), np.asarray(data.GetODE2Coordinates(), dtype=float),
                       np.asarray(data.GetODE2Coordinates_t(), dtype=float),
                       np.asarray(data.GetODE2Coordinates_tt(), dtype=float))
+        while self.accelerations and self.accelerations[-1][0] >= self.start[0]:
+            self.accelerations.pop()  # a step accepted, then redone for another joint: its state is gone
         self.accelerations.append((self.start[0], self.start[3]))
         self.scheme = _integrator_state(mbs, self.start[0], self.start[3].shape)
         self.held = float(distance)

@@ -162,6 +162,10 @@ class CompiledEvents:
         except (AttributeError, TypeError, RuntimeError):
             return 0.0
 
+    def end_time(self) -> float:
+        """The run's end time [s] (inf where the solver is not known), read with the damping."""
+        return self.follow.end_time
+
     def restart(self) -> None:
         mbs = self._mbs()
         if mbs is not None:

@@ -147,6 +147,9 @@ CONDITION = "velocity"
 #: paper's slider-crank (when made to follow) it moved the path 4.75 % of c off the
 #: reference against 6.5 % without; the contact's damping is 1.4 % of its force there.
 DAMPED_TARGET = True
+#: A step ending within this share of the run's end time (and no less than this in seconds) is
+#: its last (:meth:`FollowState._park`).
+END_SLACK = 1e-12
 #: Relative tolerance of the damped target's penetration (:meth:`FollowState.damped_penetration`),
 #: and its evaluations at most (a bisection over ``(0, c]`` to 1e-12 of a 1e-15 m root takes 80).
 DAMPED_RTOL = 1e-12
@@ -174,6 +177,8 @@ class FollowState:
         self.on_count = self.off_count = self.redone = self.lost = 0
         self.barred = False
         self.damping_checked = False  # the integrator's spectral radius, read at the run's first contact
+        self.end_time = math.inf  # the run's end time [s], read with it
+        self.parked = False  # the condition switched off at the run's last step, holding the contact (_park)
         self.undamped = False  # ... above FOLLOW_MAX_RHO: the run stays compliant
         self.hold_start, self.hold_redos = -math.inf, 0
         self.release_due = False  # a step redone to end where the multiplier turns tensile (release_step)
@@ -364,7 +369,29 @@ class FollowState:
                    sticking: bool = False) -> None:
         """An accepted step of length ``h`` ending at ``t``, over which the contact's normal
         turned by ``turn`` [rad], ``sticking`` where its slip is within the friction law's
-        smoothing band: release, update ``delta(lambda)``, or switch on."""
+        smoothing band: release, update ``delta(lambda)``, or switch on; at the run's last
+        step, park the condition (:meth:`_park`)."""
+        if self.parked:  # the run's last step redone for another joint after the park: compliant since
+            self.parked = False
+            self.off_count += 1
+        self._decide(mbs, t, h, delta, delta_dot, in_contact, onset_time, normal_force, mass, turn, sticking)
+        if self.active and t >= self.end_time - END_SLACK * max(1.0, abs(self.end_time)):
+            self._park(mbs)
+
+    def _park(self, mbs: Any) -> None:
+        """Switch the condition off at the run's last accepted step, where it still holds the
+        contact: a run started again on the same system (another ``SolveDynamic``) would find
+        it on while Exudyn computes its initial accelerations, before the joint's first force
+        evaluation restarts the mode (measured on the zoo's 2D double pendulum over 1 s: the
+        second run ended 0.9 mm from the first on the Python kernel).  The contact counts as
+        held (``counts()["active"]``)."""
+        self._set(mbs, False)
+        self._restore_tolerance(mbs)
+        self.parked = True
+
+    def _decide(self, mbs: Any, t: float, h: float, delta: float, delta_dot: float, in_contact: bool,
+                onset_time: float, normal_force: float, mass: float, turn: float, sticking: bool) -> None:
+        """:meth:`after_step`'s decisions."""
         if self.active:
             raw = self.read_multiplier(mbs)
             mean = 0.5 * (raw + self.raw)  # the distance's target: a two-step oscillation fed back through it grows
@@ -413,10 +440,13 @@ class FollowState:
 
     def _check_damping(self, mbs: Any) -> None:
         """Whether the run's integrator damps the condition's two-step mode (FOLLOW_MAX_RHO);
-        says once per run where it does not, and the joint stays compliant."""
+        says once per run where it does not, and the joint stays compliant.  Reads the run's
+        end time too (:meth:`_park`)."""
         self.damping_checked = True
         try:
-            rho = float(mbs.sys["dynamicSolver"].spectralRadius)
+            solver = mbs.sys["dynamicSolver"]
+            rho = float(solver.spectralRadius)
+            self.end_time = float(solver.it.endTime)
         except Exception:  # not an implicit SolveDynamic run: the condition's own refusal applies
             return
         if rho <= FOLLOW_MAX_RHO:
@@ -431,7 +461,7 @@ class FollowState:
     def counts(self) -> dict[str, Any]:
         return {"on": self.on_count, "off": self.off_count, "lost": self.lost, "redone": self.redone,
                 "followed_steps": self.followed_steps,
-                "active": self.active}
+                "active": self.active or self.parked}
 
 
 def _request_jacobian(mbs: Any) -> None:
