@@ -116,13 +116,17 @@ def test_orbit_penetration_is_the_static_penetration(orbits):
     assert _off_static_penetration(orbits[("follow", 1e-4)]) < 0.01
 
 
-def test_simulate_runs_the_mode_as_solve_dynamic_does():
+@pytest.mark.parametrize("backend", ["python", "compiled"])
+def test_simulate_runs_the_mode_as_solve_dynamic_does(backend):
     """``exuclear.simulate`` runs a joint built with ``contact_mode="follow"`` through the same
-    ``mbs.SolveDynamic``: at the same fixed steps the condition takes the contact over once,
-    and |e| - c is the law's static penetration at the centripetal load within 1 %."""
+    ``mbs.SolveDynamic``, on either kernel: at the same fixed steps the condition takes the
+    contact over once, and |e| - c is the law's static penetration at the centripetal load
+    within 1 %."""
+    if backend == "compiled":
+        _compiled_kernel()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        run = _orbit("follow", 1e-4, end=0.02, simulate=True)
+        run = _orbit("follow", 1e-4, end=0.02, simulate=True, backend=backend)
     counts = run["handle"].follow_counts()
     assert counts["on"] == 1 and counts["off"] == 0 and counts["active"]
     assert _off_static_penetration(run) < 0.01
