@@ -573,15 +573,20 @@ def _chain(mode, backend, refine=1):
     return np.asarray(mbs.GetMarkerOutput(end, exu.OutputVariableType.Position))[:2], joints
 
 
-def test_compiled_kernel_follows_two_joints_of_one_chain():
-    """Two followed joints in one system, each with its own condition in the kernel's table:
-    the chain's free end within 1 c of the compliant run at 16 times the steps after 1 s
-    (measured 0.34 c; the compliant run at the same steps 0.23 c), and the mode engaged
-    (each joint once, for 75 steps, until its hold was lost)."""
-    _compiled_kernel()
+@pytest.mark.parametrize("backend", ["python", "compiled"])
+def test_two_followed_joints_of_one_chain(backend):
+    """Two followed joints in one system, where a step one joint accepted is redone for the
+    other (each condition goes back to that step's start, as the joint's kernel goes back to
+    its previous history): each joint holds its contact for over 1000 of the run's steps, and
+    the chain's free end is within 1 c of the compliant run at 16 times the steps after 1 s
+    (measured on the Python and the compiled kernel: 1529 to 1597 followed steps, 0.17 c and
+    0.19 c; the compliant run at the same steps 0.23 c).  Before the conditions went back,
+    the Python kernel's lost their holds 21 and 27 times and took 43644 steps instead of 6107."""
+    if backend == "compiled":
+        _compiled_kernel()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        reference, _ = _chain("compliant", "compiled", refine=16)
-        end, joints = _chain("follow", "compiled")
-    assert sum(j.follow_counts()["on"] for j in joints) >= 1
+        reference, _ = _chain("compliant", "compiled" if backend == "compiled" else "python", refine=16)
+        end, joints = _chain("follow", backend)
+    assert all(j.follow_counts()["followed_steps"] > 1000 for j in joints)
     assert np.abs(end - reference).max() < 1.0 * C

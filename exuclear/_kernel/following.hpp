@@ -104,6 +104,7 @@ struct Follow {
     double tolerance = 0.0;  // the last absolute tolerance passed to Python (0: none)
     // the condition: the step's start, |e| there, the rows for the step ending at rows_time
     double start = 0.0, norm = 0.0, rows_time = -INF;
+    double before_start = NAN, before_norm = 0.0;  // the last start's, for a step another joint redoes
     std::vector<double> rows;
     // the bodies' coordinates and velocities at the condition's last evaluation (Newton's last
     // iterate: Exudyn evaluates the residual at each iterate and stops at one that converged),
@@ -207,6 +208,8 @@ double held_cap(const StepControl& c, double h, double impact_step) {
 // The condition holds for the step after the accepted state at t, |e| = norm there; keeps the
 // bodies' state at t where the condition's last evaluation was at t (a followed step)
 void follow_hold(Follow& f, double t, double norm) {
+    f.before_start = f.active ? f.start : NAN;
+    f.before_norm = f.norm;
     f.start = t;
     f.norm = norm;
     f.rows_time = -INF;
@@ -437,6 +440,13 @@ std::vector<double> condition_constraint(const MainSystem& mbs, double t, int it
                                          std::vector<double> q_t, bool) {
     Follow* f = condition_of(mbs, item);
     if (f == nullptr) return {0.0};  // not switched on in this system yet: Exudyn evaluates it inactive
+    if (t < f->start && !std::isnan(f->before_start)) {
+        // the step that ended at the start is redone (another joint asked for it after this one
+        // accepted it): back to that step's start (VelocityCondition.fit)
+        f->start = f->before_start;
+        f->norm = f->before_norm;
+        f->before_start = NAN;
+    }
     condition_rows(*f, t, q);
     f->last_time = t;
     f->last_q = q;

@@ -98,6 +98,7 @@ class VelocityCondition:
             visualization=VObjectConnectorCoordinateVector()))
         self.axis = np.array([0.0, 0.0, 1.0])
         self.start: tuple | None = None  # (t, q, q_t, q_tt) at the last accepted step
+        self.before: tuple | None = None  # (start, scheme, held, norm) of the step before it (fit)
         #: generalized-alpha's (a_alg, alpha_m, alpha_f, beta) at that step, None where unknown
         self.scheme: tuple | None = None
         self.accelerations: deque = deque(maxlen=JERK_STEPS)  # (t, q_tt) of the last accepted steps held
@@ -137,6 +138,8 @@ class VelocityCondition:
         data = mbs.systemData
         if self.start is None:  # switched on: no history of this engagement
             self.accelerations.clear()
+        # the last start, for a step that another joint has redone after this one accepted it (fit)
+        self.before = (self.start, self.scheme, self.held, self.norm) if self.start is not None else None
         self.start = (data.GetTime(), np.asarray(data.GetODE2Coordinates(), dtype=float),
                       np.asarray(data.GetODE2Coordinates_t(), dtype=float),
                       np.asarray(data.GetODE2Coordinates_tt(), dtype=float))
@@ -156,6 +159,15 @@ class VelocityCondition:
         the multiplier turned tensile at each step shortened to an eighth, 10 releases in 0.5 s."""
         if self.start is None:
             return
+        if t < self.start[0] and self.before is not None:
+            # the step that ended at the start is redone (another joint asked for it after this
+            # one accepted it): back to that step's start, as the joint's kernel goes back to
+            # its previous history
+            self.start, self.scheme, self.held, self.norm = self.before
+            self.before = None
+            while self.accelerations and self.accelerations[-1][0] > self.start[0]:
+                self.accelerations.pop()
+            self.step = 0.0
         h = t - self.start[0]
         if h > 0.0 and abs(h - self.step) > 1e-9 * h:
             data = mbs.systemData
