@@ -5,10 +5,11 @@
 // and constants these mirror) and exuclear/engine/follow_conditions.py (the condition).
 //
 // What differs from the Python kernel's mode, and why:
-// - The condition's rows n^T dv/dq_t are taken at Newton's first iterate of each step (the
-//   condition's own constraint and Jacobian functions, which Exudyn calls without Python),
-//   not at the configuration the Python kernel predicts from the integrator's state (which
-//   would need the whole system's coordinates from Python at every step).
+// - The condition's rows n^T dv/dq_t are taken at Newton's first iterate of each step, with the
+//   end acceleration that iterate leaves out extrapolated from the accepted velocities (the
+//   condition's own constraint and Jacobian functions, which Exudyn calls without Python), not
+//   at the configuration the Python kernel predicts from the integrator's state (which would
+//   need the whole system's coordinates from Python at every step).
 // - Python is called at events only (a switch, a run start, Newton's tolerance where it moves
 //   by more than TOLERANCE_MOVE), and once per followed step for the condition's multiplier.
 
@@ -106,11 +107,11 @@ struct Follow {
     double start = 0.0, norm = 0.0, rows_time = -INF;
     double before_start = NAN, before_norm = 0.0;  // the last start's, for a step another joint redoes
     std::vector<double> rows;
-    // the bodies' coordinates and velocities at the condition's last evaluation (Newton's last
-    // iterate: Exudyn evaluates the residual at each iterate and stops at one that converged),
-    // and the velocities at the last three accepted followed steps (accepted_count of them so far)
+    // the bodies' velocities at the condition's last evaluation (Newton's last iterate: Exudyn
+    // evaluates the residual at each iterate and stops at one that converged), and at the last
+    // three accepted followed steps (accepted_count of them so far)
     double last_time = NAN;
-    std::vector<double> last_q, last_v;
+    std::vector<double> last_v;
     double accepted_time[3] = {0.0, 0.0, 0.0};
     std::vector<double> accepted_v[3];
     int accepted_count = 0;
@@ -449,7 +450,6 @@ std::vector<double> condition_constraint(const MainSystem& mbs, double t, int it
     }
     condition_rows(*f, t, q);
     f->last_time = t;
-    f->last_q = q;
     f->last_v = q_t;
     double h = t - f->start;
     double rate = h > 0.0 ? RATE_GAIN * (f->distance - f->norm) / h : 0.0;
