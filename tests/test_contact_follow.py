@@ -532,7 +532,7 @@ def test_a_second_run_on_the_same_system_repeats_the_first(backend):
     """``mbs.SolveDynamic`` twice on the same system: the second run is the first, bit for bit.
     The condition, still holding the contact at the first run's end, is parked there: left on,
     Exudyn computed the second run's initial accelerations with it (the zoo's 2D double
-    pendulum over 0.5 s then ended 0.9 mm from the first run on the Python kernel)."""
+    pendulum over 1 s then ended 0.9 mm from the first run on the Python kernel)."""
     from validation.exudyn_examples import double_pendulum_2d
 
     if backend == "compiled":
