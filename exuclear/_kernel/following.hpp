@@ -107,6 +107,7 @@ struct Follow {
     double start = 0.0, norm = 0.0, rows_time = -INF;
     double before_start = NAN, before_norm = 0.0;  // the last start's, for a step another joint redoes
     std::vector<double> rows;
+    std::vector<double> row_coordinates;  // the coordinates the rows are taken at (storage reused)
     // the bodies' velocities at the condition's last evaluation (Newton's last iterate: Exudyn
     // evaluates the residual at each iterate and stops at one that converged), and at the last
     // three accepted followed steps (accepted_count of them so far)
@@ -392,8 +393,7 @@ V3 turn(const M3& a, const V3& x) { return V3{dot(a[0], x), dot(a[1], x), dot(a[
 // unit eccentricity in the bearing's plane: v = x_t + omega x r, so n . v = n . x_t + (r x n) . omega
 void condition_rows(Follow& f, double t, const std::vector<double>& first_iterate) {
     if (t == f.rows_time) return;
-    static std::vector<double> scratch;
-    const std::vector<double>& q = predicted(f, t, first_iterate, scratch);
+    const std::vector<double>& q = predicted(f, t, first_iterate, f.row_coordinates);
     V3 p[2], r[2], axis{0.0, 0.0, 1.0};
     double g[2][3][4] = {};
     size_t at = 0;
