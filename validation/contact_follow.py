@@ -304,7 +304,7 @@ def run_cost(args: argparse.Namespace) -> None:
     """Wall time against the ideal model, side by side in one run (medians of ``--repeats``):
     the compliant joint on the compiled kernel (the default) and on the Python kernel, and
     the following mode on the Python kernel and on the default one (the compiled kernel
-    where it can follow the joint: frictionless, rigid bodies)."""
+    where it can follow the joint: rigid bodies)."""
     from validation.exudyn_examples._common import load_models
 
     models = load_models()

@@ -189,7 +189,8 @@ def first_events(run: Run) -> str:
     return ", ".join(f"{kind} {t:.4f}" for kind, t in sorted(first.items(), key=lambda item: item[1]))
 
 
-def report(name: str, refines: list[int], end: float | None, limit: float, kick: float, ensemble: int) -> None:
+def report(name: str, refines: list[int], end: float | None, limit: float, kick: float, ensemble: int,
+           follow_backend: str = "python") -> None:
     print(f"\n## {name}\n", flush=True)
     runs: dict[str, Run] = {}
 
@@ -202,13 +203,13 @@ def report(name: str, refines: list[int], end: float | None, limit: float, kick:
     finest, r0 = compliant[-1], refines[0]
     kicked = add(solve(name, f"compliant {refines[-1]}x, kick 1", refines[-1], end, limit, kick))
     python = add(solve(name, f"compliant {r0}x, Python", r0, end, limit, backend="python"))
-    follow = [add(solve(name, f"follow {r}x", r, end, limit, backend="python", contact_mode="follow"))
+    follow = [add(solve(name, f"follow {r}x", r, end, limit, backend=follow_backend, contact_mode="follow"))
               for r in refines[:2]]
     members = {"compliant": [compliant[0]], "follow": [follow[0]]}
     for j in range(1, ensemble + 1):
         members["compliant"].append(add(solve(name, f"compliant {r0}x, kick {j}", r0, end, limit, j * kick)))
         members["follow"].append(add(solve(name, f"follow {r0}x, kick {j}", r0, end, limit, j * kick,
-                                           backend="python", contact_mode="follow")))
+                                           backend=follow_backend, contact_mode="follow")))
 
     print("\nRuns\n")
     print(markdown_table(["run", "reached [s]", "steps", "wall [s]", "follow on / off / lost / redone",
@@ -263,13 +264,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--kick", type=float, default=1e-9, help="initial velocity perturbation [m/s] (default 1e-9)")
     parser.add_argument("--ensemble", type=int, default=4, help="kicked runs at 1x per mode (default 4)")
     parser.add_argument("--time-limit", type=float, default=600.0, help="wall time limit of one run [s] (default 600)")
+    parser.add_argument("--follow-backend", choices=["python", "compiled"], default="python",
+                        help="the following runs' kernel (default python; compiled: where it covers the joint)")
     args = parser.parse_args(argv)
     start = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name in model_names(args.models):
             report(name, [int(r) for r in args.refines.split(",")], args.end_time, args.time_limit, args.kick,
-                   args.ensemble)
+                   args.ensemble, args.follow_backend)
     print(f"\nTotal wall time: {time.perf_counter() - start:.0f} s")
     return 0
 

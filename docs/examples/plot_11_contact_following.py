@@ -12,7 +12,7 @@ a condition that holds the pin at the contact law's own penetration under the pr
 with the condition's multiplier as the normal force; it hands it back to the compliant
 contact where the multiplier turns tensile.  Both runs here are a plain ``mbs.SolveDynamic``
 with the user's settings; a compliant run at 16 times the steps is the reference.  Both run
-on the compiled kernel (the following mode's covers a frictionless joint between rigid
+on the compiled kernel (the following mode's covers a joint between rigid
 bodies; :doc:`/guide/contact_following` says which): the table below gives the steps, the
 Newton iterations per step and the wall time of each.
 """

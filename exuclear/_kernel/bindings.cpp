@@ -52,7 +52,7 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
                 JointState& s = state(a.id);
                 if (!s.started || t < s.prev[0].time) {
                     follow_restart(*f);  // a new run: compliant from its initial state
-                } else if (f->active) {  // the condition holds the (frictionless) contact: no load
+                } else if (f->active) {  // the condition holds the contact, its friction too: no load
                     s.torque_correction = V3{0.0, 0.0, 0.0};
                     return zeros6();
                 }
@@ -478,6 +478,7 @@ PYBIND11_MODULE(_ckernel, m) {
     follow["DAMPED_MAX_ITER"] = DAMPED_MAX_ITER;
     follow["DAMPED_FIRST"] = DAMPED_FIRST;
     follow["END_SLACK"] = END_SLACK;
+    follow["STICK_MARGIN"] = STICK_MARGIN;
     follow["RATE_GAIN"] = RATE_GAIN;
     follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
     follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;

@@ -1,6 +1,6 @@
 // The contact-following mode on the compiled kernel (contact_mode="follow", issue 34): a planar,
-// dry, unworn, frictionless joint between 2D rigid bodies, 3D rigid bodies with Euler
-// parameters, or the ground.  Python:
+// dry, unworn joint between 2D rigid bodies, 3D rigid bodies with Euler parameters, or the
+// ground.  Python:
 // exuclear/engine/_python_kernel/following.py FollowState (the per-step decisions, whose rules
 // and constants these mirror) and exuclear/engine/follow_conditions.py (the condition).
 //
@@ -10,6 +10,9 @@
 //   condition's own constraint and Jacobian functions, which Exudyn calls without Python), not
 //   at the configuration the Python kernel predicts from the integrator's state (which would
 //   need the whole system's coordinates from Python at every step).
+// - Friction acts in the condition's reaction (condition_jacobian), from Newton's present
+//   multiplier and slip, not from the mean of that multiplier and the last accepted one, which
+//   no compiled function can read.
 // - Python is called at events only (a switch, a run start, Newton's tolerance where it moves
 //   by more than TOLERANCE_MOVE), and once per followed step for the condition's multiplier.
 
@@ -42,6 +45,7 @@ const double DAMPED_RTOL = 1e-12;
 const int DAMPED_MAX_ITER = 200;
 const double DAMPED_FIRST = 1e-3;
 const double END_SLACK = 1e-12;
+const double STICK_MARGIN = 10.0;
 const double RATE_GAIN = 0.5;          // follow_conditions.py
 const double PENETRATION_RTOL = 1e-12;  // timescales.py
 const int PENETRATION_MAX_ITER = 200;
@@ -107,6 +111,9 @@ struct Follow {
     double start = 0.0, norm = 0.0, rows_time = -INF;
     double before_start = NAN, before_norm = 0.0;  // the last start's, for a step another joint redoes
     std::vector<double> rows;
+    // with friction: the rows t^T dv_c/dq_t of the contact points' slip, and the joint's parameters
+    std::vector<double> slip_rows;
+    Params params{};
     std::vector<double> row_coordinates;  // the coordinates the rows are taken at (storage reused)
     // the bodies' velocities at the condition's last evaluation (Newton's last iterate: Exudyn
     // evaluates the residual at each iterate and stops at one that converged), and at the last
@@ -181,6 +188,20 @@ double damped_penetration(const Params& a, double force, double delta, double h,
         x = (lo < x + step && x + step < hi) ? x + step : 0.5 * (lo + hi);
     }
     return 0.5 * (lo + hi);
+}
+
+// friction.py smoothing_speed: the half-width of the band where mu is the smoothed sign
+double smoothing_speed(const Params& a) {
+    switch (a.friction_code) {
+        case FRICTION_COULOMB: return a.fp[1];            // v_eps
+        case FRICTION_MODIFIED_COULOMB: return a.fp[2];   // v_s
+        default: return 0.0;
+    }
+}
+
+// FollowState.sticking: the slip within STICK_MARGIN times the friction law's smoothing band
+bool sticking(const Params& a, double slip) {
+    return a.friction_code != FRICTION_NONE && std::fabs(slip) < STICK_MARGIN * smoothing_speed(a);
 }
 
 bool follow_holds(const Follow& f, double clearance, double delta) {  // FollowState.holds
@@ -275,7 +296,7 @@ void follow_decide(Follow& f, const Params& a, const StepControl& c, const void*
         double lam = raw;
         f.raw = raw;
         double filtered = f.filtered + FOLLOW_FILTER * (lam - f.filtered);
-        if (filtered <= 0.0) {  // RELEASE_FILTERED
+        if (filtered <= 0.0 || sticking(a, now.v_t)) {  // RELEASE_FILTERED; sticking: |e| = d, the compliant force lambda
             follow_release(f);
             return;
         }
@@ -304,13 +325,14 @@ void follow_decide(Follow& f, const Params& a, const StepControl& c, const void*
     }
     if (f.undamped) return;
     double turn = std::atan2(before.ex * now.ey - before.ey * now.ex, before.ex * now.ex + before.ey * now.ey);
-    if (std::fabs(now.delta_dot) > FOLLOW_RATE * a.v_min || std::fabs(turn) > FOLLOW_TURN) return;
+    if (std::fabs(now.delta_dot) > FOLLOW_RATE * a.v_min || std::fabs(turn) > FOLLOW_TURN || sticking(a, now.v_t)) return;
     if (mass > 0.0 && std::isfinite(mass)) {
         double period = contact_period(a, mass, now.f_n);
         if (t - now.onset_time < FOLLOW_PERIODS * period || h < FOLLOW_STEP * period) return;
     }
     // consistent: the distance is the present |e|, the rate is small
     f.distance = clearance + now.delta;
+    f.params = a;
     follow_hold(f, t, f.distance);
     g_conditions[{system, f.item}] = a.id;
     tell(f, "switch", true);
@@ -389,6 +411,30 @@ M3 side_rotation(int kind, const double* q, double g[3][4]) {
 
 V3 turn(const M3& a, const V3& x) { return V3{dot(a[0], x), dot(a[1], x), dot(a[2], x)}; }
 
+// The rows d^T dv/dq_t of both sides for the direction d, at the points `lever` from the bodies'
+// nodes: v = x_t + omega x lever, so d . v = d . x_t + (lever x d) . omega; side 0 with the sign
+// of Exudyn's X_1 q_1 - X_0 q_0
+void add_rows(std::vector<double>& rows, const ConditionSide* sides, const V3* lever, const double g[2][3][4],
+              const V3& d) {
+    rows.clear();
+    for (int k = 0; k < 2; ++k) {
+        int kind = sides[k].kind;
+        if (kind == SIDE_GROUND) continue;
+        double sign = k == 0 ? -1.0 : 1.0;
+        V3 ld = cross(lever[k], d);
+        rows.push_back(sign * d[0]);
+        rows.push_back(sign * d[1]);
+        if (kind == SIDE_RIGID_2D) {  // omega = phi_t e_z
+            rows.push_back(sign * ld[2]);
+            continue;
+        }
+        rows.push_back(sign * d[2]);
+        for (int j = 0; j < 4; ++j) {  // omega = 2 G p_t
+            rows.push_back(sign * 2.0 * (ld[0] * g[k][0][j] + ld[1] * g[k][1][j] + ld[2] * g[k][2][j]));
+        }
+    }
+}
+
 // The rows n^T dv/dq_t of both sides at the coordinates predicted for the step's end t, n the
 // unit eccentricity in the bearing's plane: v = x_t + omega x r, so n . v = n . x_t + (r x n) . omega
 void condition_rows(Follow& f, double t, const std::vector<double>& first_iterate) {
@@ -417,22 +463,17 @@ void condition_rows(Follow& f, double t, const std::vector<double>& first_iterat
     e = V3{e[0] - along * axis[0], e[1] - along * axis[1], e[2] - along * axis[2]};
     double norm = std::sqrt(dot(e, e));
     V3 n = norm > 0.0 ? V3{e[0] / norm, e[1] / norm, e[2] / norm} : V3{1.0, 0.0, 0.0};
-    f.rows.clear();
-    for (int k = 0; k < 2; ++k) {
-        int kind = f.sides[k].kind;
-        if (kind == SIDE_GROUND) continue;
-        double sign = k == 0 ? -1.0 : 1.0;  // Exudyn's X_1 q_1 - X_0 q_0
-        V3 rn = cross(r[k], n);
-        f.rows.push_back(sign * n[0]);
-        f.rows.push_back(sign * n[1]);
-        if (kind == SIDE_RIGID_2D) {  // omega = phi_t e_z
-            f.rows.push_back(sign * rn[2]);
-            continue;
+    add_rows(f.rows, f.sides, r, g, n);
+    if (f.params.friction_code != FRICTION_NONE) {
+        // the slip t . (v_Jc - v_Bc) of the contact points, at R_J n and R_B n from the centres
+        // (eq. (8): t . dv - omega_i R_J + omega_j R_B), t = n x axis
+        V3 tangent = cross(n, axis);
+        V3 lever[2];
+        for (int k = 0; k < 2; ++k) {
+            double radius = k == 0 ? f.params.r_b : f.params.r_j;
+            lever[k] = V3{r[k][0] + radius * n[0], r[k][1] + radius * n[1], r[k][2] + radius * n[2]};
         }
-        f.rows.push_back(sign * n[2]);
-        for (int j = 0; j < 4; ++j) {  // omega = 2 G p_t
-            f.rows.push_back(sign * 2.0 * (rn[0] * g[k][0][j] + rn[1] * g[k][1][j] + rn[2] * g[k][2][j]));
-        }
+        add_rows(f.slip_rows, f.sides, lever, g, tangent);
     }
     f.rows_time = t;
 }
@@ -458,7 +499,11 @@ std::vector<double> condition_constraint(const MainSystem& mbs, double t, int it
     return {c};
 }
 
-py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::vector<double> q, std::vector<double>,
+// The condition's Jacobian, which Exudyn also takes for the reaction J^T lambda at every residual:
+// with friction the rows n^T dv/dq_t + mu(v_t) t^T dv_c/dq_t, so that the reaction is the normal
+// force lambda and the friction force mu(v_t) lambda at the contact points, from Newton's present
+// multiplier and slip (eqs. (20)-(24)); the constraint itself stays n . v = r.
+py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::vector<double> q, std::vector<double> q_t,
                               bool) {
     Follow* f = condition_of(mbs, item);
     py::array_t<double> jac({static_cast<py::ssize_t>(1), static_cast<py::ssize_t>(q.size())});
@@ -466,7 +511,15 @@ py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::ve
     for (py::ssize_t i = 0; i < static_cast<py::ssize_t>(q.size()); ++i) m(0, i) = 0.0;
     if (f != nullptr) {
         condition_rows(*f, t, q);
-        for (size_t i = 0; i < f->rows.size() && i < q.size(); ++i) m(0, static_cast<py::ssize_t>(i)) = f->rows[i];
+        double mu = 0.0;
+        if (f->params.friction_code != FRICTION_NONE && f->slip_rows.size() == f->rows.size()) {
+            double slip = 0.0;
+            for (size_t i = 0; i < f->slip_rows.size() && i < q_t.size(); ++i) slip += f->slip_rows[i] * q_t[i];
+            mu = friction_coefficient(f->params, slip);
+        }
+        for (size_t i = 0; i < f->rows.size() && i < q.size(); ++i) {
+            m(0, static_cast<py::ssize_t>(i)) = f->rows[i] + (mu != 0.0 ? mu * f->slip_rows[i] : 0.0);
+        }
     }
     return std::move(jac);
 }

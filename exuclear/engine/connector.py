@@ -414,7 +414,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         :mod:`exuclear.engine.following` (docs/guide/contact_following.md): the planar
         dry joint under an implicit solver with a spectral radius of at most 0.9 (else it
         stays compliant and says so); on the compiled kernel where the joint is
-        frictionless between rigid bodies (2D, or 3D with Euler parameters) or the
+        between rigid bodies (2D, or 3D with Euler parameters) or the
         ground, else on the Python kernel.
 
     Returns

@@ -6,7 +6,7 @@
   unworn, with implicit solvers only (the condition is an algebraic equation) that damp its
   step-to-step mode (FOLLOW_MAX_RHO; elsewhere it stays compliant and says so);
   ``handle.follow_counts()`` says what it did.  On the compiled kernel where the joint is
-  frictionless between rigid bodies (2D, or 3D with Euler parameters) or the ground
+  between rigid bodies (2D, or 3D with Euler parameters) or the ground
   (:func:`compiled_refusal`; its ``following.hpp`` takes the same decisions,
   :class:`CompiledEvents` is its way to Exudyn), else on the Python kernel.
 
@@ -58,8 +58,8 @@ from .follow_conditions import CompiledCondition, DistanceCondition, VelocityCon
 #: How the joint carries a sustained contact.
 CONTACT_MODES = {"compliant": "the compliant contact law at every step (the default)",
                  "follow": "a sustained contact carried by a velocity-level condition at the law's penetration "
-                           "(opt-in prototype: planar dry joint, implicit solvers; compiled where frictionless "
-                           "between rigid bodies)"}
+                           "(opt-in prototype: planar dry joint, implicit solvers; compiled between rigid "
+                           "bodies)"}
 
 #: The mode of a joint built without ``contact_mode`` ("compliant").  A study sets it to
 #: "follow" for a whole model's joints (validation/contact_follow.py); a joint whose mode
@@ -69,15 +69,12 @@ DEFAULT_CONTACT_MODE = "compliant"
 
 
 
-def compiled_refusal(mbs: exu.MainSystem, markers: list[int], joint: ClearanceJoint) -> str:
+def compiled_refusal(mbs: exu.MainSystem, markers: list[int]) -> str:
     """Why the compiled kernel cannot follow this joint ("" where it can): its following mode
-    (``following.hpp``) is for a frictionless joint between rigid bodies (2D, or 3D with Euler
-    parameters) or the ground,
-    with the compiled kernel called without Python."""
+    (``following.hpp``) is for a joint between rigid bodies (2D, or 3D with Euler
+    parameters) or the ground, with the compiled kernel called without Python."""
     if kernel.STATUS != kernel.STATUS_DIRECT:
         return f"the compiled kernel is not available ({kernel.STATUS})"
-    if joint.friction.active:
-        return "the joint has friction"
     if compiled_sides(mbs, markers) is None:
         return ("a marker is not on a 2D rigid body (ObjectRigidBody2D), a 3D one with Euler parameters "
                 "(NodeRigidBodyEP) or the ground")
@@ -98,20 +95,20 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
         raise ValueError("contact_mode='follow' is for the planar joint only so far (no `slices`)")
     if joint.film is not None or joint.wear is not None:
         raise ValueError("contact_mode='follow' is for a dry joint without wear so far")
-    refusal = compiled_refusal(mbs, markers, joint) if backend != "python" else "backend='python'"
+    refusal = compiled_refusal(mbs, markers) if backend != "python" else "backend='python'"
     if backend == "compiled" and refusal and not inherited:
-        raise ValueError(f"contact_mode='follow' runs on the compiled kernel only for a frictionless joint between "
+        raise ValueError(f"contact_mode='follow' runs on the compiled kernel only for a joint between "
                          f"rigid bodies (2D, or 3D with Euler parameters) or the ground so far, and here {refusal}: "
                          "give backend='python' or none")
     # a prototype whose paths are not yet right in every model: said where it is chosen
     warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): over seconds it is as near "
                   "a converged run as the compliant contact where the motion is regular and frictionless, but with "
-                  "friction it dissipated 2 % less than a converged run and reached peak forces up to 2.4 times its (the "
-                  "zoo's 2D double pendulum over 10 s), and its path ended 2.3 c off where the compliant contact's is 0.54 c "
-                  "(the 3D double pendulum over 1 s); it carries the load but not the contact's own vibration about it "
-                  "(the gallery's pendulum: 0.04 N RMS where compliant runs at 4 to 64 times its steps have 3.1 to 3.8 N at "
-                  "235 Hz); it saves Newton iterations, not steps; compare a run with the compliant contact before "
-                  "trusting it", AccuracyWarning, stacklevel=4)
+                  "friction it dissipated 2 to 3 % less than a converged run and reached peak forces up to 2.4 times "
+                  "its (the zoo's 2D double pendulum over 10 s), and on the Python kernel its path ended 2.3 c off where "
+                  "the compliant contact's is 0.54 c (the 3D double pendulum over 1 s); it carries the load but not the "
+                  "contact's own vibration about it (the gallery's pendulum: 0.04 N RMS where compliant runs at 4 to 64 "
+                  "times its steps have 3.1 to 3.8 N at 235 Hz); it saves Newton iterations, not steps; compare a run "
+                  "with the compliant contact before trusting it", AccuracyWarning, stacklevel=4)
     return mode, "python" if refusal else "compiled"
 
 

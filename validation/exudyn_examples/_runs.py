@@ -270,7 +270,7 @@ def _newton_per_step(model: ZooModel) -> float:
 def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, ideal_run: _Run, own: _Run,
             own_model: ZooModel) -> dict[str, Any]:
     """The following mode's columns (``--follow``, issue 34's prototype, on the default kernel:
-    the compiled one where it can follow the joint, frictionless between rigid bodies, else
+    the compiled one where it can follow the joint, between rigid bodies, else
     the Python one; the switches column names it): its wall time against the ideal model's,
     steps, Newton iterations per step, engagements, and its probe's difference from the
     compliant run at the same settings [c]."""
