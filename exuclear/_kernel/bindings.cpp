@@ -73,6 +73,16 @@ StdVector reply(size_t n) {
     return out;
 }
 
+// The reply that has the solver redo the step at `step` [s] (the data node unchanged), with a
+// Jacobian for the step of another length.
+StdVector redo_reply(JointState& s, StdVector out, double step, const StdVector& data) {
+    steer_jacobian(s, INF);
+    out[0] = REDO_STEP_ERROR;
+    out[1] = step;
+    out.insert(out.end(), data.begin(), data.end());
+    return out;
+}
+
 // JointKernel.post_newton: the contacts' history update, once per accepted step.
 // Returns [error, recommended step, data...].
 StdVector joint_post_newton(const Params& a, const void* system, double t, const StdVector& data,
@@ -93,11 +103,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
             // a contact begins in a long step, or the run begins in an impact: redo it with impact_step
             if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
                 (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
-                steer_jacobian(s, INF);  // a step of another length: a Jacobian for it
-                out[0] = REDO_STEP_ERROR;
-                out[1] = a.impact_step;
-                out.insert(out.end(), data.begin(), data.end());
-                return out;
+                return redo_reply(s, std::move(out), a.impact_step, data);
             }
         }
     }
@@ -108,22 +114,10 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         double h = t - base[0].time;
         double redo = follow_hold_step(*f, a.r_b - a.r_j, s.kins[0].delta, h, base[0].time, s.control);
         if (!(redo > 0.0)) redo = held_cap(s.control, h, a.impact_step);  // held by the condition: capped too
-        if (redo > 0.0) {
-            steer_jacobian(s, INF);
-            out[0] = REDO_STEP_ERROR;
-            out[1] = redo;
-            out.insert(out.end(), data.begin(), data.end());
-            return out;
-        }
+        if (redo > 0.0) return redo_reply(s, std::move(out), redo, data);
     }
     double redo = step_control(rule, s, base, t);
-    if (redo > 0.0) {
-        steer_jacobian(s, INF);
-        out[0] = REDO_STEP_ERROR;
-        out[1] = redo;
-        out.insert(out.end(), data.begin(), data.end());
-        return out;
-    }
+    if (redo > 0.0) return redo_reply(s, std::move(out), redo, data);
     s.next.resize(n);
     for (size_t i = 0; i < n; ++i) {
         s.records[i].resize(static_cast<size_t>(base[i].closed));
