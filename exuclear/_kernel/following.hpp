@@ -58,14 +58,8 @@ const double TOLERANCE_MOVE = 0.05;
 double penetration_at(const Params& a, double force) {
     double hi = a.r_b - a.r_j;
     if (elastic_force(a, hi) <= force) return hi;
-    double lo = 0.0;
-    for (int i = 0; i < PENETRATION_MAX_ITER; ++i) {
-        double mid = 0.5 * (lo + hi);
-        double f = elastic_force(a, mid);
-        if (std::isnan(f) || f >= force) hi = mid; else lo = mid;
-        if (hi - lo <= PENETRATION_RTOL * hi) break;
-    }
-    return 0.5 * (lo + hi);
+    return bisect_rising([&](double x) { return elastic_force(a, x); }, force, hi, PENETRATION_RTOL,
+                         PENETRATION_MAX_ITER);
 }
 
 double contact_stiffness(const Params& a, double delta) {

@@ -66,6 +66,20 @@ double stored_energy(const Params& a, double delta) {  // timescales.py stored_e
     return delta * total;
 }
 
+// Where a function rising on (0, hi] reaches `target`: bisection to rtol of the bracket, a NaN
+// (beyond a line-contact law's largest penetration) counting as above any target
+// (timescales.py penetration_at and impact_duration)
+template <typename F> double bisect_rising(F value, double target, double hi, double rtol, int max_iter) {
+    double lo = 0.0;
+    for (int i = 0; i < max_iter; ++i) {
+        double mid = 0.5 * (lo + hi);
+        double v = value(mid);
+        if (std::isnan(v) || v >= target) hi = mid; else lo = mid;
+        if (hi - lo <= rtol * hi) break;
+    }
+    return 0.5 * (lo + hi);
+}
+
 // timescales.py impact_duration: pi delta_max / |v|, delta_max where the stored energy equals
 // m v^2 / 2 (c beyond the clearance); the caller passes a positive, finite mass and a speed != 0
 double impact_duration(const Params& a, double mass, double speed) {
@@ -75,14 +89,7 @@ double impact_duration(const Params& a, double mass, double speed) {
     if (!(stored_energy(a, hi) > energy)) {  // NaN (beyond a line-contact law's range) counts as above
         depth = hi;
     } else {
-        double lo = 0.0;
-        for (int i = 0; i < DEPTH_MAX_ITER; ++i) {
-            double mid = 0.5 * (lo + hi);
-            double e = stored_energy(a, mid);
-            if (std::isnan(e) || e >= energy) hi = mid; else lo = mid;
-            if (hi - lo <= DEPTH_RTOL * hi) break;
-        }
-        depth = 0.5 * (lo + hi);
+        depth = bisect_rising([&](double x) { return stored_energy(a, x); }, energy, hi, DEPTH_RTOL, DEPTH_MAX_ITER);
     }
     return M_PI * depth / std::fabs(speed);
 }
