@@ -616,3 +616,45 @@ def test_compiled_kernel_follows_with_friction_in_the_condition():
     assert model.joint.backend == "compiled" and model.joint.follow_counts()["followed_steps"] > 1000
     off = np.abs(np.asarray(model.probe(model.mbs)) - np.asarray(reference.probe(reference.mbs))).max()
     assert off < 0.5 * model.clearance
+
+
+@pytest.mark.parametrize("name, end", [("double_pendulum_2d", 1.0), ("four_bar_3d", 0.5),
+                                       ("double_pendulum_3d_ep_friction", 0.5)])
+def test_carrier_gives_the_joint_exudyns_own_kinematics(name, end):
+    """While the compiled condition holds the contact the joint's connector is off and its
+    carrier hands the joint's post-Newton function the relative motion from the condition's
+    last evaluation.  At the run's last step, followed and parked, the data node it wrote
+    (eccentricity, normal rate, slip) equals eqs. (1)-(8) evaluated from Exudyn's own
+    DisplacementLocal, VelocityLocal and AngularVelocityLocal of the joint's connector (and the
+    bearing's spin, where friction uses it) to round-off; the joint is on again, the carrier off."""
+    from exuclear.engine.layout import DATA_COLUMNS
+    from exuclear.geometry import contact_kinematics
+    from validation.exudyn_examples._common import load_models
+
+    _compiled_kernel()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = load_models()[name](clearance=True, end_time=end, contact_mode="follow")
+        model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+    joint, mbs = model.joint, model.mbs
+    assert joint.backend == "compiled" and joint.follow_counts()["active"] and joint.carrierNumber is not None
+    assert mbs.GetObjectParameter(joint.objectNumber, "activeConnector")
+    assert not mbs.GetObjectParameter(joint.carrierNumber, "activeConnector")
+    data = dict(zip(DATA_COLUMNS, mbs.GetNodeOutput(joint.nodeNumber, exu.OutputVariableType.Coordinates)))
+    d, v, w = (mbs.GetObjectOutput(joint.objectNumber, kind) for kind in (
+        exu.OutputVariableType.DisplacementLocal, exu.OutputVariableType.VelocityLocal,
+        exu.OutputVariableType.AngularVelocityLocal))
+    spin = 0.0
+    if joint.probeNumber is not None and mbs.GetObjectParameter(joint.probeNumber, "activeConnector"):
+        marker = mbs.GetMarker(joint.markerNumbers[0])  # the bearing's spin about the joint axis
+        local = np.asarray(marker["localHT"])[:3, :3] if "localHT" in marker else np.eye(3)
+        frame = local @ np.asarray(mbs.GetObjectParameter(joint.objectNumber, "rotationMarker0"))
+        spin = (frame.T @ mbs.GetObjectOutputBody(marker["bodyNumber"], exu.OutputVariableType.AngularVelocityLocal,
+                                                  [0.0, 0.0, 0.0]))[2]
+    exudyn = contact_kinematics(joint.joint.geometry, d[0], d[1], v[0], v[1], w[2] + spin, 0.0, 0.0, 0.0, 0.0, spin)
+    scale = np.hypot(v[0], v[1]) + np.abs(w).max() * joint.joint.geometry.bearing_radius
+    assert data["time"] == pytest.approx(end)
+    assert data["ecc_x"] == pytest.approx(exudyn.ex, abs=1e-9 * model.clearance)
+    assert data["ecc_y"] == pytest.approx(exudyn.ey, abs=1e-9 * model.clearance)
+    assert data["penetration_rate"] == pytest.approx(exudyn.delta_dot, abs=1e-10 * scale)
+    assert data["slip_velocity"] == pytest.approx(exudyn.v_t, abs=1e-10 * scale)

@@ -46,6 +46,8 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
             const V3& c = state(a.id).torque_correction;
             return V6{0.0, 0.0, 0.0, c[0], c[1], c[2]};
         }
+        case CARRIER:  // between two ground markers: no load, only its post-Newton function
+            return zeros6();
         default: {
             Follow* f = follow_of(a.id);
             if (f != nullptr) {  // JointKernel.force_torque's following mode
@@ -177,6 +179,28 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     return out;
 }
 
+// The carrier's post-Newton function (on while the condition holds the contact and the joint's
+// connector is off, engine/following.py): the joint's, with the joint's relative motion from the
+// condition's last evaluation (carried_motion); nothing in the sweep in which the joint's own
+// post-Newton switched the condition on (that step is done).  The planar joint only: its turn
+// (`rotation`) enters only wear, which the following mode excludes.
+StdVector carrier_post_newton(const Params& a, const void* system, double t, const StdVector& data) {
+    Follow* f = follow_of(a.id);
+    V3 displacement, velocity, angular;
+    if (f == nullptr || !f->active || t == f->carrier_skip_time) {
+        if (f != nullptr) f->carrier_skip_time = NAN;
+        StdVector out = reply(data.size());
+        out.insert(out.end(), data.begin(), data.end());
+        return out;
+    }
+    if (!carried_motion(*f, t, displacement, velocity, angular)) {
+        fail(state(a.id), t, "the following mode's condition was not evaluated at the step's end");
+    }
+    Params joint = a;
+    joint.role = MAIN;
+    return joint_post_newton(joint, system, t, data, displacement, V3{0.0, 0.0, 0.0}, velocity, angular);
+}
+
 StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 displacement, V3 rotation,
                       V3 velocity, V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
@@ -186,6 +210,7 @@ StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 d
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
+    if (a.role == CARRIER) return carrier_post_newton(a, &mbs, t, data);
     return joint_post_newton(a, &mbs, t, data, displacement, rotation, velocity, angularVelocity);
 }
 
@@ -342,12 +367,12 @@ PYBIND11_MODULE(_ckernel, m) {
           "constraintUserFunction of a followed joint's condition (ObjectConnectorCoordinateVector)");
     m.def("follow_jacobian", &condition_jacobian, py::call_guard<DispatchCounter>(),
           "jacobianUserFunction of a followed joint's condition");
-    m.def("set_follow", [](long id, int item, py::object events, int kind0, V3 local0, V3 axis0, int kind1,
+    m.def("set_follow", [](long id, int item, py::object events, int kind0, V3 local0, M3 frame0, int kind1,
                            V3 local1) {
         // the following mode of joint `id`: its condition's object number, the Python object the
         // kernel tells of events (exuclear.engine.following.CompiledEvents) and the condition's two
-        // sides (following.hpp ConditionSide: kind, the marker's position in the body, and the
-        // bearing marker's z axis there)
+        // sides (following.hpp ConditionSide: kind, the marker's position in the body, and for the
+        // bearing the joint frame J0 in its body, rows)
         state(id);
         for (int kind : {kind0, kind1}) {
             if (kind < SIDE_GROUND || kind > SIDE_RIGID_EP) throw std::invalid_argument("set_follow: unknown side kind");
@@ -355,7 +380,7 @@ PYBIND11_MODULE(_ckernel, m) {
         Follow f;
         f.item = item;
         f.events = events;
-        f.sides[0] = ConditionSide{kind0, local0, axis0};
+        f.sides[0] = ConditionSide{kind0, local0, V3{frame0[0][2], frame0[1][2], frame0[2][2]}, frame0};
         f.sides[1] = ConditionSide{kind1, local1, V3{0.0, 0.0, 1.0}};
         forget_follow(id);
         g_follow[id] = f;

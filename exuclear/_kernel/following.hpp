@@ -82,6 +82,9 @@ struct ConditionSide {
     int kind = SIDE_GROUND;
     V3 local{0.0, 0.0, 0.0};
     V3 axis{0.0, 0.0, 1.0};
+    // side 0: the joint frame J0 in the body (the marker's frame turned by the connector's
+    // rotationMarker0), whose z column is `axis`
+    M3 frame{V3{1.0, 0.0, 0.0}, V3{0.0, 1.0, 0.0}, V3{0.0, 0.0, 1.0}};
 };
 
 // FollowState: one joint's following mode.
@@ -109,11 +112,14 @@ struct Follow {
     std::vector<double> slip_rows;
     Params params{};
     std::vector<double> row_coordinates;  // the coordinates the rows are taken at (storage reused)
-    // the bodies' velocities at the condition's last evaluation (Newton's last iterate: Exudyn
-    // evaluates the residual at each iterate and stops at one that converged), and at the last
-    // three accepted followed steps (accepted_count of them so far)
+    // the bodies' coordinates and velocities at the condition's last evaluation (Newton's last
+    // iterate: Exudyn evaluates the residual at each iterate and stops at one that converged),
+    // and their velocities at the last three accepted followed steps (accepted_count of them)
     double last_time = NAN;
-    std::vector<double> last_v;
+    std::vector<double> last_q, last_v;
+    // the carrier's post-Newton call in the sweep in which the joint's own switched the
+    // condition on (at carrier_skip_time) has nothing to do: that step is the joint's
+    double carrier_skip_time = NAN;
     double accepted_time[3] = {0.0, 0.0, 0.0};
     std::vector<double> accepted_v[3];
     int accepted_count = 0;
@@ -331,6 +337,7 @@ void follow_decide(Follow& f, const Params& a, const StepControl& c, const void*
     g_conditions[{system, f.item}] = a.id;
     tell(f, "switch", true);
     f.active = true;
+    f.carrier_skip_time = t;  // the carrier, on from now, is called next in this sweep
     f.tolerance = 0.0;
     follow_tolerance(f, now.delta, now.f_n);
     f.multiplier = f.raw = f.filtered = now.f_n;
@@ -484,13 +491,74 @@ std::vector<double> condition_constraint(const MainSystem& mbs, double t, int it
         f->before_start = NAN;
     }
     condition_rows(*f, t, q);
-    f->last_time = t;
-    f->last_v = q_t;
     double h = t - f->start;
     double rate = h > 0.0 ? RATE_GAIN * (f->distance - f->norm) / h : 0.0;
     double c = -rate;
     for (size_t i = 0; i < f->rows.size() && i < q_t.size(); ++i) c += f->rows[i] * q_t[i];
+    f->last_time = t;
+    f->last_q.swap(q);  // Exudyn's copies, kept without another copy
+    f->last_v.swap(q_t);
     return {c};
+}
+
+// The joint's relative motion in its frame J0 at the condition's last evaluation (Newton's last
+// iterate at t), as Exudyn gives it to the joint's connector (ObjectConnectorRigidBodySpringDamper's
+// DisplacementLocal, VelocityLocal and AngularVelocityLocal: (A_0 R_0)^T (x_1 - x_0) of the
+// markers' positions, velocities v = x_t + omega x r and angular velocities): the joint's
+// post-Newton input while its connector is off and the carrier calls it (bindings.cpp).  False
+// where the condition was not evaluated at t.
+bool carried_motion(const Follow& f, double t, V3& displacement, V3& velocity, V3& angular) {
+    if (f.last_time != t) return false;
+    const std::vector<double>& q = f.last_q;
+    const std::vector<double>& q_t = f.last_v;
+    V3 p[2], v[2], w[2];
+    M3 j0 = f.sides[0].frame;
+    size_t at = 0;
+    for (int k = 0; k < 2; ++k) {
+        const ConditionSide& s = f.sides[k];
+        v[k] = w[k] = V3{0.0, 0.0, 0.0};
+        if (s.kind == SIDE_GROUND) {
+            p[k] = s.local;
+            continue;
+        }
+        size_t n = static_cast<size_t>(SIDE_COORDINATES[s.kind]);
+        if (at + n > q.size() || at + n > q_t.size()) return false;
+        double g[3][4] = {};
+        M3 a = side_rotation(s.kind, &q[at], g);
+        V3 r = turn(a, s.local);
+        const double* x = &q[at];
+        const double* x_t = &q_t[at];
+        V3 centre_v{x_t[0], x_t[1], 0.0};
+        if (s.kind == SIDE_RIGID_2D) {  // omega = phi_t e_z
+            p[k] = V3{x[0] + r[0], x[1] + r[1], r[2]};
+            w[k] = V3{0.0, 0.0, x_t[2]};
+        } else {  // omega = 2 G p_t
+            p[k] = V3{x[0] + r[0], x[1] + r[1], x[2] + r[2]};
+            centre_v[2] = x_t[2];
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 4; ++j) w[k][i] += 2.0 * g[i][j] * x_t[3 + j];
+            }
+        }
+        V3 spin = cross(w[k], r);
+        v[k] = V3{centre_v[0] + spin[0], centre_v[1] + spin[1], centre_v[2] + spin[2]};
+        if (k == 0) {  // J0 = A_0 R_0
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) {
+                    j0[i][j] = a[i][0] * s.frame[0][j] + a[i][1] * s.frame[1][j] + a[i][2] * s.frame[2][j];
+                }
+            }
+        }
+        at += n;
+    }
+    for (int i = 0; i < 3; ++i) {  // (J0)^T (x_1 - x_0)
+        displacement[i] = velocity[i] = angular[i] = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            displacement[i] += j0[j][i] * (p[1][j] - p[0][j]);
+            velocity[i] += j0[j][i] * (v[1][j] - v[0][j]);
+            angular[i] += j0[j][i] * (w[1][j] - w[0][j]);
+        }
+    }
+    return true;
 }
 
 // The condition's Jacobian, which Exudyn also takes for the reaction J^T lambda at every residual:

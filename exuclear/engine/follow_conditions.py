@@ -275,11 +275,11 @@ class CompiledCondition:
 COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2}
 
 
-def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], list[float]]] | None:
+def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], np.ndarray]] | None:
     """The compiled condition's two sides (``following.hpp`` ConditionSide): per marker, its
     kind (:data:`COMPILED_SIDES`), its position in its body (on the ground: global) and its
-    frame's z axis there; None where a marker is on another body (the Python kernel's
-    condition takes any)."""
+    frame there (rotation matrix); None where a marker is on another body (the Python
+    kernel's condition takes any)."""
     sides = []
     for m in markers:
         info = mbs.GetMarker(m)
@@ -294,7 +294,7 @@ def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float],
         local = np.ravel(info.get("localPosition", frame[:3, 3])).astype(float)
         if kind == 0:
             local = local + np.ravel(body.get("referencePosition", [0.0, 0.0, 0.0]))
-        sides.append((kind, [float(v) for v in local], [float(v) for v in frame[:3, 2]]))
+        sides.append((kind, [float(v) for v in local], frame[:3, :3].copy()))
     return sides
 
 

@@ -47,6 +47,14 @@ import weakref
 from typing import Any
 
 import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import (
+    MarkerBodyRigid,
+    ObjectConnectorRigidBodySpringDamper,
+    ObjectGround,
+    VObjectConnectorRigidBodySpringDamper,
+    VObjectGround,
+)
 
 from ..checks import check_choice
 from ..exceptions import AccuracyWarning
@@ -119,8 +127,17 @@ class CompiledEvents:
     :class:`FollowState`'s, whose per-step decisions the kernel takes itself.  Holds its
     system weakly, as the run-start callback does."""
 
-    def __init__(self, mbs: exu.MainSystem, follow: FollowState) -> None:
+    def __init__(self, mbs: exu.MainSystem, follow: FollowState, joint: int, carrier: int) -> None:
         self._mbs, self.follow = weakref.ref(mbs), follow
+        self._joint, self._carrier = joint, carrier
+
+    def _carry(self, mbs: exu.MainSystem, followed: bool) -> None:
+        """While the condition holds the contact the joint's connector is off, and its carrier
+        (:func:`add_constraint`) runs the joint's post-Newton function: Exudyn then neither
+        evaluates the joint's (zero) load at each Newton iterate nor differentiates it
+        numerically at each Jacobian."""
+        mbs.SetObjectParameter(self._joint, "activeConnector", not followed)
+        mbs.SetObjectParameter(self._carrier, "activeConnector", followed)
 
     def multiplier(self) -> float:
         mbs = self._mbs()
@@ -131,6 +148,7 @@ class CompiledEvents:
         if mbs is None:
             return
         self.follow._set(mbs, active)
+        self._carry(mbs, active)
         if not active:
             self.follow._restore_tolerance(mbs)
 
@@ -167,6 +185,7 @@ class CompiledEvents:
         mbs = self._mbs()
         if mbs is not None:
             self.follow.restart(mbs)
+            self._carry(mbs, False)
 
 
 def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
@@ -181,12 +200,31 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
         compiled = kernel.COMPILED
         follow.condition = CompiledCondition(mbs, markers, condition_name,
                                              (compiled.follow_constraint, compiled.follow_jacobian))
-        (kind0, local0, axis0), (kind1, local1, _) = compiled_sides(mbs, markers)
-        compiled.set_follow(handle._backend.joint_id, follow.condition.number, CompiledEvents(mbs, follow),
-                            kind0, local0, axis0, kind1, local1)
+        (kind0, local0, frame0), (kind1, local1, _) = compiled_sides(mbs, markers)
+        # the joint frame J0 in the bearing's body: its marker's frame turned by rotationMarker0
+        frame0 = frame0 @ np.asarray(mbs.GetObjectParameter(handle.objectNumber, "rotationMarker0"), dtype=float)
+        handle.carrierNumber = _add_carrier(mbs, handle, name)
+        events = CompiledEvents(mbs, follow, handle.objectNumber, handle.carrierNumber)
+        compiled.set_follow(handle._backend.joint_id, follow.condition.number, events, kind0, local0,
+                            frame0.tolist(), kind1, local1)
         handle.followNumber = follow.condition.number
         return
     kind = {"distance": DistanceCondition, "velocity": VelocityCondition}[CONDITION]
     follow.condition = kind(mbs, markers, geometry.clearance, condition_name)
     handle.followNumber = follow.condition.number
     handle._backend.kernel.follow = follow
+
+
+def _add_carrier(mbs: exu.MainSystem, handle: Any, name: str) -> int:
+    """The compiled following mode's carrier: a connector between two ground markers (no
+    coordinates: no load, nothing to differentiate) on the joint's data node, with the joint's
+    functions, off until a contact is followed (:meth:`CompiledEvents._carry`).  Its post-Newton
+    function is then the joint's, with the joint's relative motion from the condition's last
+    evaluation (the kernel's ``carrier_post_newton``)."""
+    functions = handle.user_functions()
+    ground = mbs.AddObject(ObjectGround(visualization=VObjectGround(show=False)))
+    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])) for _ in range(2)]
+    return mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
+        name=f"{name}:carrier" if name else "", markerNumbers=markers, nodeNumber=handle.nodeNumber,
+        springForceTorqueUserFunction=functions["force_torque"], postNewtonStepUserFunction=functions["post_newton"],
+        activeConnector=False, visualization=VObjectConnectorRigidBodySpringDamper(show=False)))

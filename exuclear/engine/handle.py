@@ -24,7 +24,7 @@ from . import outputs as _outputs
 from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
-from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .layout import CARRIER, MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
 from .steering import _RunStart
 
 _TOKENS = itertools.count(1)
@@ -83,6 +83,7 @@ class ClearanceJointHandle:
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
         self.followNumber: Any = None  # contact_mode="follow": the Exudyn item of its condition
+        self.carrierNumber: Any = None  # ... on the compiled kernel: its carrier (engine/following.py)
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
@@ -182,7 +183,8 @@ class ClearanceJointHandle:
                           shoulders=self.shoulders, token=self.token)
 
     def _write_parameters(self) -> None:
-        for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
+        for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE),
+                             (self.carrierNumber, CARRIER)):
             if number is not None:
                 self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
         # the probe and torque connectors run only where the loads use the bearing's spin

@@ -30,7 +30,7 @@ from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import ShoulderGeometry
 from ..wear.law import Wear
 
-MAIN, PROBE, TORQUE = 0, 1, 2
+MAIN, PROBE, TORQUE, CARRIER = 0, 1, 2, 3
 #: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
 MATRIX_SIZE = 6
 
@@ -48,7 +48,8 @@ class Field(NamedTuple):
 #: The parameter matrix, field by field (the compiled kernel's ``LAYOUT`` in the same order).
 LAYOUT = (
     Field("joint_id", 0, 0, 1, "the joint's entry in the compiled kernel's table (-1: the Python kernel)"),
-    Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque"),
+    Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque, "
+          "3 the followed joint's carrier (engine/following.py)"),
     Field("token", 0, 2, 1, "which handle owns the connector (read by the handle only: is_live)"),
     Field("journal_radius", 0, 3, 1, "R_J [m]"),
     Field("bearing_radius", 0, 4, 1, "R_B [m]"),
