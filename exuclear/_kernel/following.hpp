@@ -120,6 +120,7 @@ struct Follow {
     // the carrier's post-Newton call in the sweep in which the joint's own switched the
     // condition on (at carrier_skip_time) has nothing to do: that step is the joint's
     double carrier_skip_time = NAN;
+    py::array_t<double> jacobian;  // the condition's Jacobian, returned to Exudyn (condition_jacobian)
     double accepted_time[3] = {0.0, 0.0, 0.0};
     std::vector<double> accepted_v[3];
     int accepted_count = 0;
@@ -568,7 +569,13 @@ bool carried_motion(const Follow& f, double t, V3& displacement, V3& velocity, V
 py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::vector<double> q, std::vector<double> q_t,
                               bool) {
     Follow* f = condition_of(mbs, item);
-    py::array_t<double> jac({static_cast<py::ssize_t>(1), static_cast<py::ssize_t>(q.size())});
+    // one array per condition, filled again at each call (Exudyn copies it into its own matrix):
+    // a new NumPy array per call cost about 1 us, at every residual
+    py::array_t<double> fresh;  // a condition not switched on in this system yet
+    py::array_t<double>& jac = f != nullptr ? f->jacobian : fresh;
+    if (jac.ndim() != 2 || jac.shape(1) != static_cast<py::ssize_t>(q.size())) {
+        jac = py::array_t<double>({static_cast<py::ssize_t>(1), static_cast<py::ssize_t>(q.size())});
+    }
     auto m = jac.mutable_unchecked<2>();
     for (py::ssize_t i = 0; i < static_cast<py::ssize_t>(q.size()); ++i) m(0, i) = 0.0;
     if (f != nullptr) {
@@ -583,7 +590,7 @@ py::object condition_jacobian(const MainSystem& mbs, double t, int item, std::ve
             m(0, static_cast<py::ssize_t>(i)) = f->rows[i] + (mu != 0.0 ? mu * f->slip_rows[i] : 0.0);
         }
     }
-    return std::move(jac);
+    return jac;
 }
 
 }  // namespace

@@ -258,7 +258,9 @@ class CompiledCondition:
             visualization=VObjectConnectorCoordinateVector()))
 
     def multiplier(self, mbs: Any) -> float:
-        return float(np.ravel(mbs.GetObjectOutput(self.number, exu.OutputVariableType.Force))[0])
+        """Once per followed step: Exudyn gives one equation's force as a float (no array to unpack)."""
+        force = mbs.GetObjectOutput(self.number, exu.OutputVariableType.Force)
+        return force if isinstance(force, float) else float(np.ravel(force)[0])
 
     def hold(self, mbs: Any, distance: float, h: float) -> None:
         """Nothing: the kernel holds the distance and sets the rows."""
