@@ -14,8 +14,9 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--end-time", type=float, default=None, help="end time [s] for every model (default: the examples')")
     ap.add_argument("--no-convergence", action="store_true", help="skip the convergence check of the full run")
     ap.add_argument("--follow", action="store_true",
-                    help="also the contact-following mode (prototype, Python kernel): wall time against the ideal "
-                         "model, steps, Newton iterations per step, engagements, probe against the compliant run [c]")
+                    help="also the contact-following mode (prototype; on the compiled kernel where it covers the "
+                         "joint, else on the Python kernel): wall time against the ideal model, steps, Newton "
+                         "iterations per step, engagements, probe against the compliant run [c]")
     ap.add_argument("--out", type=Path, default=Path("results/exudyn_examples"), help="output folder")
     args = ap.parse_args(argv)
     names = [n.strip() for n in args.models.split(",") if n.strip()]
