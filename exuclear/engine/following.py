@@ -38,7 +38,11 @@ Python kernel's joint, which calls it from its force and post-Newton functions):
 - **Exudyn.** The flag ``activeConnector`` and the condition's parameters are set from the
   joint's post-Newton function at an accepted step (and its rows from the force function
   where the step differs); each switch requests a Jacobian, and Newton's absolute tolerance
-  is scaled to the penetration while the condition holds.
+  is scaled to the penetration while the condition holds.  On the compiled kernel the joint's
+  own connector is off while the condition holds (its load is zero then, but Exudyn would
+  evaluate it at each Newton iterate and differentiate it numerically at each Jacobian), and
+  a carrier between two ground markers runs the joint's post-Newton function
+  (:func:`_add_carrier`).
 """
 from __future__ import annotations
 
@@ -114,7 +118,7 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
                   "friction it dissipated 2 to 3 % less than a converged run and reached peak forces up to 2.4 times "
                   "its (the zoo's 2D double pendulum over 10 s), and on the Python kernel its path ended 2.3 c off where "
                   "the compliant contact's is 0.54 c (the 3D double pendulum over 1 s); it carries the load but not the "
-                  "contact's own vibration about it (the gallery's pendulum: 0.04 N RMS where compliant runs at 4 to 64 "
+                  "contact's own vibration about it (the gallery's pendulum: 0.01 N RMS where compliant runs at 4 to 64 "
                   "times its steps have 3.1 to 3.8 N at 235 Hz); it saves Newton iterations, not steps; compare a run "
                   "with the compliant contact before trusting it", AccuracyWarning, stacklevel=4)
     return mode, "python" if refusal else "compiled"
