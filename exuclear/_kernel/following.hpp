@@ -413,6 +413,16 @@ M3 side_rotation(int kind, const double* q, double g[3][4]) {
 
 V3 turn(const M3& a, const V3& x) { return V3{dot(a[0], x), dot(a[1], x), dot(a[2], x)}; }
 
+// A moving side's pose at its coordinates q: its rotation (returned; Euler parameters: g of
+// omega = 2 G p_t), the marker's lever r = A local from the node and its position p
+M3 side_pose(const ConditionSide& s, const double* q, double g[3][4], V3& r, V3& p) {
+    M3 a = side_rotation(s.kind, q, g);
+    r = turn(a, s.local);
+    double z = s.kind == SIDE_RIGID_2D ? 0.0 : q[2];
+    p = V3{q[0] + r[0], q[1] + r[1], z + r[2]};
+    return a;
+}
+
 // The rows d^T dv/dq_t of both sides for the direction d, at the points `lever` from the bodies'
 // nodes: v = x_t + omega x lever, so d . v = d . x_t + (lever x d) . omega; side 0 with the sign
 // of Exudyn's X_1 q_1 - X_0 q_0
@@ -453,10 +463,7 @@ void condition_rows(Follow& f, double t, const std::vector<double>& first_iterat
             if (k == 0) axis = s.axis;
             continue;
         }
-        M3 a = side_rotation(s.kind, &q[at], g[k]);
-        r[k] = turn(a, s.local);
-        double z = s.kind == SIDE_RIGID_2D ? 0.0 : q[at + 2];
-        p[k] = V3{q[at] + r[k][0], q[at + 1] + r[k][1], z + r[k][2]};
+        M3 a = side_pose(s, &q[at], g[k], r[k], p[k]);
         if (k == 0) axis = turn(a, s.axis);
         at += static_cast<size_t>(SIDE_COORDINATES[s.kind]);
     }
@@ -525,16 +532,13 @@ bool carried_motion(const Follow& f, double t, V3& displacement, V3& velocity, V
         size_t n = static_cast<size_t>(SIDE_COORDINATES[s.kind]);
         if (at + n > q.size() || at + n > q_t.size()) return false;
         double g[3][4] = {};
-        M3 a = side_rotation(s.kind, &q[at], g);
-        V3 r = turn(a, s.local);
-        const double* x = &q[at];
+        V3 r;
+        M3 a = side_pose(s, &q[at], g, r, p[k]);
         const double* x_t = &q_t[at];
         V3 centre_v{x_t[0], x_t[1], 0.0};
         if (s.kind == SIDE_RIGID_2D) {  // omega = phi_t e_z
-            p[k] = V3{x[0] + r[0], x[1] + r[1], r[2]};
             w[k] = V3{0.0, 0.0, x_t[2]};
         } else {  // omega = 2 G p_t
-            p[k] = V3{x[0] + r[0], x[1] + r[1], x[2] + r[2]};
             centre_v[2] = x_t[2];
             for (int i = 0; i < 3; ++i) {
                 for (int j = 0; j < 4; ++j) w[k][i] += 2.0 * g[i][j] * x_t[3 + j];
