@@ -29,7 +29,7 @@ namespace {
 
 // ---- the rules: _python_kernel/following.py and follow_conditions.py (a test keeps them equal) ----
 const double FOLLOW_PERIODS = 5.0;
-const double FOLLOW_STEP = 0.2;
+const double FOLLOW_STEP = 0.5;
 const double FOLLOW_TURN = 0.1;
 const double FOLLOW_HOLD = 0.5;
 const int HOLD_REDOS = 3;

@@ -10,18 +10,21 @@ import warnings
 from typing import Any
 
 from ...timescales import contact_period, contact_stiffness, penetration_at
+from ..steering import JACOBIAN_PER_STEP_ABOVE
 
 #: Contact periods a contact must have lasted before the constraint takes it over: the
 #: compliant contact's own oscillation after an impact has decayed by then (cr < 1), and a
 #: journal that only grazes the wall never switches.
 FOLLOW_PERIODS = 5.0
-#: ... and a step of at least this share of the contact period: at shorter steps the
-#: compliant contact is resolved and cheap (the paper's slider-crank, steps of 0.08 contact
-#: periods: the same steps and Newton iterations either way), and the distance cannot
-#: follow the load there (the loop gain's bound, FOLLOW_GAIN, moves it by a few per cent of
-#: its offset per step: the slider-crank's penetration lagged its load, and its path drifted
-#: along the wall to 5 % of c in the second revolution).
-FOLLOW_STEP = 0.2
+#: ... and a step of at least this share of the contact period, the share above which the
+#: joint's Jacobian rule finds that the contact's stiffness stalls Newton (2.5 times the
+#: mass term in Newton's matrix).  At shorter steps the compliant contact is resolved and
+#: cheap, and the condition's own cost is not repaid (the zoo's 3D double pendulums, at
+#: 0.23 contact periods); the paper's slider-crank, at 0.08, took the same steps and Newton
+#: iterations either way.  The distance follows the load less well there too (the loop
+#: gain's bound, FOLLOW_GAIN, moves it by a few per cent of its offset per step: the
+#: slider-crank's path drifted along the wall to 5 % of c in the second revolution).
+FOLLOW_STEP = JACOBIAN_PER_STEP_ABOVE
 #: ... and a contact normal that turned by less than this [rad] over the last step: the
 #: velocity condition holds the normal of the step's predicted end, off the true one by the
 #: turn's error of prediction (the zoo's beam pendulum: a node of a fraction of a gram whose
