@@ -34,8 +34,8 @@ RATE_GAIN = 0.5
 #: third-order term, ``theta^3 / 6`` for a turn ``theta`` per step: the condition's force
 #: then has a tangential part that does work.  Measured on the frictionless orbiting journal
 #: at 1e-4 s (``python -m validation.contact_follow orbit``): its kinetic energy drifts by
-#: -2.1e-5 over four orbits with it, -1.5e-3 without (the compliant contact: -7.9e-6), and
-#: the path is 0.54 % of c off the converged one, 1.4 % without.
+#: -2.2e-5 over four orbits with it, -1.5e-3 without (the compliant contact: -7.8e-6), and
+#: the path is 0.55 % of c off the converged one, 1.5 % without.
 PREDICT_JERK = True
 #: The accepted steps whose accelerations give the end acceleration's slope (PREDICT_JERK).
 JERK_STEPS = 3

@@ -118,7 +118,7 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
                   "friction it dissipated 2 to 3 % less than a converged run and reached peak forces up to 2.4 times "
                   "its (the zoo's 2D double pendulum over 10 s), and on the Python kernel its path ended 2.3 c off where "
                   "the compliant contact's is 0.54 c (the 3D double pendulum over 1 s); it carries the load but not the "
-                  "contact's own vibration about it (the gallery's pendulum: 0.01 N RMS where compliant runs at 4 to 64 "
+                  "contact's own vibration about it (the gallery's pendulum: 0.02 N RMS where compliant runs at 4 to 64 "
                   "times its steps have 3.1 to 3.8 N at 235 Hz); it saves Newton iterations, not steps; compare a run "
                   "with the compliant contact before trusting it", AccuracyWarning, stacklevel=4)
     return mode, "python" if refusal else "compiled"

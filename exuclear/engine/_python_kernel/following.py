@@ -106,10 +106,10 @@ FOLLOW_ATOL_FORCE = 1e-13
 #: multiplier itself (False: the velocity condition's, the distance condition's two-step
 #: mean) with the step redone to end there (RELEASE_REDO).  On a journal looping inside its
 #: bearing under gravity (``python -m validation.contact_follow loop``; it leaves the wall at
-#: 120.45 deg) the low-pass lets it go 3.4 to 7.8 deg late, the multiplier itself within
-#: 0.7 deg.  Kept for the zoo's 3D double pendulum with friction, whose path over 0.5 s ends
-#: 0.52 c off the reference with it and 2.0 c off without: the mode engages there at about
-#: 0.2 contact periods, where the held distance lags the unloading (FOLLOW_GAIN), and the
+#: 120.45 deg) the low-pass lets it go 4.4 to 7.8 deg late, the multiplier itself within
+#: 0.6 deg.  Kept for the zoo's 3D double pendulum with friction, whose path over 0.5 s ended
+#: 0.52 c off the reference with it and 2.0 c off without when the mode engaged there at
+#: about 0.2 contact periods, where the held distance lags the unloading (FOLLOW_GAIN), and the
 #: compliant contact that takes over at the multiplier's zero pushes the journal off from the
 #: lagging penetration (docs/guide/contact_following.md, "Release").
 RELEASE_FILTERED = True
