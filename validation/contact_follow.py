@@ -158,7 +158,7 @@ def run_orbit(args: argparse.Namespace) -> None:
 
 #: The looping journal: a journal of 19 mm in a bearing of 20 mm (c = 1 mm), 0.5 kg, under
 #: gravity, started at the bottom of its wall fast enough to leave it at LOOP_RELEASE_DEG.
-LOOP_RADII, LOOP_RELEASE_DEG, LOOP_GRAVITY = (19e-3, 20e-3), 120.0, 9.81
+LOOP_RADII, LOOP_MASS, LOOP_RELEASE_DEG, LOOP_GRAVITY = (19e-3, 20e-3), 0.5, 120.0, 9.81
 
 
 def loop(mode: str, step: float, end: float = 0.03, backend: str = "python") -> dict:
@@ -171,7 +171,8 @@ def loop(mode: str, step: float, end: float = 0.03, backend: str = "python") -> 
     with the run's counts, on the ``backend`` kernel."""
     c = LOOP_RADII[1] - LOOP_RADII[0]
     speed = math.sqrt(LOOP_GRAVITY * c * (2.0 - 3.0 * math.cos(math.radians(LOOP_RELEASE_DEG))))
-    run = orbit(mode, step, end, speed=speed, cr=0.9, gravity=LOOP_GRAVITY, radii=LOOP_RADII, backend=backend)
+    run = orbit(mode, step, end, mass=LOOP_MASS, speed=speed, cr=0.9, gravity=LOOP_GRAVITY, radii=LOOP_RADII,
+                backend=backend)
     t, x, y = run["path"][:, 0], run["path"][:, 1], run["path"][:, 2]
     e, angle = np.hypot(x, y), np.unwrap(np.arctan2(y, x))
     i = int(np.argmax(e < run["c"]))
