@@ -375,7 +375,7 @@ PYBIND11_MODULE(_ckernel, m) {
         // bearing the joint frame J0 in its body, rows)
         state(id);
         for (int kind : {kind0, kind1}) {
-            if (kind < SIDE_GROUND || kind > SIDE_RIGID_EP) throw std::invalid_argument("set_follow: unknown side kind");
+            if (kind < SIDE_GROUND || kind >= SIDE_KINDS) throw std::invalid_argument("set_follow: unknown side kind");
         }
         Follow f;
         f.item = item;
@@ -501,6 +501,7 @@ PYBIND11_MODULE(_ckernel, m) {
     follow["RATE_GAIN"] = RATE_GAIN;
     follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
     follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;
-    m.attr("FOLLOW_SIDE_KINDS") = py::make_tuple("ground", "rigid 2D", "rigid Euler parameters");  // SideKind
+    m.attr("FOLLOW_SIDE_KINDS") = py::make_tuple("ground", "rigid 2D", "rigid Euler parameters",
+                                                "rigid Tait-Bryan angles", "rigid rotation vector (Lie group)");  // SideKind
     m.attr("FOLLOW_CONSTANTS") = follow;
 }

@@ -274,7 +274,8 @@ class CompiledCondition:
 
 #: The compiled condition's side kinds (``following.hpp`` SideKind): the object type and, for
 #: a 3D rigid body, its node type.
-COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2}
+COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2,
+                  ("RigidBody", "RigidBodyRxyz"): 3, ("RigidBody", "RigidBodyRotVecLG"): 4}
 
 
 def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], np.ndarray]] | None:

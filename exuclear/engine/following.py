@@ -83,13 +83,14 @@ DEFAULT_CONTACT_MODE = "compliant"
 
 def compiled_refusal(mbs: exu.MainSystem, markers: list[int]) -> str:
     """Why the compiled kernel cannot follow this joint ("" where it can): its following mode
-    (``following.hpp``) is for a joint between rigid bodies (2D, or 3D with Euler
-    parameters) or the ground, with the compiled kernel called without Python."""
+    (``following.hpp``) is for a joint between rigid bodies (2D, or 3D with Euler parameters,
+    Tait-Bryan angles or a Lie-group rotation vector) or the ground, with the compiled kernel
+    called without Python."""
     if kernel.STATUS != kernel.STATUS_DIRECT:
         return f"the compiled kernel is not available ({kernel.STATUS})"
     if compiled_sides(mbs, markers) is None:
-        return ("a marker is not on a 2D rigid body (ObjectRigidBody2D), a 3D one with Euler parameters "
-                "(NodeRigidBodyEP) or the ground")
+        return ("a marker is not on a 2D rigid body (ObjectRigidBody2D), a 3D one (NodeRigidBodyEP, "
+                "NodeRigidBodyRxyz or NodeRigidBodyRotVecLG) or the ground")
     return ""
 
 
