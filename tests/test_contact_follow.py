@@ -256,6 +256,21 @@ def test_follow_refuses_what_it_does_not_cover(options, message):
                                       bearing_radius=R_B, length=L, cr=0.9, **kwargs)
 
 
+def test_simulate_refuses_an_explicit_method_naming_the_followed_joint():
+    """The mode's condition is a constraint the user did not add: ``exuclear.simulate`` with an
+    explicit method (which Exudyn's explicit solvers cannot take) names the followed joint and
+    the two ways out, instead of an object number."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=mbs.AddNode(NodeRigidBody2D()), mass=1.0, inertia=1e-4))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], journal_radius=R_J,
+                                      bearing_radius=R_B, length=L, cr=0.9, contact_mode="follow", name="pin")
+    with pytest.raises(ValueError, match="clearance joint 'pin' follows.*'generalized-alpha'.*contact_mode='compliant'"):
+        exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.01, method="rk44", step=1e-5))
+
+
 def test_choosing_the_prototype_is_told():
     """contact_mode='follow' warns where it is chosen that it is a prototype whose path can
     differ from the compliant one (the zoo's rigid-body tutorial with friction)."""

@@ -111,8 +111,7 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
     refusal = compiled_refusal(mbs, markers) if backend != "python" else "backend='python'"
     if backend == "compiled" and refusal and not inherited:
         raise ValueError(f"contact_mode='follow' runs on the compiled kernel only for a joint between "
-                         f"rigid bodies (2D, or 3D with Euler parameters) or the ground so far, and here {refusal}: "
-                         "give backend='python' or none")
+                         f"rigid bodies or the ground so far, and here {refusal}: give backend='python' or none")
     # a prototype whose paths are not yet right in every model: said where it is chosen
     warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): over seconds it is as near "
                   "a converged run as the compliant contact where the motion is regular and frictionless, but with "
