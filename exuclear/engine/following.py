@@ -115,10 +115,11 @@ def resolve(contact_mode: str | None, joint: ClearanceJoint, slices: int | None,
     # a prototype whose paths are not yet right in every model: said where it is chosen
     warnings.warn("contact_mode='follow' is a prototype (docs/guide/contact_following.md): over seconds it is as near "
                   "a converged run as the compliant contact where the motion is regular and frictionless, but with "
-                  "friction it dissipated 2.7 % less than a converged run on the compiled kernel, and 6.6 % less on "
-                  "the Python kernel with peak forces up to 3.5 times the converged run's (the zoo's 2D double "
-                  "pendulum over 10 s), and on the Python kernel the 3D double pendulum's path ended 2.4 c off where "
-                  "the compliant contact's is 0.12 c (0.5 s at twice its example's step); it carries the load but not the "
+                  "friction it dissipated 2.4 to 3.4 % less than a converged run on the compiled kernel, and on the "
+                  "Python kernel one run in six dissipated 15 % less with peak forces 3.5 times the converged run's "
+                  "(the zoo's 2D double pendulum over 10 s), and on the Python kernel the 3D double pendulum's path "
+                  "ended 2.4 c off where the compliant contact's is 0.12 c (0.5 s at twice its example's step); it "
+                  "carries the load but not the "
                   "contact's own vibration about it (the gallery's pendulum: 0.02 N RMS where compliant runs at 4 to 64 "
                   "times its steps have 3.1 to 3.8 N at 235 Hz); it saves Newton iterations, not steps; compare a run "
                   "with the compliant contact before trusting it", AccuracyWarning, stacklevel=4)
