@@ -345,11 +345,11 @@ def test_spectral_radius_with_an_explicit_method_is_refused():
 def test_contact_mode_option_puts_the_scene_joint_in_that_mode():
     """``--contact-mode follow`` builds the scene's joint in the following mode (a joint in
     it counts its engagements; a compliant one has no such counts); the scene's explicit
-    default solver is refused for the mode's constraint (on either kernel: the journal-bearing
-    scene's frictionless joint on 2D bodies runs it on the compiled one where it is built),
-    and a mode that does not exist is refused by name."""
+    default solver is refused for the mode's constraint, naming the joint (on either kernel:
+    the journal-bearing scene's frictionless joint on 2D bodies runs it on the compiled one
+    where it is built), and a mode that does not exist is refused by name."""
     status, _, err = cli(jb, "--contact-mode", "follow")
-    assert status == 2 and "use 'generalized-alpha' or 'trapezoidal'" in err
+    assert status == 2 and "follows its contacts with one (contact_mode='follow'); use 'generalized-alpha'" in err
     status, _, err = cli(jb, "--contact-mode", "folow")
     assert status == 2 and "'compliant', 'follow'" in err
     with warnings.catch_warnings():
