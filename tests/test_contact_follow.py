@@ -271,6 +271,23 @@ def test_simulate_refuses_an_explicit_method_naming_the_followed_joint():
         exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.01, method="rk44", step=1e-5))
 
 
+@pytest.mark.parametrize("name", ["pin", None])
+def test_the_condition_is_named_after_its_joint(name):
+    """Exudyn's own messages name objects by number (its explicit solvers abort on "object N
+    which contains constraints"): the mode's condition, an object the user did not add, is
+    named after its joint, also where the joint has no name."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=mbs.AddNode(NodeRigidBody2D()), mass=1.0, inertia=1e-4))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], journal_radius=R_J,
+                                              bearing_radius=R_B, length=L, cr=0.9, contact_mode="follow",
+                                              **({"name": name} if name else {}))
+    expected = "pin:follow" if name else f"clearance joint {joint.objectNumber}:follow"
+    assert mbs.GetObject(joint.followNumber)["name"] == expected
+
+
 def test_choosing_the_prototype_is_told():
     """contact_mode='follow' warns where it is chosen that it is a prototype whose path can
     differ from the compliant one (the zoo's rigid-body tutorial with friction)."""

@@ -200,7 +200,10 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
     Python kernel's :class:`FollowState`)."""
     geometry = handle.joint.geometry
     follow = FollowState(handle.joint.law, geometry.clearance, name or str(handle.objectNumber))
-    condition_name = f"{name}:follow" if name else ""
+    # the condition and the carrier are objects the user did not add: their names say whose they
+    # are (Exudyn's own messages give object numbers, e.g. an explicit solver's refusal of constraints)
+    owner = name or f"clearance joint {handle.objectNumber}"
+    condition_name = f"{owner}:follow"
     markers = list(handle.markerNumbers)
     if handle.backend == "compiled":
         compiled = kernel.COMPILED
@@ -209,7 +212,7 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
         (kind0, local0, frame0), (kind1, local1, _) = compiled_sides(mbs, markers)
         # the joint frame J0 in the bearing's body: its marker's frame turned by rotationMarker0
         frame0 = frame0 @ np.asarray(mbs.GetObjectParameter(handle.objectNumber, "rotationMarker0"), dtype=float)
-        handle.carrierNumber = _add_carrier(mbs, handle, name)
+        handle.carrierNumber = _add_carrier(mbs, handle, f"{owner}:carrier")
         events = CompiledEvents(mbs, follow, handle.objectNumber, handle.carrierNumber)
         compiled.set_follow(handle._backend.joint_id, follow.condition.number, events, kind0, local0,
                             frame0.tolist(), kind1, local1)
@@ -231,6 +234,6 @@ def _add_carrier(mbs: exu.MainSystem, handle: Any, name: str) -> int:
     ground = mbs.AddObject(ObjectGround(visualization=VObjectGround(show=False)))
     markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])) for _ in range(2)]
     return mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
-        name=f"{name}:carrier" if name else "", markerNumbers=markers, nodeNumber=handle.nodeNumber,
+        name=name, markerNumbers=markers, nodeNumber=handle.nodeNumber,
         springForceTorqueUserFunction=functions["force_torque"], postNewtonStepUserFunction=functions["post_newton"],
         activeConnector=False, visualization=VObjectConnectorRigidBodySpringDamper(show=False)))
