@@ -544,24 +544,19 @@ def test_compiled_kernel_follows_between_two_moving_bodies(name, end):
 
 
 def test_compiled_kernel_refuses_a_marker_it_cannot_follow_and_python_takes_it():
-    """A journal on a node's own marker (``MarkerNodeRigid``, as on a beam's node) is not among
-    the compiled condition's sides, which are bodies' markers: ``backend="compiled"`` is refused
-    with the reason, and without a backend the joint follows on the Python kernel."""
-    from exudyn.itemInterface import MarkerNodeRigid
+    """A journal on an ANCF cable element (the zoo's ANCF pendulum) is not among the compiled
+    condition's sides: ``backend="compiled"`` is refused with the reason, and without a
+    backend the joint follows on the Python kernel."""
+    from validation.exudyn_examples._common import load_models
 
     _compiled_kernel()
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0] * 3))
-    mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-4))
-    options = dict(itemNumbers=[ground, mbs.AddMarker(MarkerNodeRigid(nodeNumber=node))], journal_radius=R_J,
-                   bearing_radius=R_B, length=L, cr=0.9, contact_mode="follow")
+    build = load_models()["ancf_pendulum"]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         with pytest.raises(ValueError, match="not on a 2D rigid body.*NodeRigidBodyRotVecLG"):
-            exuclear.CreateClearanceJoint(mbs, backend="compiled", **options)
-        handle = exuclear.CreateClearanceJoint(mbs, **options)
-    assert not handle.backend == "compiled" and handle.follow_counts()["on"] == 0
+            build(clearance=True, end_time=0.1, contact_mode="follow", backend="compiled")
+        model = build(clearance=True, end_time=0.1, contact_mode="follow")
+    assert model.joint.backend != "compiled" and model.joint.follow_counts()["on"] == 0
 
 
 @pytest.mark.parametrize("backend", ["python", "compiled"])
@@ -644,6 +639,33 @@ def _dp3d(name, end, factor, **options):
     return model
 
 
+def test_compiled_kernel_follows_a_journal_on_a_beams_node():
+    """The zoo's beam pendulum: the journal on the first beam node's own marker
+    (``MarkerNodeRigid`` on a ``NodeRigidBody2D`` shared by geometrically exact beam elements),
+    over 0.5 s.  The compiled condition takes the node's coordinates (``MarkerNodeCoordinates``)
+    as a 2D rigid body's with the marker at the node: the same switches, steps and held
+    steps as on the Python kernel, Newton's iterations within 0.5 % and the probe within
+    0.01 c (measured: 13403 against 13408 iterations, 2e-4 c)."""
+    from validation.exudyn_examples._common import load_models
+
+    _compiled_kernel()
+    runs = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for backend in ("python", "compiled"):
+            model = load_models()["beam_pendulum_2d"](clearance=True, end_time=0.5, contact_mode="follow",
+                                                      backend=backend)
+            model.mbs.SolveDynamic(model.simulation_settings, solverType=model.solver_type)
+            it = model.mbs.sys["dynamicSolver"].it
+            runs[backend] = (model, it.currentStepIndex, it.newtonStepsCount)
+    (python, python_steps, python_newton), (compiled, steps, newton) = runs["python"], runs["compiled"]
+    assert compiled.joint.backend == "compiled" and compiled.joint.follow_counts() == python.joint.follow_counts()
+    assert compiled.joint.follow_counts()["followed_steps"] > 1000 and steps == python_steps
+    assert newton == pytest.approx(python_newton, rel=5e-3)
+    off = np.abs(np.asarray(compiled.probe(compiled.mbs)) - np.asarray(python.probe(python.mbs))).max()
+    assert off < 0.01 * compiled.clearance
+
+
 @pytest.mark.parametrize("name", ["double_pendulum_3d_rxyz", "double_pendulum_3d_rotvec"])
 def test_compiled_kernel_follows_other_rotation_parameters(name):
     """The zoo's 3D double pendulum with Tait-Bryan angles (``NodeRigidBodyRxyz``, omega = G
@@ -682,7 +704,7 @@ def test_compiled_kernel_follows_with_friction_in_the_condition():
 
 @pytest.mark.parametrize("name, end", [("double_pendulum_2d", 1.0), ("four_bar_3d", 0.5),
                                        ("double_pendulum_3d_ep_friction", 0.5), ("double_pendulum_3d_rxyz", 0.5),
-                                       ("double_pendulum_3d_rotvec", 0.5)])
+                                       ("double_pendulum_3d_rotvec", 0.5), ("beam_pendulum_2d", 0.5)])
 def test_carrier_gives_the_joint_exudyns_own_kinematics(name, end):
     """While the compiled condition holds the contact the joint's connector is off and its
     carrier hands the joint's post-Newton function the relative motion from the condition's
@@ -691,7 +713,8 @@ def test_carrier_gives_the_joint_exudyns_own_kinematics(name, end):
     DisplacementLocal, VelocityLocal and AngularVelocityLocal of the joint's connector (and the
     bearing's spin, where friction uses it) to round-off; the joint is on again, the carrier off.
     On the 3D double pendulums (half their example's steps) with each of the compiled
-    condition's rotation parameters: Euler parameters, Tait-Bryan angles, a rotation vector."""
+    condition's rotation parameters: Euler parameters, Tait-Bryan angles, a rotation vector;
+    and on the beam pendulum, whose journal is a beam node's own marker."""
     from exuclear.engine.layout import DATA_COLUMNS
     from exuclear.geometry import contact_kinematics
     from validation.exudyn_examples._common import load_models

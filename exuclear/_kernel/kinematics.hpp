@@ -147,7 +147,8 @@ bool finite(const Kinematics& k) {
 // rotation parameters: Euler parameters e0 ... e3, Tait-Bryan angles psi0 ... psi2, or a
 // rotation vector whose velocity coordinates are the body-fixed angular velocity,
 // NodeRigidBodyRotVecLG), coordinates with their reference values, as Exudyn passes a
-// MarkerObjectODE2Coordinates' coordinates.
+// MarkerObjectODE2Coordinates' or a MarkerNodeCoordinates' coordinates (a node's own marker:
+// the marker at the node, in its frame).
 enum SideKind { SIDE_GROUND = 0, SIDE_RIGID_2D = 1, SIDE_RIGID_EP = 2, SIDE_RIGID_RXYZ = 3, SIDE_RIGID_ROTVEC = 4 };
 const int SIDE_KINDS = 5;
 const int SIDE_COORDINATES[SIDE_KINDS] = {0, 3, 7, 6, 6};

@@ -415,7 +415,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         dry joint under an implicit solver with a spectral radius of at most 0.9 (else it
         stays compliant and says so); on the compiled kernel where the joint is
         between rigid bodies (2D, or 3D with Euler parameters, Tait-Bryan angles or a
-        Lie-group rotation vector) or the ground, else on the Python kernel.
+        Lie-group rotation vector), their nodes' own markers (a beam's node) or the ground,
+        else on the Python kernel.
 
     Returns
     -------

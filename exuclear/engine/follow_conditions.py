@@ -249,8 +249,11 @@ class CompiledCondition:
     two_step_mean = False
 
     def __init__(self, mbs: exu.MainSystem, markers: list[int], name: str, functions: tuple[Any, Any]) -> None:
-        coordinate_markers = [mbs.AddMarker(MarkerObjectODE2Coordinates(objectNumber=_coordinate_owner(mbs, m)[1]))
-                              for m in markers]
+        coordinate_markers = []
+        for kind, number in (_coordinate_owner(mbs, m) for m in markers):  # a body's, or a node's own marker
+            coordinate = MarkerNodeCoordinates(nodeNumber=number) if kind == "node" else \
+                MarkerObjectODE2Coordinates(objectNumber=number)
+            coordinate_markers.append(mbs.AddMarker(coordinate))
         # one algebraic equation: Exudyn counts them from scalingMarker0's rows
         self.number = mbs.AddObject(ObjectConnectorCoordinateVector(
             name=name, markerNumbers=coordinate_markers, scalingMarker0=np.zeros((1, 1)), velocityLevel=True,
@@ -272,10 +275,12 @@ class CompiledCondition:
         """Nothing: the rows are Newton's first iterate's, whatever the step."""
 
 
-#: The compiled condition's side kinds (``following.hpp`` SideKind): the object type and, for
-#: a 3D rigid body, its node type.
+#: The compiled condition's side kinds (``kinematics.hpp`` SideKind): a body marker's object type
+#: and, for a 3D rigid body, its node type; a node's own marker (``MarkerNodeRigid``, as on a
+#: beam's node) by its node type alone.
 COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2,
                   ("RigidBody", "RigidBodyRxyz"): 3, ("RigidBody", "RigidBodyRotVecLG"): 4}
+COMPILED_NODE_SIDES = {"RigidBody2D": 1, "RigidBodyEP": 2, "RigidBodyRxyz": 3, "RigidBodyRotVecLG": 4}
 
 
 def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], np.ndarray]] | None:
@@ -286,6 +291,12 @@ def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float],
     sides = []
     for m in markers:
         info = mbs.GetMarker(m)
+        if info.get("markerType") == "NodeRigid" and "nodeNumber" in info:  # at the node, in its frame
+            kind = COMPILED_NODE_SIDES.get(mbs.GetNode(int(info["nodeNumber"]))["nodeType"])
+            if kind is None:
+                return None
+            sides.append((kind, [0.0, 0.0, 0.0], np.eye(3)))
+            continue
         if info.get("markerType") not in ("BodyRigid", "BodyPosition") or "bodyNumber" not in info:
             return None
         body = mbs.GetObject(int(info["bodyNumber"]))

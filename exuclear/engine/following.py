@@ -7,7 +7,7 @@
   step-to-step mode (FOLLOW_MAX_RHO; elsewhere it stays compliant and says so);
   ``handle.follow_counts()`` says what it did.  On the compiled kernel where the joint is
   between rigid bodies (2D, or 3D with Euler parameters, Tait-Bryan angles or a Lie-group
-  rotation vector) or the ground (:func:`compiled_refusal`; its ``following.hpp`` takes the same decisions,
+  rotation vector), their nodes' own markers or the ground (:func:`compiled_refusal`; its ``following.hpp`` takes the same decisions,
   :class:`CompiledEvents` is its way to Exudyn), else on the Python kernel.
 
 The following mode (:class:`FollowState` in the Python kernel's ``following.py``, held by the
@@ -84,13 +84,13 @@ DEFAULT_CONTACT_MODE = "compliant"
 def compiled_refusal(mbs: exu.MainSystem, markers: list[int]) -> str:
     """Why the compiled kernel cannot follow this joint ("" where it can): its following mode
     (``following.hpp``) is for a joint between rigid bodies (2D, or 3D with Euler parameters,
-    Tait-Bryan angles or a Lie-group rotation vector) or the ground, with the compiled kernel
-    called without Python."""
+    Tait-Bryan angles or a Lie-group rotation vector), their nodes' own markers (a beam's node)
+    or the ground, with the compiled kernel called without Python."""
     if kernel.STATUS != kernel.STATUS_DIRECT:
         return f"the compiled kernel is not available ({kernel.STATUS})"
     if compiled_sides(mbs, markers) is None:
         return ("a marker is not on a 2D rigid body (ObjectRigidBody2D), a 3D one (NodeRigidBodyEP, "
-                "NodeRigidBodyRxyz or NodeRigidBodyRotVecLG) or the ground")
+                "NodeRigidBodyRxyz or NodeRigidBodyRotVecLG), such a node's own MarkerNodeRigid or the ground")
     return ""
 
 
