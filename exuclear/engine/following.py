@@ -7,8 +7,9 @@
   step-to-step mode (FOLLOW_MAX_RHO; elsewhere it stays compliant and says so);
   ``handle.follow_counts()`` says what it did.  On the compiled kernel where the joint is
   between rigid bodies (2D, or 3D with Euler parameters, Tait-Bryan angles or a Lie-group
-  rotation vector), their nodes' own markers or the ground (:func:`compiled_refusal`; its ``following.hpp`` takes the same decisions,
-  :class:`CompiledEvents` is its way to Exudyn), else on the Python kernel.
+  rotation vector), their nodes' own markers or the ground (:func:`compiled_refusal`; its
+  ``following.hpp`` takes the same decisions, :class:`CompiledEvents` is its way to Exudyn),
+  else on the Python kernel.
 
 The following mode (:class:`FollowState` in the Python kernel's ``following.py``, held by the
 Python kernel's joint, which calls it from its force and post-Newton functions):
