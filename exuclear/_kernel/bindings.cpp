@@ -114,7 +114,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     if (f != nullptr && f->active) {  // the condition sets the normal rate: no rate criterion
         rule.rate_limit = 0.0;
         double h = t - base[0].time;
-        double redo = follow_hold_step(*f, a.r_b - a.r_j, s.kins[0].delta, h, base[0].time, s.control);
+        double redo = follow_hold_step(*f, a, s.kins[0].delta, h, base[0].time, s.control);
         if (!(redo > 0.0)) redo = held_cap(s.control, h, a.impact_step);  // held by the condition: capped too
         if (redo > 0.0) return redo_reply(s, std::move(out), redo, data);
     }
@@ -484,6 +484,7 @@ PYBIND11_MODULE(_ckernel, m) {
     follow["FOLLOW_STEP"] = FOLLOW_STEP;
     follow["FOLLOW_TURN"] = FOLLOW_TURN;
     follow["FOLLOW_HOLD"] = FOLLOW_HOLD;
+    follow["FOLLOW_HOLD_FRICTION"] = FOLLOW_HOLD_FRICTION;
     follow["HOLD_REDOS"] = HOLD_REDOS;
     follow["FOLLOW_MIN_STEPS"] = FOLLOW_MIN_STEPS;
     follow["FOLLOW_RATE"] = FOLLOW_RATE;

@@ -31,7 +31,8 @@ namespace {
 const double FOLLOW_PERIODS = 5.0;
 const double FOLLOW_STEP = 0.5;
 const double FOLLOW_TURN = 0.1;
-const double FOLLOW_HOLD = 0.5;
+const double FOLLOW_HOLD = 1.0;
+const double FOLLOW_HOLD_FRICTION = 0.5;
 const int HOLD_REDOS = 3;
 const int FOLLOW_MIN_STEPS = 3;
 const double FOLLOW_RATE = 0.1;
@@ -200,14 +201,15 @@ bool sticking(const Params& a, double slip) {
     return a.friction_code != FRICTION_NONE && std::fabs(slip) < STICK_MARGIN * smoothing_speed(a);
 }
 
-bool follow_holds(const Follow& f, double clearance, double delta) {  // FollowState.holds
-    double held = f.distance - clearance;
-    return std::fabs(delta - held) <= FOLLOW_HOLD * held;
+bool follow_holds(const Follow& f, const Params& a, double delta) {  // FollowState.holds
+    double held = f.distance - (a.r_b - a.r_j);
+    double share = a.friction_code != FRICTION_NONE ? FOLLOW_HOLD_FRICTION : FOLLOW_HOLD;
+    return std::fabs(delta - held) <= share * held;
 }
 
 // FollowState.hold_step: the shorter step to redo a followed step with, 0 to accept it
-double follow_hold_step(Follow& f, double clearance, double delta, double h, double start, const StepControl& c) {
-    if (follow_holds(f, clearance, delta) || !c.can_shorten || 0.5 * h < c.min_step) return 0.0;
+double follow_hold_step(Follow& f, const Params& a, double delta, double h, double start, const StepControl& c) {
+    if (follow_holds(f, a, delta) || !c.can_shorten || 0.5 * h < c.min_step) return 0.0;
     if (start != f.hold_start) {
         f.hold_start = start;
         f.hold_redos = 0;
@@ -296,7 +298,7 @@ void follow_decide(Follow& f, const Params& a, const StepControl& c, const void*
             follow_release(f);
             return;
         }
-        if (!follow_holds(f, clearance, now.delta)) {  // the condition no longer holds |e| = d
+        if (!follow_holds(f, a, now.delta)) {  // the condition no longer holds |e| = d
             f.lost++;
             f.barred = true;
             follow_release(f);

@@ -33,7 +33,8 @@ Python kernel's joint, which calls it from its force and post-Newton functions):
 - **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED; or the
   multiplier itself, the step redone to end there, RELEASE_REDO), or where the slip comes
   within STICK_MARGIN of the friction law's smoothing band.  A step on which
-  ``|e|`` left ``d`` by more than FOLLOW_HOLD of the penetration is redone at half its length
+  ``|e|`` left ``d`` by more than FOLLOW_HOLD of the penetration (FOLLOW_HOLD_FRICTION with
+  friction) is redone at half its length
   (HOLD_REDOS times at most); then the contact is let go (``lost``) and stays compliant
   until it ends.
 - **Exudyn.** The flag ``activeConnector`` and the condition's parameters are set from the
@@ -200,7 +201,8 @@ def add_constraint(mbs: exu.MainSystem, handle: Any, name: str) -> None:
     sustained, and its state on the joint's kernel (the compiled kernel's table, or the
     Python kernel's :class:`FollowState`)."""
     geometry = handle.joint.geometry
-    follow = FollowState(handle.joint.law, geometry.clearance, name or str(handle.objectNumber))
+    follow = FollowState(handle.joint.law, geometry.clearance, name or str(handle.objectNumber),
+                         friction=handle.joint.friction.active)
     # the condition and the carrier are objects the user did not add: their names say whose they
     # are (Exudyn's own messages give object numbers, e.g. an explicit solver's refusal of constraints)
     owner = name or f"clearance joint {handle.objectNumber}"
