@@ -611,8 +611,8 @@ def test_two_followed_joints_of_one_chain(backend):
     other (each condition goes back to that step's start, as the joint's kernel goes back to
     its previous history): each joint holds its contact for over 1000 of the run's steps, and
     the chain's free end is within 1 c of the compliant run at 16 times the steps after 1 s
-    (measured on the Python and the compiled kernel: 1529 to 1597 followed steps, 0.17 c and
-    0.19 c; the compliant run at the same steps 0.23 c).  Before the conditions went back,
+    (measured on the Python and the compiled kernel: 1267 to 1321 followed steps, 0.19 c and
+    0.27 c; the compliant run at the same steps 0.23 c).  Before the conditions went back,
     the Python kernel's lost their holds 21 and 27 times and took 43644 steps instead of 6107."""
     if backend == "compiled":
         _compiled_kernel()
