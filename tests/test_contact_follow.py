@@ -669,8 +669,8 @@ def test_compiled_kernel_follows_a_journal_on_a_beams_node():
 def test_a_frictionless_followed_contact_is_held_within_its_whole_penetration():
     """The zoo's beam pendulum over its 5 s on the compiled kernel: a followed step is redone
     only where ``|e| - c`` left the held ``d - c`` by more than the whole of it (FOLLOW_HOLD,
-    frictionless), so the contact is lost at most once in its engagements and the run stays
-    within 0.5 c of the compliant run at the same steps at its end (measured: 1 of 5 lost, 0.04 c; at
+    frictionless), so the contact is lost at most once in its engagements and the run ends
+    within 0.5 c of the compliant run at the same steps (measured: 1 of 5 lost, 0.04 c; at
     half the penetration each of 11 engagements was lost)."""
     from validation.exudyn_examples._common import load_models
 

@@ -32,11 +32,10 @@ Python kernel's joint, which calls it from its force and post-Newton functions):
   the rate it asks, DAMPED_TARGET), with a loop gain below 1 (FOLLOW_GAIN).
 - **Release.** Where the low-passed multiplier turns tensile (RELEASE_FILTERED; or the
   multiplier itself, the step redone to end there, RELEASE_REDO), or where the slip comes
-  within STICK_MARGIN of the friction law's smoothing band.  A step on which
-  ``|e|`` left ``d`` by more than FOLLOW_HOLD of the penetration (FOLLOW_HOLD_FRICTION with
-  friction) is redone at half its length
-  (HOLD_REDOS times at most); then the contact is let go (``lost``) and stays compliant
-  until it ends.
+  within STICK_MARGIN of the friction law's smoothing band.  A step on which ``|e|`` left
+  ``d`` by more than FOLLOW_HOLD of the penetration (FOLLOW_HOLD_FRICTION with friction) is
+  redone at half its length (HOLD_REDOS times at most); then the contact is let go
+  (``lost``) and stays compliant until it ends.
 - **Exudyn.** The flag ``activeConnector`` and the condition's parameters are set from the
   joint's post-Newton function at an accepted step (and its rows from the force function
   where the step differs); each switch requests a Jacobian, and Newton's absolute tolerance
