@@ -280,7 +280,7 @@ class CompiledCondition:
 #: beam's node) by its node type alone.
 COMPILED_SIDES = {("Ground", ""): 0, ("RigidBody2D", "RigidBody2D"): 1, ("RigidBody", "RigidBodyEP"): 2,
                   ("RigidBody", "RigidBodyRxyz"): 3, ("RigidBody", "RigidBodyRotVecLG"): 4}
-COMPILED_NODE_SIDES = {"RigidBody2D": 1, "RigidBodyEP": 2, "RigidBodyRxyz": 3, "RigidBodyRotVecLG": 4}
+COMPILED_NODE_SIDES = {node: kind for (_, node), kind in COMPILED_SIDES.items() if node}
 
 
 def compiled_sides(mbs: Any, markers: list[int]) -> list[tuple[int, list[float], np.ndarray]] | None:
