@@ -29,7 +29,6 @@ from typing import Any, NamedTuple, TypeVar
 import exuclear
 from exuclear.contact import V_MIN_DEFAULT
 from exuclear.engine import BACKENDS, DEFAULT_BACKEND
-from exuclear.engine.following import CONTACT_MODES
 from exuclear.materials import MATERIALS
 from exuclear.wear import PRESSURES, SURFACES
 
@@ -78,10 +77,6 @@ JOINT_FIELDS: dict[str, JointField] = {
     # how the joint is added (exuclear.AddClearanceJoint), not what it is: no make_joint argument
     "backend": JointField("str", "the joint's kernel: compiled (C++) or python", one_of(sorted(BACKENDS)),
                           choices=tuple(BACKENDS), default=DEFAULT_BACKEND),
-    "contact_mode": JointField(
-        "str | None", "how the joint carries a sustained contact: compliant, or follow (a prototype on the Python "
-        "kernel: give --backend python; docs/guide/contact_following.md) (default: compliant)",
-        optional(one_of(CONTACT_MODES)), choices=tuple(CONTACT_MODES), default=None),
     "max_penetration": JointField(
         "float | None", "penetration [m] beyond which the run stops (default: the larger of half the clearance "
         "and 0.1 % of the journal radius)", optional(positive), default=None),

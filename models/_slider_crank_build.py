@@ -67,7 +67,7 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.AddClearanceJoint(
                 mbs, [rigid(bearing, x_bearing), rigid(journal, x_journal)], joint=p.joint, name=name,
-                backend=p.backend, contact_mode=p.contact_mode, maxPenetration=p.max_penetration,
+                backend=p.backend, maxPenetration=p.max_penetration,
                 bearingRotates=bearing != slider)  # the guide holds the slider's rotation
         else:
             mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(bearing, x_bearing), rigid(journal, x_journal)]))
@@ -119,7 +119,7 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
     markers = [mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=link, localPosition=[x, 0.0, 0.0]))
                for link, x in ((2, 0.0), (1, l))]
     handle = exuclear.AddClearanceJoint(mbs, markers, joint=p.joint, name="B", backend=p.backend,
-                                        contact_mode=p.contact_mode, maxPenetration=p.max_penetration)
+                                        maxPenetration=p.max_penetration)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
@@ -216,8 +216,7 @@ def _build_spatial(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
         pair = dict(itemNumbers=[bearing, journal], position=centre)
         if name in p.clearance_joints and not p.ideal:
             joints[name] = exuclear.CreateClearanceJoint(mbs, name=name, axis=[0.0, 0.0, 1.0], joint=p.joint,
-                                                         backend=p.backend, contact_mode=p.contact_mode,
-                                                         maxPenetration=p.max_penetration,
+                                                         backend=p.backend, maxPenetration=p.max_penetration,
                                                          bearingRotates=bearing != slider_body,  # the guide holds it
                                                          **pair)
             if name != "B":

@@ -103,7 +103,7 @@ class SliderCrankParams:
         "redundant, minimal or spatial", one_of(FORMULATIONS), cli=False))  # its own option: implied by others
     clearance_joints: tuple[str, ...] = field(default=("B",), metadata=param(
         "joints with clearance", cli=False))  # given as letters, --clearance-joints OAB
-    _more_joint_fields = joint_fields("backend", "contact_mode", "max_penetration", "viscosity", "film_model", "wear_coefficient",
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", "wear_coefficient",
                                       "wear_surface", "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 

@@ -128,7 +128,7 @@ class FourBarParams:
     _joint_fields = joint_fields("bearing_radius", "clearance", "bearing_length", "law", "cr", "journal_material",
                                  "bearing_material", "friction", help={"bearing_radius": "bearing radius R_B at B [m]"})
     crank_angle0: float = field(default=0.0, metadata=param("crank angle at t = 0, from O2 towards O4 [rad]", real))
-    _more_joint_fields = joint_fields("v_min", "backend", "contact_mode", "max_penetration", "wear_coefficient", "wear_surface",
+    _more_joint_fields = joint_fields("v_min", "backend", "max_penetration", "wear_coefficient", "wear_surface",
                                       "wear_pressure")
     _joint: exuclear.ClearanceJoint | None = field(default=None, init=False, repr=False, compare=False)
 
@@ -248,8 +248,7 @@ def build(params: FourBarParams) -> Scene:
                     rigid(rocker, -c / 2))):
         mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[m0, m1]))
     handle = exuclear.AddClearanceJoint(mbs, [rigid(rocker, c / 2), rigid(coupler, b / 2)], joint=p.joint, name="B",
-                                        backend=p.backend, contact_mode=p.contact_mode,
-                                        maxPenetration=p.max_penetration)
+                                        backend=p.backend, maxPenetration=p.max_penetration)
     # drive: crank angle rate = omega (velocity-level coordinate constraint; its multiplier
     # is minus the driving moment)
     n_ground = mbs.AddNode(NodePointGround())

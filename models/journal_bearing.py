@@ -110,7 +110,7 @@ class JournalBearingParams:
     #: c centred.
     start_gap: float = field(default=0.0, metadata=param("gap at t = 0 [m]", nonnegative, cli=False))
     # viscosity None (the default): a dry joint, the paper's scene
-    _more_joint_fields = joint_fields("backend", "contact_mode", "max_penetration", "viscosity", "film_model", help={"viscosity": (
+    _more_joint_fields = joint_fields("backend", "max_penetration", "viscosity", "film_model", help={"viscosity": (
         "dynamic viscosity of the oil in the clearance [Pa s] (default: none, dry); given, the command line runs "
         "the approach scene (the journal from the centre, 1 ms unless --end-time is given), dry and lubricated")})
 
@@ -166,7 +166,7 @@ def build(params: JournalBearingParams) -> Scene:
     markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0]))
                for body in (ground, journal)]  # bearing, journal: each at its body's reference point
     handle = exuclear.AddClearanceJoint(mbs, markers, joint=joint, name="journal-bearing", backend=params.backend,
-                                        contact_mode=params.contact_mode, maxPenetration=params.max_penetration)
+                                        maxPenetration=params.max_penetration)
     mbs.Assemble()
     return Scene(params, mbs, {handle.name: handle}, nodes={"journal": int(node)},
                  build_time=time.perf_counter() - start, main_joint=handle.name)

@@ -342,19 +342,7 @@ def test_spectral_radius_with_an_explicit_method_is_refused():
     exuclear.SolverSettings(end_time=0.1, method="generalized-alpha", spectral_radius=0.5)
 
 
-def test_contact_mode_option_puts_the_scene_joint_in_that_mode():
-    """``--contact-mode follow`` builds the scene's joint in the following mode (a joint in
-    it counts its engagements; a compliant one has no such counts); the scene's explicit
-    default solver is refused for the mode's constraint, naming the joint (on either kernel:
-    the journal-bearing scene's frictionless joint on 2D bodies runs it on the compiled one
-    where it is built), and a mode that does not exist is refused by name."""
+def test_the_scenes_offer_no_contact_mode():
+    # the joint has one contact mode (the compliant law): the removed prototype's option is unknown
     status, _, err = cli(jb, "--contact-mode", "follow")
-    assert status == 2 and "follows its contacts with one (contact_mode='follow'); use 'generalized-alpha'" in err
-    status, _, err = cli(jb, "--contact-mode", "folow")
-    assert status == 2 and "'compliant', 'follow'" in err
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # the mode's prototype warning
-        following = jb.build(jb.JournalBearingParams.paper(contact_mode="follow", backend="python"))
-        default = jb.build(jb.JournalBearingParams.paper(contact_mode="follow"))  # compiled where it is built
-    assert following.joint.follow_counts()["on"] == 0 and default.joint.follow_counts()["on"] == 0
-    assert jb.build(jb.JournalBearingParams.paper()).joint.follow_counts() == {}
+    assert status == 2 and "unrecognized arguments: --contact-mode follow" in err

@@ -240,6 +240,43 @@ def test_the_kernels_read_the_same_run_start_record_and_step_constants():
     assert constants and {name: getattr(_python_kernel, name) for name in constants} == dict(constants)
 
 
+@COMPILED
+def test_the_compiled_step_control_is_the_one_table_in_its_order_with_its_defaults():
+    # layout.STEP_CONTROL describes the step control once: the compiled kernel's StepControl
+    # (joint_state.hpp's field lists) holds its fields in its order, starts at its defaults
+    # (nan compared as nan), and the Python kernel's is made from it
+    from exuclear.engine._python_kernel import StepControl
+    from exuclear.engine.layout import STEP_CONTROL, RunStart
+
+    names = [f.name for f in STEP_CONTROL]
+    assert list(kernel.COMPILED.STEP_CONTROL_FIELDS) == names
+    assert names[:len(RunStart._fields)] == list(RunStart._fields)
+    joint_id = kernel.COMPILED.new_joint()
+    try:
+        compiled = dict(kernel.COMPILED.step_control(joint_id))
+    finally:
+        kernel.COMPILED.release(joint_id)
+    python = StepControl().as_dict()
+    for f in STEP_CONTROL:
+        for copy in (compiled, python):
+            assert copy[f.name] == f.default or (f.default != f.default and copy[f.name] != copy[f.name]), f.name
+
+
+def test_the_removed_following_mode_is_refused_with_what_to_use():
+    # contact_mode="follow" (a prototype, docs/design/contact_following.md) was removed:
+    # refused by name with the compliant default as the way; "compliant" itself is accepted
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0])),
+                                          mass=0.04, inertia=2e-6))
+    joint = dict(itemNumbers=[ground, pin], position=[0, 0, 0], journal_radius=R_J, bearing_radius=R_B, length=L, cr=0.9)
+    with pytest.raises(ValueError, match="'follow' was removed .*leave `contact_mode` out for the compliant contact"):
+        exuclear.CreateClearanceJoint(mbs, contact_mode="follow", **joint)
+    with pytest.raises(ValueError, match="`contact_mode` must be 'compliant'"):
+        exuclear.CreateClearanceJoint(mbs, contact_mode="rigid", **joint)
+    assert exuclear.CreateClearanceJoint(mbs, contact_mode="compliant", **joint).objectNumber is not None
+
+
 _GEOMETRY = exuclear.BearingGeometry(R_J, R_B, L)
 
 

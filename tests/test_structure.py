@@ -169,7 +169,7 @@ def test_the_two_kernels_split_into_modules_of_the_same_names():
     # exuclear/_kernel/layout.hpp ... bindings.cpp mirror exuclear/engine/_python_kernel/layout.py ... bindings.py
     compiled = {p.stem for p in (PACKAGE / "_kernel").iterdir() if p.suffix in (".hpp", ".cpp")}
     python = {p.stem for p in (PACKAGE / "engine" / "_python_kernel").glob("*.py")} - {"__init__"}
-    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "wear", "joint_state", "following",
+    assert compiled == python == {"layout", "kinematics", "laws", "contacts", "film", "wear", "joint_state",
                                   "step_control", "bindings"}
 
 
@@ -183,3 +183,12 @@ def test_the_code_says_what_and_why_not_when(folder):
              if p.suffix in (".py", ".hpp", ".cpp")
              for n, line in enumerate(p.read_text().splitlines(), 1) if DATED.search(line)]
     assert dated == []
+
+
+def test_the_python_kernel_imports_no_engine_layer_above_it():
+    # constants flow down: the kernel layer (engine/_python_kernel) reads the parameter table
+    # (engine.layout) and the physics, never the steering, handle or connector that drive it
+    graph = import_graph(PACKAGE)
+    layer = "exuclear.engine._python_kernel"
+    above = {m for m in graph if m.startswith("exuclear.engine") and not m.startswith(layer)} - {"exuclear.engine.layout"}
+    assert {(m, t) for m in graph if m.startswith(layer) for t in graph[m] if t in above} == set()

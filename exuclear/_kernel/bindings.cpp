@@ -6,13 +6,13 @@
 // the same names, so that the two can be read side by side and agree to round-off:
 //   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
 //                                               planar joint's eqs. (1)-(8) as one slice)
-//   normal force        exuclear/contact.py    (eq. (9) once, damped_normal_force; eqs. (10)-(17))
+//   normal force        exuclear/contact/      (law.py eq. (9) once, damped_normal_force; stiffness.py, damping.py eqs. (10)-(17))
 //   friction            exuclear/friction.py   (eqs. (20)-(23))
 //   one contact         exuclear/engine/_python_kernel/contacts.py Contact (response: onset velocity,
 //                       normal force, friction; the same for slices and end faces)
 //   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
 //   contact history     exuclear/history.py    (onset velocity, records)
-//   film                exuclear/film.py       (eqs. (55)-(70))
+//   film                exuclear/film/         (laws.py, loads.py: eqs. (55)-(70))
 //   the joint           exuclear/engine/_python_kernel/joint_state.py JointState (which history an
 //                       evaluation uses; force and post-Newton drivers over the contacts)
 // The planar joint is the spatial joint with one slice and no end faces, whose motion is
@@ -31,7 +31,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "following.hpp"
+#include "step_control.hpp"
 
 namespace {
 
@@ -46,21 +46,8 @@ V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, 
             const V3& c = state(a.id).torque_correction;
             return V6{0.0, 0.0, 0.0, c[0], c[1], c[2]};
         }
-        case CARRIER:  // between two ground markers: no load, only its post-Newton function
-            return zeros6();
-        default: {
-            Follow* f = follow_of(a.id);
-            if (f != nullptr) {  // JointKernel.force_torque's following mode
-                JointState& s = state(a.id);
-                if (!s.started || t < s.prev[0].time) {
-                    follow_restart(*f);  // a new run: compliant from its initial state
-                } else if (f->active) {  // the condition holds the contact, its friction too: no load
-                    s.torque_correction = V3{0.0, 0.0, 0.0};
-                    return zeros6();
-                }
-            }
+        default:
             return joint_force(a, t, displacement, rotation, velocity, angularVelocity);
-        }
     }
 }
 
@@ -99,26 +86,8 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     const std::vector<History>& base = advance ? s.cur : s.prev;  // a repeated step starts again from its start
     if (!all_finite(s)) fail(s, t, DIVERGED);
     size_t n = s.kins.size();
-    if (a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK)) {
-        bool run_start = base[0].time == s.initial[0].time;  // the step from the run's initial state
-        for (size_t i = 0; i < n; ++i) {
-            // a contact begins in a long step, or the run begins in an impact: redo it with impact_step
-            if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
-                (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
-                return redo_reply(s, std::move(out), a.impact_step, data);
-            }
-        }
-    }
-    Follow* f = follow_of(a.id);
-    Params rule = a;
-    if (f != nullptr && f->active) {  // the condition sets the normal rate: no rate criterion
-        rule.rate_limit = 0.0;
-        double h = t - base[0].time;
-        double redo = follow_hold_step(*f, a, s.kins[0].delta, h, base[0].time, s.control);
-        if (!(redo > 0.0)) redo = held_cap(s.control, h, a.impact_step);  // held by the condition: capped too
-        if (redo > 0.0) return redo_reply(s, std::move(out), redo, data);
-    }
-    double redo = step_control(rule, s, base, t);
+    double redo = impact_redo(a, s, base, t);
+    if (!(redo > 0.0)) redo = step_control(a, s, base, t);
     if (redo > 0.0) return redo_reply(s, std::move(out), redo, data);
     s.next.resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -141,15 +110,8 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         if (base[i].in_contact && !s.next[i].in_contact) ended++;
     }
     count_separations(s.control, advance, ended, h);
-    History before = base[0];
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
-    if (f != nullptr) {  // the following mode's decisions (FollowState.after_step)
-        bool was = f->active;
-        follow_after_step(*f, a, s.control, system, t, h, before, s.cur[0]);
-        switched = switched || f->active != was;
-        if (was && f->active) s.cur[0].f_n = f->multiplier;  // a followed step: the condition's normal force
-    }
     // a worn joint in contact: its conformal contact asks for a Jacobian per step
     bool conformal = worn_joint && in_worn_contact(s);
     steer_jacobian(s, switched ? INF : h, conformal);
@@ -179,28 +141,6 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     return out;
 }
 
-// The carrier's post-Newton function (on while the condition holds the contact and the joint's
-// connector is off, engine/following.py): the joint's, with the joint's relative motion from the
-// condition's last evaluation (carried_motion); nothing in the sweep in which the joint's own
-// post-Newton switched the condition on (that step is done).  The planar joint only: its turn
-// (`rotation`) enters only wear, which the following mode excludes.
-StdVector carrier_post_newton(const Params& a, const void* system, double t, const StdVector& data) {
-    Follow* f = follow_of(a.id);
-    V3 displacement, velocity, angular;
-    if (f == nullptr || !f->active || t == f->carrier_skip_time) {
-        if (f != nullptr) f->carrier_skip_time = NAN;
-        StdVector out = reply(data.size());
-        out.insert(out.end(), data.begin(), data.end());
-        return out;
-    }
-    if (!carried_motion(*f, t, displacement, velocity, angular)) {
-        fail(state(a.id), t, "the following mode's condition was not evaluated at the step's end");
-    }
-    Params joint = a;
-    joint.role = MAIN;
-    return joint_post_newton(joint, system, t, data, displacement, V3{0.0, 0.0, 0.0}, velocity, angular);
-}
-
 StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 displacement, V3 rotation,
                       V3 velocity, V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
     Params a = decode(parameters);
@@ -210,7 +150,6 @@ StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 d
         out.insert(out.end(), data.begin(), data.end());
         return out;
     }
-    if (a.role == CARRIER) return carrier_post_newton(a, &mbs, t, data);
     return joint_post_newton(a, &mbs, t, data, displacement, rotation, velocity, angularVelocity);
 }
 
@@ -268,7 +207,6 @@ PYBIND11_MODULE(_ckernel, m) {
         return static_cast<long>(g_joints.size() - 1);
     }, "a new joint's id in the kernel's table");
     m.def("release", [](long id) {
-        forget_follow(id);
         leave_group(state(id));
         state(id) = JointState();
         g_joints[static_cast<size_t>(id)].in_use = false;
@@ -286,7 +224,6 @@ PYBIND11_MODULE(_ckernel, m) {
         s.control.runs = runs;
         s.wear = std::move(wear);
         for (WearState& w : s.wear) w.reset();
-        if (Follow* f = follow_of(id)) follow_restart(*f);
     });
     m.def("set_wear", [](long id, std::vector<std::vector<double>> bearing, std::vector<std::vector<double>> journal,
                          double e_star, double length) {
@@ -330,73 +267,16 @@ PYBIND11_MODULE(_ckernel, m) {
     m.def("set_run_start", [](long id, py::object callback) { state(id).run_start = callback; },
           "a callable called once per run start, returning layout.py's RunStart; hold no strong "
           "reference to the joint's handle in it");
-    m.def("step_control", [](long id) {  // what the joint's own step control did in the last run
+    m.def("step_control", [](long id) {  // what the joint's own step control holds (layout.py STEP_CONTROL)
         const StepControl& c = state(id).control;
         py::dict d;
-        d["runs"] = c.runs;
-        d["can_shorten"] = c.can_shorten;
-        d["min_step"] = c.min_step;
-        d["rate"] = c.rate;
-        d["label"] = c.label;
-        d["group_size"] = c.group_size;
-        d["rate_scale"] = c.rate_scale;
-        d["growth_cap"] = c.growth_cap;
-        d["contact_cap"] = c.contact_cap;
-        d["jacobian_step"] = c.jacobian_step;
-        d["jacobian_on"] = c.jacobian_on;
-        d["separation_step"] = c.separation_step;
-        d["impact_mass"] = c.impact_mass;
-        d["separations"] = c.separations;
-        d["long_separations"] = c.long_separations;
-        d["rejected"] = c.rejected;
-        d["unresolved"] = c.unresolved;
-        d["held_long"] = c.held_long;
-        d["held_time"] = c.held_time;
-        d["held_step"] = c.held_step;
-        d["unresolved_time"] = c.unresolved_time;
-        d["unresolved_step"] = c.unresolved_step;
-        d["unresolved_advice"] = c.unresolved_advice;
-        d["over_limit"] = c.over_limit;
-        d["over_time"] = c.over_time;
-        d["over_step"] = c.over_step;
-        d["deepest"] = c.deepest;
+#define PUT_FIELD(type, name, value) d[#name] = c.name;
+        RUN_START_FIELDS(PUT_FIELD)
+        STEP_COUNT_FIELDS(PUT_FIELD)
+#undef PUT_FIELD
         return d;
     });
     m.def("dispatch_calls", []() { return g_dispatch_calls; });
-    m.def("follow_constraint", &condition_constraint, py::call_guard<DispatchCounter>(),
-          "constraintUserFunction of a followed joint's condition (ObjectConnectorCoordinateVector)");
-    m.def("follow_jacobian", &condition_jacobian, py::call_guard<DispatchCounter>(),
-          "jacobianUserFunction of a followed joint's condition");
-    m.def("set_follow", [](long id, int item, py::object events, int kind0, V3 local0, M3 frame0, int kind1,
-                           V3 local1) {
-        // the following mode of joint `id`: its condition's object number, the Python object the
-        // kernel tells of events (exuclear.engine.following.CompiledEvents) and the condition's two
-        // sides (following.hpp ConditionSide: kind, the marker's position in the body, and for the
-        // bearing the joint frame J0 in its body, rows)
-        state(id);
-        for (int kind : {kind0, kind1}) {
-            if (kind < SIDE_GROUND || kind >= SIDE_KINDS) throw std::invalid_argument("set_follow: unknown side kind");
-        }
-        Follow f;
-        f.item = item;
-        f.events = events;
-        f.sides[0] = ConditionSide{kind0, local0, V3{frame0[0][2], frame0[1][2], frame0[2][2]}, frame0};
-        f.sides[1] = ConditionSide{kind1, local1, V3{0.0, 0.0, 1.0}};
-        forget_follow(id);
-        g_follow[id] = f;
-    }, "a joint's compiled following mode (exuclear.engine.following)");
-    m.def("follow_counts", [](long id) {  // FollowState.counts
-        py::dict d;
-        Follow* f = follow_of(id);
-        if (f == nullptr) return d;
-        d["on"] = f->on_count;
-        d["off"] = f->off_count;
-        d["lost"] = f->lost;
-        d["redone"] = f->redone;
-        d["followed_steps"] = f->followed_steps;
-        d["active"] = f->active || f->parked;
-        return d;
-    });
     m.def("impact_duration", [](M6 parameters, double mass, double speed) {
         return impact_duration(decode(parameters), mass, speed);
     }, "timescales.impact_duration of the joint whose parameter matrix is given (a test hook)");
@@ -454,14 +334,18 @@ PYBIND11_MODULE(_ckernel, m) {
     m.attr("N_DATA") = N_DATA;
     m.attr("N_FILM_DATA") = N_FILM_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;
-    // the run-start record's fields start_run reads (layout.py RunStart), and the step
-    // control's constants (_python_kernel/step_control.py), which tests keep equal to Python's
-    py::list run_start_fields;
-    for (const char* name : {"can_shorten", "min_step", "label", "rate", "group_size", "rate_scale", "growth_cap",
-                             "contact_cap", "jacobian_step", "separation_step", "impact_mass"}) {
-        run_start_fields.append(name);
-    }
+    // the step control's fields (layout.py STEP_CONTROL; start_run reads RunStart's by name) and
+    // its constants (_python_kernel/step_control.py), which tests keep equal to Python's
+    py::list run_start_fields, step_control_fields;
+#define NAME_FIELD(type, name, value) run_start_fields.append(#name);
+    RUN_START_FIELDS(NAME_FIELD)
+#undef NAME_FIELD
+#define NAME_FIELD(type, name, value) step_control_fields.append(#name);
+    RUN_START_FIELDS(NAME_FIELD)
+    STEP_COUNT_FIELDS(NAME_FIELD)
+#undef NAME_FIELD
     m.attr("RUN_START_FIELDS") = run_start_fields;
+    m.attr("STEP_CONTROL_FIELDS") = step_control_fields;
     py::dict constants;
     constants["REDO_STEP_ERROR"] = REDO_STEP_ERROR;
     constants["STEP_SLACK"] = STEP_SLACK;
@@ -479,30 +363,4 @@ PYBIND11_MODULE(_ckernel, m) {
     constants["PENETRATION_CUT"] = PENETRATION_CUT;
     constants["PENETRATION_RETRIES"] = PENETRATION_RETRIES;
     m.attr("STEP_CONSTANTS") = constants;
-    py::dict follow;  // the following mode's rules (_python_kernel/following.py), which tests keep equal
-    follow["FOLLOW_PERIODS"] = FOLLOW_PERIODS;
-    follow["FOLLOW_STEP"] = FOLLOW_STEP;
-    follow["FOLLOW_TURN"] = FOLLOW_TURN;
-    follow["FOLLOW_HOLD"] = FOLLOW_HOLD;
-    follow["FOLLOW_HOLD_FRICTION"] = FOLLOW_HOLD_FRICTION;
-    follow["HOLD_REDOS"] = HOLD_REDOS;
-    follow["FOLLOW_MIN_STEPS"] = FOLLOW_MIN_STEPS;
-    follow["FOLLOW_RATE"] = FOLLOW_RATE;
-    follow["FOLLOW_GAIN"] = FOLLOW_GAIN;
-    follow["GA_BETA"] = GA_BETA;
-    follow["FOLLOW_DEAD_BAND"] = FOLLOW_DEAD_BAND;
-    follow["FOLLOW_FILTER"] = FOLLOW_FILTER;
-    follow["FOLLOW_ATOL_SHARE"] = FOLLOW_ATOL_SHARE;
-    follow["FOLLOW_ATOL_FORCE"] = FOLLOW_ATOL_FORCE;
-    follow["DAMPED_RTOL"] = DAMPED_RTOL;
-    follow["DAMPED_MAX_ITER"] = DAMPED_MAX_ITER;
-    follow["DAMPED_FIRST"] = DAMPED_FIRST;
-    follow["END_SLACK"] = END_SLACK;
-    follow["STICK_MARGIN"] = STICK_MARGIN;
-    follow["RATE_GAIN"] = RATE_GAIN;
-    follow["PENETRATION_RTOL"] = PENETRATION_RTOL;
-    follow["PENETRATION_MAX_ITER"] = PENETRATION_MAX_ITER;
-    m.attr("FOLLOW_SIDE_KINDS") = py::make_tuple("ground", "rigid 2D", "rigid Euler parameters",
-                                                "rigid Tait-Bryan angles", "rigid rotation vector (Lie group)");  // SideKind
-    m.attr("FOLLOW_CONSTANTS") = follow;
 }

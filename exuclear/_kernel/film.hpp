@@ -1,4 +1,4 @@
-// The lubricated joint's film: exuclear/film.py (docs/physics.md section 10, eqs. (55)-(70)).
+// The lubricated joint's film: exuclear/film/ (laws.py, loads.py) (docs/physics.md section 10, eqs. (55)-(70)).
 // Python: exuclear/engine/_python_kernel/film.py.
 
 #pragma once

@@ -16,37 +16,53 @@ namespace {
 // ---- the per-joint table -------------------------------------------------------------------
 // One joint's state (_python_kernel/joint_state.py JointState): per contact, its history at the start
 // (prev) and at the end (cur) of the last post-processed step and its records.
-// What the joint's own step control did in the last run (_python_kernel/joint_state.py StepControl):
-// steps it rejected, and steps it could not resolve because the solver could not shorten
-// them (read by the handle after the run, which says so in an AccuracyWarning).
+// What the joint's own step control holds through a run: layout.py STEP_CONTROL, the one table
+// of its fields (name, default, meaning), in its order; a test keeps this copy equal to it.
+// RUN_START_FIELDS are set from the run-start callback's record (layout.py RunStart, read by
+// name in start_run); STEP_COUNT_FIELDS are what the run did (read by the handle after the
+// run, which says in an AccuracyWarning what the joint could not resolve).  Each entry:
+// X(type, name, default).
+#define RUN_START_FIELDS(X)                                  \
+    X(bool, can_shorten, true)                               \
+    X(double, min_step, 0.0)                                 \
+    X(std::string, label, "")                                \
+    X(bool, rate, true)                                      \
+    X(int, group_size, 1)                                    \
+    X(double, rate_scale, 1.0)                               \
+    X(double, growth_cap, INF)                               \
+    X(double, contact_cap, INF)                              \
+    X(double, jacobian_step, INF)                            \
+    X(double, separation_step, INF)                          \
+    X(double, impact_mass, std::numeric_limits<double>::quiet_NaN())
+#define STEP_COUNT_FIELDS(X)                                 \
+    X(long, runs, 0)                                         \
+    X(bool, jacobian_on, false)                              \
+    X(long, separations, 0)                                  \
+    X(long, long_separations, 0)                             \
+    X(long, last_ended, 0)                                   \
+    X(long, last_long, 0)                                    \
+    X(long, rejected, 0)                                     \
+    X(long, unresolved, 0)                                   \
+    X(double, unresolved_time, 0.0)                          \
+    X(double, unresolved_step, 0.0)                          \
+    X(double, unresolved_advice, INF)                        \
+    X(long, held_long, 0)                                    \
+    X(double, held_time, 0.0)                                \
+    X(double, held_step, 0.0)                                \
+    X(long, over_limit, 0)                                   \
+    X(double, over_time, 0.0)                                \
+    X(double, over_step, 0.0)                                \
+    X(double, deepest, 0.0)                                  \
+    X(double, last_time, -INF)                               \
+    X(double, last_step, 0.0)                                \
+    X(double, retry_start, -INF)                             \
+    X(int, retries, 0)
+#define DECLARE_FIELD(type, name, value) type name = value;
 struct StepControl {
-    bool can_shorten = true;  // the solver redoes a rejected step shorter (from the run-start callback)
-    double min_step = 0.0;    // the solver's minimum step [s]
-    bool rate = true;         // false: an explicit solver's error control sets the step (no rate criterion)
-    std::string label;        // the joint's name, for messages (from the run-start callback)
-    int group_size = 1;       // the clearance joints of the joint's system (from the run-start callback)
-    double rate_scale = 1.0;  // the factor on rate_limit for this run (a convergence check's tighter run: < 1)
-    double growth_cap = INF;  // the longest step free flight may grow to [s] (steering.py GROWTH_CONTACT_PERIODS)
-    double contact_cap = INF;  // the longest step a held contact may take [s] (steering.py HELD_CONTACT_PERIODS)
-    double jacobian_step = INF;  // the step above which the joint asks for a Jacobian per step [s] (newton.py)
-    bool jacobian_on = false;    // whether it asks now
-    double separation_step = INF;  // a contact that ends in a longer step is not resolved [s] (handle.py)
-    double impact_mass = std::numeric_limits<double>::quiet_NaN();  // the joint's impacts' effective mass [kg] (nan: unknown)
-    long separations = 0;          // contacts that ended in the run
-    long long_separations = 0;     // ... in a step longer than separation_step: maybe numerical chatter
-    long last_ended = 0, last_long = 0;  // what the last accepted step added (taken back if it is redone)
-    long runs = 0;            // runs started since the joint was created
-    long rejected = 0;        // steps rejected by the joint and redone shorter
-    long unresolved = 0;      // contact steps accepted although the rate criterion asked for a shorter step
-    long held_long = 0;       // steps accepted through a held contact although longer than contact_cap
-    double held_time = 0.0, held_step = 0.0;  // the first of them
-    double unresolved_time = 0.0, unresolved_step = 0.0, unresolved_advice = INF;  // the first; smallest advice
-    long over_limit = 0;      // steps accepted with a penetration beyond the limit
-    double over_time = 0.0, over_step = 0.0, deepest = 0.0;
-    double last_time = -INF, last_step = 0.0;  // the last rejected step (to see it come back unshortened)
-    double retry_start = -INF;                  // the start of the step the penetration retries are about
-    int retries = 0;
+    RUN_START_FIELDS(DECLARE_FIELD)
+    STEP_COUNT_FIELDS(DECLARE_FIELD)
 };
+#undef DECLARE_FIELD
 
 struct JointState {
     bool in_use = true;    // false: released (its handle is gone), the slot is free for a new joint
@@ -101,17 +117,9 @@ void start_run(JointState& s) {
     try {  // the fields of layout.py RunStart, by name (RUN_START_FIELDS)
         py::object r = s.run_start();
         StepControl& c = s.control;
-        c.can_shorten = r.attr("can_shorten").cast<bool>();
-        c.min_step = r.attr("min_step").cast<double>();
-        c.label = r.attr("label").cast<std::string>();
-        c.rate = r.attr("rate").cast<bool>();
-        c.group_size = r.attr("group_size").cast<int>();
-        c.rate_scale = r.attr("rate_scale").cast<double>();
-        c.growth_cap = r.attr("growth_cap").cast<double>();
-        c.contact_cap = r.attr("contact_cap").cast<double>();
-        c.jacobian_step = r.attr("jacobian_step").cast<double>();
-        c.separation_step = r.attr("separation_step").cast<double>();
-        c.impact_mass = r.attr("impact_mass").cast<double>();
+#define READ_FIELD(type, name, value) c.name = r.attr(#name).cast<type>();
+        RUN_START_FIELDS(READ_FIELD)
+#undef READ_FIELD
         c.jacobian_on = c.jacobian_step < INF;  // steer_newton asked for it at the first step
     } catch (py::error_already_set&) {  // never end a run for a label: keep the defaults
         PyErr_Clear();
@@ -120,7 +128,7 @@ void start_run(JointState& s) {
 }
 
 // JointStepControl.steer_jacobian: ask for a Jacobian per step while the step the joint accepts is
-// longer than the run-start callback's jacobian_step (newton.py), and for the step after one in
+// longer than the run-start callback's jacobian_step (steering.py steer_newton), and for the step after one in
 // which a contact opened or closed or that it redoes or grows (step INF); also while a worn
 // joint is in contact (conformal: in its imprint the contact's normal, the overlaps' resultant
 // of eq. (75), turns fast as the journal moves sideways, which an older Jacobian misses).

@@ -1,8 +1,6 @@
 // The contact kinematics of a slice, the planar joint and an end face: exuclear/geometry.py and
 // exuclear/spatial.py (docs/physics.md eqs. (1)-(8), (33)-(40), (48)-(51)).  Python:
-// exuclear/engine/_python_kernel/kinematics.py.  Then the rigid bodies' rotations from their
-// coordinates, for the compiled following mode's condition (following.hpp; its Python
-// condition takes Exudyn's marker Jacobians instead).
+// exuclear/engine/_python_kernel/kinematics.py.
 
 #pragma once
 
@@ -140,66 +138,6 @@ Kinematics face_kinematics(double length, double play, double r_e, int side, con
 
 bool finite(const Kinematics& k) {
     return std::isfinite(k.ex) && std::isfinite(k.ey) && std::isfinite(k.delta_dot) && std::isfinite(k.v_t);
-}
-
-// ---- the bodies of the compiled following mode's condition (following.hpp ConditionSide) ----
-// The ground, a 2D rigid body (its node's x, y, phi) or a 3D rigid body (its node's x, y, z and
-// rotation parameters: Euler parameters e0 ... e3, Tait-Bryan angles psi0 ... psi2, or a
-// rotation vector whose velocity coordinates are the body-fixed angular velocity,
-// NodeRigidBodyRotVecLG), coordinates with their reference values, as Exudyn passes a
-// MarkerObjectODE2Coordinates' or a MarkerNodeCoordinates' coordinates (a node's own marker:
-// the marker at the node, in its frame).
-enum SideKind { SIDE_GROUND = 0, SIDE_RIGID_2D = 1, SIDE_RIGID_EP = 2, SIDE_RIGID_RXYZ = 3, SIDE_RIGID_ROTVEC = 4 };
-const int SIDE_KINDS = 5;
-const int SIDE_COORDINATES[SIDE_KINDS] = {0, 3, 7, 6, 6};
-
-// A rigid body's rotation matrix A from its coordinates at q, and for a 3D body the matrix W of
-// its global angular velocity omega = W q_t over the rotation's velocity coordinates (3 or 4
-// columns; Exudyn's node documentation):
-// - 2D: phi about z (W unused: omega = phi_t e_z);
-// - Euler parameters, normalised: A = (2 e0^2 - 1) I + 2 (e e^T + e0 [e]x), W = 2 G;
-// - Tait-Bryan angles: A = A_x(psi0) A_y(psi1) A_z(psi2), W = G = [e_x, A_x e_y, A_x A_y e_z];
-// - a rotation vector v, |v| = phi: A = I + sin(phi) / phi [v]x + (1 - cos(phi)) / phi^2 [v]x^2
-//   (Rodrigues), and W = A, its velocity coordinates being the body-fixed angular velocity.
-M3 side_rotation(int kind, const double* q, double w[3][4]) {
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 4; ++j) w[i][j] = 0.0;
-    }
-    if (kind == SIDE_RIGID_2D) {
-        double c = std::cos(q[2]), s = std::sin(q[2]);
-        return M3{V3{c, -s, 0.0}, V3{s, c, 0.0}, V3{0.0, 0.0, 1.0}};
-    }
-    if (kind == SIDE_RIGID_RXYZ) {
-        double c0 = std::cos(q[3]), s0 = std::sin(q[3]), c1 = std::cos(q[4]), s1 = std::sin(q[4]);
-        double rows[3][3] = {{1.0, 0.0, s1}, {0.0, c0, -c1 * s0}, {0.0, s0, c0 * c1}};
-        for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) w[i][j] = rows[i][j];
-        }
-        return rotation_xyz(q[3], q[4], q[5]);
-    }
-    if (kind == SIDE_RIGID_ROTVEC) {
-        double v0 = q[3], v1 = q[4], v2 = q[5];
-        double phi2 = v0 * v0 + v1 * v1 + v2 * v2, phi = std::sqrt(phi2);
-        // sin(phi) / phi and (1 - cos(phi)) / phi^2, by their series near 0
-        double a = phi < 1e-4 ? 1.0 - phi2 / 6.0 : std::sin(phi) / phi;
-        double b = phi < 1e-4 ? 0.5 - phi2 / 24.0 : (1.0 - std::cos(phi)) / phi2;
-        M3 r{V3{1.0 - b * (v1 * v1 + v2 * v2), -a * v2 + b * v0 * v1, a * v1 + b * v0 * v2},
-             V3{a * v2 + b * v0 * v1, 1.0 - b * (v0 * v0 + v2 * v2), -a * v0 + b * v1 * v2},
-             V3{-a * v1 + b * v0 * v2, a * v0 + b * v1 * v2, 1.0 - b * (v0 * v0 + v1 * v1)}};
-        for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) w[i][j] = r[i][j];
-        }
-        return r;
-    }
-    double len = std::sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
-    double e0 = q[3] / len, e1 = q[4] / len, e2 = q[5] / len, e3 = q[6] / len;
-    double rows[3][4] = {{-e1, e0, -e3, e2}, {-e2, e3, e0, -e1}, {-e3, -e2, e1, e0}};
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 4; ++j) w[i][j] = 2.0 * rows[i][j];
-    }
-    return M3{V3{e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2.0 * (e1 * e2 - e0 * e3), 2.0 * (e1 * e3 + e0 * e2)},
-              V3{2.0 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2.0 * (e2 * e3 - e0 * e1)},
-              V3{2.0 * (e1 * e3 - e0 * e2), 2.0 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3}};
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The contact laws (exuclear/contact.py: stiffness models by kernel_code, the damped normal
+// The contact laws (exuclear/contact/stiffness.py and law.py: stiffness models by kernel_code, the damped normal
 // force of eq. (9)), the impact duration (exuclear/timescales.py) and the friction laws
 // (exuclear/friction.py, eqs. (20)-(23)).  Python: exuclear/engine/_python_kernel/laws.py.
 
@@ -9,7 +9,7 @@
 namespace {
 
 // ---- physics: contact.py -------------------------------------------------------------------
-// Stiffness models by kernel_code; kp are their kernel_parameters() (exuclear/contact.py).
+// Stiffness models by kernel_code; kp are their kernel_parameters() (exuclear/contact/stiffness.py).
 const int STIFFNESS_CODES = 7;
 
 // _LogLineContact._solve: s with s (ln(C/s) + beta) = delta, safeguarded Newton in (0, s_peak)

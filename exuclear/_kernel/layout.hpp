@@ -53,7 +53,7 @@ namespace {
 const double INF = std::numeric_limits<double>::infinity();
 
 // ---- parameters: the named layout (exuclear/engine/layout.py LAYOUT) ----------------------
-enum Role { MAIN = 0, PROBE = 1, TORQUE = 2, CARRIER = 3 };
+enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
 // layout.py FILM_CODES
 enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };

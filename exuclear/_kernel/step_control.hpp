@@ -1,5 +1,6 @@
-// The joint's own step control: a step in which a contact begins too early or the penetration
-// rate changes too much is redone shorter (step_control), free flight lets the next step grow
+// The joint's own step control: a step longer than the joint's impact_step in which an impact
+// begins is redone at it (impact_redo); a step in which a contact begins too early or the
+// penetration rate changes too much is redone shorter (step_control), free flight lets the next step grow
 // (step_growth, report_growth, over a system's step group), and the contacts that ended in
 // too long a step are counted (count_separations).  Python:
 // exuclear/engine/_python_kernel/step_control.py.
@@ -88,6 +89,21 @@ bool resolves_impact(const Params& a, const StepControl& c, double h, double v0)
     double mass = c.impact_mass;
     if (!(mass > 0.0 && std::isfinite(mass))) return false;
     return h * ONSET_IDLE_STEPS <= impact_duration(a, mass, v0);
+}
+
+// JointStepControl.impact_redo: where the joint has an impact_step and the step [base.time, t] is
+// longer, the step to redo it with (impact_step) when an impact begins in it: a contact begins, or
+// it is the run's first step and the run begins in an impact (|v0| > v_min); else 0.
+double impact_redo(const Params& a, const JointState& s, const std::vector<History>& base, double t) {
+    if (!(a.impact_step > 0.0 && t - base[0].time > a.impact_step * (1.0 + STEP_SLACK))) return 0.0;
+    bool run_start = base[0].time == s.initial[0].time;  // the step from the run's initial state
+    for (size_t i = 0; i < s.kins.size(); ++i) {
+        if ((!base[i].in_contact && s.kins[i].delta > 0.0) ||
+            (run_start && base[i].in_contact && std::fabs(base[i].v0) > a.v_min)) {
+            return a.impact_step;
+        }
+    }
+    return 0.0;
 }
 
 // Whether the step [base.time, t] resolves the joint's contacts; 0: yes (accept it), else the

@@ -58,6 +58,17 @@ def vector3(name: str, value: Any) -> np.ndarray:
     return v
 
 
+def check_contact_mode(contact_mode: Any) -> None:
+    """``contact_mode`` is None or ``"compliant"``, the one mode: the contact law at every step.
+    The opt-in prototype ``"follow"`` was removed; its study is docs/design/contact_following.md."""
+    if contact_mode is None or contact_mode == "compliant":
+        return
+    if contact_mode == "follow":
+        raise ValueError("`contact_mode` 'follow' was removed (its study: docs/design/contact_following.md); "
+                         "leave `contact_mode` out for the compliant contact, the default and only mode")
+    raise ValueError(f"`contact_mode` must be 'compliant' (the default and only mode), got {contact_mode!r}")
+
+
 def check_axis(axis: Any) -> np.ndarray:
     """The bearing axis as given (non-zero); warns where it is not a unit vector."""
     axis_local = vector3("axis", axis)

@@ -198,10 +198,6 @@ class CompiledBackend(Backend):
     def step_control(self) -> dict[str, Any]:
         return dict(kernel.COMPILED.step_control(self.joint_id))
 
-    def follow_counts(self) -> dict[str, Any]:
-        """The following mode's counts (handle.follow_counts); empty where the joint does not follow."""
-        return dict(kernel.COMPILED.follow_counts(self.joint_id))
-
     def wear_profiles(self) -> dict[str, Any]:
         rows = kernel.COMPILED.wear_profiles(self.joint_id)  # per slice (the planar joint: one)
         return {k: np.array(v[0] if not self.slices else v) for k, v in dict(rows).items()}

@@ -50,13 +50,14 @@ from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
 from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES
-from . import following, kernel
+from . import kernel
 from .arguments import (
     AXIS_UNIT_TOLERANCE,
     DEFAULT_SLICES,
     PENETRATION_LIMIT_CLEARANCE,
     PENETRATION_LIMIT_RADIUS,
     check_axis,
+    check_contact_mode,
     check_flags,
     check_marker,
     check_markers,
@@ -197,6 +198,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     turned into it (``handle.markerNumbers``), as ``mbs.CreateRevoluteJoint`` makes them.
     """
     check_system(mbs)
+    check_contact_mode(contact_mode)
     check_markers(mbs, markerNumbers)
     axial_clearance = joint_parameters.pop("axial_clearance", None)
     shoulder_radius = joint_parameters.pop("shoulder_radius", None)
@@ -205,7 +207,6 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
-    contact_mode, backend = following.resolve(contact_mode, joint, slices, backend, mbs, list(markerNumbers))
     backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
     if backend == "compiled" and kernel.COMPILED is None:
         raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
@@ -260,8 +261,6 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
         springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
         visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
-    if contact_mode == "follow":
-        following.add_constraint(mbs, handle, name)
     if handle.probeNumber is not None:
         handle.torqueNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
             name=f"{name}:torque" if name else "", markerNumbers=[m_bearing, m_ground], rotationMarker0=rotation0,
@@ -410,13 +409,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
     contact_mode : str, optional
-        ``"compliant"`` (default) or ``"follow"``, the opt-in prototype of
-        :mod:`exuclear.engine.following` (docs/guide/contact_following.md): the planar
-        dry joint under an implicit solver with a spectral radius of at most 0.9 (else it
-        stays compliant and says so); on the compiled kernel where the joint is
-        between rigid bodies (2D, or 3D with Euler parameters, Tait-Bryan angles or a
-        Lie-group rotation vector), their nodes' own markers (a beam's node) or the ground,
-        else on the Python kernel.
+        ``"compliant"`` (the default and the only mode): the contact law acts at every step.
+        The prototype ``"follow"`` was removed (docs/design/contact_following.md); passing it
+        raises ``ValueError``.
 
     Returns
     -------
@@ -424,6 +419,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``objectNumber`` is the connector (for ``SensorObject`` with ``ForceLocal``).
     """
     check_system(mbs)
+    check_contact_mode(contact_mode)
     if bodyNumbers is not None:
         if tuple(itemNumbers) != (None, None):
             raise ValueError("give `itemNumbers` only: `bodyNumbers` is its deprecated name, and both were given")

@@ -24,7 +24,7 @@ from . import outputs as _outputs
 from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
-from .layout import CARRIER, MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
 from .steering import _RunStart
 
 _TOKENS = itertools.count(1)
@@ -82,8 +82,6 @@ class ClearanceJointHandle:
         self.probeNumber: Any = None
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
-        self.followNumber: Any = None  # contact_mode="follow": the Exudyn item of its condition
-        self.carrierNumber: Any = None  # ... on the compiled kernel: its carrier (engine/following.py)
         self.drawingNumber: Any = None
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
@@ -183,8 +181,7 @@ class ClearanceJointHandle:
                           shoulders=self.shoulders, token=self.token)
 
     def _write_parameters(self) -> None:
-        for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE),
-                             (self.carrierNumber, CARRIER)):
+        for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
                 self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
         # the probe and torque connectors run only where the loads use the bearing's spin
@@ -292,15 +289,6 @@ class ClearanceJointHandle:
         state, impacts = self.state(), self.impacts()
         onset_times = [r.onset_time for r in impacts] + ([state.onset_time] if state.in_contact else [])
         return JointHistory(state, impacts, onset_times)
-
-    def follow_counts(self) -> dict[str, Any]:
-        """contact_mode="follow": how often the constraint took a contact over (``on``), let it go
-        (``off``), the steps it held (``followed_steps``) and the steps redone for a release
-        (``redone``); an empty dict for the compliant mode."""
-        follow = getattr(getattr(self._backend, "kernel", None), "follow", None)
-        if follow is not None:
-            return follow.counts()
-        return self._backend.follow_counts() if self.backend == "compiled" else {}
 
     def failure(self) -> tuple[str, float]:
         """Why and when the joint stopped the last run (``""`` if it did not)."""

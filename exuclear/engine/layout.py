@@ -30,7 +30,7 @@ from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import ShoulderGeometry
 from ..wear.law import Wear
 
-MAIN, PROBE, TORQUE, CARRIER = 0, 1, 2, 3
+MAIN, PROBE, TORQUE = 0, 1, 2
 #: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
 MATRIX_SIZE = 6
 
@@ -48,8 +48,7 @@ class Field(NamedTuple):
 #: The parameter matrix, field by field (the compiled kernel's ``LAYOUT`` in the same order).
 LAYOUT = (
     Field("joint_id", 0, 0, 1, "the joint's entry in the compiled kernel's table (-1: the Python kernel)"),
-    Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque, "
-          "3 the followed joint's carrier (engine/following.py)"),
+    Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque"),
     Field("token", 0, 2, 1, "which handle owns the connector (read by the handle only: is_live)"),
     Field("journal_radius", 0, 3, 1, "R_J [m]"),
     Field("bearing_radius", 0, 4, 1, "R_B [m]"),
@@ -157,26 +156,80 @@ def friction_code(friction: FrictionLaw) -> tuple[int, tuple[float, ...]]:
 
 class RunStart(NamedTuple):
     """What a joint's kernel asks its handle once per run start (the handle's run-start
-    callback returns it; ``start_run`` of both kernels reads it by field name, and the
-    compiled kernel exports the names it reads as ``exuclear._ckernel.RUN_START_FIELDS``,
-    which a test keeps equal to these)."""
+    callback returns it; ``start_run`` of both kernels reads it by field name): the first
+    fields of :data:`STEP_CONTROL`, whose defaults and meanings are there."""
 
-    can_shorten: bool  #: the solver redoes a rejected step shorter
-    min_step: float  #: the solver's minimum step [s]
-    label: str  #: the joint's name, for messages
-    rate: bool  #: the joint's rate criterion applies (False: an explicit solver's error control sets the step)
-    group_size: int  #: the clearance joints of the joint's system (the kernel's step group)
-    rate_scale: float  #: the factor on ``rate_limit`` for this run (below 1 in a convergence check's tighter run)
-    growth_cap: float  #: the longest step free flight may grow to [s]
-    contact_cap: float  #: the longest step a contact held through it may take [s] (inf: none)
-    jacobian_step: float  #: the step above which the joint asks for a Jacobian per step [s] (inf: never)
-    separation_step: float  #: a contact that ends in a longer step is not resolved [s] (inf: not counted)
-    impact_mass: float  #: the effective mass of the joint's impacts [kg] (nan: unknown)
+    can_shorten: bool
+    min_step: float
+    label: str
+    rate: bool
+    group_size: int
+    rate_scale: float
+    growth_cap: float
+    contact_cap: float
+    jacobian_step: float
+    separation_step: float
+    impact_mass: float
 
+
+class ControlField(NamedTuple):
+    """One field of a joint's step control through a run: its name, its value at a run's start
+    (before the run-start record) and what it holds."""
+
+    name: str
+    default: Any
+    meaning: str
+
+
+_INF, _NAN = float("inf"), float("nan")
+#: What the joint's own step control holds through a run, field by field: both kernels'
+#: ``StepControl`` (the Python kernel's is made from this table; the compiled kernel's
+#: ``RUN_START_FIELDS`` and ``STEP_COUNT_FIELDS`` in ``joint_state.hpp``, exported as
+#: ``exuclear._ckernel.STEP_CONTROL_FIELDS``, which a test keeps equal to this one).  The
+#: first fields are :class:`RunStart`'s, set at each run's start; the rest are what the run did,
+#: which the handle reads after it.
+STEP_CONTROL = (
+    ControlField("can_shorten", True, "the solver redoes a rejected step shorter"),
+    ControlField("min_step", 0.0, "the solver's minimum step [s]"),
+    ControlField("label", "", "the joint's name, for messages"),
+    ControlField("rate", True, "the joint's rate criterion applies (False: an explicit solver's error control sets "
+                               "the step)"),
+    ControlField("group_size", 1, "the clearance joints of the joint's system (the kernel's step group)"),
+    ControlField("rate_scale", 1.0, "the factor on rate_limit for this run (below 1 in a convergence check's "
+                                    "tighter run)"),
+    ControlField("growth_cap", _INF, "the longest step free flight may grow to [s] (steering.GROWTH_CONTACT_PERIODS)"),
+    ControlField("contact_cap", _INF, "the longest step a contact held through it may take [s] "
+                                      "(steering.HELD_CONTACT_PERIODS; inf: none)"),
+    ControlField("jacobian_step", _INF, "the step above which the joint asks for a Jacobian per step [s] "
+                                        "(steering.steer_newton; inf: never)"),
+    ControlField("separation_step", _INF, "a contact that ends in a longer step is not resolved [s] (inf: not counted)"),
+    ControlField("impact_mass", _NAN, "the effective mass of the joint's impacts [kg] (nan: unknown)"),
+    ControlField("runs", 0, "runs started since the joint was created"),
+    ControlField("jacobian_on", False, "whether the joint asks for a Jacobian per step now"),
+    ControlField("separations", 0, "contacts that ended in the run"),
+    ControlField("long_separations", 0, "... in a step longer than separation_step: maybe numerical chatter"),
+    ControlField("last_ended", 0, "contacts the last accepted step ended (taken back if it is redone)"),
+    ControlField("last_long", 0, "... of them in a step longer than separation_step"),
+    ControlField("rejected", 0, "steps the joint rejected and had redone shorter"),
+    ControlField("unresolved", 0, "contact steps accepted although the rate criterion asked for a shorter one"),
+    ControlField("unresolved_time", 0.0, "the end [s] of the first of them"),
+    ControlField("unresolved_step", 0.0, "its length [s]"),
+    ControlField("unresolved_advice", _INF, "the smallest step [s] the rate criterion asked for in them"),
+    ControlField("held_long", 0, "steps accepted through a held contact although longer than contact_cap"),
+    ControlField("held_time", 0.0, "the end [s] of the first of them"),
+    ControlField("held_step", 0.0, "its length [s]"),
+    ControlField("over_limit", 0, "steps accepted with a penetration beyond the joint's limit"),
+    ControlField("over_time", 0.0, "the end [s] of the first of them"),
+    ControlField("over_step", 0.0, "its length [s]"),
+    ControlField("deepest", 0.0, "the deepest penetration [m] beyond the limit"),
+    ControlField("last_time", -_INF, "the end [s] of the last rejected step (to see it come back unshortened)"),
+    ControlField("last_step", 0.0, "its length [s]"),
+    ControlField("retry_start", -_INF, "the start [s] of the step the penetration retries are about"),
+    ControlField("retries", 0, "the penetration retries of that step so far"),
+)
 
 #: What a kernel assumes where its handle gives no run-start record (a kernel used without a handle).
-RUN_START_DEFAULT = RunStart(True, 0.0, "", True, 1, 1.0, float("inf"), float("inf"), float("inf"), float("inf"),
-                             float("nan"))
+RUN_START_DEFAULT = RunStart(*(f.default for f in STEP_CONTROL[:len(RunStart._fields)]))
 
 
 #: Film model name -> code in the parameter matrix (0: no film; exuclear/_kernel/layout.hpp ``FilmCode``).

@@ -26,7 +26,7 @@ from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
 from .arguments import check_system
 from .bodies import joint_contact_period, unread_masses
 from .diagnostics import check_model, started_aligned, tilt_note
-from .registry import joints_of, label
+from .registry import joints_of
 
 if TYPE_CHECKING:
     from .handle import ClearanceJointHandle
@@ -258,12 +258,6 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     aligned = [started_aligned(mbs, h) for h in joints]  # read before the run changes the state
     settings = _with_step(mbs, settings)
     if settings.explicit:
-        followed = [label(h) for h in joints if h.followNumber is not None]
-        if followed:  # the mode's condition is a constraint the user did not add: name its joint
-            raise ValueError(
-                f"method {settings.method!r} is explicit and Exudyn's explicit solvers cannot take constraints, but "
-                f"clearance joint {', '.join(followed)} follows its contacts with one (contact_mode='follow'); use "
-                "'generalized-alpha', or contact_mode='compliant' for an explicit run")
         constrained = _constraint_objects(mbs)
         if constrained:
             raise ValueError(

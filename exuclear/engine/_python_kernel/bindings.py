@@ -4,15 +4,12 @@ torque connector's.  The compiled kernel's ``bindings.cpp``."""
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from typing import Any
 
-from .following import FollowState
 from .joint_state import DIVERGED
 from .kinematics import finish_loads, finite
-from .laws import ContactResponse
 from .layout import read
-from .step_control import REDO_STEP_ERROR, STEP_SLACK, JointStepControl
+from .step_control import REDO_STEP_ERROR, JointStepControl
 
 
 class JointKernel(JointStepControl):
@@ -21,34 +18,15 @@ class JointKernel(JointStepControl):
     (:class:`~.step_control.JointStepControl`); the package docstring says which history an
     evaluation uses."""
 
-    #: The contact-following mode (:mod:`exuclear.engine.following`), None where the joint is compliant only.
-    follow: FollowState | None = None
-
     def force_torque(self, mbs: Any, t: float, item: int, displacement: Any, rotation: Any, velocity: Any,
                      angular_velocity: Any, stiffness: Any, damping: Any, rot0: Any, rot1: Any, offset: Any) -> list:
         """``springForceTorqueUserFunction`` of the joint's connector: ``[F; T]`` in J0, F the
         force on the bearing, T minus the journal's moment about its marker point
         (docs/physics.md eqs. (41)-(45), (54); the planar eqs. (24)-(26))."""
-        follow = self.follow
-        if follow is not None and follow.active and not self.contacts[0].friction.active \
-                and t >= self.previous[0].time:  # the condition holds a frictionless contact: no load
-            follow.condition.fit(mbs, t)
-            self.torque_correction = (0.0, 0.0, 0.0)
-            return [0.0] * 6
         p, u, kins = self.joint_kinematics(displacement, rotation, velocity, angular_velocity,
                                            read(stiffness, "bearing_motion") != 0.0, t)
-        if follow is not None and (not self.started or t < self.previous[0].time):
-            follow.restart(mbs)  # a new run: compliant from its initial state
         history = self.history_for(kins, t, u, p[2])
         loads = [0.0] * 9
-        if follow is not None and follow.active:  # the constraint holds the contact: friction from its multiplier
-            follow.condition.fit(mbs, t)
-            kin, h, c = kins[0], history[0], self.contacts[0]
-            lam = follow.friction_force(mbs)
-            f_t = c.friction.coefficient(kin.v_t) * lam if lam > 0.0 else 0.0
-            c.add_loads(loads, u, kin, ContactResponse(0.0, f_t, h.v0))
-            self.torque_correction = (loads[6], loads[7], loads[8])
-            return loads[:6]
         for kin, h, c in zip(kins, history, self.contacts):
             if kin.delta <= 0.0:
                 continue
@@ -95,23 +73,10 @@ class JointKernel(JointStepControl):
         base = self.current if advance else self.previous  # a repeated step starts again from its start
         if not all(finite(k) for k in kins):
             self._fail(DIVERGED, t)
-        if impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK) and self._impact_begins(kins, base):
-            self.steer_jacobian(math.inf)  # a step of another length: a Jacobian for it
-            return [REDO_STEP_ERROR, impact_step, *data]
-        follow = self.follow
-        rate_limit = read(stiffness, "rate_limit")
-        if follow is not None and follow.active:  # the constraint sets the normal rate: no rate criterion
-            rate_limit = 0.0
-            redo = follow.release_step(mbs, t - base[0].time, base[0].time, self.control.can_shorten) \
-                or follow.hold_step(kins[0].delta, t - base[0].time, base[0].time, self.control.can_shorten,
-                                    self.control.min_step)
-            redo = redo or self.held_cap(t - base[0].time, impact_step)  # held by the condition: capped too
-            if redo > 0.0:
-                self.steer_jacobian(math.inf)
-                return [REDO_STEP_ERROR, redo, *data]
-        redo = self.step_control(kins, base, t, max_penetration, rate_limit, impact_step)
+        redo = self.impact_redo(kins, base, t, impact_step) \
+            or self.step_control(kins, base, t, max_penetration, read(stiffness, "rate_limit"), impact_step)
         if redo > 0.0:
-            self.steer_jacobian(math.inf)
+            self.steer_jacobian(math.inf)  # a step of another length: a Jacobian for it
             return [REDO_STEP_ERROR, redo, *data]
         states = self._accept_all(base, kins, t)
         if self.wear is not None:
@@ -124,18 +89,6 @@ class JointKernel(JointStepControl):
         self.current = states
         h = t - base[0].time
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
-        if follow is not None:
-            was = follow.active
-            follow.onset_rate = states[0].v0
-            turn = math.atan2(base[0].ecc_x * states[0].ecc_y - base[0].ecc_y * states[0].ecc_x,
-                              base[0].ecc_x * states[0].ecc_x + base[0].ecc_y * states[0].ecc_y)
-            follow.after_step(mbs, t, h, states[0].delta, base[0].delta_dot, states[0].delta_dot, states[0].in_contact,
-                              states[0].onset_time, states[0].normal_force, self.control.impact_mass, turn,
-                              follow.sticking(self.contacts[0].friction, states[0].slip_velocity))
-            switched = switched or follow.active != was
-            if was and follow.active:  # a followed step: the normal force is the constraint's (two-step mean)
-                states = (replace(states[0], normal_force=follow.multiplier), *states[1:])
-                self.current = states
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
         conformal = self.in_worn_contact(states)
         self.steer_jacobian(math.inf if switched else h, conformal)

@@ -26,7 +26,7 @@ from .kinematics import (
     slice_centres,
     slice_kinematics,
 )
-from .layout import RunStart
+from .layout import STEP_CONTROL, RunStart
 from .wear import CONFORMAL_DEPTH, WearState
 
 DIVERGED = "the state became non-finite (NaN or inf); the integration diverged"
@@ -37,40 +37,19 @@ class KernelFailure(RuntimeError):
 
 
 class StepControl:
-    """What the joint's own step control did in the last run (the compiled kernel's
-    ``StepControl``): whether the solver can shorten a step (from the run-start callback),
-    the steps the joint rejected, and those it could not resolve (read by the handle, which
-    says so in an :class:`~exuclear.exceptions.AccuracyWarning`)."""
+    """What the joint's own step control holds through a run (the compiled kernel's
+    ``StepControl``): the fields of :data:`~exuclear.engine.layout.STEP_CONTROL` at their
+    defaults, the run-start record's set by :meth:`JointState.start_run`; the handle reads the
+    steps the joint rejected and those it could not resolve, and says so in an
+    :class:`~exuclear.exceptions.AccuracyWarning`."""
 
     def __init__(self, runs: int = 0) -> None:
-        self.can_shorten, self.min_step, self.label, self.runs = True, 0.0, "", runs
-        self.rate = True  # False: an explicit solver's error control sets the step (no rate criterion)
-        self.group_size = 1  # the clearance joints of the joint's system (from the run-start callback)
-        self.rate_scale = 1.0  # the factor on rate_limit for this run (a convergence check's tighter run: < 1)
-        self.growth_cap = math.inf  # the longest step free flight may grow to [s] (steering.GROWTH_CONTACT_PERIODS)
-        self.contact_cap = math.inf  # the longest step a held contact may take [s] (steering.HELD_CONTACT_PERIODS)
-        self.jacobian_step = math.inf  # the step above which the joint asks for a Jacobian per step [s] (newton.py)
-        self.jacobian_on = False  # whether it asks now
-        self.separation_step = math.inf  # a contact that ends in a longer step is not resolved [s] (handle.py)
-        self.impact_mass = math.nan  # the effective mass of the joint's impacts [kg] (nan: unknown)
-        self.separations = 0  # contacts that ended in the run
-        self.long_separations = 0  # ... in a step longer than separation_step: maybe numerical chatter
-        self.last_ended = self.last_long = 0  # what the last accepted step added (taken back if it is redone)
-        self.rejected = 0
-        self.unresolved, self.unresolved_time, self.unresolved_step = 0, 0.0, 0.0
-        self.unresolved_advice = math.inf
-        self.held_long, self.held_time, self.held_step = 0, 0.0, 0.0  # held contacts through steps over contact_cap
-        self.over_limit, self.over_time, self.over_step, self.deepest = 0, 0.0, 0.0, 0.0
-        self.last_time, self.last_step = -math.inf, 0.0  # the last rejected step
-        self.retry_start, self.retries = -math.inf, 0
+        for field in STEP_CONTROL:
+            setattr(self, field.name, field.default)
+        self.runs = runs
 
     def as_dict(self) -> dict[str, Any]:
-        return {k: getattr(self, k) for k in (
-            "runs", "can_shorten", "min_step", "rate", "label", "group_size", "rate_scale", "growth_cap",
-            "contact_cap", "jacobian_step", "jacobian_on", "separation_step", "impact_mass", "separations",
-            "long_separations", "rejected", "unresolved", "unresolved_time", "unresolved_step", "unresolved_advice",
-            "held_long", "held_time", "held_step", "over_limit", "over_time", "over_step", "deepest")}
-
+        return {field.name: getattr(self, field.name) for field in STEP_CONTROL}
 
 
 class JointState:

@@ -1,6 +1,7 @@
-"""The joint's own step control: a step in which a contact begins too early, the penetration
-rate changes too much or the penetration exceeds the limit is redone shorter
-(:meth:`JointStepControl.step_control`); free flight lets the solver's next step grow
+"""The joint's own step control: a step longer than the joint's ``impact_step`` in which an
+impact begins is redone at it (:meth:`JointStepControl.impact_redo`); a step in which a contact
+begins too early, the penetration rate changes too much or the penetration exceeds the limit
+is redone shorter (:meth:`JointStepControl.step_control`); free flight lets the solver's next step grow
 (:meth:`JointStepControl.step_growth`, over a system's step group); the contacts that ended in
 too long a step are counted.  The compiled kernel's ``step_control.hpp``."""
 from __future__ import annotations
@@ -134,14 +135,18 @@ class JointStepControl(JointState):
             except Exception:  # never end a run for a Jacobian: the setting stays as it was
                 pass
 
-    def _impact_begins(self, kins: list[Kinematics], base: tuple[ContactState, ...]) -> bool:
-        """Whether an impact begins in the step from ``base``, which an ``impact_step`` then
-        redoes: a contact begins in it, or it is the run's first step and the run begins in
-        an impact (``|v0| > v_min``)."""
-        start = base[0].time == self.initial[0].time
+    def impact_redo(self, kins: list[Kinematics], base: tuple[ContactState, ...], t: float,
+                    impact_step: float) -> float:
+        """Where the joint has an ``impact_step`` and the step ``[base.time, t]`` is longer, the
+        step to redo it with (``impact_step``) when an impact begins in it: a contact begins, or
+        it is the run's first step and the run begins in an impact (``|v0| > v_min``); else 0."""
+        if not (impact_step > 0.0 and t - base[0].time > impact_step * (1.0 + STEP_SLACK)):
+            return 0.0
+        start = base[0].time == self.initial[0].time  # the step from the run's initial state
         v_min = self._joint.law.v_min
-        return any((not b.in_contact and k.delta > 0.0) or (start and b.in_contact and abs(b.v0) > v_min)
-                   for k, b in zip(kins, base))
+        begins = any((not b.in_contact and k.delta > 0.0) or (start and b.in_contact and abs(b.v0) > v_min)
+                     for k, b in zip(kins, base))
+        return impact_step if begins else 0.0
 
     def step_growth(self, before: tuple[ContactState, ...] | None, base: tuple[ContactState, ...],
                     states: tuple[ContactState, ...], t: float, kappa: float) -> float:
@@ -256,7 +261,7 @@ class JointStepControl(JointState):
                 share = b.delta / (b.delta - kin.delta)  # the onset's fraction of the step
                 if 1.0 - share > ONSET_TAIL and share > ONSET_FLOOR:
                     h_rec = min(h_rec, onset_step(h, share))
-            if b.in_contact and kin.delta > 0.0 and self._over_cap(h):
+            if b.in_contact and kin.delta > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
                 h_rec = min(h_rec, c.contact_cap)  # a held contact: at most HELD_CONTACT_PERIODS
                 held_over = True
             change = abs(kin.delta_dot - b.delta_dot)
@@ -291,22 +296,6 @@ class JointStepControl(JointState):
             if c.unresolved == 1:
                 self.tell()  # with its advice
         return 0.0
-
-    def held_cap(self, h: float, impact_step: float = 0.0) -> float:
-        """The step to redo a step ``h`` with through a contact the following mode's condition
-        holds (:mod:`exuclear.engine.following`, where :meth:`step_control` does not run): the
-        run-start callback's ``contact_cap`` where ``h`` exceeds it and the solver can shorten
-        steps, else 0.  Measured on the zoo's beam pendulum over its 5 s against its run at
-        256 times the steps (python -m validation.contact_follow_long): the following run
-        3.81 c off with it, 11.6 c without (the compliant run under the cap: 3.69 c)."""
-        c = self.control
-        if c.can_shorten and c.rate and not impact_step > 0.0 and self._over_cap(h):
-            return c.contact_cap
-        return 0.0
-
-    def _over_cap(self, h: float) -> bool:
-        """Whether a step ``h`` through a held contact exceeds the run's ``contact_cap``."""
-        return h > self.control.contact_cap * (1.0 + STEP_SLACK)
 
     def _resolves_impact(self, h: float, v0: float) -> bool:
         """Whether a step ``h`` resolves an impact at ``v0``: at most the impact's duration
