@@ -17,9 +17,7 @@ so that a number quoted elsewhere names the script that gives it.
   Jacobian and the Newton iterations cost;
 - ``spectral_radius``, ``jacobian_steps``: the generalized-alpha method's damping and the
   joint's Jacobian per step, against cost;
-- ``fine_steps``: accuracy at the user's own steps against the SciPy reference;
-- ``compiled_condition``: whether Exudyn calls a compiled condition of an
-  ``ObjectConnectorCoordinateVector`` without Python (a compiled contact-following mode's route).
+- ``fine_steps``: accuracy at the user's own steps against the SciPy reference.
 """
 from __future__ import annotations
 

@@ -13,16 +13,12 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--models", default="", help="comma-separated model names (default: all registered)")
     ap.add_argument("--end-time", type=float, default=None, help="end time [s] for every model (default: the examples')")
     ap.add_argument("--no-convergence", action="store_true", help="skip the convergence check of the full run")
-    ap.add_argument("--follow", action="store_true",
-                    help="also the contact-following mode (prototype; on the compiled kernel where it covers the "
-                         "joint, else on the Python kernel): wall time against the ideal model, steps, Newton "
-                         "iterations per step, engagements, probe against the compliant run [c]")
     ap.add_argument("--out", type=Path, default=Path("results/exudyn_examples"), help="output folder")
     args = ap.parse_args(argv)
     names = [n.strip() for n in args.models.split(",") if n.strip()]
     try:
         table = run_zoo(names, quick=args.quick, convergence=not args.no_convergence, end_time=args.end_time,
-                        out=args.out, follow=args.follow)
+                        out=args.out)
     except ValueError as err:  # an unknown model name
         ap.error(str(err))
     print(show(table))

@@ -267,37 +267,9 @@ def _newton_per_step(model: ZooModel) -> float:
     return it.newtonStepsCount / max(it.currentStepIndex - 1, 1)
 
 
-def _follow(entry: Entry, end_time: float | None, repeats: int, limit: float, ideal_run: _Run, own: _Run,
-            own_model: ZooModel) -> dict[str, Any]:
-    """The following mode's columns (``--follow``, issue 34's prototype, on the default kernel:
-    the compiled one where it can follow the joint, between rigid bodies, else
-    the Python one; the switches column names it): its wall time against the ideal model's,
-    steps, Newton iterations per step, engagements, and its probe's difference from the
-    compliant run at the same settings [c]."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", exuclear.AccuracyWarning)  # the prototype's warning, said once per joint
-        try:
-            run, model = _median_wall(lambda: entry(True, end_time, contact_mode="follow"), repeats, limit)
-        except ValueError as err:  # a joint the prototype does not cover (a film, wear, slices)
-            return {"follow_reached": False, "follow_message": f"refused: {_first_line(err)}"}
-    counts = model.joint.follow_counts()
-    fields: dict[str, Any] = {
-        "follow_reached": run.reached, "follow_wall": run.wall, "follow_steps": run.steps,
-        "follow_newton": _newton_per_step(model), "follow_message": run.message,
-        "follow_switches": f"{counts['on']}/{counts['off']}" + (f" ({counts['lost']} lost)" if counts["lost"] else "")
-                           + (", compiled" if model.joint.backend == "compiled" else ", Python"),
-        "follow_ratio": run.wall / ideal_run.wall if ideal_run.reached and run.reached else math.nan}
-    if run.reached and own.reached:
-        fields["follow_probe_c"] = float(np.abs(np.asarray(model.probe(model.mbs), dtype=float)
-                                                - np.asarray(own_model.probe(own_model.mbs), dtype=float)).max()
-                                         / model.clearance)
-    return fields
-
-
-def run_model(name: str, quick: bool = False, convergence: bool = True, end_time: float | None = None,
-              follow: bool = False) -> dict[str, Any]:
-    """Run one registered model (module docstring); every failure becomes a field of the row.
-    ``follow``: also the following mode's columns (:func:`_follow`)."""
+def run_model(name: str, quick: bool = False, convergence: bool = True,
+              end_time: float | None = None) -> dict[str, Any]:
+    """Run one registered model (module docstring); every failure becomes a field of the row."""
     entry = REGISTRY[name]
     repeats = 1 if quick else 3
     limit = QUICK_TIME_LIMIT if quick else TIME_LIMIT
@@ -320,8 +292,6 @@ def run_model(name: str, quick: bool = False, convergence: bool = True, end_time
             row["probe_diff"] = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))
         row["own_ratio"] = own.wall / ideal_run.wall if ideal_run.reached and own.reached else math.nan
         row["own_newton"] = _newton_per_step(model)
-        if follow:
-            row.update(_follow(entry, end_time, repeats, limit, ideal_run, own, own_model))
 
         model = entry(True, end_time)
         sim, result = _solve_simulate(model, limit)

@@ -17,16 +17,13 @@ from ._runs import CONVERGED_PENETRATION, PENETRATION_WRONG, QUICK_TIME_LIMIT, R
 #: Columns of the printed table (all columns go to zoo.csv).
 TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_pen_c",
                  "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
-                 "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence", "own_newton", "follow_ratio",
-                 "follow_steps", "follow_newton", "follow_switches", "follow_probe_c"]
+                 "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence", "own_newton"]
 
 
 def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
-            end_time: float | None = None, out: Path | None = None, progress: bool = True,
-            follow: bool = False) -> Any:
+            end_time: float | None = None, out: Path | None = None, progress: bool = True) -> Any:
     """Run the models (all registered ones by default); returns the table (pandas
-    DataFrame) and writes ``zoo.csv`` and ``report.md`` into ``out`` if given.  ``follow``:
-    also the following mode's columns (issue 34's prototype, :func:`._runs._follow`)."""
+    DataFrame) and writes ``zoo.csv`` and ``report.md`` into ``out`` if given."""
     import pandas as pd
 
     load_models()
@@ -42,7 +39,7 @@ def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bo
         if progress:
             print(f"[zoo] {name} ...", flush=True)
         t0 = time.perf_counter()
-        rows.append(run_model(name, quick, convergence, end_time, follow))
+        rows.append(run_model(name, quick, convergence, end_time))
         if progress:
             print(f"[zoo] {name}: {rows[-1].get('verdict')} ({time.perf_counter() - t0:.0f} s)", flush=True)
     for name in IMPORT_ERRORS:
