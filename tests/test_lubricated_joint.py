@@ -395,7 +395,7 @@ def test_compiled_equals_python_on_a_lubricated_impact(model):
     # in closed form (short) and by the same Halley iterations (long) in both kernels: 1e-12
     # relative on the force).  Over 2000
     # steps of a contact the runs agree to Newton's relative tolerance (1e-8, Exudyn's
-    # default): the joint's finite-difference increment of 1e-9 (exuclear.engine.newton)
+    # default): the joint's finite-difference increment of 1e-9 (exuclear.engine.steering)
     # turns the kernels' round-off into Jacobians that differ at 1e-7, so Newton stops at
     # iterates that differ within its tolerance (measured 1.4e-9 relative with an increment
     # of 1e-10)

@@ -3,13 +3,14 @@
 A maintainer follows ``validation/cross_check/common.py``, ``python -m validation.cost
 film`` or "docs/physics.md section 6.2" from a comment; a file that moved or a section that
 was renumbered leaves such a mention dangling.  These tests read every ``.py`` and ``.md``
-file of the repository and resolve:
+file of the repository (the tests' comments among them) and the compiled kernel's C++
+sources (``.hpp``, ``.cpp``: their comments name the Python they mirror), and resolve:
 
 - path mentions under ``docs/``, ``validation/``, ``exuclear/`` and ``models/`` (a file or
   a folder of the repository, ``*`` as a wildcard);
 - ``python -m`` commands under those packages (a module or package that Python finds),
-  and dotted names under ``validation`` and ``exuclear`` (a module, or a name the package
-  exports);
+  and dotted names under ``validation`` and ``exuclear``, resolved part by part (each a
+  module, or a name of what precedes it: ``exuclear.engine.steering.HELD_CONTACT_PERIODS``);
 - "physics.md section N" / "sections N and M" and bare "section N.M" against the headings
   of docs/physics.md (a bare "section N.M" of the paper, "the paper's section 5.2", is the
   paper's, not physics.md's, and is skipped);
@@ -23,6 +24,7 @@ from __future__ import annotations
 import importlib.util
 import pathlib
 import re
+import types
 
 import pytest
 
@@ -31,6 +33,8 @@ PHYSICS = ROOT / "docs" / "physics.md"
 
 #: Folders that hold no source of the project (virtual environment, build and run outputs).
 SKIP_DIRS = {".git", ".venv", ".ruff_cache", ".pytest_cache", "__pycache__", "build", "dist", "results", "solution"}
+#: What is read: Python (code, docstrings, comments), Markdown, and the compiled kernel's C++.
+SOURCE_SUFFIXES = (".py", ".md", ".hpp", ".cpp")
 #: Files not read: this file quotes dangling examples.
 SKIP_FILES = {"tests/test_references.py"}
 
@@ -56,7 +60,7 @@ def _sources() -> list[pathlib.Path]:
     out = []
     for path in sorted(ROOT.rglob("*")):
         rel = path.relative_to(ROOT)
-        if path.suffix not in (".py", ".md") or not path.is_file():
+        if path.suffix not in SOURCE_SUFFIXES or not path.is_file():
             continue
         if any(part in SKIP_DIRS or part.endswith(".egg-info") for part in rel.parts):
             continue
@@ -142,9 +146,16 @@ def _dangling(check) -> list[str]:
     return out
 
 
+#: A path at a commit, ``4ed4aac:exuclear/engine/following.py`` (what ``git show`` reads): the
+#: code that a design page records after it left the tree.
+AT_COMMIT = re.compile(r"\b[0-9a-f]{7,40}:$")
+
+
 def test_path_mentions_resolve():
     def check(path, text):
         for m in PATH.finditer(text):
+            if AT_COMMIT.search(text[max(0, m.start(1) - 41):m.start(1)]):
+                continue
             if not _path_exists(m.group(1), path):
                 yield m.start(1), m.group(1), "no such file or folder"
 
@@ -168,14 +179,29 @@ OPTIONAL_MODULES = {"exuclear._ckernel"}
 
 
 def _dotted_exists(name: str) -> bool:
-    """The first name under the package is a module of it, or an attribute of it
-    (``exuclear.SolverSettings``); what follows may be a module or an attribute."""
-    root, first = name.split(".")[:2]
-    if f"{root}.{first}" in OPTIONAL_MODULES:
+    """Each part after the package is a module of what precedes it, or a name of it (an
+    attribute, or a dataclass field or annotation without a default): ``exuclear.engine.newton``
+    names no module of ``exuclear.engine``; ``exuclear.SolverSettings.end_time`` is a field.
+    A module is imported only where a further part must be found in it."""
+    parts = name.split(".")
+    if ".".join(parts[:2]) in OPTIONAL_MODULES:
         return True
-    if importlib.util.find_spec(f"{root}.{first}") is not None:
-        return True
-    return hasattr(importlib.import_module(root), first)
+    obj: object = importlib.import_module(parts[0])
+    for k, part in enumerate(parts[1:], start=2):
+        dotted = ".".join(parts[:k])
+        spec = None
+        if isinstance(obj, types.ModuleType) and hasattr(obj, "__path__"):
+            spec = importlib.util.find_spec(dotted)
+        if spec is not None:
+            if k == len(parts):
+                return True
+            obj = importlib.import_module(dotted)
+            continue
+        if hasattr(obj, part):
+            obj = getattr(obj, part)
+            continue
+        return part in getattr(obj, "__dataclass_fields__", {}) or part in getattr(obj, "__annotations__", {})
+    return True
 
 
 def test_dotted_module_mentions_resolve():
@@ -239,6 +265,9 @@ def test_the_checks_catch_what_they_are_for():
     assert "5.2" not in physics_sections()
     assert NOT_PHYSICS.search("the paper's example 2, its ") and NOT_PHYSICS.search("the paper, ")
     assert not _dotted_exists("validation.benchmark") and _dotted_exists("validation.cost.benchmark")
+    assert not _dotted_exists("exuclear.engine.newton") and _dotted_exists("exuclear.engine.steering.steer_newton")
+    assert any(p.suffix == ".hpp" for p in SOURCES)  # the kernel's comments are read
+    assert AT_COMMIT.search("git show 4ed4aac:") and not AT_COMMIT.search("the file docs:")
     assert PLACEHOLDER.search("exuclear.models.NAME")
     assert slug("### 2.3 The onset velocity `v0`, its floor and its interpolation"[4:]) == \
         "23-the-onset-velocity-v0-its-floor-and-its-interpolation"

@@ -55,7 +55,7 @@ def test_resting_pendulum_runs_with_the_default_newton_tolerances(step):
 
 def test_tighter_newton_tolerances_still_fail_and_the_message_names_them():
     # an absolute tolerance below the contact's round-off floor, set by the user, is kept
-    # (Exudyn's default 1e-10 would be raised by the joint: exuclear.engine.newton)
+    # (Exudyn's default 1e-10 would be raised by the joint: exuclear.engine.steering)
     mbs, handle = pendulum()
     settings = exuclear.SolverSettings(end_time=0.5, method="generalized-alpha", step=1e-4, newton_rtol=1e-8,
                                        newton_atol=1e-11)
@@ -87,7 +87,7 @@ def test_newton_contractivity_is_mapped_checked_and_only_lowered_by_the_joint():
             exuclear.SolverSettings(end_time=1, method="generalized-alpha", newton_contractivity=bad)
     with pytest.raises(ValueError, match="applies to the implicit methods"):
         exuclear.SolverSettings(end_time=1, method="dopri5", newton_contractivity=0.1)
-    # the user's own smaller value survives the joint's Newton steering (engine/newton.py)
+    # the user's own smaller value survives the joint's Newton steering (engine/steering.py)
     mbs, handle = pendulum()
     ss = exu.SimulationSettings()
     ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 0.01, 10

@@ -396,7 +396,7 @@ def _tilt_run(double, end_time):
 def test_an_aligned_journal_under_a_varying_in_plane_load_tilts_and_the_run_says_so():
     # docs/physics.md section 9.8: the elbow of issue 20's double pendulum, started exactly
     # aligned, tilts from round-off (2e-14 rad at 0.01 s; 1e-17 with Exudyn's default Jacobian
-    # increment, exuclear.engine.newton) to 0.16 c/L by 0.24 s, growing at some 30 to 60 per
+    # increment, exuclear.engine.steering) to 0.16 c/L by 0.24 s, growing at some 30 to 60 per
     # second whatever the step, integrator, kernel or number of slices
     result, t, tilt = _tilt_run(True, 0.5)
     scale = C / ELBOW_L

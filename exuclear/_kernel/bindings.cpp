@@ -281,7 +281,7 @@ PYBIND11_MODULE(_ckernel, m) {
         return impact_duration(decode(parameters), mass, speed);
     }, "timescales.impact_duration of the joint whose parameter matrix is given (a test hook)");
     m.def("time_force", [](M6 parameters, V3 displacement, V3 velocity, V3 angularVelocity, double t, long n) {
-        // seconds per force_torque evaluation, n evaluations at one state (validation/film_cost.py)
+        // seconds per force_torque evaluation, n evaluations at one state (validation/cost/film.py)
         V3 rotation{0.0, 0.0, 0.0};
         volatile double sink = 0.0;  // keeps the evaluations from being optimised away
         auto start = std::chrono::steady_clock::now();

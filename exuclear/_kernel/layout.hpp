@@ -18,7 +18,7 @@
 class MainSystem;  // Exudyn's; only its name enters the signatures, it is never dereferenced
 
 // Lets pybind11 bind functions that take Exudyn's MainSystem, which this module does not
-// know (the kernel's bindings.cpp, and the probe module of validation/cost/compiled_condition.py).
+// know (the kernel's bindings.cpp).
 // A call from Python (a self-test's fallback check) passes any object; the functions never
 // touch it.
 namespace pybind11 {

@@ -20,94 +20,37 @@ that the joint sets or asks of the solver, read by its kernel through the run-st
 
 Newton's settings
 -----------------
-Exudyn differentiates the joint's connector numerically (an
-``ObjectConnectorRigidBodySpringDamper`` with a user function offers no analytic Jacobian:
-its ``GetAvailableJacobians`` lists ``ODE2_ODE2`` and ``ODE2_ODE2_t`` without the
-``_function`` flags, so ``CSystem::JacobianODE2RHS`` perturbs each of its coordinates).  The
-forward-difference increment is ``relativeEpsilon * max(minimumCoordinateSize, |q|)``:
-with Exudyn's default ``relativeEpsilon = 1e-7`` that is 1e-7 m on a coordinate of 1 m,
-the size of a resting journal's penetration (0.2 um on the zoo's double pendulum).  A
-contact force ``K delta^n`` differenced over an increment ``h`` has the relative slope error
-``(n - 1) h / (2 delta)``, 12 % there, and Newton converges only linearly: 8 iterations
-per step in contact where Exudyn's step recovery (``adaptiveStepRecoveryIterations = 7``)
-needs 7 at most, so a step cut at an impact never grows back.
+Exudyn differentiates the joint's connector numerically (a connector with a user function
+offers no analytic Jacobian), and its Newton settings are made for mechanisms, not for a
+contact whose stiffness is far above the model's.  For the run it starts (the solver's own
+copy of the settings; the user's ``SimulationSettings`` are not changed), the joint sets
 
-For the run it starts (the solver's own copy of the settings; the user's
-``SimulationSettings`` are not changed), the joint therefore sets
-
-- ``relativeEpsilon`` to at most :data:`RELATIVE_EPSILON`: an increment of 1e-9 m per metre
-  of coordinate, a slope error of 0.25 % on a 0.2 um penetration at 1 m, and well above
-  the round-off of the difference quotient (relative error ~1e-16 / 1e-9 = 1e-7; at 1e-10
-  the Newton iterates carry that round-off out of the joint's plane, and an aligned spatial
-  journal's tilt, physics.md section 9.8, then grows from 7e-12 rad, not from 1e-17);
+- ``relativeEpsilon`` to at most :data:`RELATIVE_EPSILON`: Exudyn's increment of 1e-7 per
+  metre of coordinate is the size of a resting journal's penetration, and the force's slope
+  differenced over it is wrong by some 10 %, so Newton converges only linearly;
 - ``modifiedNewtonJacUpdatePerStep`` to True while the step ``h`` is longer than
   :data:`JACOBIAN_PER_STEP_ABOVE` times the joint's contact period ``T_c``
   (:func:`exuclear.timescales.contact_period`, under the joint's weight), where the user
-  runs Exudyn's modified Newton (its default) without a Jacobian per step and with a largest
-  step above that.  Newton's matrix holds the mass term ``M / (beta h^2)`` and the contact
-  stiffness ``k = M omega_c^2``; their ratio ``beta (omega_c h)^2 = beta (2 pi h / T_c)^2``
-  is 2.5 at ``h = T_c / 2`` (``beta ~ 1/4``) and 10 at ``h = T_c``.  There a Jacobian of
-  another contact state, or of free flight, is wrong by that much and the modified Newton
-  stalls (contraction ~0.4 per iteration, 8 to 11 iterations per step, read from Exudyn's
-  verbose log of the zoo's double pendulum at ``h = 2 T_c``); one Jacobian at the start of
-  each step holds the present stiffness.  Below, stale Jacobians still converge (6
-  iterations per step on the zoo's ANCF pendulum at ``h = 0.4 T_c``) and the extra
-  Jacobians cost more than they save (7.1 s against 5.2 s there).  The joint's kernel
-  switches it with the steps (:func:`vote_jacobian`; Exudyn reads the setting at the start
-  of each step): on after a step it accepts longer than ``T_c / 2``, off after one at most
-  that long, and on for the step after one in which a contact opened or closed (its
-  stiffness came or went) and after one it redoes or lets grow (a step of another length,
-  whose mass term an older Jacobian does not hold: without these asks, and without a
-  Jacobian per step at the run's first step, the beam pendulum's steps stay at 1e-7 s after
-  its impacts, 120831 steps instead of 27213).  A sliding contact that the
-  joint's rate criterion holds at steps below ``T_c / 2`` (friction) then runs on the
-  Jacobian it has.  Measured against the same rule held for the whole run
-  (``python -m validation.cost jacobian_steps``, sums over the restitutions 0.89, 0.9 and 0.91, own
-  settings / ``exuclear.simulate``): rigid-body tutorial with friction 0.69 / 0.71 of the
-  wall time, double pendulum with friction 0.78 / 0.70, four-bar 0.88 / 0.85, the piston
-  engine 0.91 / 1.19 (a chaotic model whose contact chatters numerically with either rule:
-  its 4x refined run has some 100 to 150 impacts, its runs 151 to 975).  The results move
-  within what these models' chaos moves them by: over seven restitutions 0.88 to 0.92 (its
-  ``--convergence``), the distance of the rigid-body tutorial with friction's |e|/c spectrum
-  to its 4x refined run's is 0.08 to 0.28 with the rule held for the whole run (median
-  0.155) and 0.12 to 0.28 with it switched with the steps (median 0.158, smaller in 4 of
-  the 7 pairs), the four-bar's 0.010 to 0.057 and 0.013 to 0.070 (all within the check's 0.1).
-  With several joints, the Jacobian comes per step while any of them asks for it.
-
-- ``modifiedNewtonContractivity`` to at most :data:`CONTRACTIVITY`: Exudyn's modified
-  Newton keeps its Jacobian while each iteration reduces the residual by at least this
-  factor (Exudyn's default 0.5).  In contact the force's slope depends strongly on the
-  state (the damping term ``D delta_dot / v_min`` of a settled contact multiplies the
-  stiffness, eq. (9)), so an iteration with a Jacobian a few iterates old contracts by
-  only 0.2 to 0.35 (read from Exudyn's verbose log of the zoo's beam pendulum and double
-  pendulum), and Exudyn iterates on until its limit of 8 before it takes a new one: 9 to
-  11 iterations per step.  At 0.2 a fresh Jacobian comes after the third such iteration
-  (measured over 1 s of each zoo model, wall time: beam pendulum -24 %, double pendulum
-  with friction -32 %, ANCF pendulum -27 %, rigid-body tutorial with friction -16 %,
-  four-bar -5 %, the others within 3 %; the piston engine, whose run Exudyn's Newton
-  ended at 0.12 s, ran to its end).
-
+  runs Exudyn's modified Newton without a Jacobian per step: the contact stiffness over
+  Newton's mass term ``M / (beta h^2)`` is ``beta (2 pi h / T_c)^2``, 2.5 at ``h = T_c / 2``,
+  and a Jacobian of another contact state then stalls the iteration.  The joint's kernel
+  switches it with the steps (:func:`vote_jacobian`): on after a step it accepts longer
+  than ``T_c / 2``, off after a shorter one, and on for the step after one in which a
+  contact opened or closed or that it redoes or lets grow (a step of another length, whose
+  mass term an older Jacobian does not hold).  With several joints, the Jacobian comes per
+  step while any of them asks for it;
+- ``modifiedNewtonContractivity`` to at most :data:`CONTRACTIVITY`: in contact the force's
+  slope changes fast with the state, an older Jacobian contracts the residual by only 0.2
+  to 0.35 per iteration, and at Exudyn's 0.5 Newton iterates to its limit before it takes
+  a new one;
 - ``absoluteTolerance`` to :data:`ABSOLUTE_TOLERANCE` where the user left Exudyn's default
-  (1e-10, :data:`EXUDYN_ABSOLUTE_TOLERANCE`): Exudyn's residual is one L2 norm over the
-  force residuals [N] and the constraint equations, and in contact its floor is the
-  contact's tangent stiffness times the round-off of the coordinates the penetration is
-  computed from.  Under the joint's weight that stiffness is 1e7 to 1.5e9 N/m on the zoo's
-  joints (reduced masses 5e-4 kg to 25 kg, ``exuclear.timescales.contact_stiffness``), times 2.2e-16 m
-  (a metre-sized coordinate's last bit) 2e-9 to 3e-7 N: above 1e-10, so a resting contact
-  can stall Newton where nothing is wrong (issue 15's pendulum, 1.9e8 N/m on coordinates
-  of 0.15 m, 3e-17 m: 5e-9 N; it stops at 0.37 s with 1e-9 and runs with 1e-8).  The joint
-  raises it to exuclear's own :data:`exuclear.settings.NEWTON_ATOL_DEFAULT`, which is no
-  looser because constraints would then be left unmet by the size of a contact's
-  penetration (its reasoning there).  An absolute tolerance the user set (any value other
-  than Exudyn's default) is kept: the joint's note on a run Exudyn stops then names it
-  (:func:`exuclear.engine.diagnostics.stopped_note`).  The relative tolerance is left as
-  set: Exudyn's default (1e-8) is exuclear's too, and a tighter one the user chose (the
-  zoo's slider-crank keeps its example's 1e-10) is the user's to loosen, which the same
-  note says.
+  (:data:`EXUDYN_ABSOLUTE_TOLERANCE`): in contact the residual's floor is the contact's
+  stiffness times the coordinates' round-off, above 1e-10 N.  A tolerance the user set is
+  kept, and the joint's note on a run Exudyn stops names it
+  (:func:`exuclear.engine.diagnostics.stopped_note`); the relative tolerance is left as set.
 
-Measured on the zoo (``validation/exudyn_examples``, own settings, plain
-``mbs.SolveDynamic``, see README).  ``joint.steer_newton = False`` leaves the solver as
-the user set it.
+docs/validation/step_control.md has the measurements behind each value.
+``joint.steer_newton = False`` leaves the solver as the user set it.
 """
 from __future__ import annotations
 
@@ -240,33 +183,17 @@ def solver_steps(mbs: exu.MainSystem) -> tuple[bool, float, str, bool]:
 
 
 #: A step grown in free flight lasts at most this many of the joint's contact periods (under
-#: its weight, exuclear.timescales): the contact that ends the flight starts from a step its
-#: rate criterion cuts to the contact's resolution in one or two attempts (a tenth each),
-#: where a longer one took more Newton solves at steps far too long.  Averages over three
-#: restitutions (0.89 to 0.91), zoo models: exuclear.simulate's double pendulum, whose
-#: largest step is 20 contact periods, 9964 -> 6162 steps; the own-settings runs, whose
-#: steps are at most 8 periods (but the beam pendulum's, 59), within the scatter that any
-#: change of a bounce gives these chaotic models (the piston engine: 4694 and 10472 steps
-#: at restitutions 0.90 and 0.91).
+#: its weight, exuclear.timescales): the contact that ends the flight then starts from a step
+#: its rate criterion cuts to the contact's resolution in one or two attempts
+#: (docs/validation/step_control.md).
 GROWTH_CONTACT_PERIODS = 10.0
 #: A step through which a contact is held (in contact at both its ends) lasts at most this
 #: many of the joint's contact periods (under its weight; divided like ``rate_limit`` in a
 #: convergence check's tighter run): the joint's step control redoes a longer one at this
 #: length.  At a step of many contact periods generalized-alpha neither resolves the held
-#: contact's stiff mode nor damps it much (a tenth per step at spectral radius 0.9), and the
-#: load's change between the step's ends sets it ringing.  Measured on the zoo's beam
-#: pendulum (its example's step is 59 contact periods; the joint's rate rule let held steps
-#: grow back to 15 periods and more) against its run at 64 times the steps, over its 5 s
-#: (``python -m validation.held_contact``): without a cap 519 c off, at 8, 6, 4, 3 and 2
-#: periods 23, 13, 5.7, 3.2 and 1.3 c, in about the same wall time (Newton's iterations per
-#: step fall from 7.8 to 6.2 at 3 periods as the steps grow shorter).  Below 3 periods the
-#: cap reaches the steps of the examples that rest on the wall at 2 contact periods (the
-#: zoo's 2D double pendulum: 14377 steps instead of 11069 at 2, ``python -m
-#: validation.held_contact --models double_pendulum_2d --caps inf,3,2 --reference 1``).  The piston engine (steps of
-#: 7.8 periods) is chaotic (a 1e-9 m/s kick moves its run at 64 times the steps by 4.6 c,
-#: ``python -m validation.contact_follow_long --models piston_engine``): its peak normal
-#: force, 37.2 N at 64 times the steps and 36.7 N kicked, is 35.5 N at 3 periods and 23.2 N
-#: without a cap, with 4737 steps against 3966.
+#: contact's stiff mode nor damps it much, and the load's change between the step's ends sets
+#: it ringing; shorter caps reach the steps of examples that rest on the wall at 2 contact
+#: periods (``python -m validation.held_contact``, docs/validation/step_control.md).
 HELD_CONTACT_PERIODS = 3.0
 
 

@@ -2,7 +2,7 @@
 
 Source problem: the zoo's models (``validation/exudyn_examples``).  Where a model's largest
 step exceeds half the joint's contact period, the joint asks Exudyn's modified Newton for a
-Jacobian at every step (``exuclear.engine.newton``); its kernel switches the ask with the
+Jacobian at every step (``exuclear.engine.steering``); its kernel switches the ask with the
 steps it accepts, redoes and grows.  The other rule holds the ask for the whole run.  This
 script runs both side by side, the held rule by leaving the ask as the run started it (the
 kernel's ``jacobian_per_step`` calls do nothing), over a set of restitutions (chaotic models move

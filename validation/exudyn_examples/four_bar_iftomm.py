@@ -32,7 +32,7 @@ short steps at its contacts and meets the same stall: with the example's setting
 stops at t = 0.7115 s (its steps cut to 1e-8 s, the residual stalled at 1.5e-6 of the
 force residual), and with an absolute Newton tolerance of 1e-8, 1e-6 or 1e-4 at 0.711 s to
 0.714 s, so the tolerance is not the cause; the joint's note says where and why
-(:func:`exuclear.engine.handle._stopped_note`).  Up to the change point the clearance
+(:func:`exuclear.engine.diagnostics.stopped_note`).  Up to the change point the clearance
 model follows the ideal one: the tip of the left crank differs from the ideal model's by
 at most a few clearances (``probe``).
 
