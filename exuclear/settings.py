@@ -27,22 +27,13 @@ RATE_LIMIT_DEFAULT = 0.1
 SPECTRAL_RADIUS_DEFAULT = 0.9
 
 #: Newton tolerances of the implicit methods, on the residual of the equations of motion.
-#: Exudyn's defaults (relative 1e-8, absolute 1e-10) are meant for smooth models: with a
-#: clearance joint in contact, the contact stiffness (1e8 N/m and more) times the round-off
-#: of the coordinates leaves a residual floor near 1e-8 of the initial residual, and Newton
-#: fails on a resting pendulum (issue 15: "relative error 1.01e-08"; tests/test_robust.py's
-#: pendulum at 1e-4 s steps stops at 0.37 s with an absolute 1e-9, runs with 1e-8).  Exudyn
-#: stops when either tolerance is met, so an absolute tolerance above that floor ends the
-#: iteration there.  It is not looser: Exudyn's residual is one L2 norm over the force
-#: residuals [N] and the constraint equations [m, rad], so an absolute 1e-6 would accept
-#: constraint violations of up to a micrometre, the size of a
-#: contact's penetration.  On the zoo's piston engine (``validation/exudyn_examples``, 15
-#: constraints) ``exuclear.simulate`` with it took 13695 steps with 1197 impacts and 111
-#: unresolved steps, against 4688 steps and 305 impacts with 1e-8 (the example's own
-#: settings, Exudyn's 1e-10: 4694 and 313).  The relative tolerance stays at Exudyn's 1e-8:
-#: loosened to 1e-6 it makes the drive constraint's multiplier (the driving moment) inexact,
-#: and the energy audit of the 1 um-clearance slider-crank misses by 2.2 % (1e-8: 0.09 %),
-#: while the paper's redundant run takes 24101 steps instead of 18257 (measured side by side).
+#: Exudyn's absolute 1e-10 is meant for smooth models: in contact the contact stiffness times
+#: the coordinates' round-off leaves a residual floor above it, and Newton fails on a resting
+#: pendulum; Exudyn stops when either tolerance is met, so an absolute tolerance above that
+#: floor ends the iteration there.  It is no looser, because Exudyn's residual is one norm over
+#: forces [N] and constraint equations [m, rad], and a looser one leaves constraints unmet by
+#: a contact's penetration.  The relative tolerance stays at Exudyn's 1e-8: a looser one makes
+#: a drive's multiplier inexact.  docs/validation/step_control.md has the measurements.
 NEWTON_RTOL_DEFAULT = 1e-8
 NEWTON_ATOL_DEFAULT = 1e-8
 

@@ -51,8 +51,8 @@ def penetration_at(law: ContactLaw, force: float) -> float:
     there the excess force is taken as ``+inf`` (above any force), which bisection,
     working with signs only, handles as it should.  Written here, not taken from
     :func:`scipy.optimize.bisect`: every joint's first run asks for it (the contact period
-    of :mod:`exuclear.engine.steering`), and importing ``scipy.optimize`` took 0.25 s, five
-    times the whole first run of the zoo's planar double pendulum over 1 s (measured).
+    of :mod:`exuclear.engine.steering`), and importing ``scipy.optimize`` costs more than a
+    small model's whole run.
     """
     if not force > 0.0:
         raise ValueError(f"`force` must be positive, got {force}")

@@ -21,42 +21,22 @@ namespace {
 // RUN_START_FIELDS are set from the run-start callback's record (layout.py RunStart, read by
 // name in start_run); STEP_COUNT_FIELDS are what the run did (read by the handle after the
 // run, which says in an AccuracyWarning what the joint could not resolve).  Each entry:
-// X(type, name, default).
-#define RUN_START_FIELDS(X)                                  \
-    X(bool, can_shorten, true)                               \
-    X(double, min_step, 0.0)                                 \
-    X(std::string, label, "")                                \
-    X(bool, rate, true)                                      \
-    X(int, group_size, 1)                                    \
-    X(double, rate_scale, 1.0)                               \
-    X(double, growth_cap, INF)                               \
-    X(double, contact_cap, INF)                              \
-    X(double, jacobian_step, INF)                            \
-    X(double, separation_step, INF)                          \
-    X(double, impact_mass, std::numeric_limits<double>::quiet_NaN())
-#define STEP_COUNT_FIELDS(X)                                 \
-    X(long, runs, 0)                                         \
-    X(bool, jacobian_on, false)                              \
-    X(long, separations, 0)                                  \
-    X(long, long_separations, 0)                             \
-    X(long, last_ended, 0)                                   \
-    X(long, last_long, 0)                                    \
-    X(long, rejected, 0)                                     \
-    X(long, unresolved, 0)                                   \
-    X(double, unresolved_time, 0.0)                          \
-    X(double, unresolved_step, 0.0)                          \
-    X(double, unresolved_advice, INF)                        \
-    X(long, held_long, 0)                                    \
-    X(double, held_time, 0.0)                                \
-    X(double, held_step, 0.0)                                \
-    X(long, over_limit, 0)                                   \
-    X(double, over_time, 0.0)                                \
-    X(double, over_step, 0.0)                                \
-    X(double, deepest, 0.0)                                  \
-    X(double, last_time, -INF)                               \
-    X(double, last_step, 0.0)                                \
-    X(double, retry_start, -INF)                             \
-    X(int, retries, 0)
+// X(type, name, default); TOLD_FIELDS is layout.py's _told: a kind of step accepted although
+// a rule asked for a shorter one, its count and the end and length of the first.
+#define RUN_START_FIELDS(X)                                                                         \
+    X(bool, can_shorten, true) X(double, min_step, 0.0) X(std::string, label, "") X(bool, rate, true) \
+    X(int, group_size, 1) X(double, rate_scale, 1.0)                                                \
+    X(double, growth_cap, INF) X(double, contact_cap, INF) X(double, jacobian_step, INF)            \
+    X(double, separation_step, INF) X(double, impact_mass, std::numeric_limits<double>::quiet_NaN())
+#define TOLD_FIELDS(X, count, first) X(long, count, 0) X(double, first##_time, 0.0) X(double, first##_step, 0.0)
+#define STEP_COUNT_FIELDS(X)                                                                        \
+    X(long, runs, 0) X(bool, jacobian_on, false)                                                    \
+    X(long, separations, 0) X(long, long_separations, 0) X(long, last_ended, 0) X(long, last_long, 0) \
+    X(long, rejected, 0)                                                                            \
+    TOLD_FIELDS(X, unresolved, unresolved) X(double, unresolved_advice, INF)                        \
+    TOLD_FIELDS(X, held_long, held)                                                                 \
+    TOLD_FIELDS(X, over_limit, over) X(double, deepest, 0.0)                                        \
+    X(double, last_time, -INF) X(double, last_step, 0.0) X(double, retry_start, -INF) X(int, retries, 0)
 #define DECLARE_FIELD(type, name, value) type name = value;
 struct StepControl {
     RUN_START_FIELDS(DECLARE_FIELD)

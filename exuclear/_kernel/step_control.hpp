@@ -34,7 +34,7 @@ const double ONSET_FLOOR = 0.05;
 // ... and only in a step longer than the impact's duration (impact_duration at the joint's
 // effective mass) over ONSET_IDLE_STEPS: a step that resolves the impact stays as the user chose
 // it (a redo there shortens the compression's steps only, and the errors of compression and
-// restitution no longer cancel; _python_kernel/step_control.py has the numbers).
+// restitution no longer cancel; docs/validation/step_control.md has the numbers).
 const double ONSET_IDLE_STEPS = 12.0;
 // Exudyn's implicit solver redoes a rejected step with at most this fraction of it
 // (ReduceStepSize: the smaller of 0.75 h and the recommendation): see onset_step.
@@ -44,8 +44,7 @@ const double SOLVER_STEP_CUT = 0.75;
 const double STEP_SAFETY = 0.8;
 // The rate criterion shortens a step at most this much per attempt (a step still too long is
 // rejected again): the change of the rate is far from linear in a long step, and a larger
-// cut overshoots towards the solver's minimum step (measured on the zoo's piston engine: a
-// cut from 2.1e-7 s to 1.7e-8 s, where Exudyn's Newton then failed).
+// cut overshoots towards the solver's minimum step, where Exudyn's Newton fails.
 const double MAX_CUT = 0.1;
 // ... and never below this many times the solver's minimum step, near which Exudyn's Newton
 // iteration fails (its residual falls to round-off): there the step is accepted and reported.
@@ -59,7 +58,7 @@ const double MIN_STEP_MARGIN = 10.0;
 const double GROWTH_LIMIT = 10.0;
 const double GROWTH_MIN = 2.0;
 // ... and only where every contact's gap exceeds GROWTH_GAP of the clearance (a journal resting
-// on the wall hovers, opening by nanometres: _python_kernel/step_control.py has the measurement)
+// on the wall hovers, opening by nanometres, and a longer step there shakes it off)
 const double GROWTH_GAP = 1e-2;
 // A penetration beyond the joint's limit redoes the step with this fraction of it ...
 const double PENETRATION_CUT = 0.25;
@@ -184,7 +183,7 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
             h_rate = h_rate > MAX_CUT * h ? h_rate : MAX_CUT * h;
             h_rec = h_rate < h_rec ? h_rate : h_rec;
             // reported only for an impact: a settled contact's rate at a fixed step is the load's
-            // (measured: the resting pendulum of tests/test_robust.py, right at its fixed step)
+            // (the resting pendulum of tests/test_robust.py is right at its fixed step)
             rate_exceeded = rate_exceeded || impact;
         }
     }

@@ -268,9 +268,8 @@ def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: b
     """(kind, sentence) for what the joint's step control could not do in the last run: each names
     the joint, what happened (time, step, penetration / c) and the fixed step to use: the
     smaller of the kernel's recommendation at the worst step and a tenth of the joint's
-    contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact
-    can be faster than that scale, measured on the journal impact: 2.1e-5 s against the
-    5.1e-6 s the impact needs).  Letting the solver shorten steps is cheaper."""
+    contact period under its weight (exuclear.timescales, as ``step="auto"``; an impact can
+    be faster than that scale, and the kernel's recommendation then is shorter).  Letting the solver shorten steps is cheaper."""
     stopped = [] if running else stopped_note(handle) + chatter_note(handle, control)
     if not control["unresolved"] and not control["over_limit"] and not control["held_long"]:
         return stopped

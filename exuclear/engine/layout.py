@@ -182,6 +182,15 @@ class ControlField(NamedTuple):
 
 
 _INF, _NAN = float("inf"), float("nan")
+
+
+def _told(count: str, first: str, what: str) -> tuple[ControlField, ...]:
+    """A kind of step the joint accepted although a rule asked for a shorter one (the handle's
+    notes): how many, and the end and length of the first of them (``first_time``, ``first_step``)."""
+    return (ControlField(count, 0, what), ControlField(f"{first}_time", 0.0, "the end [s] of the first of them"),
+            ControlField(f"{first}_step", 0.0, "its length [s]"))
+
+
 #: What the joint's own step control holds through a run, field by field: both kernels'
 #: ``StepControl`` (the Python kernel's is made from this table; the compiled kernel's
 #: ``RUN_START_FIELDS`` and ``STEP_COUNT_FIELDS`` in ``joint_state.hpp``, exported as
@@ -204,6 +213,7 @@ STEP_CONTROL = (
                                         "(steering.steer_newton; inf: never)"),
     ControlField("separation_step", _INF, "a contact that ends in a longer step is not resolved [s] (inf: not counted)"),
     ControlField("impact_mass", _NAN, "the effective mass of the joint's impacts [kg] (nan: unknown)"),
+    # what the run did
     ControlField("runs", 0, "runs started since the joint was created"),
     ControlField("jacobian_on", False, "whether the joint asks for a Jacobian per step now"),
     ControlField("separations", 0, "contacts that ended in the run"),
@@ -211,17 +221,12 @@ STEP_CONTROL = (
     ControlField("last_ended", 0, "contacts the last accepted step ended (taken back if it is redone)"),
     ControlField("last_long", 0, "... of them in a step longer than separation_step"),
     ControlField("rejected", 0, "steps the joint rejected and had redone shorter"),
-    ControlField("unresolved", 0, "contact steps accepted although the rate criterion asked for a shorter one"),
-    ControlField("unresolved_time", 0.0, "the end [s] of the first of them"),
-    ControlField("unresolved_step", 0.0, "its length [s]"),
+    *_told("unresolved", "unresolved", "contact steps accepted although the rate criterion asked for a shorter one"),
     ControlField("unresolved_advice", _INF, "the smallest step [s] the rate criterion asked for in them"),
-    ControlField("held_long", 0, "steps accepted through a held contact although longer than contact_cap"),
-    ControlField("held_time", 0.0, "the end [s] of the first of them"),
-    ControlField("held_step", 0.0, "its length [s]"),
-    ControlField("over_limit", 0, "steps accepted with a penetration beyond the joint's limit"),
-    ControlField("over_time", 0.0, "the end [s] of the first of them"),
-    ControlField("over_step", 0.0, "its length [s]"),
+    *_told("held_long", "held", "steps accepted through a held contact although longer than contact_cap"),
+    *_told("over_limit", "over", "steps accepted with a penetration beyond the joint's limit"),
     ControlField("deepest", 0.0, "the deepest penetration [m] beyond the limit"),
+    # the step control's own memory
     ControlField("last_time", -_INF, "the end [s] of the last rejected step (to see it come back unshortened)"),
     ControlField("last_step", 0.0, "its length [s]"),
     ControlField("retry_start", -_INF, "the start [s] of the step the penetration retries are about"),

@@ -24,8 +24,7 @@ STEP_SLACK = 1e-9
 #: the step's last ``ONSET_TARGET`` (its force then acts from about its onset on): an implicit
 #: method charges the contact force at the step's end over the whole step, where it acted
 #: only since the onset, and a contact that began halfway through a step several times
-#: longer than the impact gives the step a spurious impulse (the paper's slider-crank at
-#: 1e-5 s steps: 11.9 % of c off the reference with the rule off, 2.7 % with it on;
+#: longer than the impact gives the step a spurious impulse (docs/validation/step_control.md,
 #: ``python -m validation.cost fine_steps``).
 ONSET_TAIL = 0.02
 ONSET_TARGET = 0.01
@@ -38,11 +37,7 @@ ONSET_FLOOR = 0.05
 #: ONSET_IDLE_STEPS: a step that resolves the impact is left as the user chose it.  There a
 #: redo makes the path worse, not better: an implicit method's errors in the compression and
 #: the restitution of an impact cancel at equal steps, and a redo shortens the steps of the
-#: compression only (Exudyn holds a shortened step for its recovery steps).  Measured on the
-#: paper's slider-crank (``python -m validation.cost fine_steps``): at 2e-6 s (impacts of about 40
-#: steps) the rule took the path from 0.58 % to 1.78 % of c, at 5e-6 s (about 16) from 2.8 %
-#: to 5.3 %; at 1e-5 s (about 8) it brought it from 11.9 % to 2.7 %.  Any threshold from 10 to
-#: 15 steps gives the same paths there.
+#: compression only (``python -m validation.cost fine_steps``, docs/validation/step_control.md).
 ONSET_IDLE_STEPS = 12.0
 #: Exudyn's implicit solver redoes a rejected step with at most this fraction of it, whatever
 #: step is recommended (``CSolverImplicitSecondOrderTimeInt::ReduceStepSize``: the smaller of
@@ -54,8 +49,7 @@ SOLVER_STEP_CUT = 0.75
 STEP_SAFETY = 0.8
 #: The rate criterion shortens a step at most this much per attempt (a step still too long is
 #: rejected again): the change of the rate is far from linear in a long step, and a larger
-#: cut overshoots towards the solver's minimum step (measured on the zoo's piston engine: a
-#: cut from 2.1e-7 s to 1.7e-8 s, where Exudyn's Newton then failed).
+#: cut overshoots towards the solver's minimum step, where Exudyn's Newton fails.
 MAX_CUT = 0.1
 #: ... and never below this many times the solver's minimum step, near which Exudyn's Newton
 #: iteration fails (its residual falls to round-off): there the step is accepted and reported.
@@ -63,10 +57,8 @@ MIN_STEP_MARGIN = 10.0
 #: Free flight lets the step grow (:meth:`JointStepControl.step_growth`): after two accepted steps in
 #: which none of the joint's contacts touched, the next step may last until the journal would
 #: reach the wall at its present penetration rate, up to GROWTH_LIMIT times the step (and, on
-#: the handle's side, ten of the joint's contact periods: steering.GROWTH_CONTACT_PERIODS).  Exudyn's
-#: own rule doubles a step after 10 steps of at most 7 Newton iterations: from an impact's
-#: microsecond steps back to a model's millisecond step that is 70 steps at best, and none
-#: where the model's Newton takes more (measured on the zoo, README).  The limit keeps Newton's
+#: the handle's side, ten of the joint's contact periods: steering.GROWTH_CONTACT_PERIODS), faster
+#: than Exudyn's own rule (a doubling after 10 easy steps).  The limit keeps Newton's
 #: predictor within its reach (a tenfold step from a converged state).
 GROWTH_LIMIT = 10.0
 #: ... and only where the journal's free flight allows at least this many times the step (a
@@ -74,9 +66,8 @@ GROWTH_LIMIT = 10.0
 GROWTH_MIN = 2.0
 #: ... and only where every contact's gap exceeds this fraction of the clearance: a journal
 #: that rests on the wall at a step far longer than its contact period hovers, its contact
-#: opening by nanometres for a step or two, and a longer step there shook it off (measured:
-#: the zoo's double pendulum under exuclear.simulate's automatic steps of 1e-2 s, 34573 steps
-#: instead of 4885); a journal that left the wall in an impact passes 1 % of c within microseconds.
+#: opening by nanometres for a step or two, and a longer step there shakes it off; a journal
+#: that left the wall in an impact passes 1 % of c within microseconds.
 GROWTH_GAP = 1e-2
 #: A penetration beyond the joint's limit redoes the step with this fraction of it ...
 PENETRATION_CUT = 0.25
@@ -118,10 +109,9 @@ class JointStepControl(JointState):
         redoes or grows (a step of another length, whose Newton matrix's mass term
         ``M / (beta h^2)`` an older Jacobian does not hold): ``step`` inf.  Also while a worn
         joint is in contact (``conformal``): in its imprint the contact's normal (the overlaps'
-        resultant, docs/physics.md eq. (75)) turns by some 0.02 per micrometre of sideways
-        motion, an older Jacobian misses that stiffness, the modified Newton needs 8
-        iterations per step and Exudyn's step recovery (7 at most) never lets a cut step grow
-        back (a spinning journal worn 60 um deep: 40975 steps against 2458).  Through the
+        resultant, docs/physics.md eq. (75)) turns fast with sideways motion, an older
+        Jacobian misses that stiffness and Exudyn's step recovery never lets a cut step grow
+        back (docs/validation/step_control.md).  Through the
         callback's ``jacobian_per_step``: a call where the ask changes, not per step."""
         c = self.control
         wanted = conformal or step > c.jacobian_step
@@ -154,16 +144,14 @@ class JointStepControl(JointState):
         would let it grow beyond Exudyn's own rule; 0 where it asks for none.  Only in free
         flight: no contact touched in this step or in the one ``before`` it, every gap above
         GROWTH_GAP of the clearance, no film (a journal that rests on the wall opens its
-        contact for single steps, and a longer step there shakes it off, measured on the zoo's
-        double pendulum).  The allowance is the time until the journal would reach the wall
+        contact for single steps, and a longer step there shakes it off).  The allowance is the time until the journal would reach the wall
         with the penetration rate and its change over the step (:func:`time_to_wall`; a step
         that ends beyond the wall all the same is redone by the onset rule of
         :meth:`step_control`, and a step that ends before it cannot hold a whole contact), at
         most GROWTH_LIMIT times the step, and only where that is GROWTH_MIN times the step or
         more, and at most the run-start callback's ``growth_cap``.  Only where the joint can
         steer the steps (an implicit solver that shortens steps); with an ``impact_step`` too,
-        whose redo rule then catches a grown step that ends beyond the wall (the redundant
-        slider-crank: 18257 -> 15272 steps, 4.9e-3 -> 3.6e-3 c, README "Speed")."""
+        whose redo rule then catches a grown step that ends beyond the wall."""
         c = self.control
         h = t - base[0].time
         if not (c.can_shorten and c.rate and kappa > 0.0 and self.film is None and h > 0.0
@@ -211,10 +199,8 @@ class JointStepControl(JointState):
           (or one that began or ended in the step): several steps per velocity reversal,
           with neither the mass nor the law in the criterion.  Settled contacts (``|v0|`` at
           the ``v_min`` floor) are limited too: exempting them, as if the implicit
-          integrator's damping took care of their stiff oscillation, left penetrations 5x
-          simulate's on the zoo's piston engine and cost more steps (measured: piston engine
-          0.027 c in 19463 steps exempt, 0.0042 c in 9432 limited; beam pendulum 87796 and
-          31981 steps over 0.05 s);
+          integrator's damping took care of their stiff oscillation, left deeper penetrations
+          in more steps (docs/validation/step_control.md);
         - held: a step through which a contact is held (in contact at both ends), longer than
           the run-start callback's ``contact_cap`` (steering.HELD_CONTACT_PERIODS contact
           periods), is redone at ``contact_cap``.
@@ -272,7 +258,7 @@ class JointStepControl(JointState):
                     h_need = min(h_need, h_rate)
                 h_rec = min(h_rec, max(h_rate, MAX_CUT * h))
                 # reported only for an impact: a settled contact's rate at a fixed step is the
-                # load's (measured: the resting pendulum of tests/test_robust.py, right at its step)
+                # load's (the resting pendulum of tests/test_robust.py is right at its step)
                 rate_exceeded = rate_exceeded or impact
         if h_rec == math.inf:
             return 0.0

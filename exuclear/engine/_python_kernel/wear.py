@@ -36,10 +36,8 @@ STABILITY_LIMIT = 1.0
 #: A worn contact is conformal (its normal turns fast as the journal moves sideways, so the
 #: joint asks for a Jacobian per step, docs/physics.md section 11.1) where the profiles are
 #: deeper than this share of the contact's penetration.  Shallower, the overlap is the
-#: unworn contact's narrow arc and an older Jacobian holds: on the worn-in journal at
-#: k_D 1e-14 1/Pa (24 nm in 0.2 s against a 2.2 um penetration) 2912 steps, as unworn, in
-#: place of 2444 steps with twice the force evaluations; at 1e-10 (61 um) 2458 steps either
-#: way, where asking only past the whole penetration took 3624.
+#: unworn contact's narrow arc and an older Jacobian holds (docs/validation/wear.md has the
+#: steps it saves on the worn-in journal).
 CONFORMAL_DEPTH = 0.1
 #: The relative change of the penetration for the law's exponent ``d ln F / d ln delta``.
 EXPONENT_STEP = 1e-3
