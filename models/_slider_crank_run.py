@@ -25,21 +25,13 @@ from .scene import Scene
 MINIMAL_DEFAULTS = {"method": "dopri5", "step": 1e-4, "rtol": 1e-7, "atol": 1e-10}
 #: Redundant: generalized-alpha with impact-aware steps (2e-5 s, 1e-6 s from each contact
 #: onset, grown in free flight by the joint), and a Jacobian wherever a modified-Newton
-#: iteration reduces the residual by less than 100x (``newton_contractivity``).  The mechanism
-#: turns its Jacobian fast (the crank at 500 rpm) and the matrix is small: at the joint's
-#: contractivity 0.2 Newton takes 6.0 iterations per step on 32 Jacobians over two
-#: revolutions, at 0.01 3.7 on 467, in 0.70 of the wall time and on the same path
-#: (python -m validation.cost benchmark prints both).  Tried and dropped (measured against the
-#: converged reference, cr 0.9, and python -m validation.scaled_defaults): the
-#: steps the joint controls (``joint_steps``, KAPPA 0.02, 2.5e-5 s): 0.21 s at 6.4e-3 c on
-#: the paper's case but 4.5e-2 c at 2000 rpm and 2.8e-2 c at c = 0.5 mm; 2.2e-5 s steps:
-#: 0.27 s at 4.5e-3 c, but the tolerances of the ideal mechanism's and the spatial
-#: formulation's checks were set at 2e-5 s.
+#: iteration reduces the residual by less than 100x (``newton_contractivity``): the crank
+#: turns the Jacobian fast and the matrix is small, so fresh Jacobians pay.  The measurements
+#: behind both, and the steps tried instead, are in docs/validation/speed.md
+#: (python -m validation.cost benchmark, python -m validation.scaled_defaults).
 REDUNDANT_DEFAULTS = {"method": "generalized-alpha", "step": 2e-5, "impact_step": 1e-6, "newton_contractivity": 0.01}
-#: Spatial: the redundant formulation's steps; with the same integrator and steps the two
-#: agree to ~2e-7 c.  Measured against the minimal formulation converged to 2e-5 c (DOPRI5,
-#: rtol 1e-11, steps <= 2e-6 s) over two revolutions: 0.49 % of c (cr 0.9) and 0.16 % (cr
-#: 0.3); 4e-5 s steps reach 0.99 % (cr 0.9), too close to the 1 % target.
+#: Spatial: the redundant formulation's steps, with which the two agree to ~2e-7 c; their
+#: error against the converged minimal formulation is in tests/test_spatial.py (CONVERGED).
 SPATIAL_DEFAULTS = REDUNDANT_DEFAULTS
 _DEFAULTS = {"minimal": MINIMAL_DEFAULTS, "redundant": REDUNDANT_DEFAULTS, "spatial": SPATIAL_DEFAULTS}
 
