@@ -226,6 +226,45 @@ def test_table_of_another_study_is_refused(tmp_path: Path):
         st.run_study(st.Study(square, {"x": 0, "q": 1.0}), [{"x": 1}], out, workers=1, progress=False)
 
 
+def _study_module(tmp_path: Path, body: str):
+    """A module ``user_study`` in ``tmp_path`` whose ``run`` has ``body``, imported afresh
+    (a user who edits the study function between two runs of the same script)."""
+    import importlib
+    import sys
+
+    (tmp_path / "user_study.py").write_text(f"def run(p):\n    {body}\n")
+    sys.modules.pop("user_study", None)
+    importlib.invalidate_caches()
+    sys.path.insert(0, str(tmp_path))
+    try:
+        return importlib.import_module("user_study")
+    finally:
+        sys.path.remove(str(tmp_path))
+
+
+def test_a_table_knows_its_study_and_refuses_another_losing_nothing(tmp_path: Path):
+    out = tmp_path / "x.csv"
+    first = _study_module(tmp_path, 'return {"y": 2.0 * p["x"]}')
+    st.run_study(first.run, st.grid(x=[1, 2]), out, workers=1, progress=False)
+    sidecar = tmp_path / "x.csv.study.json"
+    assert "user_study.run" in sidecar.read_text()
+    table, identity = out.read_bytes(), sidecar.read_bytes()
+    # the same study resumes: nothing runs again
+    again = st.run_study(first.run, st.grid(x=[1, 2]), out, workers=1, progress=False)
+    assert again.attrs["ran"] == 0 and list(again["y"]) == [2.0, 4.0]
+    # the function changed (a new metric): its old rows are not its rows
+    changed = _study_module(tmp_path, 'return {"y": 2.0 * p["x"], "z": 1.0}')
+    with pytest.raises(ValueError, match=r"another study.*function's code.*delete .*x\.csv.*another `out`"):
+        st.run_study(changed.run, st.grid(x=[1, 2]), out, workers=1, progress=False)
+    # another default of a parameter: refused too
+    with pytest.raises(ValueError, match="its parameters"):
+        st.run_study(st.Study(first.run, {"x": 0}), st.grid(x=[1, 2]), out, workers=1, progress=False)
+    assert out.read_bytes() == table and sidecar.read_bytes() == identity  # nothing lost or rewritten
+    # keeping both: another `out` takes the changed study
+    both = st.run_study(changed.run, st.grid(x=[1, 2]), tmp_path / "x2.csv", workers=1, progress=False)
+    assert list(both["z"]) == [1.0, 1.0]
+
+
 # -- interrupt and resume ---------------------------------------------------------------------
 
 

@@ -16,7 +16,7 @@ from typing import Any
 
 from .batch import _error_text, _run_batch, _shippable
 from .executors import _check_workers, _CtrlC, _Pool, _pool, _SerialExecutor
-from .spec import Params, Study, _as_study, run_id
+from .spec import Params, Study, _as_study, identity, run_id
 from .table import _Table, _write_parquet
 
 #: Target duration of one task [s]: a batch holds about this much work, so that the
@@ -69,7 +69,10 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
     out : path, optional
         The study's CSV, appended row by row; an existing table of the same study is
         resumed (its runs are skipped).  Parquet is written next to it at the end when
-        pyarrow is present.
+        pyarrow is present, and the study's identity (its function and that function's
+        code, its parameters, its columns) in ``<out>.study.json``: a table written by
+        another study (or by this one before its function changed) is refused, with how
+        to start afresh or keep both.
     workers : int, optional
         Local worker processes (default: all cores; 1: in this process), or the workers
         of a local Dask cluster.
@@ -100,7 +103,8 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
     ------
     ValueError
         Before any run: unknown parameter names, values the study refuses, no runs,
-        a table at ``out`` that belongs to another study.
+        a table at ``out`` that belongs to another study (its sidecar names another
+        function, code, parameters or columns).
     KeyboardInterrupt
         On Ctrl-C or a ``KeyboardInterrupt`` from a run, after the finished rows are on
         disk.
@@ -120,7 +124,7 @@ def run_study(study: Study | Callable[[Params], Mapping[str, Any]], runs: Iterab
         path.parent.mkdir(parents=True)
     names = list(study.parameters) if study.parameters is not None else list(dict.fromkeys(
         k for _, p in prepared for k in p))
-    table = _Table.open(path, names, keep_arrays)
+    table = _Table.open(path, names, keep_arrays, identity(study))
     done = {k for k, row in table.rows.items() if not (retry_failed and row.get("success") == "False")}
     todo = deque((k, p) for k, p in prepared if k not in done)
     order = [k for k, _ in prepared]

@@ -4,6 +4,7 @@ grammar :func:`parse_values`) with their identifiers (:func:`run_id`)."""
 from __future__ import annotations
 
 import hashlib
+import inspect
 import itertools
 import json
 import math
@@ -81,6 +82,25 @@ class Study:
             raise ValueError(f"unknown parameter {', '.join(map(repr, unknown))} of study {self.name or self.function.__name__!r}; "
                              f"known: {', '.join(self.parameters)}")
         return {**self.parameters, **params}
+
+
+def identity(study: Study) -> dict[str, Any]:
+    """What identifies a study's table: the function (module and qualified name, and a hash
+    of its source, which changes with its code: a new metric, another formula), the
+    parameters with their defaults and the columns with their units.  Stored beside the
+    table (:mod:`exuclear.study.table`), so that a table is resumed only by the study that
+    wrote it.  A function whose source cannot be read (built in, typed at a prompt) is
+    known by its name alone."""
+    function = study.function
+    try:
+        source = inspect.getsource(function)
+    except (OSError, TypeError):  # no source file: the name alone
+        source = ""
+    name = f"{getattr(function, '__module__', '?')}.{getattr(function, '__qualname__', repr(function))}"
+    parameters = None if study.parameters is None else {k: _plain(v) for k, v in study.parameters.items()}
+    columns = {k: [c.label, c.unit] for k, c in (study.columns or {}).items()}
+    return {"function": name, "source": hashlib.sha256(source.encode()).hexdigest()[:RUN_ID_DIGITS] if source else "",
+            "parameters": json.loads(json.dumps(parameters, default=repr)), "columns": columns}
 
 
 def _as_study(study: Study | Callable[[Params], Mapping[str, Any]]) -> Study:

@@ -1,5 +1,7 @@
 """A study's table on disk: a CSV appended row by row and rewritten atomically when its
-columns change, read back by :func:`load_table` as the runner returns it."""
+columns change, read back by :func:`load_table` as the runner returns it.  Beside it, a
+JSON sidecar (:func:`identity_path`) holds the identity of the study that wrote it
+(:func:`exuclear.study.spec.identity`): a table is resumed only by that study."""
 from __future__ import annotations
 
 import csv
@@ -16,6 +18,33 @@ from ..columns import Column
 
 #: Columns every row has, after the parameters and the summary.
 STATUS_COLUMNS = ("success", "message", "wall_time", "run_id")
+
+
+#: Suffix of the sidecar beside a table's CSV that holds its study's identity.
+IDENTITY_SUFFIX = ".study.json"
+
+
+def identity_path(path: Path) -> Path:
+    """The sidecar of the table at ``path`` (``x.csv`` -> ``x.csv.study.json``)."""
+    return path.with_name(path.name + IDENTITY_SUFFIX)
+
+
+def _check_identity(path: Path, identity: Mapping[str, Any]) -> None:
+    """``ValueError`` if the table at ``path`` was written by a study other than ``identity``,
+    naming what differs and how to start afresh or keep both; a table without a sidecar
+    (written before tables had one) is taken as the study's."""
+    sidecar = identity_path(path)
+    if not sidecar.exists():
+        return
+    stored = json.loads(sidecar.read_text())
+    what = {"function": "its function", "source": "its function's code", "parameters": "its parameters or their "
+            "defaults", "columns": "its columns"}
+    differs = [text for key, text in what.items() if stored.get(key) != identity.get(key)]
+    if differs:
+        raise ValueError(f"{path} was written by another study ({stored.get('function')}): {', '.join(differs)} "
+                         f"differ from those of {identity.get('function')}, so its rows are not this study's. To "
+                         f"start afresh, delete {path} and {sidecar.name} (or move them away); to keep both, give "
+                         "another `out`")
 
 
 #: The status columns that carry a unit, as :class:`Column`.
@@ -40,8 +69,10 @@ class _Table:
     With ``keep_arrays`` (a table in memory only), array values stay as the run returned
     them, out of the text."""
 
-    def __init__(self, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False) -> None:
+    def __init__(self, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False,
+                 identity: Mapping[str, Any] | None = None) -> None:
         self.path = path
+        self.identity = identity
         self.columns: list[str] = []
         self.rows: dict[str, dict[str, str]] = {}  # run_id -> row as text
         self.parameter_names = list(parameter_names)
@@ -49,12 +80,15 @@ class _Table:
         self.arrays: dict[str, dict[str, np.ndarray]] = {}  # run_id -> arrays kept in memory
 
     @classmethod
-    def open(cls, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False) -> _Table:
+    def open(cls, path: Path | None, parameter_names: Sequence[str], keep_arrays: bool = False,
+             identity: Mapping[str, Any] | None = None) -> _Table:
         """The table at ``path``, resumed if it exists (``ValueError`` if it holds another
-        study), or a new one."""
-        table = cls(path, parameter_names, keep_arrays)
+        study: other parameters, or another ``identity`` in its sidecar), or a new one."""
+        table = cls(path, parameter_names, keep_arrays, identity)
         if path is None or not path.exists() or path.stat().st_size == 0:
             return table
+        if identity is not None:
+            _check_identity(path, identity)
         table._read()
         if "run_id" not in table.columns:
             raise ValueError(f"{path} is not a study table (no `run_id` column); give another `out`")
@@ -87,9 +121,20 @@ class _Table:
                              dtype=object)
         lines.to_csv(target, mode=mode, header=header, index=False, lineterminator="\r\n")
 
+    def _write_identity(self) -> None:
+        """The study's identity beside the table, before its first row (atomically, as the table)."""
+        if self.path is None or self.identity is None:
+            return
+        sidecar = identity_path(self.path)
+        tmp = sidecar.with_name(sidecar.name + ".tmp")
+        tmp.write_text(json.dumps(self.identity, indent=1, sort_keys=True) + "\n")
+        os.replace(tmp, sidecar)
+
     def _rewrite(self) -> None:
         if self.path is None:
             return
+        if not identity_path(self.path).exists():
+            self._write_identity()
         tmp = self.path.with_name(self.path.name + ".tmp")
         self._write(tmp, self.rows.values(), header=True)
         os.replace(tmp, self.path)
