@@ -7,12 +7,11 @@ Units: m/s for velocities.
 from __future__ import annotations
 
 import math
-import warnings
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar
 
-from .checks import check_nonnegative, check_positive
+from .checks import check_nonnegative, check_positive, warn_at_caller
 from .contact import ValidityWarning
 
 #: Friction coefficients above this warn (:class:`~exuclear.ValidityWarning`), they are not
@@ -30,9 +29,9 @@ def _check_coefficient(name: str, mu: float) -> float:
     """``mu`` >= 0 (``ValueError`` otherwise); a :class:`ValidityWarning` above :data:`MU_WARN`."""
     mu = check_nonnegative(name, mu)
     if mu > MU_WARN:
-        warnings.warn(f"friction coefficient `{name}` = {mu:g} is above {MU_WARN:g}: dry steel on steel is about "
-                      "0.75 (static), greased metals 0.05 to 0.3, and only clean, dry soft metals reach 1 to 1.35; "
-                      "was a percentage or another value meant?", ValidityWarning, stacklevel=4)
+        warn_at_caller(f"friction coefficient `{name}` = {mu:g} is above {MU_WARN:g}: dry steel on steel is about "
+                       "0.75 (static), greased metals 0.05 to 0.3, and only clean, dry soft metals reach 1 to 1.35; "
+                       "was a percentage or another value meant?", ValidityWarning)
     return mu
 
 
@@ -181,13 +180,15 @@ FRICTION_NAMES = ("none", "coulomb:MU", "paper")
 
 
 def friction_law(spec: str | FrictionLaw) -> FrictionLaw:
-    """Friction law from a command-line style name.
+    """Friction law from a command-line style name (in any case).
 
     ``"none"``; ``"coulomb:MU"`` (smoothed Coulomb with constant ``MU``); ``"paper"``
     (eq. 11 with the Table 1 values).  A :class:`FrictionLaw` is returned unchanged.
     """
     if isinstance(spec, FrictionLaw):
         return spec
+    if isinstance(spec, str):
+        spec = spec.lower()  # "Coulomb:0.1" as "coulomb:0.1"
     if spec == "none":
         return NO_FRICTION
     if spec == "paper":

@@ -52,9 +52,12 @@ class BearingGeometry:
         if r_b - r_j > CLEARANCE_WARN_FRACTION * r_j:
             warn_unit(f"the radial clearance {r_b - r_j:.3g} m is more than {CLEARANCE_WARN_FRACTION:g} of the "
                       f"journal radius {r_j:.3g} m; lengths are in metres: was a value given in mm?")
-        elif max(r_b, self.length) > SIZE_WARN_ABOVE:
-            warn_unit(f"the bearing radius {r_b:.3g} m or length {self.length:.3g} m is above {SIZE_WARN_ABOVE:g} m; "
-                      "lengths are in metres: were they given in mm?")
+        else:
+            large = [f"the {what} {value:.3g} m" for what, value in (("bearing radius", r_b), ("length", self.length))
+                     if value > SIZE_WARN_ABOVE]
+            if large:
+                warn_unit(f"{' and '.join(large)} {'is' if len(large) == 1 else 'are'} above {SIZE_WARN_ABOVE:g} m; "
+                          f"lengths are in metres: {'was it' if len(large) == 1 else 'were they'} given in mm?")
 
     @property
     def clearance(self) -> float:

@@ -318,11 +318,14 @@ def test_a_negative_value_gets_the_rule_it_breaks(module, args, message):
 
 
 # -- API checks ------------------------------------------------------------------------
-def test_millimetre_dimensions_warn():
-    with pytest.warns(exuclear.UnitWarning, match="were they given in mm"):
+def test_millimetre_dimensions_warn_naming_the_quantity_that_is_off_at_the_caller():
+    with pytest.warns(exuclear.UnitWarning, match="the bearing radius 10 m and the length 15 m are above 1 m; .*were "
+                                                  "they given in mm") as caught:
         exuclear.BearingGeometry(9.9, 10.0, 15.0)  # the paper's joint in mm: clearance 1 % of R_J, no other hint
-    with pytest.warns(exuclear.UnitWarning, match="were they given in mm"):
+    assert caught[0].filename == __file__  # the user's line, not the library's check
+    with pytest.warns(exuclear.UnitWarning, match=r"^the length 15 m is above 1 m; .*was it given in mm") as caught:
         exuclear.BearingGeometry(9.9e-3, 10e-3, 15.0)
+    assert "radius" not in str(caught[0].message)  # the radius is fine: only the length is named
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         exuclear.BearingGeometry(9.9e-3, 10e-3, 15e-3)  # the paper's, in m

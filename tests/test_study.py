@@ -190,9 +190,9 @@ def test_the_summary_counts_warnings_and_says_what_ran_now(tmp_path: Path, capsy
     assert st.main(["journal-bearing", "--length", "0.015,15", *args]) == 0
     said = capsys.readouterr()
     assert said.out.strip() == f"2 runs, 0 failed, 1 with warnings (see their message); table {out}"
-    assert "warning: UnitWarning: the bearing radius 0.01 m or length 15 m" in said.err  # before the runs, one line
+    assert "warning: UnitWarning: the length 15 m is above 1 m" in said.err  # before the runs, one line
     row = st.load_table(out).set_index("length").loc[15.0]
-    assert row["success"] and row["message"].startswith("UnitWarning: the bearing radius 0.01 m or length 15 m")
+    assert row["success"] and row["message"].startswith("UnitWarning: the length 15 m is above 1 m")
     # resumed: a resumed study's summary counted all rows as if run now
     assert st.main(["journal-bearing", "--length", "0.015,15,0.02", *args]) == 0
     assert capsys.readouterr().out.strip() == (f"3 runs (1 ran now, 2 taken from {out}), 0 failed, 1 with warnings "

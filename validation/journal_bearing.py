@@ -29,6 +29,7 @@ import json
 import os
 import sys
 import time
+import warnings
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 
@@ -242,42 +243,53 @@ def write_case_files(case: Case, rows: CaseRows, directory: str) -> list[str]:
 @dataclass(frozen=True)
 class RestitutionRow:
     """Effective restitution of one law over :data:`CR_GRID`; ``None`` where the law
-    rejects that cr (``note`` says why)."""
+    rejects that cr (``note`` says why); ``outside``: the cr at which the law leaves the
+    range its source established it for (``outside_note`` says which range)."""
 
     law: str
     values: tuple[float | None, ...]
     note: str = ""
+    outside: tuple[float, ...] = ()
+    outside_note: str = ""
 
 
-def _rejection(params: JournalBearingParams) -> str:
-    """Why a law does not accept these parameters ('' if it does)."""
-    try:
-        params.joint()
-    except ValueError as err:
-        return str(err)
-    return ""
+def _law_checks(params: JournalBearingParams) -> tuple[str, str]:
+    """Why a law does not accept these parameters, and where they leave the range its
+    source established it for (the text of its ``ValidityWarning``); ``''`` for neither.
+    The table chose these values itself: it reports the range in its notes, not as a
+    warning."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", exuclear.ValidityWarning)
+        try:
+            params.joint()
+        except ValueError as err:
+            return str(err), ""
+    return "", "; ".join(str(w.message) for w in caught if issubclass(w.category, exuclear.ValidityWarning))
 
 
 def restitution_row(runner: ImpactRunner, law: str) -> RestitutionRow:
     """Effective restitution of ``law`` on the paper's scene for every cr of the grid."""
-    values, rejected, reasons = [], [], []
+    values, rejected, reasons, outside, ranges = [], [], [], [], []
     for cr in CR_GRID:
         params = JournalBearingParams.paper(law=law, cr=cr)
-        reason = _rejection(params)
+        reason, out_of_range = _law_checks(params)
         if reason:
             values.append(None)
             rejected.append(f"{cr:g}")
             reasons.append(reason)
             continue
+        if out_of_range:
+            outside.append(cr)
+            ranges.append(out_of_range)
         values.append(runner(params)[0].effective_restitution)
     note = f"rejects cr = {', '.join(rejected)} (first message: {reasons[0]})" if rejected else ""
-    return RestitutionRow(law, tuple(values), note)
+    return RestitutionRow(law, tuple(values), note, tuple(outside), ranges[0] if ranges else "")
 
 
 def restitution_params() -> list[JournalBearingParams]:
     """The runs of the restitution table: every law at every cr of the grid it accepts."""
     grid = [JournalBearingParams.paper(law=law, cr=cr) for law in exuclear.contact.CONTACT_LAWS for cr in CR_GRID]
-    return [params for params in grid if not _rejection(params)]
+    return [params for params in grid if not _law_checks(params)[0]]
 
 
 def restitution_sweep(runner: ImpactRunner) -> list[RestitutionRow]:
@@ -291,16 +303,23 @@ def restitution_sweep(runner: ImpactRunner) -> list[RestitutionRow]:
 
 
 def restitution_md(rows: list[RestitutionRow]) -> str:
-    """Markdown table of the effective restitution, with notes for rejected cr."""
+    """Markdown table of the effective restitution, with notes for rejected cr and for cr
+    outside the range a law's source established (cells marked ``*``)."""
     header = ["law"] + [f"cr = {cr:g}" for cr in CR_GRID]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     notes = []
     for row in rows:
-        mark = f" [{len(notes) + 1}]" if row.note else ""
-        cells = [row.law + mark] + ["-" if e is None else f"{e:.4f}" for e in row.values]
-        lines.append("| " + " | ".join(cells) + " |")
+        marks = ""
         if row.note:
             notes.append(f"[{len(notes) + 1}] {row.law} {row.note}; only the cr it accepts is run.")
+            marks += f" [{len(notes)}]"
+        if row.outside:
+            notes.append(f"[{len(notes) + 1}] {row.law} at cr = {', '.join(f'{cr:g}' for cr in row.outside)} (marked "
+                         f"*): outside its source's range ({row.outside_note}).")
+            marks += f" [{len(notes)}]"
+        cells = [row.law + marks] + ["-" if e is None else f"{e:.4f}{'*' if cr in row.outside else ''}"
+                                     for cr, e in zip(CR_GRID, row.values, strict=True)]
+        lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines + [""] + notes)
 
 

@@ -2,10 +2,9 @@
 (:class:`~exuclear.exceptions.ValidityWarning`)."""
 from __future__ import annotations
 
-import warnings
-
+from ..checks import warn_at_caller
 from ..exceptions import ValidityWarning
 
 
 def _warn_validity(message: str) -> None:
-    warnings.warn(message, ValidityWarning, stacklevel=5)
+    warn_at_caller(message, ValidityWarning)

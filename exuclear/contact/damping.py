@@ -240,4 +240,4 @@ DAMPING_MODELS: dict[str, type[DampingModel]] = {
 
 def damping_model(name: str, cr: float = 1.0) -> DampingModel:
     """Build a damping model by its name in :data:`DAMPING_MODELS`."""
-    return DAMPING_MODELS[check_choice("damping", name, DAMPING_MODELS)](cr)
+    return DAMPING_MODELS[check_choice("damping", name, DAMPING_MODELS, ignore_case=True)](cr)

@@ -244,10 +244,9 @@ def split_law_name(name: str) -> tuple[str, str]:
     """
     if isinstance(name, str) and PAIR_SEPARATOR in name:
         stiffness, _, damping = name.partition(PAIR_SEPARATOR)
-        check_choice("stiffness", stiffness, STIFFNESS_MODELS)
-        check_choice("damping", damping, DAMPING_MODELS)
-        return stiffness, damping
-    return ALIASES[check_choice("law", name, CONTACT_LAWS)]
+        return (check_choice("stiffness", stiffness, STIFFNESS_MODELS, ignore_case=True),
+                check_choice("damping", damping, DAMPING_MODELS, ignore_case=True))
+    return ALIASES[check_choice("law", name, CONTACT_LAWS, ignore_case=True)]
 
 
 def is_elastic(name: str) -> bool:
@@ -271,7 +270,7 @@ def contact_law(
     with names of :data:`STIFFNESS_MODELS` and :data:`DAMPING_MODELS`."""
     if isinstance(name, str) and PAIR_SEPARATOR in name:
         return compose_law(*split_law_name(name), geometry, E_star, cr, v_min, exponent)
-    cls = CONTACT_LAWS[check_choice("law", name, CONTACT_LAWS)]
+    cls = CONTACT_LAWS[check_choice("law", name, CONTACT_LAWS, ignore_case=True)]
     return cls(geometry, check_real("E_star", E_star), cr, v_min, EXPONENT_METAL if exponent is None else exponent)
 
 

@@ -451,7 +451,7 @@ def stiffness_model(name: str, geometry: BearingGeometry, E_star: float, exponen
 
     ``exponent`` (default 1.5) applies to ``hertz`` and ``liu``; the other models fix it.
     """
-    cls = STIFFNESS_MODELS[check_choice("stiffness", name, STIFFNESS_MODELS)]
+    cls = STIFFNESS_MODELS[check_choice("stiffness", name, STIFFNESS_MODELS, ignore_case=True)]
     E_star = check_real("E_star", E_star)
     if cls in _FREE_EXPONENT:
         return cls(geometry, E_star, EXPONENT_METAL if exponent is None else exponent)
