@@ -50,3 +50,65 @@ def test_law_and_friction_names_are_case_insensitive():
     assert exuclear.make_joint(law="Hertz+Lankarani-Nikravesh", cr=0.7, **STEEL_JOINT) == pair
     with pytest.raises(ValueError, match="unknown `law` 'wang liu'; known: "):
         exuclear.make_joint(law="wang liu", cr=0.7, **STEEL_JOINT)
+
+
+# -- 3. a journal outside its bearing is refused by the plain SolveDynamic too --------------------
+
+
+def _pendulum_journal(backend: str, offset: float, name: str = ""):
+    """The README's free journal (c = 0.1 mm), its centre ``offset`` [m] from the bearing's."""
+    import exudyn as exu
+    from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[offset, 0, 0],
+                                       initialVelocities=[0.3, 0, 0]))
+    pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=2e-6))
+    joint = exuclear.CreateClearanceJoint(mbs, name=name, itemNumbers=[ground, pin], position=[0, 0, 0],
+                                          law="wang-liu", cr=0.9, friction="none", backend=backend, **STEEL_JOINT)
+    mbs.Assemble()
+    return mbs, joint
+
+
+@pytest.mark.parametrize("backend", ["compiled", "python"])
+def test_a_journal_outside_its_bearing_is_refused_by_the_plain_solve_dynamic_too(backend):
+    import exudyn as exu
+
+    from exuclear.engine import kernel
+
+    if backend == "compiled" and kernel.default_backend() != "compiled":
+        pytest.skip("no compiled kernel here")
+    mbs, joint = _pendulum_journal(backend, offset=1e-3)  # 10 clearances from the centre: 9 c beyond the wall
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = 2e-4
+    ss.solution.file.write = False
+    with pytest.raises(Exception, match=r"joint #1: the journal starts outside its bearing \(penetration 0.0009 m, "
+                                        r"9 clearances.*check the joint's `position` and the initial coordinates of "
+                                        r"the bodies in `itemNumbers`"):
+        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    assert joint.failure()[0].startswith("the journal starts outside its bearing")
+    assert mbs.systemData.GetTime() == 0.0  # not one step taken
+    # exuclear.simulate says the same before its run
+    with pytest.raises(ValueError, match=r"clearance joint #1: the journal starts outside its bearing.*`position`"):
+        exuclear.simulate(mbs, exuclear.SolverSettings(end_time=2e-4))
+    # within the clearance it runs: the README's case, touching the wall
+    mbs, joint = _pendulum_journal(backend, offset=1e-4)
+    assert mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    assert len(joint.impacts()) == 1
+
+
+# -- 8. smaller: names, not object numbers; a repr ------------------------------------------------
+
+
+def test_messages_name_a_joint_by_its_name_or_its_place_among_the_joints_and_a_handle_has_a_repr():
+    from exuclear.engine.registry import label
+
+    mbs, joint = _pendulum_journal("python", offset=1e-4)
+    assert label(joint) == "#1"
+    text = repr(joint)
+    assert text.startswith("<ClearanceJointHandle #1: planar, clearance 0.0001 m, WangLiu law, objectNumber ")
+    named = _pendulum_journal("python", offset=1e-4, name="crank pin")[1]
+    assert label(named) == "'crank pin'" and "<ClearanceJointHandle 'crank pin': " in repr(named)
+    with pytest.raises(RuntimeError, match=r"joint #1 has no outputs yet"):
+        joint.outputs()

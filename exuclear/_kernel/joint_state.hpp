@@ -27,7 +27,8 @@ namespace {
     X(bool, can_shorten, true) X(double, min_step, 0.0) X(std::string, label, "") X(bool, rate, true) \
     X(int, group_size, 1) X(double, rate_scale, 1.0)                                                \
     X(double, growth_cap, INF) X(double, contact_cap, INF) X(double, jacobian_step, INF)            \
-    X(double, separation_step, INF) X(double, impact_mass, std::numeric_limits<double>::quiet_NaN())
+    X(double, separation_step, INF) X(double, impact_mass, std::numeric_limits<double>::quiet_NaN()) \
+    X(std::string, refusal, "")
 #define TOLD_FIELDS(X, count, first) X(long, count, 0) X(double, first##_time, 0.0) X(double, first##_step, 0.0)
 #define STEP_COUNT_FIELDS(X)                                                                        \
     X(long, runs, 0) X(bool, jacobian_on, false)                                                    \
@@ -261,6 +262,7 @@ const std::vector<History>& history_for(JointState& s, const Params& a, const Po
         s.initial = s.cur;
         s.started = true;
         if (!all_finite(s)) fail(s, t, DIVERGED);
+        if (!s.control.refusal.empty()) fail(s, t, s.control.refusal);  // e.g. a journal outside its bearing
     }
     return t <= s.cur[0].time ? s.prev : s.cur;
 }

@@ -75,6 +75,7 @@ from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
+from .placement import PLACED_BY_POINTS, PLACED_BY_POSITION
 from .registry import REGISTRY_KEY, joints_of, register
 
 #: Names kept here for the code that imports them from this module.
@@ -485,10 +486,13 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         if marker is None:  # a marker without localHT: the connector's rotationMarker0 takes the frame
             marker, frame0 = item, (frame if not markers else frame0)
         markers.append(marker)
-    return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
-                             constrainAxial=constrainAxial, bearingRotates=bearingRotates, record=record, show=show,
-                             slices=slices, contact_mode=contact_mode, _frame=frame0, _drawing=draw,
-                             **joint_parameters)
+    handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
+                               constrainAxial=constrainAxial, bearingRotates=bearingRotates, record=record, show=show,
+                               slices=slices, contact_mode=contact_mode, _frame=frame0, _drawing=draw,
+                               **joint_parameters)
+    if "marker" not in kinds:
+        handle.placed_by = PLACED_BY_POSITION
+    return handle
 
 
 def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:
@@ -544,8 +548,10 @@ def add_clearance_joint(
         raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
     if journal_body == bearing_body and journal_link == bearing_link:
         raise ValueError("`journal_body` and `bearing_body` are the same body")
-    return AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=max_penetration,
-                             bearingRotates=bearing_rotates, record=record, **joint_parameters)
+    handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=max_penetration,
+                               bearingRotates=bearing_rotates, record=record, **joint_parameters)
+    handle.placed_by = PLACED_BY_POINTS
+    return handle
 
 
 def _replacement(journal_body: Any, bearing_body: Any, journal_point: Any, bearing_point: Any, journal_link: Any,

@@ -33,6 +33,7 @@ from ..exceptions import OutOfPlaneWarning
 from ..settings import NEWTON_RTOL_DEFAULT
 from ..timescales import STEPS_PER_CONTACT_PERIOD
 from .bodies import body_label, body_mass, joint_contact_period
+from .placement import outside_bearing
 from .registry import joints_of, label
 from .steering import ABSOLUTE_TOLERANCE, HELD_CONTACT_PERIODS, explicit_solver, solver_steps
 
@@ -171,20 +172,16 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
     """``ValueError`` naming the likely cause for a model that cannot run (module docstring);
     an :class:`OutOfPlaneWarning` where a journal's out-of-plane motion is held by nothing."""
     for handle in joints:
-        name = handle.name or handle.objectNumber
+        name = label(handle)
         for role, marker in zip(("bearing", "journal"), handle.markerNumbers):
             mass = body_mass(mbs, marker)
             if mass <= 0.0:  # NaN (a body type whose mass is not read here) passes
-                raise ValueError(f"clearance joint {name!r}: its {role} body ({body_label(mbs, marker)}) has mass {mass}; every body "
+                raise ValueError(f"clearance joint {name}: its {role} body ({body_label(mbs, marker)}) has mass {mass}; every body "
                                  "of a clearance joint needs a positive mass (the contact force would accelerate "
                                  "it without bound)")
-        delta = initial_penetration(mbs, handle)
-        if delta > handle.max_penetration:
-            c = handle.joint.geometry.clearance
-            raise ValueError(f"clearance joint {name!r}: the journal starts outside its bearing (penetration "
-                             f"{delta:.4g} m, {delta / c:.3g} clearances, beyond the limit {handle.max_penetration:.3g} "
-                             "m); place the journal centre within the clearance of the bearing centre (check "
-                             "journal_point / bearing_point and the bodies' initial positions, in metres)")
+        outside = outside_bearing(mbs, handle)
+        if outside:
+            raise ValueError(f"clearance joint {name}: {outside}")
     ref = exu.ConfigurationType.Initial
     for kind, values in (("coordinate", mbs.systemData.GetODE2Coordinates(configuration=ref)),
                           ("velocity", mbs.systemData.GetODE2Coordinates_t(configuration=ref))):
@@ -208,19 +205,6 @@ def _node_of(mbs: exu.MainSystem, index: int) -> Any:
         if start <= index < start + size:
             return n
     return "?"
-
-
-def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
-    """Penetration ``e - c`` [m] of a joint in the initial configuration, in the plane of its joint frame."""
-    ref = exu.ConfigurationType.Initial
-    b, j = handle.markerNumbers
-    p_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.Position, configuration=ref), dtype=float)
-    p_j = np.asarray(mbs.GetMarkerOutput(j, exu.OutputVariableType.Position, configuration=ref), dtype=float)
-    a_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.RotationMatrix, configuration=ref),
-                     dtype=float).reshape(3, 3)
-    frame = a_b @ np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
-    local = frame.T @ (p_j - p_b)
-    return float(math.hypot(local[0], local[1]) - handle.joint.geometry.clearance)
 
 
 def started_aligned(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> bool:
@@ -255,7 +239,7 @@ def tilt_note(handle: ClearanceJointHandle, aligned: bool) -> str:
     scale = geometry.clearance / geometry.length
     if not tilt[k] > TILT_NOTE_FRACTION * scale:
         return ""
-    return (f"joint {handle.name or handle.objectNumber!r}: the journal started aligned and tilted to {tilt[k]:.2g} rad "
+    return (f"joint {label(handle)}: the journal started aligned and tilted to {tilt[k]:.2g} rad "
             f"({tilt[k] / scale:.2g} c/L) at t = {out['time'][k]:.4g} s. If nothing in the model loads it out of its "
             "plane, this is the unstable tilt mode of the sliced joint under a varying in-plane load, grown from "
             "round-off (docs/physics.md section 9.8): its growth rate is the model's, its size at a given time is set "
@@ -375,6 +359,8 @@ def stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
         return []
     t = mbs.systemData.GetTime()
     if t >= end * (1.0 - 1e-12) or not handle._backend.started():
+        return []
+    if handle._backend.failure()[0]:  # the joint stopped the run itself: its error said why (joint.failure())
         return []
     cause = stop_cause(solver, adaptive, min_step)
     if solver.output.finishedSuccessfully and not cause.startswith("stopped"):

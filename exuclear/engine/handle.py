@@ -25,6 +25,8 @@ from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
 from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .placement import PLACED_BY_MARKERS
+from .registry import label
 from .steering import _RunStart
 
 _TOKENS = itertools.count(1)
@@ -83,6 +85,8 @@ class ClearanceJointHandle:
         self.torqueNumber: Any = None
         self.constraintNumber: Any = None
         self.drawingNumber: Any = None
+        #: What placed the journal in its bearing, for the refusal of one that starts outside (engine.placement)
+        self.placed_by = PLACED_BY_MARKERS
         self._axis_local: np.ndarray | None = None  # the bearing axis in marker 0's frame
         self._drawing: dict = {}  # CreateClearanceJoint's drawing sizes (engine/drawing.py)
         self.loadSensorNumbers: list = []  # a spatial joint's ForceLocal and TorqueLocal sensors (outputs())
@@ -105,7 +109,7 @@ class ClearanceJointHandle:
         except AttributeError:  # the system's view of the handle
             mbs = self._mbs()
             if mbs is None:
-                raise RuntimeError(f"the system of joint {self.name!r} no longer exists") from None
+                raise RuntimeError(f"the system of joint {self.name or self.objectNumber!r} no longer exists") from None
             return mbs
 
     def _system_view(self) -> ClearanceJointHandle:
@@ -113,6 +117,16 @@ class ClearanceJointHandle:
         view = object.__new__(ClearanceJointHandle)
         view.__dict__ = self.__dict__
         return view
+
+    def __repr__(self) -> str:
+        kind = f"spatial, {self.slices} slices" if self.slices else "planar"
+        try:
+            name = label(self)
+        except Exception:  # a handle being built: no system view yet
+            name = repr(self.name)
+        return (f"<ClearanceJointHandle {name}: {kind}, clearance {self._joint.geometry.clearance:.4g} m, "
+                f"{type(self._joint.law).__name__} law, objectNumber {self.objectNumber}, markerNumbers "
+                f"{list(self.markerNumbers)}, backend {self.backend!r}>")
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, ClearanceJointHandle) and other.__dict__ is self.__dict__
@@ -223,11 +237,11 @@ class ClearanceJointHandle:
 
     def _check_slices(self) -> None:
         if not self.slices:
-            raise ValueError(f"joint {self.name!r} is planar (slices=None): it has no slices")
+            raise ValueError(f"joint {label(self)} is planar (slices=None): it has no slices")
 
     def _check_faces(self) -> None:
         if self.shoulders is None:
-            raise ValueError(f"joint {self.name!r} has no axial clearance (axial_clearance=None): it has no end faces")
+            raise ValueError(f"joint {label(self)} has no axial clearance (axial_clearance=None): it has no end faces")
 
     @property
     def slice_positions(self) -> np.ndarray:
@@ -264,7 +278,7 @@ class ClearanceJointHandle:
         profiles are slices x nodes, one row per slice (section 11.7; :class:`WearProfile`)."""
         wear = self._joint.wear
         if wear is None:
-            raise ValueError(f"joint {self.name!r} has no wear: give `wear=exuclear.Wear(coefficient=...)` to the joint")
+            raise ValueError(f"joint {label(self)} has no wear: give `wear=exuclear.Wear(coefficient=...)` to the joint")
         g = self._joint.geometry
         p = self._backend.wear_profiles()
         return WearProfile(2.0 * np.pi * np.arange(wear.nodes) / wear.nodes, *(np.array(p[k]) for k in (
@@ -350,13 +364,13 @@ class ClearanceJointHandle:
         """
         self._report()
         if self.sensorNumber is None:
-            raise RuntimeError(f"joint {self.name!r} was created with record=False: nothing was recorded")
+            raise RuntimeError(f"joint {label(self)} was created with record=False: nothing was recorded")
         try:
             data = np.asarray(self.mbs.GetSensorStoredData(self.sensorNumber), dtype=float)
         except Exception:  # Exudyn raises when the sensor has no data yet
             data = np.zeros((0, 0))
         if data.ndim != 2 or data.shape[0] == 0:
-            raise RuntimeError(f"joint {self.name!r} has no outputs yet: run a simulation first")
+            raise RuntimeError(f"joint {label(self)} has no outputs yet: run a simulation first")
         if self._backend.started():
             initial = self._backend.states("initial")
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step

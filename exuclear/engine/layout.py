@@ -170,6 +170,7 @@ class RunStart(NamedTuple):
     jacobian_step: float
     separation_step: float
     impact_mass: float
+    refusal: str
 
 
 class ControlField(NamedTuple):
@@ -213,6 +214,8 @@ STEP_CONTROL = (
                                         "(steering.steer_newton; inf: never)"),
     ControlField("separation_step", _INF, "a contact that ends in a longer step is not resolved [s] (inf: not counted)"),
     ControlField("impact_mass", _NAN, "the effective mass of the joint's impacts [kg] (nan: unknown)"),
+    ControlField("refusal", "", "why the run cannot start, e.g. a journal outside its bearing (engine.placement; "
+                                "'': it can)"),
     # what the run did
     ControlField("runs", 0, "runs started since the joint was created"),
     ControlField("jacobian_on", False, "whether the joint asks for a Jacobian per step now"),

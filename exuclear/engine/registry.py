@@ -33,5 +33,13 @@ def handle_of(mbs: exu.MainSystem, token: int) -> ClearanceJointHandle | None:
 
 
 def label(handle: ClearanceJointHandle) -> str:
-    """How messages name a joint: its name, else its connector's object number."""
-    return repr(handle.name) if handle.name else str(handle.objectNumber)
+    """How messages name a joint: its name (quoted), else ``#k``, the k-th clearance joint
+    created in its system (``#1`` the first), which a model's author can tell without
+    looking up connector numbers."""
+    if handle.name:
+        return repr(handle.name)
+    try:
+        number = next(k for k, h in enumerate(joints_of(handle.mbs), start=1) if h == handle)
+    except (RuntimeError, StopIteration):  # its system is gone, or it was dropped with an earlier build
+        return f"(connector {handle.objectNumber})"
+    return f"#{number}"

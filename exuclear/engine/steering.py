@@ -64,6 +64,7 @@ from ..settings import NEWTON_ATOL_DEFAULT
 from ..timescales import STEPS_PER_CONTACT_PERIOD
 from .bodies import joint_contact_period, joint_mass
 from .layout import RUN_START_DEFAULT, RunStart
+from .placement import outside_bearing
 from .registry import handle_of, joints_of, label
 
 if TYPE_CHECKING:
@@ -294,8 +295,10 @@ class _RunStart:
         # only in an implicit dynamic run (a static solve's load steps are no time; an explicit
         # solver's error control sets its step): where separations are counted
         contact_cap = HELD_CONTACT_PERIODS * period * rate_scale if separation < math.inf else math.inf
+        # a journal outside its bearing: the kernel stops the run at its start, with this message
+        refusal = outside_bearing(mbs, handle) if handle is not None else ""
         return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                        rate_scale, growth_cap, contact_cap, jacobian_step, separation, mass)
+                        rate_scale, growth_cap, contact_cap, jacobian_step, separation, mass, refusal)
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's

@@ -224,6 +224,8 @@ class JointState:
             self.started = True
             if not all(finite(k) for k in kins):
                 self._fail(DIVERGED, t)
+            if self.control.refusal:  # e.g. a journal outside its bearing
+                self._fail(self.control.refusal, t)
         return self.previous if t <= self.current[0].time else self.current
 
     def accept_wear(self, advance: bool, kins: list[Kinematics], psi: float, states: Any, h: float, t: float) -> None:

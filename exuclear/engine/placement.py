@@ -1,0 +1,49 @@
+"""Where a clearance joint's journal starts: its initial penetration, and the refusal of a
+journal that starts outside its bearing, which both paths give (:func:`exuclear.simulate`
+before its run, a plain ``mbs.SolveDynamic`` through the joint's run-start record, whose
+kernel then stops the run at its first evaluation)."""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import exudyn as exu
+import numpy as np
+
+if TYPE_CHECKING:
+    from .handle import ClearanceJointHandle
+
+#: What the builders' own arguments place (:attr:`ClearanceJointHandle.placed_by`): named in
+#: the refusal of a journal outside its bearing, so that it points at the user's call.
+PLACED_BY_POSITION = "the joint's `position` and the initial coordinates of the bodies in `itemNumbers`"
+PLACED_BY_MARKERS = "the positions of `markerNumbers` on their bodies and the bodies' initial coordinates"
+PLACED_BY_POINTS = "`journal_point` / `bearing_point` and the bodies' initial coordinates"
+
+
+def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
+    """Penetration ``e - c`` [m] of a joint in the initial configuration, in the plane of its joint frame."""
+    ref = exu.ConfigurationType.Initial
+    b, j = handle.markerNumbers
+    p_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.Position, configuration=ref), dtype=float)
+    p_j = np.asarray(mbs.GetMarkerOutput(j, exu.OutputVariableType.Position, configuration=ref), dtype=float)
+    a_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.RotationMatrix, configuration=ref),
+                     dtype=float).reshape(3, 3)
+    frame = a_b @ np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
+    local = frame.T @ (p_j - p_b)
+    return float(math.hypot(local[0], local[1]) - handle.joint.geometry.clearance)
+
+
+def outside_bearing(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
+    """Why a run of ``mbs`` cannot start where the joint's journal starts outside its bearing
+    (a penetration beyond the joint's ``maxPenetration``), naming the arguments that placed
+    it; ``""`` where it starts within (or its markers cannot be read yet)."""
+    try:
+        delta = initial_penetration(mbs, handle)
+    except Exception:  # not assembled yet, or a marker Exudyn cannot evaluate: the run's own checks speak
+        return ""
+    if not delta > handle.max_penetration:
+        return ""
+    c = handle.joint.geometry.clearance
+    return (f"the journal starts outside its bearing (penetration {delta:.4g} m, {delta / c:.3g} clearances, beyond "
+            f"the limit {handle.max_penetration:.3g} m); place the journal centre within the clearance "
+            f"({c:.3g} m) of the bearing centre: check {handle.placed_by} (in metres)")
