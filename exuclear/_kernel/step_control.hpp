@@ -118,7 +118,10 @@ double impact_redo(const Params& a, const JointState& s, const std::vector<Histo
 //          limited too (exempting them left 5x simulate's penetration on the zoo's piston
 //          engine, and more steps; _python_kernel/step_control.py step_control has the numbers);
 //   held:  a step through which a contact is held (in contact at both ends), longer than
-//          contact_cap (steering.py HELD_CONTACT_PERIODS contact periods), is redone at it.
+//          contact_cap (steering.py HELD_CONTACT_PERIODS contact periods), is redone at it;
+//   separation: a step in which a contact ends, longer than separation_step (a tenth of the
+//          contact period, steering.py separation_step), is redone at it: a contact that opens
+//          in a longer implicit step rings and may close again without a physical cause.
 double step_control(const Params& a, JointState& s, const std::vector<History>& base, double t) {
     StepControl& c = s.control;
     double h = t - base[0].time;
@@ -174,6 +177,9 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         if (b.in_contact && k.delta > 0.0 && h > c.contact_cap * (1.0 + STEP_SLACK)) {
             h_rec = c.contact_cap < h_rec ? c.contact_cap : h_rec;  // a held contact: HELD_CONTACT_PERIODS
             held_over = true;
+        }
+        if (b.in_contact && k.delta <= 0.0 && h > c.separation_step * (1.0 + STEP_SLACK)) {
+            h_rec = c.separation_step < h_rec ? c.separation_step : h_rec;  // a contact that opens: resolved
         }
         double change = std::fabs(k.delta_dot - b.delta_dot);
         double allowed = kappa * (impact ? std::fabs(v0) : a.v_min);

@@ -203,7 +203,13 @@ class JointStepControl(JointState):
           in more steps (docs/validation/step_control.md);
         - held: a step through which a contact is held (in contact at both ends), longer than
           the run-start callback's ``contact_cap`` (steering.HELD_CONTACT_PERIODS contact
-          periods), is redone at ``contact_cap``.
+          periods), is redone at ``contact_cap``;
+        - separation: a step in which a contact ends, longer than the run-start callback's
+          ``separation_step`` (a tenth of the contact period, steering.separation_step), is
+          redone at that step: a contact that opens in a longer step of an implicit method
+          rings and may close again without a physical cause (numerical chatter, which
+          :func:`exuclear.engine.diagnostics.chatter_note` reports where the step could not be
+          shortened).
         """
         c = self.control
         h = t - base[0].time
@@ -250,6 +256,8 @@ class JointStepControl(JointState):
             if b.in_contact and kin.delta > 0.0 and h > c.contact_cap * (1.0 + STEP_SLACK):
                 h_rec = min(h_rec, c.contact_cap)  # a held contact: at most HELD_CONTACT_PERIODS
                 held_over = True
+            if b.in_contact and kin.delta <= 0.0 and h > c.separation_step * (1.0 + STEP_SLACK):
+                h_rec = min(h_rec, c.separation_step)  # a contact that opens: resolved, not chatter
             change = abs(kin.delta_dot - b.delta_dot)
             allowed = kappa * (abs(v0) if impact else v_min)
             if change > allowed:
