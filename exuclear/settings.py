@@ -20,7 +20,7 @@ from .checks import check_choice, check_positive, check_real
 #: paper's 0.269 m/s at 0.5, 1.3 % at 0.25, within 0.8 % at 0.1 (tests/test_step_control.py asks
 #: 1 %).  A path to 1 % of c over many impacts asks for less: the paper's redundant slider-crank
 #: (22 impacts in two revolutions, steps of at most 2e-5 s) 7.7e-2 c at 0.1, 1.6e-2 c at 0.03
-#: (README, "The joint steers the step").
+#: (docs/guide/solver_path.md, "The joint steers the step").
 RATE_LIMIT_DEFAULT = 0.1
 
 #: Exudyn's default numerical damping of generalized-alpha at infinite frequency.
@@ -40,12 +40,21 @@ NEWTON_ATOL_DEFAULT = 1e-8
 #: ``SolverSettings.linear_solver``: exuclear's name -> Exudyn's ``LinearSolverType`` member.
 LINEAR_SOLVERS = {"dense": "EXUdense", "sparse": "EigenSparse"}
 
+#: The default ``min_step`` [s]: the explicit adaptive methods' floor (their error control fails
+#: below); the implicit methods' adaptive steps keep Exudyn's minimum step (1e-8 s) unless
+#: another ``min_step`` is given.
+MIN_STEP_DEFAULT = 1e-12
+
 #: The step when none is given [s]: the paper's maximum step.
 DEFAULT_STEP = 1e-5
 
 #: The value of ``step`` that asks :func:`exuclear.simulate` to choose it from the model
 #: (:func:`exuclear.engine.solver.automatic_step`).
 AUTO = "auto"
+
+#: The value of ``method`` that asks :func:`exuclear.simulate` to choose it from the model
+#: (:func:`exuclear.engine.solver.automatic_method`).
+AUTO_METHOD = "auto"
 
 #: Method name -> (Exudyn DynamicSolverType name, explicit?, adaptive by default?).
 METHODS: dict[str, tuple[str, bool, bool]] = {
@@ -66,26 +75,32 @@ class SolverSettings:
     end_time : float
         Simulated time [s], > 0.
     method : str
-        One of :data:`METHODS`: ``"dopri5"`` (adaptive Dormand-Prince 5(4), explicit:
-        only for models without constraints), ``"ode23"``, ``"rk44"`` (fixed step),
+        ``"auto"`` (default): :func:`exuclear.simulate` chooses from the model
+        (:func:`exuclear.engine.solver.automatic_method`): ``"generalized-alpha"`` where the
+        model has constraints (joints, coordinate constraints: algebraic equations, which
+        Exudyn's explicit solvers cannot take) or the settings give an option of the
+        implicit methods (``impact_step``, ``joint_steps``, ``spectral_radius``, the Newton
+        options), else ``"dopri5"``; ``result.method`` says which.  Or one of
+        :data:`METHODS`: ``"dopri5"`` (adaptive Dormand-Prince 5(4), explicit: only for
+        models without constraints), ``"ode23"``, ``"rk44"`` (fixed step),
         ``"generalized-alpha"`` or ``"trapezoidal"`` (implicit, any model).
     step : float or "auto"
-        Fixed step for fixed-step methods; the largest step for adaptive ones [s].
-        Default :data:`DEFAULT_STEP`, 1e-5 s, the paper's maximum step.
+        The step of fixed-step methods; the largest step of adaptive ones and of the
+        implicit methods, whose steps the clearance joints shorten where their contacts
+        need it (``joint_steps``), as under a plain ``mbs.SolveDynamic`` with Exudyn's
+        defaults [s].  Default :data:`DEFAULT_STEP`, 1e-5 s, the paper's maximum step.
 
         ``"auto"``: :func:`exuclear.simulate` chooses the step from the model
         (:func:`exuclear.engine.solver.automatic_step`; ``result.step`` says which).
-
-        Implicit methods (generalized-alpha, trapezoidal) then take steps controlled by
-        the clearance joints (``joint_steps``) with the largest step ``end_time / 1000``
-        (:data:`exuclear.timescales.MIN_STEPS_PER_RUN`): the joints shorten the steps
-        their contacts need, as under a plain ``mbs.SolveDynamic`` with Exudyn's
-        defaults.  ``end_time / 1000`` resolves a motion of a tenth of the run with 100
-        steps and knows nothing of the model's own frequencies (check such a run at half
-        the step, or with :func:`exuclear.check_convergence`).
-
-        Fixed steps (RK44, or an implicit method with ``joint_steps=False`` or
-        ``impact_step``) take
+        Explicit adaptive methods (DOPRI5, ODE23) control their step by their error
+        estimate and keep :data:`DEFAULT_STEP` as their largest step.  Implicit methods
+        whose steps the joints control (``joint_steps``, their default) take the largest
+        step ``end_time / 1000`` (:data:`exuclear.timescales.MIN_STEPS_PER_RUN`): the joints
+        shorten the steps where their contacts begin, are held or end.  ``end_time / 1000``
+        resolves a motion of a tenth of the run with 100 steps and knows nothing of the
+        model's own frequencies (check such a run at half the step, or with
+        :func:`exuclear.check_convergence`).  Fixed steps (RK44, or an implicit method with
+        ``joint_steps=False``) take
 
             step = min(T_c / 10 over the clearance joints, end_time / 1000)
 
@@ -98,9 +113,7 @@ class SolverSettings:
         (issue 15's pendulum: steps of 2.3 periods chatter, a quarter period does not).
         The force is a rough estimate, and need be no more: under a Hertz-like law
         ``T_c`` varies as ``F**(-1/6)``, so a load ten times the weight shortens it by
-        a third, within the margin of the ten steps.  Explicit adaptive methods
-        (DOPRI5, ODE23) control their step by their error estimate and keep
-        :data:`DEFAULT_STEP` as their largest step.  ``impact_step`` and ``min_step``
+        a third, within the margin of the ten steps.  ``impact_step`` and ``min_step``
         must not exceed the chosen step.  :func:`exuclear.check_convergence` needs a
         number: give it the settings with ``step=result.step`` (and
         ``joint_steps=settings.steered``).
@@ -110,7 +123,10 @@ class SolverSettings:
         0.1 mm clearance, so eccentricity errors stay well below the clearance.
     min_step : float
         Smallest step an adaptive method may take [s]; it fails below.  Must not
-        exceed ``step``.
+        exceed ``step``.  Default :data:`MIN_STEP_DEFAULT` (1e-12 s), the explicit
+        methods' floor; the implicit methods' adaptive steps (``joint_steps``) keep
+        Exudyn's minimum step, 1e-8 s, unless another value is given (the joints shorten
+        steps down to 10 times it: a smaller one lets them resolve a more abrupt contact).
     spectral_radius : float
         Numerical damping of the generalized-alpha method at infinite frequency, in
         [0, 1]; Exudyn's default 0.9.  Implicit methods only: another value with an
@@ -123,15 +139,18 @@ class SolverSettings:
         an impact), the step is redone with ``impact_step`` [s], and the step doubles
         again after every ``recovery_steps`` accepted steps, up to ``step``; in free flight
         the joints let it grow faster, up to the time the journal needs to reach the wall
-        (README, "The joint steers the step").  Default None: fixed steps.
+        (docs/guide/solver_path.md, "The joint steers the step").  Default None: no
+        impact-aware steps.
     joint_steps : bool, optional
         Implicit methods only: adaptive steps controlled by the clearance joints
-        (README, "The joint steers the step"): ``step`` is the largest step; a joint
-        rejects a step in which its contact cannot be resolved and Exudyn redoes it
-        shorter (down to Exudyn's ``minimumStepSize``, 1e-8 s), then doubles it again after 10 accepted steps
-        that converged in at most 7 Newton iterations (Exudyn's rule).  Default None:
-        True with ``step="auto"`` (and no ``impact_step``), False (fixed steps)
-        otherwise.  :attr:`steered` is the value in effect.
+        (docs/guide/solver_path.md, "The joint steers the step"): ``step`` is the largest
+        step; a joint rejects a step in which its contact cannot be resolved, and Exudyn
+        redoes it (or a step whose Newton iteration failed) shorter, down to Exudyn's
+        ``minimumStepSize``, 1e-8 s, then doubles it again after 10 accepted steps that
+        converged in at most 7 Newton iterations (Exudyn's rule): what a plain
+        ``mbs.SolveDynamic`` does with Exudyn's defaults.  Default None: True for the
+        implicit methods without ``impact_step``.  False: fixed steps, and a step whose
+        Newton iteration fails ends the run.  :attr:`steered` is the value in effect.
     rate_limit : float
         KAPPA of the clearance joints' own step control for this run (each joint's
         ``rate_limit``, restored after the run): a step in contact may change the
@@ -169,11 +188,11 @@ class SolverSettings:
     """
 
     end_time: float
-    method: str = "dopri5"
+    method: str = AUTO_METHOD
     step: float | Literal["auto"] = DEFAULT_STEP
     rtol: float = 1e-6
     atol: float = 1e-9
-    min_step: float = 1e-12
+    min_step: float = MIN_STEP_DEFAULT
     spectral_radius: float = SPECTRAL_RADIUS_DEFAULT
     output_step: float = 1e-5
     impact_step: float | None = None
@@ -188,7 +207,8 @@ class SolverSettings:
 
     def __post_init__(self) -> None:
         check_positive("end_time", self.end_time)
-        check_choice("method", self.method, METHODS)
+        if self.method != AUTO_METHOD:
+            check_choice("method", self.method, {**METHODS, AUTO_METHOD: None})
         if self.step is None or isinstance(self.step, str) and self.step != AUTO:
             raise ValueError(f"`step` must be a positive number [s] or {AUTO!r} (chosen from the model), got {self.step!r}")
         if not self.automatic:
@@ -263,15 +283,30 @@ class SolverSettings:
     @property
     def steered(self) -> bool:
         """True if the clearance joints control the steps (``joint_steps``, or its default:
-        an implicit method with ``step="auto"`` and no ``impact_step``)."""
+        an implicit method without ``impact_step``)."""
         if self.joint_steps is not None:
             return self.joint_steps
-        return self.automatic and not self.explicit and self.impact_step is None
+        return not self.explicit and self.impact_step is None
+
+    @property
+    def method_from_model(self) -> bool:
+        """True if ``method`` is ``"auto"`` (chosen from the model by :func:`exuclear.simulate`)."""
+        return self.method == AUTO_METHOD
+
+    @property
+    def implicit_options(self) -> list[str]:
+        """The options given that only the implicit methods take (their names)."""
+        defaults = {"spectral_radius": SPECTRAL_RADIUS_DEFAULT, "newton_rtol": NEWTON_RTOL_DEFAULT,
+                    "newton_atol": NEWTON_ATOL_DEFAULT, "rate_limit": RATE_LIMIT_DEFAULT, "linear_solver": "dense",
+                    "impact_step": None, "joint_steps": None, "newton_contractivity": None}
+        return [name for name, default in defaults.items() if getattr(self, name) != default]
 
     @property
     def explicit(self) -> bool:
-        return METHODS[self.method][1]
+        """Whether the method is explicit; ``"auto"`` counts as implicit until it is chosen
+        (the implicit methods' options are accepted with it)."""
+        return False if self.method_from_model else METHODS[self.method][1]
 
     @property
     def adaptive(self) -> bool:
-        return METHODS[self.method][2]
+        return False if self.method_from_model else METHODS[self.method][2]

@@ -199,7 +199,7 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
     """
     if not callable(run):
         raise ValueError(f"`run` must be a callable run(settings) -> RunRecord, got {type(run).__name__}")
-    automatic = isinstance(settings, SolverSettings) and settings.automatic
+    automatic = isinstance(settings, SolverSettings) and (settings.automatic or settings.method_from_model)
     if not automatic:
         refined_settings(settings, factor)  # bad settings or factor fail before any run
     elif check_positive("factor", factor) <= 1.0:
@@ -211,7 +211,12 @@ def check_convergence(run: Callable[[Any], RunRecord], settings: Any, *,
     if not isinstance(first, RunRecord):
         raise ValueError(f"{label} must return a RunRecord (RunRecord.from_handles or .from_mbs), got "
                          f"{type(first).__name__}")
-    if automatic:  # the step the model chose is the one refined
+    if automatic and settings.method_from_model:  # the method the model chose is the one refined
+        if not first.method:
+            raise ValueError(f"`method` is 'auto' but {label}'s record does not say which method the run chose: build "
+                             "it with RunRecord.from_handles(result, ...), whose result.method it is")
+        settings = replace(settings, method=first.method)
+    if automatic and settings.automatic:  # the step the model chose is the one refined
         if not math.isfinite(first.step):
             raise ValueError(f"`step` is 'auto' but {label}'s record does not say which step the run chose: build it "
                              "with RunRecord.from_handles(result, ...), whose result.step it is")

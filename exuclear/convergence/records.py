@@ -61,6 +61,9 @@ class RunRecord:
         The step the run was given [s] (the largest for adaptive methods), as
         ``result.step`` says; NaN where unknown.  With ``SolverSettings(step="auto")``
         the check refines this step.
+    method : str
+        The method of the run, as ``result.method`` says; ``""`` where unknown.  With
+        ``SolverSettings(method="auto")`` the check refines the run with this method.
     """
 
     joints: dict[str, JointRecord]
@@ -70,6 +73,7 @@ class RunRecord:
     time_reached: float = math.inf
     wall_time: float = math.nan
     step: float = math.nan
+    method: str = ""
 
     @classmethod
     def from_handles(cls, result: Any, joints: Mapping[str, Any],
@@ -78,7 +82,7 @@ class RunRecord:
         ``joints`` the clearance-joint handles by name, ``signals`` named ``(time, values)``."""
         return cls(*_recorded(joints, signals), success=bool(result.success), message=str(result.message),
                    time_reached=float(result.time_reached), wall_time=float(result.wall_time),
-                   step=float(getattr(result, "step", math.nan)))
+                   step=float(getattr(result, "step", math.nan)), method=str(getattr(result, "method", "")))
 
     @classmethod
     def from_mbs(cls, mbs: Any, joints: Mapping[str, Any],

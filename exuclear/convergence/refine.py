@@ -45,6 +45,9 @@ def refined_settings(settings: SolverSettings, factor: float = DEFAULT_FACTOR) -
     if not isinstance(settings, SolverSettings):
         raise ValueError(f"`settings` must be a SolverSettings or an exu.SimulationSettings, got "
                          f"{type(settings).__name__}")
+    if settings.method_from_model:
+        raise ValueError("`method` is 'auto', which is chosen from the model: refine the settings with the method "
+                         "the run chose, dataclasses.replace(settings, method=result.method)")
     if settings.automatic:
         raise ValueError("`step` is 'auto', which is chosen from the model: refine the settings with the step the "
                          "run chose, dataclasses.replace(settings, step=result.step)")

@@ -32,9 +32,10 @@ import numpy as np
 from ..exceptions import OutOfPlaneWarning
 from ..settings import NEWTON_RTOL_DEFAULT
 from ..timescales import STEPS_PER_CONTACT_PERIOD
+from ._python_kernel.step_control import MIN_STEP_MARGIN
 from .bodies import body_label, body_mass, joint_contact_period
 from .placement import outside_bearing
-from .registry import joints_of, label
+from .registry import joints_of, label, simulate_settings
 from .steering import ABSOLUTE_TOLERANCE, HELD_CONTACT_PERIODS, explicit_solver, solver_steps
 
 if TYPE_CHECKING:
@@ -257,7 +258,7 @@ def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: b
     stopped = [] if running else stopped_note(handle) + chatter_note(handle, control)
     if not control["unresolved"] and not control["over_limit"] and not control["held_long"]:
         return stopped
-    _can, _min, why, _rate = solver_steps(handle.mbs)
+    can, min_step, why, _rate = solver_steps(handle.mbs)
     period = math.nan
     try:
         period = joint_contact_period(handle.mbs, handle)
@@ -282,10 +283,55 @@ def step_notes(handle: ClearanceJointHandle, control: dict[str, Any], running: b
             advice = min(advice, period / 10)  # an impact is faster: the kernel's worst step is then shorter
         notes.append((kind, f"joint {name}: at t = {when:.6g} s a step of {step:.3g} s {what}, in {count} step(s) "
                      f"of the run{' so far' if running else ''}, which could not be shortened enough "
-                     f"({why or otherwise}); the results may be inaccurate: use a step of at most {advice:.3g} s, "
-                     "or let the solver shorten steps (timeIntegration.adaptiveStep = True for implicit, "
-                     "automaticStepSize = True for explicit solvers)"))
+                     f"({_in_user_terms(handle.mbs, why) or otherwise}); the results may be inaccurate: "
+                     f"{_step_remedy(handle.mbs, step, advice, can, min_step)}"))
     return notes + stopped
+
+
+def _in_user_terms(mbs: exu.MainSystem, why: str) -> str:
+    """Why the solver could not shorten a step (:func:`solver_steps`), in the settings of
+    :func:`exuclear.simulate` where it runs the model."""
+    settings = simulate_settings(mbs)
+    if settings is None or not why:
+        return why
+    if "adaptiveStep" in why:
+        return "the steps are fixed: joint_steps=False"
+    return f"method {settings.method!r} takes fixed steps"
+
+
+def _step_remedy(mbs: exu.MainSystem, step: float, advice: float, can_shorten: bool, min_step: float) -> str:
+    """What resolves a contact that a step of ``step`` [s] did not, where the joint's estimate
+    asks for at most ``advice`` [s]: that step, set where the user sets it, and where the
+    solver could not shorten steps, the setting that lets it (never one already in force).
+    Where ``step`` was already within ``advice``, no step the run allows would: the joint
+    shortens steps no further than :data:`MIN_STEP_MARGIN` times the solver's minimum step
+    ``min_step`` [s] (where Exudyn's Newton iteration fails), so the sentence names the
+    minimum step where that bound held the step, else the model as the likely cause."""
+    settings = simulate_settings(mbs)
+    if not advice < step * (1.0 - 1e-9):
+        floor = MIN_STEP_MARGIN * min_step
+        if can_shorten and step <= floor * (1.0 + 1e-6):
+            where = "`min_step`" if settings is not None else "timeIntegration.minimumStepSize"
+            return (f"the step was already at the shortest the joint takes, {MIN_STEP_MARGIN:g} times the solver's "
+                    f"minimum step ({min_step:.3g} s, near which Exudyn's Newton iteration fails), so no step this "
+                    f"run allows resolves it: a smaller minimum step ({where}) lets the joint shorten further")
+        return (f"the step was already within the {advice:.3g} s the joint's estimates ask for, so a shorter step "
+                "alone will not resolve it; so abrupt a contact points at the model: units (E in Pa, lengths in m), "
+                "a journal placed outside its bearing, a body of the joint without its mass, or a `rate_limit` far "
+                "tighter than its default")
+    where = "`step`" if settings is not None else "timeIntegration.numberOfSteps"
+    remedy = f"use a step of at most {advice:.3g} s ({where})"
+    if can_shorten:
+        return remedy
+    try:
+        explicit = explicit_solver(mbs.sys["dynamicSolver"])
+    except Exception:  # no solver to ask: the implicit methods' setting
+        explicit = False
+    if settings is not None:
+        shorten = "method='dopri5', whose error control shortens steps" if explicit else "joint_steps=True"
+    else:
+        shorten = "timeIntegration.automaticStepSize = True" if explicit else "timeIntegration.adaptiveStep = True"
+    return f"{remedy}, or let the solver shorten steps ({shorten})"
 
 
 def chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[tuple[str, str]]:
@@ -298,9 +344,10 @@ def chatter_note(handle: ClearanceJointHandle, control: dict[str, Any]) -> list[
     return [("chatter", f"joint {label(handle)}: {long} of its {control['separations']} contacts ended in a step "
              f"longer than a tenth of its contact period ({step * STEPS_PER_CONTACT_PERIOD:.2g} s, estimated); such "
              f"separations are not resolved, and the {handle.history.onsets} contact onsets may be numerical "
-             f"chatter, not physics: use steps of at most {step:.2g} s where contacts open "
-             "(timeIntegration.numberOfSteps, or exuclear.simulate's `step`), or an explicit adaptive method where "
-             "the model allows")]
+             f"chatter, not physics: use steps of at most {step:.2g} s where contacts open ("
+             + ("`step`, or step='auto', which takes a tenth of the contact period" if simulate_settings(handle.mbs)
+                is not None else "timeIntegration.numberOfSteps, which bounds the steps")
+             + "), or an explicit adaptive method where the model has no constraints")]
 
 
 def regime(handle: ClearanceJointHandle) -> str:
@@ -365,6 +412,9 @@ def stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
     cause = stop_cause(solver, adaptive, min_step)
     if solver.output.finishedSuccessfully and not cause.startswith("stopped"):
         return []  # a finished run whose time is not this solver's (e.g. a static solve since)
+    simulating = simulate_settings(mbs) is not None
+    if simulating:
+        cause = cause.replace("timeIntegration.adaptiveStep is False", "joint_steps=False")
     note = (f"joint {label(handle)}: Exudyn's solver ended the run at t = {t:.6g} s of {end:g} s: {cause}; the joint "
             f"was then {regime(handle)}")
     if "Newton" not in cause and "singular" not in cause:
@@ -374,11 +424,15 @@ def stopped_note(handle: ClearanceJointHandle) -> list[tuple[str, str]]:
         rtol, atol = float(newton.relativeTolerance), float(newton.absoluteTolerance)
         if rtol < NEWTON_RTOL_DEFAULT or atol < ABSOLUTE_TOLERANCE:
             # the joint raises only Exudyn's default absolute tolerance: a tighter one is the user's
-            advice.append(f"Newton tolerances the residual can reach (timeIntegration.newton.relativeTolerance >= "
-                          f"{NEWTON_RTOL_DEFAULT:g}, now {rtol:g}; absoluteTolerance >= {ABSOLUTE_TOLERANCE:g}, now "
-                          f"{atol:g}; the joint keeps tolerances the user set)")
+            rtol_name, atol_name = (("newton_rtol", "newton_atol") if simulating else
+                                    ("timeIntegration.newton.relativeTolerance", "absoluteTolerance"))
+            advice.append(f"Newton tolerances the residual can reach ({rtol_name} >= {NEWTON_RTOL_DEFAULT:g}, now "
+                          f"{rtol:g}; {atol_name} >= {ABSOLUTE_TOLERANCE:g}, now {atol:g}; the joint keeps "
+                          "tolerances the user set)")
     if not adaptive:
-        advice.append("timeIntegration.adaptiveStep = True (Exudyn then shortens a step whose Newton fails)")
-    advice.append("a shorter step; where Newton's residual stalls at every step length (timeIntegration.verboseMode = 2 "
-                  "shows it), look for a singular position of the mechanism")
+        advice.append(("joint_steps=True" if simulating else "timeIntegration.adaptiveStep = True")
+                      + " (Exudyn then shortens a step whose Newton fails)")
+    advice.append(f"a shorter step; where Newton's residual stalls at every step length "
+                  f"({'verbose=2' if simulating else 'timeIntegration.verboseMode = 2'} shows it), look for a "
+                  "singular position of the mechanism")
     return [("stopped", note + "; try " + ", or ".join(advice))]

@@ -3,7 +3,7 @@ as Exudyn keeps a model's own data with its system, so that :func:`exuclear.simu
 joints' run-start callbacks and the model checks find them from ``mbs`` alone."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import exudyn as exu
 
@@ -12,6 +12,10 @@ if TYPE_CHECKING:
 
 #: ``mbs.variables`` key of the joints created in a system (for exuclear.simulate).
 REGISTRY_KEY = "exuclear.joints"
+#: ``mbs.variables`` key that holds the :class:`~exuclear.SolverSettings` of the
+#: :func:`exuclear.simulate` run under way: the joints' notes then name the settings its user
+#: can set (:func:`simulate_settings`).
+SIMULATE_KEY = "exuclear.simulate"
 
 
 def register(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> None:
@@ -30,6 +34,12 @@ def joints_of(mbs: exu.MainSystem) -> list[ClearanceJointHandle]:
 def handle_of(mbs: exu.MainSystem, token: int) -> ClearanceJointHandle | None:
     """The joint of ``mbs`` whose handle has ``token`` (live or not), or None."""
     return next((h for h in mbs.variables.get(REGISTRY_KEY, []) if h.token == token), None)
+
+
+def simulate_settings(mbs: exu.MainSystem) -> Any:
+    """The :class:`~exuclear.SolverSettings` of the :func:`exuclear.simulate` run of ``mbs``
+    under way, or None (a plain ``mbs.SolveDynamic``)."""
+    return mbs.variables.get(SIMULATE_KEY)
 
 
 def label(handle: ClearanceJointHandle) -> str:

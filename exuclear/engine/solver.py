@@ -2,13 +2,21 @@
 
 A clearance joint needs none of this: ``mbs.SolveDynamic`` runs it as any Exudyn item
 (its history starts again at each run's initial time).  :func:`simulate` adds what a
-study wants: one typed settings object (:class:`exuclear.SolverSettings`), the refusal of
-explicit methods for constrained models (Exudyn's explicit solvers would silently drop
-the constraints), impact-aware steps, watchdogs for an adaptive step that collapses or
+study wants: one typed settings object (:class:`exuclear.SolverSettings`), a method chosen
+from the model (:func:`automatic_method`: an implicit one where the model has constraints),
+the refusal of explicit methods for constrained models (Exudyn's explicit solvers would
+silently drop the constraints), impact-aware steps, watchdogs for an adaptive step that collapses or
 is retried without end, a step chosen from the model (``step="auto"``,
 :func:`automatic_step`), and a result that says why a run stopped.  The watchdogs are
 pre- and post-step functions installed for the run only; the user's own step functions
 are called from them and restored afterwards.
+
+With a numeric ``step`` and an implicit method, :func:`simulate` runs as a plain
+``mbs.SolveDynamic`` with that step and Exudyn's defaults does (adaptive steps: Exudyn
+shortens a step whose Newton iteration fails, the joints one they cannot resolve), so that
+where the plain call reaches the end time, :func:`simulate` does too.  During its run the
+system's variables hold its settings under :data:`SIMULATE_KEY`: the joints' notes then name
+the :class:`SolverSettings` fields to change, not Exudyn's.
 """
 from __future__ import annotations
 
@@ -21,12 +29,12 @@ from typing import TYPE_CHECKING, Any
 import exudyn as exu
 
 from ..exceptions import AccuracyWarning
-from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, SolverSettings
+from ..settings import DEFAULT_STEP, LINEAR_SOLVERS, METHODS, MIN_STEP_DEFAULT, SolverSettings
 from ..timescales import MIN_STEPS_PER_RUN, step_from_contact_periods
 from .arguments import check_system
 from .bodies import joint_contact_period, unread_masses
 from .diagnostics import check_model, started_aligned, tilt_note
-from .registry import joints_of
+from .registry import SIMULATE_KEY, joints_of, label
 
 if TYPE_CHECKING:
     from .handle import ClearanceJointHandle
@@ -45,6 +53,10 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
 
     ``step="auto"`` needs the model: :func:`simulate` replaces it by
     :func:`automatic_step` before it maps the settings."""
+    if settings.method_from_model:
+        raise ValueError("`method` is 'auto', which is chosen from the model: run exuclear.simulate(mbs, settings), or "
+                         "map dataclasses.replace(settings, method=exuclear.engine.solver.automatic_method(mbs, "
+                         "settings))")
     if settings.automatic:
         raise ValueError("`step` is 'auto', which is chosen from the model: run exuclear.simulate(mbs, settings), or "
                          "map dataclasses.replace(settings, step=exuclear.engine.solver.automatic_step(mbs, settings))")
@@ -59,10 +71,13 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.absoluteTolerance = settings.atol
         ti.minimumStepSize = settings.min_step
     elif settings.steered:
-        # the joints' step control (README, "The joint steers the step"): a joint's post-Newton
-        # function rejects a step its contact cannot resolve, with the step to redo it at
-        ti.adaptiveStep = True  # down to Exudyn's minimumStepSize, 1e-8 s
+        # the joints' step control (docs/guide/solver_path.md, "The joint steers the step"): a
+        # joint's post-Newton function rejects a step its contact cannot resolve, with the step
+        # to redo it at; Exudyn redoes a step whose Newton fails shorter (its defaults)
+        ti.adaptiveStep = True  # down to Exudyn's minimumStepSize, 1e-8 s, or the user's min_step
         ti.discontinuous.useRecommendedStepSize = True
+        if settings.min_step != MIN_STEP_DEFAULT:
+            ti.minimumStepSize = settings.min_step
     elif settings.impact_step is None:
         ti.adaptiveStep = False  # fixed step: a rejected Newton step fails the run loudly
     else:
@@ -93,8 +108,9 @@ class SimulationResult:
     ``success`` is False when the run stopped early; ``message`` then says why and what
     to try, and ``time_reached`` [s] how far it got.  ``wall_time`` is the solver call
     alone [s]; ``step`` [s] the step the run was given (the largest for adaptive
-    methods), chosen from the model where the settings said ``"auto"``; ``steps`` the number of accepted time steps and ``rejected`` the
-    rejected ones (adaptive methods).  ``notes`` says where a finished run may not be
+    methods), chosen from the model where the settings said ``"auto"``, and ``method`` the
+    method, chosen likewise; ``steps`` the number of accepted time steps and ``rejected``
+    the rejected ones (adaptive methods).  ``notes`` says where a finished run may not be
     converged (each also issued as an :class:`AccuracyWarning`), e.g. contact chatter
     that is a numerical artefact.
     """
@@ -107,6 +123,7 @@ class SimulationResult:
     time_reached: float
     notes: tuple[str, ...] = ()
     step: float = math.nan
+    method: str = ""
 
 
 def _user_function(installed: Any) -> Any:
@@ -186,17 +203,30 @@ def _joints_in_contact(joints: list[ClearanceJointHandle]) -> str:
     for h in joints:
         state = h.state()
         if state.in_contact:
-            names.append(f"{h.name or h.objectNumber!r} (penetration {state.delta:.3g} m)")
+            names.append(f"{label(h)} (penetration {state.delta:.3g} m)")
     return f"; in contact then: {', '.join(names)}" if names else "; no clearance joint was in contact then"
+
+
+def automatic_method(mbs: exu.MainSystem, settings: SolverSettings) -> str:
+    """The method that ``SolverSettings(method="auto")`` stands for in the assembled ``mbs``:
+    ``"generalized-alpha"`` where the model has constraints (objects with algebraic
+    equations: joints, coordinate constraints, which Exudyn's explicit solvers would drop)
+    or the settings give an option only the implicit methods take; else ``"dopri5"``, the
+    adaptive explicit method whose error control resolves a free journal's impacts (the
+    paper's numbers come from it).  ``settings.method`` where it is not ``"auto"``."""
+    if not settings.method_from_model:
+        return settings.method
+    return "generalized-alpha" if settings.implicit_options or _constraint_objects(mbs) else "dopri5"
 
 
 def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
     """The step [s] that ``SolverSettings(step="auto")`` stands for in the assembled ``mbs``.
 
     Implicit methods whose steps the joints control (``settings.steered``): the largest
-    step ``end_time / 1000`` (:data:`~exuclear.timescales.MIN_STEPS_PER_RUN`).  Fixed-step
-    methods (implicit, RK44): a tenth of the shortest contact period of the
-    model's clearance joints, and no more than ``end_time / 1000``
+    step ``end_time / 1000`` (:data:`~exuclear.timescales.MIN_STEPS_PER_RUN`); the joints
+    shorten the steps where their contacts begin, are held or end.  Fixed-step methods
+    (implicit with ``joint_steps=False``, RK44): a tenth of the shortest contact period of
+    the model's clearance joints, and no more than ``end_time / 1000``
     (:func:`exuclear.timescales.step_from_contact_periods`).  A joint's period is its
     two bodies' reduced mass on the tangent stiffness of its law under the weight of
     that mass (``joint_contact_period``, the estimate of the chatter check; the rule and
@@ -205,8 +235,10 @@ def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
     :data:`~exuclear.settings.DEFAULT_STEP` (within ``end_time``).
 
     ``ValueError`` if a joint's period cannot be estimated (a body whose mass is not
-    read from its Exudyn object).
+    read from its Exudyn object).  ``method="auto"`` is chosen first (:func:`automatic_method`).
     """
+    if settings.method_from_model:
+        settings = replace(settings, method=automatic_method(mbs, settings))
     if settings.explicit and settings.adaptive:
         return min(DEFAULT_STEP, settings.end_time)
     if settings.steered:
@@ -215,15 +247,18 @@ def automatic_step(mbs: exu.MainSystem, settings: SolverSettings) -> float:
     for handle in joints_of(mbs):
         period = joint_contact_period(mbs, handle)
         if not period > 0.0:
-            raise ValueError(f"`step` 'auto': the contact period of clearance joint {handle.name or handle.objectNumber!r} "
+            raise ValueError(f"`step` 'auto': the contact period of clearance joint {label(handle)} "
                              f"cannot be estimated, because the mass of {unread_masses(mbs, handle) or 'one of its bodies'} "
                              "is not read from its Exudyn object; give `step` in seconds")
         periods.append(period)
     return step_from_contact_periods(periods, settings.end_time)
 
 
-def _with_step(mbs: exu.MainSystem, settings: SolverSettings) -> SolverSettings:
-    """``settings`` with ``step="auto"`` replaced by :func:`automatic_step`."""
+def resolved_settings(mbs: exu.MainSystem, settings: SolverSettings) -> SolverSettings:
+    """``settings`` with ``method="auto"`` replaced by :func:`automatic_method` and
+    ``step="auto"`` by :func:`automatic_step`: what :func:`simulate` runs."""
+    if settings.method_from_model:
+        settings = replace(settings, method=automatic_method(mbs, settings))
     if not settings.automatic:
         return settings
     step = automatic_step(mbs, settings)
@@ -256,7 +291,7 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     joints = joints_of(mbs)
     check_model(mbs, joints)
     aligned = [started_aligned(mbs, h) for h in joints]  # read before the run changes the state
-    settings = _with_step(mbs, settings)
+    settings = resolved_settings(mbs, settings)
     if settings.explicit:
         constrained = _constraint_objects(mbs)
         if constrained:
@@ -274,6 +309,20 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     solver_type = getattr(exu.DynamicSolverType, METHODS[settings.method][0])
     min_step = settings.min_step * (1.0 + 1e-6) if settings.adaptive else 0.0  # Exudyn may land a hair above it
     start = time.perf_counter()
+    mbs.variables[SIMULATE_KEY] = settings  # the joints' notes of this run name its settings
+    try:
+        return _run(mbs, settings, joints, ss, solver_type, min_step, rate_limits, aligned, start)
+    finally:
+        mbs.variables.pop(SIMULATE_KEY, None)
+
+
+def _run(mbs: exu.MainSystem, settings: SolverSettings, joints: list[ClearanceJointHandle],
+         ss: exu.SimulationSettings, solver_type: Any, min_step: float, rate_limits: list[float],
+         aligned: list[bool], start: float) -> SimulationResult:
+    """The solve of :func:`simulate` and its result, notes read while :data:`SIMULATE_KEY` is set."""
+    def result(*args: Any) -> SimulationResult:
+        return SimulationResult(*args, step=settings.step, method=settings.method)
+
     with _Watchdog(mbs, min_step, joints=tuple(joints)) as watchdog:
         try:
             with warnings.catch_warnings():  # the joints' notes are issued with the result's
@@ -301,23 +350,22 @@ def simulate(mbs: exu.MainSystem, settings: SolverSettings) -> SimulationResult:
     for handle in joints:
         reason, when = handle.failure()
         if reason:
-            return SimulationResult(False, f"stopped at t = {when:.6g} s, joint {handle.name or handle.objectNumber!r}: "
-                                    f"{reason}. {_advice(reason, handle)}; results up to then are kept",
-                                    wall, steps, rejected, t_reached, step=settings.step)
+            return result(False, f"stopped at t = {when:.6g} s, joint {label(handle)}: {reason}. "
+                          f"{_advice(reason, handle)}; results up to then are kept", wall, steps, rejected, t_reached)
     if watchdog.problem:
-        return SimulationResult(False, f"stopped {watchdog.problem}; results up to then are kept", wall, steps,
-                                rejected, t_reached, step=settings.step)
+        return result(False, f"stopped {watchdog.problem}; results up to then are kept", wall, steps, rejected,
+                      t_reached)
     if not ok:
         message += (f" (stopped at t = {t_reached:.6g} s of {settings.end_time:g} s{_joints_in_contact(joints)}; "
                     f"{_solver_advice(message, settings)})")
         for note in step_notes:  # with each joint's note on the stop: its regime and |e|/c then
             warnings.warn(note, AccuracyWarning, stacklevel=2)
-        return SimulationResult(ok, message, wall, steps, rejected, t_reached, tuple(step_notes), step=settings.step)
+        return result(ok, message, wall, steps, rejected, t_reached, tuple(step_notes))
     notes = tuple(step_notes)  # with the joints' numerical chatter of implicit runs (diagnostics.chatter_note)
     notes += tuple(n for n in (tilt_note(h, a) for h, a in zip(joints, aligned)) if n)
     for note in notes:
         warnings.warn(note, AccuracyWarning, stacklevel=2)
-    return SimulationResult(ok, message, wall, steps, rejected, t_reached, notes, step=settings.step)
+    return result(ok, message, wall, steps, rejected, t_reached, notes)
 
 
 def _solver_advice(message: str, settings: SolverSettings) -> str:
