@@ -228,3 +228,27 @@ def test_step_auto_does_not_warn_about_the_step_it_chose():
     # its contacts end in steps of at most a tenth of the contact period: none is counted as chatter
     control = joint._backend.step_control()
     assert control["separations"] >= 1 and control["long_separations"] == 0
+
+
+@pytest.mark.parametrize("backend", ["compiled", "python"])
+def test_the_chatter_warning_comes_at_the_end_of_the_run_not_at_the_first_read_of_the_impacts(backend):
+    import exudyn as exu
+    import test_robust  # issue 15's resting pendulum
+
+    from exuclear.engine import kernel
+
+    if backend == "compiled" and kernel.default_backend() != "compiled":
+        pytest.skip("no compiled kernel here")
+    # steps of 1e-3 s, 2.9 of its contact periods, and impact-aware steps from each onset (which
+    # replace the joint's other rules): it leaves the wall again and again (test_robust's chatter)
+    mbs, joint = test_robust.pendulum(backend=backend)
+    joint.set_impact_step(1e-6)
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 1.0, 1000
+    ss.solution.file.write = False
+    with pytest.warns(exuclear.AccuracyWarning, match="may be numerical chatter"):
+        mbs.SolveDynamic(ss)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", exuclear.AccuracyWarning)  # told once, at the end of the run
+        impacts = joint.impacts()
+    assert len(impacts) > 10 and any("chatter" in note for note in joint.notes)

@@ -110,6 +110,7 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         if (base[i].in_contact && !s.next[i].in_contact) ended++;
     }
     count_separations(s.control, advance, ended, h);
+    tell_end(s, t);
     if (advance) s.prev.swap(s.cur);  // prev = the old cur; base is not read after this
     s.cur.swap(s.next);
     // a worn joint in contact: its conformal contact asks for a Jacobian per step

@@ -28,7 +28,7 @@ namespace {
     X(int, group_size, 1) X(double, rate_scale, 1.0)                                                \
     X(double, growth_cap, INF) X(double, contact_cap, INF) X(double, jacobian_step, INF)            \
     X(double, separation_step, INF) X(double, impact_mass, std::numeric_limits<double>::quiet_NaN()) \
-    X(std::string, refusal, "")
+    X(std::string, refusal, "") X(double, end_time, INF)
 #define TOLD_FIELDS(X, count, first) X(long, count, 0) X(double, first##_time, 0.0) X(double, first##_step, 0.0)
 #define STEP_COUNT_FIELDS(X)                                                                        \
     X(long, runs, 0) X(bool, jacobian_on, false)                                                    \
@@ -37,7 +37,8 @@ namespace {
     TOLD_FIELDS(X, unresolved, unresolved) X(double, unresolved_advice, INF)                        \
     TOLD_FIELDS(X, held_long, held)                                                                 \
     TOLD_FIELDS(X, over_limit, over) X(double, deepest, 0.0)                                        \
-    X(double, last_time, -INF) X(double, last_step, 0.0) X(double, retry_start, -INF) X(int, retries, 0)
+    X(double, last_time, -INF) X(double, last_step, 0.0) X(double, retry_start, -INF) X(int, retries, 0)  \
+    X(bool, finished, false)
 #define DECLARE_FIELD(type, name, value) type name = value;
 struct StepControl {
     RUN_START_FIELDS(DECLARE_FIELD)
@@ -133,6 +134,20 @@ void tell(JointState& s) {
     if (!s.run_start || s.run_start.is_none()) return;
     try {
         s.run_start.attr("note")();
+    } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
+        PyErr_Clear();
+    }
+}
+
+// JointState.tell_end: the accepted step that reaches the run's end time (the run-start record's
+// end_time) tells the handle once, through the run-start callback's `finished()`: Python then
+// warns of what the whole run left unresolved (its chatter count is complete only now).
+void tell_end(JointState& s, double t) {
+    StepControl& c = s.control;
+    if (c.finished || !(t >= c.end_time * (1.0 - 1e-12)) || !s.run_start || s.run_start.is_none()) return;
+    c.finished = true;
+    try {
+        s.run_start.attr("finished")();
     } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
         PyErr_Clear();
     }

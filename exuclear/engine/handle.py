@@ -176,7 +176,7 @@ class ClearanceJointHandle:
 
     @property
     def rate_limit(self) -> float:
-        """KAPPA of the joint's own step control (README, "The joint steers the step"): a step
+        """KAPPA of the joint's own step control (docs/guide/solver_path.md, "What the joint does to your steps"): a step
         in contact may change the penetration rate by at most this fraction of
         ``max(|v0|, v_min)``; default :data:`exuclear.settings.RATE_LIMIT_DEFAULT` (0.1, about
         20 steps per velocity reversal); smaller is more accurate and costs steps; 0 turns the
@@ -328,8 +328,10 @@ class ClearanceJointHandle:
         """What the joint's own step control could not do in the last run (steps it could not
         resolve, a penetration beyond the limit), each with the joint's name, the time, the
         step and the step to use; empty if the run was resolved.  Each note is also issued
-        once as an :class:`~exuclear.exceptions.AccuracyWarning`, at the first access to
-        the joint's results after the run."""
+        once as an :class:`~exuclear.exceptions.AccuracyWarning`: at its first step during
+        the run where the kernel tells, the rest (chatter, a stopped run) at the step that
+        reaches the run's end time, or at the first access to the joint's results after a
+        run that ended early."""
         self._report()
         return list(self._notes)
 

@@ -171,6 +171,7 @@ class RunStart(NamedTuple):
     separation_step: float
     impact_mass: float
     refusal: str
+    end_time: float
 
 
 class ControlField(NamedTuple):
@@ -216,6 +217,8 @@ STEP_CONTROL = (
     ControlField("impact_mass", _NAN, "the effective mass of the joint's impacts [kg] (nan: unknown)"),
     ControlField("refusal", "", "why the run cannot start, e.g. a journal outside its bearing (engine.placement; "
                                 "'': it can)"),
+    ControlField("end_time", _INF, "the run's end time [s]: the accepted step that reaches it tells the handle, "
+                                   "which then warns of the whole run (inf: unknown)"),
     # what the run did
     ControlField("runs", 0, "runs started since the joint was created"),
     ControlField("jacobian_on", False, "whether the joint asks for a Jacobian per step now"),
@@ -234,6 +237,7 @@ STEP_CONTROL = (
     ControlField("last_step", 0.0, "its length [s]"),
     ControlField("retry_start", -_INF, "the start [s] of the step the penetration retries are about"),
     ControlField("retries", 0, "the penetration retries of that step so far"),
+    ControlField("finished", False, "whether the step that reaches end_time has told the handle"),
 )
 
 #: What a kernel assumes where its handle gives no run-start record (a kernel used without a handle).

@@ -244,6 +244,16 @@ def separation_step(mbs: exu.MainSystem, period: float) -> float:
     return period / STEPS_PER_CONTACT_PERIOD if period > 0.0 and not explicit else math.inf
 
 
+def _end_time(mbs: exu.MainSystem) -> float:
+    """The end time [s] of the dynamic run ``mbs.SolveDynamic`` is starting; inf for a static
+    solve (load steps, not time) or a run without ``SolveDynamic``'s settings."""
+    try:
+        end = float(mbs.sys["simulationSettings"].timeIntegration.endTime)
+    except Exception:  # no SolveDynamic run: never told
+        return math.inf
+    return math.inf if static_run(mbs) else end
+
+
 def static_run(mbs: exu.MainSystem) -> bool:
     """Whether the run starting is ``mbs.SolveStatic``'s, where an earlier ``SolveDynamic`` left
     its solver in ``mbs.sys`` too: each solver object is new per run, and the one starting has
@@ -298,7 +308,17 @@ class _RunStart:
         # a journal outside its bearing: the kernel stops the run at its start, with this message
         refusal = outside_bearing(mbs, handle) if handle is not None else ""
         return RunStart(can_shorten, min_step, label(handle) if handle is not None else "", rate, len(joints_of(mbs)),
-                        rate_scale, growth_cap, contact_cap, jacobian_step, separation, mass, refusal)
+                        rate_scale, growth_cap, contact_cap, jacobian_step, separation, mass, refusal,
+                        _end_time(mbs))
+
+    def finished(self) -> None:
+        """The run reached its end time (the kernel's ``tell_end``): the handle warns of what the
+        whole run left unresolved, its chatter among it, at the end of the run rather than at
+        the first read of its results."""
+        mbs = self._mbs()
+        handle = self._handle(mbs) if mbs is not None else None
+        if handle is not None:
+            handle._report()
 
     def jacobian_per_step(self, wanted: bool) -> None:
         """The joint asks for a Jacobian per step (``wanted``) or no longer (its kernel's

@@ -90,6 +90,7 @@ class JointKernel(JointStepControl):
         h = t - base[0].time
         switched = any(b.in_contact != s.in_contact for b, s in zip(base, states))  # a contact's stiffness came or went
         self.count_separations(advance, sum(1 for b, s in zip(base, states) if b.in_contact and not s.in_contact), h)
+        self.tell_end(t)
         conformal = self.in_worn_contact(states)
         self.steer_jacobian(math.inf if switched else h, conformal)
         self.report_growth(mbs, t, allow, h)
