@@ -45,6 +45,9 @@ def site(tmp_path_factory) -> Path:
     source = tmp_path_factory.mktemp("docs") / "docs"
     shutil.copytree(DOCS, source, ignore=shutil.ignore_patterns("_build", "auto_examples", "generated",
                                                                  "sg_execution_times.rst", "__pycache__"))
+    # the pages that include the code of a validation script (literalinclude ../../validation/...)
+    (source.parent / "validation").mkdir()
+    shutil.copy(ROOT / "validation" / "first_hour.py", source.parent / "validation" / "first_hour.py")
     out = tmp_path_factory.mktemp("site")
     env = {**os.environ, "MPLBACKEND": "Agg"}
     env.setdefault("EXUCLEAR_DOCS_OFFLINE", "1")  # no network probe in the tests: intersphinx off
@@ -108,3 +111,73 @@ def test_getting_started_code_runs_and_prints_what_it_says(capsys):
     # the page's comment: peak force 1187 N, departure velocity -0.2688 m/s (the paper: 0.269 m/s)
     assert "departure velocity -0.2688 m/s" in out and "peak force 11" in out
     assert "[]" in out  # joint.notes: nothing the joint could not resolve
+
+
+# -- names and cross-references resolve (issue 48) --------------------------------------------------
+
+#: Where a user reads names: the front door, the pages, the gallery, and the docstrings and
+#: comments of the library, the scenes and the validation.
+_TEXTS = ("README.md", "docs/**/*.md", "docs/examples/*.py", "exuclear/**/*.py", "models/*.py", "validation/**/*.py")
+#: ``exuclear.X.Y``, not inside a string key (``"exuclear.joints"``), a path or a longer name.
+_NAME = re.compile(r"(?<![\w/.\"'])exuclear(?:\.[A-Za-z_]\w*)+")
+#: Placeholders that stand for any name (``exuclear.models.NAME``).
+_PLACEHOLDERS = {"NAME"}
+
+
+def _texts() -> list[Path]:
+    skip = {"_build", "auto_examples", "generated", "__pycache__"}
+    return sorted({p for pattern in _TEXTS for p in ROOT.glob(pattern) if not skip & set(p.parts)})
+
+
+def _resolves(dotted: str) -> bool:
+    import importlib
+
+    parts = dotted.split(".")
+    for k in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:k]))
+        except ImportError:
+            continue
+        try:
+            for part in parts[k:]:
+                obj = getattr(obj, part)
+        except AttributeError:
+            return False
+        return True
+    return False
+
+
+def test_every_exuclear_name_in_the_readme_pages_and_docstrings_resolves():
+    unresolved = {}
+    for path in _texts():
+        for match in _NAME.finditer(path.read_text()):
+            name = match.group(0)
+            if not _PLACEHOLDERS & set(name.split(".")) and not _resolves(name):
+                unresolved.setdefault(name, str(path.relative_to(ROOT)))
+    assert not unresolved, f"names that do not resolve (name: first file): {unresolved}"
+
+
+def _headings(path: Path) -> set[str]:
+    return {line.lstrip("#").strip() for line in path.read_text().splitlines() if line.startswith("#")}
+
+
+def test_every_cross_reference_points_at_a_page_or_section_that_exists():
+    section = re.compile(r"(README|docs/[\w/]+\.md)[,:]? \"([^\"\n]+)\"")  # (README, "Section")
+    numbered = re.compile(r"docs/physics\.md,? section (\d+(?:\.\d+)*)")  # docs/physics.md section 9.8
+    page = re.compile(r"(?<![\w/.:])(docs/[\w/]+\.md)")  # not a commit's path, 4ed4aac:docs/...
+    physics = {h.split(" ", 1)[0].rstrip(".") for h in _headings(DOCS / "physics.md") if h[:1].isdigit()}
+    broken = []
+    for path in _texts():
+        text = path.read_text()
+        where = str(path.relative_to(ROOT))
+        for target, title in section.findall(text):
+            file = ROOT / ("README.md" if target == "README" else target)
+            if not file.exists() or title not in _headings(file):
+                broken.append(f"{where}: {target}, {title!r}")
+        broken += [f"{where}: docs/physics.md section {n}" for n in numbered.findall(text) if n not in physics]
+        broken += [f"{where}: {p}" for p in page.findall(text) if not (ROOT / p).exists()]
+        if path.suffix == ".md":  # links between pages
+            for link in re.findall(r"\]\(([^)#:]+\.(?:md|rst))(?:#[^)]*)?\)", text):
+                if not link.startswith("auto_examples/") and not (path.parent / link).exists():  # auto_examples: built
+                    broken.append(f"{where}: link {link}")
+    assert not broken, "cross-references to nothing:\n" + "\n".join(broken)

@@ -15,7 +15,7 @@ from ..history import ImpactRecord
 class JointRecord:
     """One clearance joint's results of a run (copies, SI units).
 
-    ``outputs``: ``time`` and :data:`exuclear.OUTPUT_COLUMNS` as recorded; ``impacts``:
+    ``outputs``: ``time`` and :data:`exuclear.engine.OUTPUT_COLUMNS` as recorded; ``impacts``:
     the contacts of the run in order, the last one still open at the end if
     ``last_open`` (its duration then runs to the end of the run); ``clearance`` [m].
     """

@@ -563,9 +563,9 @@ def _replacement(journal_body: Any, bearing_body: Any, journal_point: Any, beari
                f"rigid markers at bearing_point {tuple(bearing_point)!r} and journal_point {tuple(journal_point)!r} "
                "(MarkerBodyRigid, or MarkerKinematicTreeRigid on a kinematic-tree link)")
     if journal_link is not None or bearing_link is not None:
-        return f"exuclear.add_clearance_joint is deprecated; write {markers}"
+        return f"exuclear.engine.add_clearance_joint is deprecated; write {markers}"
     position = [*(float(v) for v in bearing_point), 0.0]
-    return ("exuclear.add_clearance_joint(mbs, journal_body, bearing_body, ...) is deprecated; write "
+    return ("exuclear.engine.add_clearance_joint(mbs, journal_body, bearing_body, ...) is deprecated; write "
             f"exuclear.CreateClearanceJoint(mbs, itemNumbers=[{bearing_body!r}, {journal_body!r}], "
             f"position={position!r}, useGlobalFrame=False{options}, ...the same joint parameters) (the bearing "
             "body first; journal and bearing centred at `position`, in the bearing body's frame), or, where the "
