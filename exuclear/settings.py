@@ -20,7 +20,7 @@ from .checks import check_choice, check_positive, check_real
 #: paper's 0.269 m/s at 0.5, 1.3 % at 0.25, within 0.8 % at 0.1 (tests/test_step_control.py asks
 #: 1 %).  A path to 1 % of c over many impacts asks for less: the paper's redundant slider-crank
 #: (22 impacts in two revolutions, steps of at most 2e-5 s) 7.7e-2 c at 0.1, 1.6e-2 c at 0.03
-#: (docs/guide/solver_path.md, "The joint steers the step").
+#: (docs/guide/solver_path.md, "What the joint does to your steps").
 RATE_LIMIT_DEFAULT = 0.1
 
 #: Exudyn's default numerical damping of generalized-alpha at infinite frequency.
@@ -139,11 +139,11 @@ class SolverSettings:
         an impact), the step is redone with ``impact_step`` [s], and the step doubles
         again after every ``recovery_steps`` accepted steps, up to ``step``; in free flight
         the joints let it grow faster, up to the time the journal needs to reach the wall
-        (docs/guide/solver_path.md, "The joint steers the step").  Default None: no
+        (docs/guide/solver_path.md, "What the joint does to your steps").  Default None: no
         impact-aware steps.
     joint_steps : bool, optional
         Implicit methods only: adaptive steps controlled by the clearance joints
-        (docs/guide/solver_path.md, "The joint steers the step"): ``step`` is the largest
+        (docs/guide/solver_path.md, "What the joint does to your steps"): ``step`` is the largest
         step; a joint rejects a step in which its contact cannot be resolved, and Exudyn
         redoes it (or a step whose Newton iteration failed) shorter, down to Exudyn's
         ``minimumStepSize``, 1e-8 s, then doubles it again after 10 accepted steps that

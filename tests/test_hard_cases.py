@@ -195,7 +195,8 @@ def test_too_large_step_stops_with_time_and_advice():
     # (~40 us each): the penetration passes the joint's limit at t = 8 ms (with a coarser
     # Jacobian, Newton failed first; either way the run stops with the time and the advice)
     params = SliderCrankParams.paper(formulation="redundant")
-    result = sc_model.run(params, replace(sc_model.default_settings(params), step=2e-4, impact_step=None))
+    result = sc_model.run(params, replace(sc_model.default_settings(params), step=2e-4, impact_step=None,
+                                          joint_steps=False))
     assert not result.success
     assert "stopped at t = " in result.message and re.search(r"try a smaller `?step", result.message)
     assert 0 < result.columns["time"][-1] < params.end_time

@@ -15,15 +15,11 @@ clearance model against the ideal one.  Wall times are timings: take them on a q
 """
 from __future__ import annotations
 
-import argparse
-import math
-import sys
-import time
-
-import numpy as np
-
 # [build]
+import math
+
 import exudyn as exu
+import numpy as np
 from exudyn.itemInterface import SensorBody
 from exudyn.utilities import InertiaCuboid, RotationMatrixZ
 
@@ -131,6 +127,8 @@ def against_ideal(step: float, end_time: float) -> dict[str, float]:
 
 def side_by_side(step: float, end_time: float) -> list[tuple]:
     """The plain call and :func:`exuclear.simulate` at ``step``: (path, reached time, impacts, wall time)."""
+    import time
+
     rows = []
     mbs, joint, _ = four_bar()
     start = time.perf_counter()
@@ -143,6 +141,8 @@ def side_by_side(step: float, end_time: float) -> list[tuple]:
 
 
 def main(argv: list[str] | None = None) -> int:
+    import argparse
+
     ap = argparse.ArgumentParser(prog="python -m validation.first_hour", description=__doc__.split("\n\n")[0])
     ap.add_argument("--end-time", type=float, default=1.0, help="simulated time [s] (default 1)")
     ap.add_argument("--steps", default="1e-4,5e-5,2.5e-5", help="steps of generalized-alpha [s], comma-separated")
@@ -162,4 +162,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    raise SystemExit(main())

@@ -154,7 +154,7 @@ def simulation_settings(settings: exuclear.SolverSettings) -> exu.SimulationSett
     centre, it left at 0.295 m/s instead of 0.270).  exuclear's joint takes the same steps
     to the same results either way: on fixed steps the solver cannot shorten them and the
     joint accepts them, and under DOPRI5 the error control takes over from the joint's step
-    criteria (README, "The joint steers the step").
+    criteria (docs/guide/solver_path.md, "What the joint does to your steps").
     """
     ss = exuclear.engine.simulation_settings(settings)
     ss.timeIntegration.discontinuous.useRecommendedStepSize = False

@@ -71,7 +71,7 @@ def simulation_settings(settings: SolverSettings) -> exu.SimulationSettings:
         ti.absoluteTolerance = settings.atol
         ti.minimumStepSize = settings.min_step
     elif settings.steered:
-        # the joints' step control (docs/guide/solver_path.md, "The joint steers the step"): a
+        # the joints' step control (docs/guide/solver_path.md, "What the joint does to your steps"): a
         # joint's post-Newton function rejects a step its contact cannot resolve, with the step
         # to redo it at; Exudyn redoes a step whose Newton fails shorter (its defaults)
         ti.adaptiveStep = True  # down to Exudyn's minimumStepSize, 1e-8 s, or the user's min_step
