@@ -127,30 +127,30 @@ void steer_jacobian(JointState& s, double step, bool conformal = false) {
     }
 }
 
-// JointState.tell: the first step of a run that the joint could not resolve (of each kind)
-// is told at once, through the run-start callback's `note()` (Python issues the
-// AccuracyWarning, with its advice): a run that Exudyn then stops is not silent either.
-void tell(JointState& s) {
+// JointState._call_back: call the run-start callback's method `name` (a warning it issues,
+// never an error that would end the run).
+void call_back(JointState& s, const char* name) {
     if (!s.run_start || s.run_start.is_none()) return;
     try {
-        s.run_start.attr("note")();
+        s.run_start.attr(name)();
     } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
         PyErr_Clear();
     }
 }
+
+// JointState.tell: the first step of a run that the joint could not resolve (of each kind)
+// is told at once, through the run-start callback's `note()` (Python issues the
+// AccuracyWarning, with its advice): a run that Exudyn then stops is not silent either.
+void tell(JointState& s) { call_back(s, "note"); }
 
 // JointState.tell_end: the accepted step that reaches the run's end time (the run-start record's
 // end_time) tells the handle once, through the run-start callback's `finished()`: Python then
 // warns of what the whole run left unresolved (its chatter count is complete only now).
 void tell_end(JointState& s, double t) {
     StepControl& c = s.control;
-    if (c.finished || !(t >= c.end_time * (1.0 - 1e-12)) || !s.run_start || s.run_start.is_none()) return;
+    if (c.finished || !(t >= c.end_time * (1.0 - 1e-12))) return;
     c.finished = true;
-    try {
-        s.run_start.attr("finished")();
-    } catch (py::error_already_set&) {  // a warning filter that raises: the notes keep it
-        PyErr_Clear();
-    }
+    call_back(s, "finished");
 }
 
 const char* const DIVERGED = "the state became non-finite (NaN or inf); the integration diverged";

@@ -137,12 +137,7 @@ class JointState:
         """The first step of a run that the joint could not resolve (of each kind) is told at
         once, through the run-start callback's ``note()`` (Python issues the AccuracyWarning,
         with its advice): a run that Exudyn then stops is not silent either."""
-        note = getattr(self.run_start, "note", None)
-        if note is not None:
-            try:
-                note()
-            except Exception:  # a warning filter that raises: the notes keep it
-                pass
+        self._call_back("note")
 
     def tell_end(self, t: float) -> None:
         """The accepted step that reaches the run's end time (the run-start record's
@@ -153,10 +148,15 @@ class JointState:
         if c.finished or not t >= c.end_time * (1.0 - 1e-12):
             return
         c.finished = True
-        finished = getattr(self.run_start, "finished", None)
-        if finished is not None:
+        self._call_back("finished")
+
+    def _call_back(self, name: str) -> None:
+        """Call the run-start callback's method ``name`` (a warning it issues, never an error
+        that would end the run)."""
+        method = getattr(self.run_start, name, None)
+        if method is not None:
             try:
-                finished()
+                method()
             except Exception:  # a warning filter that raises: the notes keep it
                 pass
 
