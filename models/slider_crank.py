@@ -148,7 +148,7 @@ def _settings(args: argparse.Namespace, params: SliderCrankParams) -> SolverSett
     base = SolverSettings(end_time=params.end_time, **_scaled_defaults(params, {**family, "method": method}))
     changes = {k: v for k, v in (("step", args.step), ("rtol", args.rtol), ("atol", args.atol)) if v is not None}
     if base.impact_step is not None and args.step is not None and args.step <= base.impact_step:
-        changes["impact_step"] = None  # a step at or below the impact step: plain fixed steps
+        changes["impact_step"] = None  # a step at or below the impact step: the joints' own step control
     return replace(base, output_step=positive("--dt-out", args.dt_out),
                    verbose=int(args.verbose), **changes)
 

@@ -133,7 +133,7 @@ def clearance_settings(params: SliderCrankParams, rtol: float = RTOL, atol: floa
 
 def ideal_settings(params: SliderCrankParams) -> exuclear.SolverSettings:
     """The baseline's settings: generalized-alpha at the paper's fixed 1e-5 s step."""
-    return replace(default_settings(params), step=PAPER_MAX_STEP, impact_step=None)
+    return replace(default_settings(params), step=PAPER_MAX_STEP, impact_step=None, joint_steps=False)
 
 
 def ideal_params(revolutions: float) -> SliderCrankParams:
