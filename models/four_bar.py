@@ -351,7 +351,7 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--step", type=float, default=DEFAULT_SETTINGS["step"],
                     help="largest step [s] (default %(default)s)")
     ap.add_argument("--impact-step", type=float, default=DEFAULT_SETTINGS["impact_step"],
-                    help="step from each contact onset [s]; 0: fixed steps of --step (default %(default)s)")
+                    help="step from each contact onset [s]; 0: none, the joints' own step control up to --step (default %(default)s)")
     ap.add_argument("--dt-out", type=float, default=1e-5, help="output interval [s] (default %(default)s)")
     ap.add_argument("--csv", metavar="FILE", help="write the time series (columns: " + ", ".join(COLUMNS) + ")")
     ap.add_argument("--check-convergence", action="store_true",
