@@ -158,13 +158,15 @@ def unheld_motion(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle] | 
     return found
 
 
-def unheld_note(found: dict[Any, list[str]]) -> str:
-    """The warning of :func:`check_model` for the result of :func:`unheld_motion`, or ``""``."""
+def unheld_note(found: dict[Any, list[str]], joints: Sequence[ClearanceJointHandle] = ()) -> str:
+    """The warning of :func:`check_model` for the result of :func:`unheld_motion`, or ``""``;
+    the ``joints`` it was found for name themselves as messages do (:func:`label`)."""
     if not found:
         return ""
-    joints = "; ".join(f"joint {name!r}: {' and '.join(free)}" for name, free in found.items())
+    labels = {h.name or h.objectNumber: label(h) for h in joints}
+    which = "; ".join(f"joint {labels.get(name, repr(name))}: {' and '.join(free)}" for name, free in found.items())
     return (f"nothing in the model holds the journal's out-of-plane motion that the replaced revolute joint held "
-            f"({joints}): the clearance joint acts in the plane normal to its axis only, so the journal may drift "
+            f"({which}): the clearance joint acts in the plane normal to its axis only, so the journal may drift "
             "along the axis or tilt until the contact gives way. Give constrainAxial=True to the clearance joint (or "
             "hold the motion by other joints, or use the spatial joint with axial_clearance)")
 
@@ -190,7 +192,7 @@ def check_model(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle]) -> 
         if bad:
             raise ValueError(f"initial {kind} {bad[0]} (ODE2 index; node {_node_of(mbs, bad[0])}) is {values[bad[0]]}: "
                              f"every initial {kind} must be finite")
-    note = unheld_note(unheld_motion(mbs, joints))
+    note = unheld_note(unheld_motion(mbs, joints), joints)
     if note:
         warnings.warn(note, OutOfPlaneWarning, stacklevel=3)
 
