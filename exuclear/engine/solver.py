@@ -374,8 +374,10 @@ def _solver_advice(message: str, settings: SolverSettings) -> str:
         return ("the system's mass matrix or Jacobian is singular: a body without mass or inertia, or redundant "
                 "constraints, is the likely cause; a smaller step will not help")
     if not settings.explicit and ("Newton" in message or "SolveDynamic terminated" in message):
-        return (f"Newton did not converge: try a smaller `step`, or looser `newton_rtol` / `newton_atol` (now "
-                f"{settings.newton_rtol:g} / {settings.newton_atol:g}) if the residual stalls at round-off")
+        shorten = ("joint_steps=True (Exudyn then shortens a step whose Newton fails), " if not settings.steered
+                   and settings.impact_step is None else "")
+        return (f"Newton did not converge: try {shorten}a smaller `step`, or looser `newton_rtol` / `newton_atol` "
+                f"(now {settings.newton_rtol:g} / {settings.newton_atol:g}) if the residual stalls at round-off")
     return f"try a smaller `step`{' or tolerances' if settings.adaptive else ''}"
 
 
