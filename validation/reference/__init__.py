@@ -15,10 +15,13 @@ journal_bearing
 slider_crank
     The slider-crank of docs/physics.md section 6.2 (clearance joint at the rod-slider joint) and its
     ideal closed form.
+guided_slider_crank
+    The slider-crank of Flores, Leine, Glocker (2010) with a translational clearance joint:
+    the slider's four corners against the guide's two walls, compliant.
 reynolds
     A finite-difference solver of Reynolds' equation, the reference of the film laws
     (docs/physics.md section 10.6); it shares nothing with exuclear, not even the laws.
 """
-from . import journal_bearing, reynolds, slider_crank
+from . import guided_slider_crank, journal_bearing, reynolds, slider_crank
 
-__all__ = ["journal_bearing", "reynolds", "slider_crank"]
+__all__ = ["guided_slider_crank", "journal_bearing", "reynolds", "slider_crank"]
