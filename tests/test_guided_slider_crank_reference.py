@@ -44,7 +44,6 @@ def test_first_contact_is_the_upper_corners_at_one_clearance():
     assert y == pytest.approx(p.clearance, abs=1e-12)
 
 
-@pytest.mark.slow
 def test_elastic_corners_keep_the_energy_over_two_crank_turns():
     """Undamped corners without friction dissipate nothing: kinetic, gravitational and the
     corners' elastic energy add up to the start's over the benchmark's two crank turns, to
