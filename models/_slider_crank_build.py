@@ -96,7 +96,9 @@ def _build_redundant(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, d
     return joints, sensors
 
 
-def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dict]:
+def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem, name: str = "B") -> tuple[dict, dict]:
+    """The kinematic tree with the clearance joint at B (called ``name``: a second copy in the same
+    system needs another name, Exudyn refuses one twice)."""
     r, l, w = p.crank_length, p.rod_length, p.crank_speed
     rod_rate, slider_rate = _initial_velocities(p)
     # coordinates: crank angle, rod angle relative to the crank, slider x (reference r + l)
@@ -118,14 +120,14 @@ def _build_minimal(p: SliderCrankParams, mbs: exu.MainSystem) -> tuple[dict, dic
     # B: the bearing on the slider (link 2) at its origin, the journal on the rod (link 1) at its end
     markers = [mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=link, localPosition=[x, 0.0, 0.0]))
                for link, x in ((2, 0.0), (1, l))]
-    handle = exuclear.AddClearanceJoint(mbs, markers, joint=p.joint, name="B", backend=p.backend,
+    handle = exuclear.AddClearanceJoint(mbs, markers, joint=p.joint, name=name, backend=p.backend,
                                         maxPenetration=p.max_penetration)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {key: mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=kind, **store))
                for key, kind in (("q", exu.OutputVariableType.Coordinates),
                                  ("q_t", exu.OutputVariableType.Coordinates_t),
                                  ("q_tt", exu.OutputVariableType.Coordinates_tt))}
-    return {"B": handle}, sensors
+    return {name: handle}, sensors
 
 
 #: Rotation node of the spatial formulation's bodies, see :func:`_build_spatial`.
