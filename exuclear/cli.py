@@ -6,6 +6,7 @@ scenes and of the study runner.
     exuclear slider-crank [options]        # = python -m exuclear.models.slider_crank [options]
     exuclear journal-bearing [options]     # = python -m exuclear.models.journal_bearing [options]
     exuclear study SCENE [options]         # = python -m exuclear.study SCENE [options]
+    exuclear bifurcation SCENE [options]   # = python -m exuclear.nonlinear.cli SCENE [options]
 
 Each subcommand hands its arguments unchanged to that module's ``main``, so the options,
 the output and the exit status are the ``python -m`` form's (``exuclear slider-crank
@@ -29,6 +30,8 @@ SUBCOMMANDS: dict[str, tuple[str, str]] = {
                         "--viscosity)"),
     "study": ("exuclear.study", "a parameter study of a scene (grid or sample, CSV table, progress bar), "
                                 "or `study plot TABLE ...`"),
+    "bifurcation": ("exuclear.nonlinear.cli", "an orbit (bifurcation) diagram of a scene over one parameter: Poincare "
+                    "samples, verdicts, Lyapunov exponents, table and figures"),
 }
 
 

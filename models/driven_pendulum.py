@@ -60,11 +60,12 @@ def build(mbs: exu.MainSystem, copy: int = 0, *, forcing: float = PARAMETERS["fo
 
 
 def observe(mbs: exu.MainSystem, node: int) -> dict[str, float]:
-    """The section's quantities: ``cos`` and ``sin`` of the angle (a turning pendulum's angle
-    grows without bound, its cosine and sine do not) and the angular rate ``omega``."""
+    """The section's quantities: the angular rate ``omega`` (Baker and Gollub's bifurcation
+    diagram), and ``cos`` and ``sin`` of the angle (a turning pendulum's angle grows
+    without bound, its cosine and sine do not)."""
     theta = float(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates))
     rate = float(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates_t))
-    return {"cos": math.cos(theta), "sin": math.sin(theta), "omega": rate}
+    return {"omega": rate, "cos": math.cos(theta), "sin": math.sin(theta)}
 
 
 def driven(values: dict) -> Driven:

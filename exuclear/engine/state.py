@@ -46,7 +46,7 @@ def ode1_size(mbs: exu.MainSystem) -> int:
 
 def joints_among(mbs: exu.MainSystem, objects: range) -> list[ClearanceJointHandle]:
     """The clearance joints of ``mbs`` whose connector is one of ``objects``."""
-    return [h for h in joints_of(mbs) if h.objectNumber in objects]
+    return [h for h in joints_of(mbs) if int(h.objectNumber) in objects]
 
 
 def current(mbs: exu.MainSystem, accelerations: bool = False) -> tuple[np.ndarray, ...]:

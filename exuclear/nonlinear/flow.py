@@ -59,6 +59,13 @@ class Driven:
         ``carry(q, v, previous) -> (q, v)``: the state a run of this model starts from,
         given the final coordinates and velocities of a run of the ``previous``
         :class:`Driven` (a sweep carrying the state over).  Default: the state as it is.
+    drive : tuple of int
+        Coordinates of the copy (indices into its ODE2 coordinates, in the system's order)
+        that carry the drive rather than the driven motion: a crank held at its speed by a
+        flywheel.  The exponent leaves them out of the perturbation and the distance and
+        gives the second copy the first one's values at every renormalisation: a
+        perturbed drive speed would drift the phase without bound, a neutral direction
+        whose exponent is 0 whatever the mechanism does.
     """
 
     build: Callable[..., Any]
@@ -67,6 +74,7 @@ class Driven:
     observe: Callable[[Any, Any], Mapping[str, float]] | None = None
     params: Mapping[str, Any] = field(default_factory=dict)
     carry: Callable[[np.ndarray, np.ndarray, Driven], tuple[np.ndarray, np.ndarray]] | None = None
+    drive: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         if not callable(self.build):
@@ -161,7 +169,8 @@ class _Recorder:
     copy, the renormalisation of its distance once per period."""
 
     def __init__(self, mbs: Any, driven: Driven, built: Any, observe: Callable, first: int, count: int,
-                 copies: tuple[np.ndarray, np.ndarray] | None, perturbation: float, h_max: float) -> None:
+                 copies: tuple[np.ndarray, np.ndarray, np.ndarray] | None, perturbation: float,
+                 h_max: float) -> None:
         self.mbs, self.built, self.observe = mbs, built, observe
         self.period = driven.period
         self.next_sample = first * driven.period
@@ -218,17 +227,19 @@ class _Recorder:
         self.next_sample += self.period
 
     def _renormalise(self, t: float, q: np.ndarray, v: np.ndarray) -> None:
-        one, two = self.copies
-        dx = np.concatenate([q[two] - q[one], v[two] - v[one]])
+        one, two, drive = self.copies
+        free = np.setdiff1d(np.arange(one.size), drive)
+        dx = np.concatenate([q[two[free]] - q[one[free]], v[two[free]] - v[one[free]]])
         d = float(np.linalg.norm(dx))
         self.log_stretch.append(math.log(d / self.d0) if d > 0.0 else -math.inf)
         self.stretch_times.append(t)
+        q, v = q.copy(), v.copy()
         if d > 0.0:
             dx *= self.d0 / d
-            q, v = q.copy(), v.copy()
-            q[two] = q[one] + dx[:len(one)]
-            v[two] = v[one] + dx[len(one):]
-            _state.set_state(self.mbs, q, v)
+            q[two[free]] = q[one[free]] + dx[:free.size]
+            v[two[free]] = v[one[free]] + dx[free.size:]
+        q[two[drive]], v[two[drive]] = q[one[drive]], v[one[drive]]
+        _state.set_state(self.mbs, q, v)
         while self.next_renorm <= t:
             self.next_renorm += self.period
 
@@ -263,11 +274,13 @@ def run_sections(driven: Driven, *, periods: int, transient_periods: int = 0, pe
     if start is not None:
         q[mine], v[mine] = start
     if perturbation is not None:
-        copies = _second_copy(mbs, range(first, middle), range(middle, end), mine)
-        direction = np.random.default_rng(DIRECTION_SEED).standard_normal(2 * mine.size)
+        theirs = _second_copy(mbs, range(first, middle), range(middle, end), mine)
+        drive = _drive(driven.drive, mine.size)
+        direction = np.random.default_rng(DIRECTION_SEED).standard_normal((2, mine.size))
+        direction[:, drive] = 0.0
         direction *= perturbation / np.linalg.norm(direction)
-        q[copies[1]] = q[mine] + direction[:mine.size]
-        v[copies[1]] = v[mine] + direction[mine.size:]
+        q[theirs], v[theirs] = q[mine] + direction[0], v[mine] + direction[1]
+        copies = (mine, theirs, drive)
     _state.set_state(mbs, q, v, at_start=True)
     observe = driven.observe or _default_observe(mbs, range(first, middle), mine)
     settings = replace(driven.settings, end_time=(transient_periods + periods) * driven.period)
@@ -289,15 +302,24 @@ def run_sections(driven: Driven, *, periods: int, transient_periods: int = 0, pe
                       np.asarray(recorder.log_stretch), np.asarray(recorder.stretch_times))
 
 
+def _drive(drive: object, size: int) -> np.ndarray:
+    index = np.asarray(drive, dtype=int).reshape(-1)
+    if index.size and (index.min() < 0 or index.max() >= size or np.unique(index).size != index.size):
+        raise ValueError(f"`drive` must name distinct coordinates of the copy, 0 to {size - 1}, got {tuple(drive)}")
+    if index.size == size:
+        raise ValueError("`drive` names every coordinate: nothing is left to perturb")
+    return index
+
+
 def _count(name: str, value: object, low: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
         raise ValueError(f"`{name}` must be an integer >= {low}, got {value!r}")
     return int(value)
 
 
-def _second_copy(mbs: Any, one: range, two: range, mine: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The coordinate indices of both copies; ``ValueError`` where the second is not a
-    copy of the first or the model has constraints or first-order coordinates."""
+def _second_copy(mbs: Any, one: range, two: range, mine: np.ndarray) -> np.ndarray:
+    """The coordinate indices of the second copy; ``ValueError`` where it is not a copy of
+    the first or the model has constraints or first-order coordinates."""
     theirs = _state.coordinates_of(mbs, two)
     q, v = _state.initial(mbs)
     if theirs.size != mine.size or not (np.array_equal(q[theirs], q[mine]) and np.array_equal(v[theirs], v[mine])):
@@ -312,7 +334,7 @@ def _second_copy(mbs: Any, one: range, two: range, mine: np.ndarray) -> tuple[np
                          "ObjectKinematicTree) for the exponent")
     if _state.ode1_size(mbs):
         raise ValueError("the model has first-order (ODE1) coordinates, which the exponent does not perturb")
-    return mine, theirs
+    return theirs
 
 
 @dataclass(frozen=True)
@@ -360,7 +382,7 @@ def exponent_of(run: SectionRun, transient_periods: int) -> tuple[float, np.ndar
 
 
 def lyapunov(build: Callable[..., Any], settings: SolverSettings, *, period: float, periods: int,
-             transient_periods: int = 0, perturbation: float = 1e-6) -> LyapunovResult:
+             transient_periods: int = 0, perturbation: float = 1e-6, drive: tuple[int, ...] = ()) -> LyapunovResult:
     """The largest Lyapunov exponent [1/s] of a periodically driven Exudyn model's own flow.
 
     Two copies of the model run in one system, advanced by the same steps; once per
@@ -391,6 +413,8 @@ def lyapunov(build: Callable[..., Any], settings: SolverSettings, *, period: flo
         (m, rad and their rates): well above the integration error (at 1e-8 the steps'
         error drove the distance in the research runs) and well below the scale of the
         motion (the clearance of a joint).
+    drive : tuple of int
+        Coordinates of the copy that carry the drive (:attr:`Driven.drive`), left out.
 
     The clearance joints of each copy keep their own contact history (onset time and
     velocity) in their own data nodes.  Setting the second copy back moves it by up to
@@ -400,7 +424,7 @@ def lyapunov(build: Callable[..., Any], settings: SolverSettings, *, period: flo
     is not a direction of the flow that neither grows nor shrinks, as the time is of an
     autonomous system.
     """
-    driven = Driven(build, settings, period)
+    driven = Driven(build, settings, period, drive=tuple(drive))
     run = run_sections(driven, periods=periods, transient_periods=transient_periods, perturbation=perturbation)
     exponent, running, logs, times = exponent_of(run, transient_periods)
     return LyapunovResult(exponent, running, logs, times, driven.period, run.success, run.message, run.steps)
