@@ -61,7 +61,7 @@ from ._slider_crank_build import (  # noqa: F401 - the scene's names, one module
     build,
     out_of_plane,
 )
-from ._slider_crank_nonlinear import DRIVEN_FIXED, driven  # noqa: F401 - the scene's names, one module per role
+from ._slider_crank_nonlinear import CRANK_ANGLE, DRIVEN_FIXED, TOLERANCE_FACTOR, driven  # noqa: F401 - the scene's names
 from ._slider_crank_params import (  # noqa: F401 - the scene's names, one module per role
     COLUMNS,
     CRANK_SPEED_WARN,
