@@ -75,24 +75,24 @@ def _figures(table, parameter: str, observable: str | None, out: Path) -> list[P
 
 def main(argv: list[str] | None = None) -> int:
     """Run ``exuclear bifurcation ...``; returns the exit status."""
+    from ..study.cli import guarded
     from ..study.spec import parse_values
     from .diagram import orbit_diagram
 
     args = _parser().parse_args(argv)
     out = Path(args.out)
-    try:
-        values = parse_values(args.values)
-        table = orbit_diagram(args.scene, args.parameter, values, periods=args.periods, transient_periods=args.transient,
-                              fixed=_fixed(args.set), exponent=args.exponent, perturbation=args.perturbation,
-                              sweep=args.sweep, out=out, workers=args.workers, scheduler=args.scheduler,
-                              progress=not args.no_progress)
-        figures = [] if args.no_figures else _figures(table, args.parameter, args.observable, out)
-    except ValueError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt as err:
-        print(f"{err or 'interrupted'}", file=sys.stderr)
-        return 130
+
+    def work():
+        table = orbit_diagram(args.scene, args.parameter, parse_values(args.values), periods=args.periods,
+                              transient_periods=args.transient, fixed=_fixed(args.set), exponent=args.exponent,
+                              perturbation=args.perturbation, sweep=args.sweep, out=out, workers=args.workers,
+                              scheduler=args.scheduler, progress=not args.no_progress)
+        return table, [] if args.no_figures else _figures(table, args.parameter, args.observable, out)
+
+    done, status = guarded(work)
+    if status is not None:
+        return status
+    table, figures = done
     failed = int((~table["success"].astype(bool)).sum())
     for _, row in table.iterrows():
         where = f" {row['direction']}" if "direction" in table.columns else ""

@@ -14,19 +14,10 @@ from typing import Any
 
 import numpy as np
 
-from ..study.plot import _close, _new_axes
+from ..study.plot import _finish, _new_axes
 
 #: Marker colour of each verdict in a bifurcation diagram (:func:`~exuclear.nonlinear.classify`).
 KIND_COLOURS = {"period": "tab:blue", "quasi-periodic": "tab:green", "chaotic": "tab:red", "aperiodic": "tab:grey"}
-
-
-def _finish(ax: Any, path: str | os.PathLike | None) -> Any:
-    if path is None:
-        return ax
-    ax.figure.tight_layout()
-    ax.figure.savefig(path, dpi=150)
-    _close(ax.figure)
-    return path
 
 
 def phase_portrait(ex: object, ey: object, *, sections: tuple[object, object] | None = None, ax: Any = None,

@@ -7,6 +7,7 @@ import os
 import re
 import sys
 import warnings
+from collections.abc import Callable
 from typing import Any
 
 from .batch import warned
@@ -179,18 +180,27 @@ def _scene_main(argv: list[str], prog: str) -> int:
         print(f"error: {err}", file=sys.stderr)
         return 2
     args = _scene_parser(study, f"{prog} {argv[0]}").parse_args(argv[1:])
-    try:
-        runs = _runs_from_args(study, args)
-        table = run_study(study, runs, args.out, workers=args.workers, scheduler=args.scheduler,
-                          batch_size=args.batch_size, retry_failed=args.retry_failed, progress=not args.no_progress)
-    except ValueError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt as err:
-        print(f"{err or 'interrupted'}", file=sys.stderr)
-        return 130
+    table, status = guarded(lambda: run_study(
+        study, _runs_from_args(study, args), args.out, workers=args.workers, scheduler=args.scheduler,
+        batch_size=args.batch_size, retry_failed=args.retry_failed, progress=not args.no_progress))
+    if status is not None:
+        return status
     print(_summary_line(table, args.out))
     return 0
+
+
+def guarded(work: Callable[[], Any]) -> tuple[Any, int | None]:
+    """Run a command line's ``work``: its result and None, or, on bad input (``ValueError``),
+    one line ``error: ...`` on stderr and status 2, on Ctrl-C the runner's message (where
+    the finished rows are) and status 130."""
+    try:
+        return work(), None
+    except ValueError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return None, 2
+    except KeyboardInterrupt as err:
+        print(f"{err or 'interrupted'}", file=sys.stderr)
+        return None, 130
 
 
 def _summary_line(table, out: str | os.PathLike) -> str:

@@ -114,6 +114,11 @@ def plot_metric(table, metric: str, x: str, *, y: str | None = None, by: str | N
     what = f"{metric} over {x}" + (f" and {y}" if y else "")
     ax.set_title(title if title is not None else "; ".join(s for s in (what, fixed, note) if s))
     ax.grid(True, alpha=0.3)
+    return _finish(ax, path)
+
+
+def _finish(ax: Any, path: str | os.PathLike | None) -> Any:
+    """``ax`` where no ``path`` is given; else its figure saved there and closed, and ``path``."""
     if path is None:
         return ax
     ax.figure.tight_layout()
