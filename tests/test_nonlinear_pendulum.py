@@ -13,8 +13,7 @@ import numpy as np
 import pytest
 
 from exuclear.models import driven_pendulum as pendulum
-from exuclear.nonlinear import Driven, classify, lyapunov, orbit_diagram, run_sections
-from exuclear.nonlinear.flow import exponent_of
+from exuclear.nonlinear import Driven, classify, exponent_of, lyapunov, orbit_diagram, run_sections
 
 Q, W = 2.0, 2.0 / 3.0
 PERIOD = 2.0 * math.pi / W

@@ -18,8 +18,7 @@ import numpy as np
 import pytest
 
 from exuclear.models import slider_crank
-from exuclear.nonlinear import classify, run_sections
-from exuclear.nonlinear.flow import exponent_of
+from exuclear.nonlinear import classify, exponent_of, run_sections
 
 TRANSIENT, PERIODS = 100, 40
 

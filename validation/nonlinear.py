@@ -37,8 +37,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from exuclear.nonlinear import classify, orbit_diagram, run_sections
-from exuclear.nonlinear.flow import exponent_of
+from exuclear.nonlinear import classify, exponent_of, orbit_diagram, run_sections
 from validation._cli import add_workers_option
 
 SCENE = "slider-crank"

@@ -27,8 +27,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from exuclear.models import driven_pendulum, slider_crank
-from exuclear.nonlinear import classify, orbit_diagram, run_sections, stroboscopic
-from exuclear.nonlinear.flow import exponent_of
+from exuclear.nonlinear import classify, exponent_of, orbit_diagram, run_sections, stroboscopic
 from exuclear.nonlinear.plot import bifurcation, exponent_plot, phase_portrait, poincare_map
 
 # %%

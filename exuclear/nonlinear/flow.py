@@ -29,6 +29,9 @@ from ..settings import SolverSettings
 
 #: Seed of the perturbation's direction: the same model gives the same exponent.
 DIRECTION_SEED = 0
+#: Relative round-off of a section time: a step that ends within it of a section ends on it
+#: (the last section is the run's end time, which the solver reaches up to round-off).
+TIME_ROUND_OFF = 1e-12
 
 
 @dataclass(frozen=True)
@@ -197,15 +200,22 @@ class _Recorder:
             return False
         return True
 
+    def _pending(self) -> bool:
+        """Whether a section is still to be sampled."""
+        return self.next_sample <= self.last_sample * (1.0 + TIME_ROUND_OFF)
+
     def _step(self, mbs: Any, t: float) -> None:
-        near = t >= self.next_sample - self.h_max and self.next_sample <= self.last_sample * (1 + 1e-12)
-        if near or (self.copies is not None and t >= self.next_renorm):
+        # the state is read within one largest step of a section (for the interpolation
+        # across it) and at the renormalisations, not at every step
+        near = self._pending() and t >= self.next_sample - self.h_max
+        renormalise = self.copies is not None and t >= self.next_renorm
+        if near or renormalise:
             q, v, a = _state.current(mbs, accelerations=True)
             if near:
-                while t >= self.next_sample * (1.0 - 1e-12) and self.next_sample <= self.last_sample * (1 + 1e-12):
+                while self._pending() and t >= self.next_sample * (1.0 - TIME_ROUND_OFF):
                     self._sample(t, q, v, a)
                 self.previous = (t, q, v, a)
-            if self.copies is not None and t >= self.next_renorm:
+            if renormalise:
                 self._renormalise(t, q, v)
 
     def _sample(self, t: float, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> None:
