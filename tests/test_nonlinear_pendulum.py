@@ -194,3 +194,14 @@ def test_command_line_writes_table_and_figures(tmp_path, capsys):
     assert main(["exuclear.models.driven_pendulum", "--parameter", "forcing", "--values", "1.0", "--periods", "2",
                  "--set", "q", "--out", str(tmp_path / "bad.csv")]) == 2
     assert "`--set` is NAME=VALUE" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_orbit_diagram_on_a_dask_cluster_equals_the_serial_one():
+    # the runs are deterministic: a row depends on its parameters, not on where it ran
+    options = dict(periods=20, transient_periods=20, exponent=True, progress=False)
+    serial = orbit_diagram("exuclear.models.driven_pendulum", "forcing", [0.9, 1.15], workers=1, **options)
+    cluster = orbit_diagram("exuclear.models.driven_pendulum", "forcing", [0.9, 1.15], workers=2, scheduler="local",
+                            **options)
+    for column in ("omega", "cos", "kind", "exponent", "steps"):
+        assert list(cluster[column]) == list(serial[column]), column

@@ -32,14 +32,15 @@ from exuclear.nonlinear.plot import bifurcation, exponent_plot, phase_portrait, 
 
 # %%
 # The slider-crank with the paper's modified Coulomb friction at joint B: after the first
-# turn's impacts the journal stays on the wall (``|e| / c`` just above 1), so the crank's
-# Poincare points pile up on one spot.
+# turn's impacts the journal stays on the wall (``|e| / c`` just above 1) and rides round it
+# once per crank turn, so the Poincare points after the start (the centre) pile up on one
+# spot.
 params = slider_crank.SliderCrankParams.paper(friction="paper", revolutions=4)
 result = slider_crank.run(params)
 c, cols = params.clearance, result.columns
 period = 2.0 * np.pi / params.crank_speed
 _, sections = stroboscopic(cols["time"], np.column_stack([cols["ecc_x"], cols["ecc_y"]]) / c, period)
-phase_portrait(cols["ecc_x"] / c, cols["ecc_y"] / c, sections=sections.T, ax=plt.subplots(figsize=(5, 5))[1])
+phase_portrait(cols["ecc_x"] / c, cols["ecc_y"] / c, sections=sections[1:].T, ax=plt.subplots(figsize=(5, 5))[1])
 plt.show()
 
 # %%
