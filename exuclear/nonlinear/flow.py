@@ -384,9 +384,9 @@ def exponent_of(run: SectionRun, transient_periods: int) -> tuple[float, np.ndar
     """The exponent [1/s], its running estimate, the stretches and their instants after
     ``transient_periods`` renormalisations of a two-copy run."""
     logs, times = run.log_stretch[transient_periods:], run.stretch_times[transient_periods:]
-    t0 = run.stretch_times[transient_periods - 1] if transient_periods else 0.0
-    if logs.size == 0:
+    if logs.size == 0:  # no second copy, or the run stopped within the transient
         return math.nan, logs, logs, times
+    t0 = run.stretch_times[transient_periods - 1] if transient_periods else 0.0
     running = np.cumsum(logs) / (times - t0)
     return float(running[-1]), running, logs, times
 
