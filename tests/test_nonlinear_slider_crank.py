@@ -67,3 +67,11 @@ def test_driven_checks_its_input():
         slider_crank.driven({"speed": 1.0})
     model = slider_crank.driven({"rpm": 600})
     assert model.period == pytest.approx(0.1) and model.drive == (slider_crank.CRANK_ANGLE,)
+
+
+def test_scenes_are_found_by_their_short_names():
+    from exuclear.nonlinear.diagram import scene_model
+
+    assert scene_model("slider-crank").module == "exuclear.models.slider_crank"
+    with pytest.raises(ValueError, match="no `driven"):
+        scene_model("journal-bearing")  # a scene without a driving period
