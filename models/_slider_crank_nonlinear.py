@@ -67,7 +67,8 @@ class _Carry:
 
 def driven(values: dict) -> Driven:
     """The slider-crank at ``values`` (fields of :class:`SliderCrankParams` over the paper's,
-    ``crank_speed`` in rad/s or ``rpm``) as a :class:`~exuclear.nonlinear.Driven`: the
+    ``crank_speed`` in rad/s or ``rpm``, and ``mu``, a Coulomb coefficient for a sweep over
+    friction: 0 is none) as a :class:`~exuclear.nonlinear.Driven`: the
     minimal formulation; its default settings (:func:`default_settings`) at a tenth of
     their tolerances (:data:`TOLERANCE_FACTOR`), with one output per crank period (the
     tools record the sections, not the sensors); the crank angle as the drive
@@ -78,6 +79,11 @@ def driven(values: dict) -> Driven:
         if "crank_speed" in v:
             raise ValueError("give the crank speed once: `crank_speed` [rad/s] or `rpm`")
         v["crank_speed"] = crank_speed_from_rpm("rpm", v.pop("rpm"))
+    if "mu" in v:  # a number to sweep: smoothed Coulomb friction with this coefficient
+        if "friction" in v:
+            raise ValueError("give the friction once: `friction` (a law's name) or `mu` (a Coulomb coefficient)")
+        mu = v.pop("mu")
+        v["friction"] = "none" if mu == 0 else f"coulomb:{mu}"
     fixed = sorted(set(v) & set(DRIVEN_FIXED))
     if fixed:
         raise ValueError(f"the slider-crank's nonlinear runs set {', '.join(fixed)} themselves (minimal formulation, "

@@ -10,7 +10,8 @@ sampled for ``--periods``, with the largest Lyapunov exponent (two copies in one
 then the same at half the largest step and half the tolerances (the convergence check),
 and the friction case at the scene's own tolerances, ten times looser, where the copies'
 distance meets its floor (``models/_slider_crank_nonlinear.py``).  ``diagram``: an orbit diagram over the crank speed
-(``--values``, rpm), written as table and figures.
+(``--values``, rpm) or another ``--parameter`` (``mu``: a Coulomb coefficient), written as
+table and figures.
 
 ``speed`` (TIMING: run it on a quiet machine): an orbit diagram of ``--count`` crank
 speeds (default 64, 300 to 1300 rpm), ``--periods`` crank periods each (default 100, no
@@ -22,7 +23,8 @@ and the speed-up of (b) and (c) over (a).
 Run from the repository root::
 
     python -m validation.nonlinear verdicts [--transient 100] [--periods 40]
-    python -m validation.nonlinear diagram [--values 300:1500:100] [--periods 50] [--transient 100]
+    python -m validation.nonlinear diagram [--parameter rpm] [--values 300:1500:100] [--set friction=paper]
+        [--periods 50] [--transient 100]
     python -m validation.nonlinear speed [--count 64] [--periods 100] [--quick]
 
 ``speed --quick``: 2 values x 3 periods, a smoke test of the script.
@@ -35,6 +37,7 @@ import sys
 import tempfile
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -87,7 +90,9 @@ def diagram(argv: list[str]) -> int:
     from exuclear.study.spec import parse_values
 
     ap = argparse.ArgumentParser(prog="python -m validation.nonlinear diagram")
-    ap.add_argument("--values", default="300:1500:100", help="crank speeds [rpm]")
+    ap.add_argument("--parameter", default="rpm", help="the parameter swept (default %(default)s; mu: a Coulomb "
+                    "coefficient)")
+    ap.add_argument("--values", default="300:1500:100", help="its values")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     ap.add_argument("--periods", type=int, default=50)
     ap.add_argument("--transient", type=int, default=100)
@@ -96,11 +101,11 @@ def diagram(argv: list[str]) -> int:
     args = ap.parse_args(argv)
     from exuclear.nonlinear.cli import _figures, _fixed
 
-    table = orbit_diagram(SCENE, "rpm", parse_values(args.values), fixed=_fixed(args.set), periods=args.periods,
+    table = orbit_diagram(SCENE, args.parameter, parse_values(args.values), fixed=_fixed(args.set), periods=args.periods,
                           transient_periods=args.transient, exponent=True, workers=args.workers, out=args.out)
     for _, row in table.iterrows():
-        print(f"{row['rpm']} rpm: {row['verdict'] or row['message']}")
-    for path in _figures(table, "rpm", "B.ey", __import__("pathlib").Path(args.out)):
+        print(f"{args.parameter} = {row[args.parameter]}: {row['verdict'] or row['message']}")
+    for path in _figures(table, args.parameter, "B.ey", Path(args.out)):
         print(f"wrote {path}")
     return 0
 
