@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import ClassVar, NamedTuple
 
 from .checks import check_positive, warn_unit
+from .contact.pair import ContactGeometry
 
 #: Clearances above this fraction of the journal radius are legal but unusual for a
 #: revolute joint (the paper's is 1 %): a warning asks whether a unit slipped.
@@ -23,8 +24,8 @@ SIZE_WARN_ABOVE = 1.0
 
 
 @dataclass(frozen=True)
-class BearingGeometry:
-    """Journal and bearing dimensions.
+class BearingGeometry(ContactGeometry):
+    """Journal and bearing dimensions: the revolute joint's contact pair, a line contact.
 
     Parameters
     ----------
@@ -39,6 +40,7 @@ class BearingGeometry:
     journal_radius: float
     bearing_radius: float
     length: float
+    joint_type: ClassVar[str] = "revolute"
 
     def __post_init__(self) -> None:
         r_j = check_positive("journal_radius", self.journal_radius)
@@ -58,6 +60,14 @@ class BearingGeometry:
             if large:
                 warn_unit(f"{' and '.join(large)} {'is' if len(large) == 1 else 'are'} above {SIZE_WARN_ABOVE:g} m; "
                           f"lengths are in metres: {'was it' if len(large) == 1 else 'were they'} given in mm?")
+
+    @property
+    def inner_radius(self) -> float:
+        return self.journal_radius
+
+    @property
+    def outer_radius(self) -> float:
+        return self.bearing_radius
 
     @property
     def clearance(self) -> float:

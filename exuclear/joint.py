@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-from .contact import V_MIN_DEFAULT, ContactLaw, contact_law, law_and_restitution
+from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, law_and_restitution
+from .contact.pair import ContactGeometry
 from .film import FilmLaw, Lubrication
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
@@ -102,7 +103,9 @@ class ClearanceJoint:
             raise ValueError(f"`wear` must be an exuclear.Wear or None (no wear), got {type(self.wear).__name__}")
 
     @property
-    def geometry(self) -> BearingGeometry:
+    def geometry(self) -> ContactGeometry:
+        """The contact pair's geometry: a :class:`BearingGeometry` (the revolute joint) or a
+        :class:`~exuclear.spherical.SphereGeometry` (the spherical joint)."""
         return self.law.geometry
 
     def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:
@@ -170,24 +173,32 @@ def make_joint(
     """
     geometry = BearingGeometry(journal_radius, bearing_radius, length)
     film = _film(lubrication, geometry)
+    law = _law(geometry, law, cr, ("journal_material", journal_material), ("bearing_material", bearing_material),
+               E_star, v_min, stiffness, damping, DEFAULT_LAW)
+    return ClearanceJoint(law, friction_law(friction), film, wear)
+
+
+def _law(geometry: ContactGeometry, law: str | ContactLaw | None, cr: float | None, inner: tuple[str, Any],
+         outer: tuple[str, Any], E_star: float | None, v_min: float | None, stiffness: str | None,
+         damping: str | None, default_law: str) -> ContactLaw:
+    """The contact law a builder's arguments ask for, in ``geometry``; ``inner``, ``outer``:
+    the two bodies' material arguments (name, value)."""
     if isinstance(law, ContactLaw):
         if stiffness is not None or damping is not None:
             raise ValueError("give either `law` or `stiffness`/`damping`, not both")
-        given = [name for name, value in (("cr", cr), ("journal_material", journal_material),
-                                          ("bearing_material", bearing_material), ("E_star", E_star),
-                                          ("v_min", v_min)) if value is not None]
+        given = [name for name, value in (("cr", cr), inner, outer, ("E_star", E_star), ("v_min", v_min))
+                 if value is not None]
         if given:
             raise ValueError(f"a ready `law` carries its own cr, materials (E_star) and v_min; leave out "
                              f"{', '.join(f'`{name}`' for name in given)} or give the law by name")
         if law.geometry != geometry:
             raise ValueError(f"`law` was built for {law.geometry}, which differs from {geometry}")
-        return ClearanceJoint(law, friction_law(friction), film, wear)
-    law, cr = law_and_restitution(law, stiffness, damping, cr, default_cr=None)
+        return law
+    law, cr = law_and_restitution(law, stiffness, damping, cr, default_law=default_law, default_cr=None)
     if E_star is None:
-        E_star = composite_modulus(DEFAULT_MATERIAL if journal_material is None else journal_material,
-                                   DEFAULT_MATERIAL if bearing_material is None else bearing_material)
-    return ClearanceJoint(contact_law(law, geometry, E_star, cr, V_MIN_DEFAULT if v_min is None else v_min),
-                          friction_law(friction), film, wear)
+        E_star = composite_modulus(DEFAULT_MATERIAL if inner[1] is None else inner[1],
+                                   DEFAULT_MATERIAL if outer[1] is None else outer[1])
+    return contact_law(law, geometry, E_star, cr, V_MIN_DEFAULT if v_min is None else v_min)
 
 
 def _film(lubrication: Lubrication | None, geometry: BearingGeometry) -> FilmLaw | None:

@@ -57,6 +57,9 @@ enum Role { MAIN = 0, PROBE = 1, TORQUE = 2 };
 enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_COULOMB = 2 };
 // layout.py FILM_CODES
 enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
+// layout.py JOINT_TYPE_CODES: which contacts a joint has (joint_state.hpp joint_kinematics)
+enum JointType { REVOLUTE = 0, SPHERICAL = 1 };
+
 // layout.py WEAR_SURFACE_CODES and WEAR_PRESSURE_CODES, packed in the field wear_code
 enum WearSurface { WEAR_NONE = 0, WEAR_BEARING = 1, WEAR_JOURNAL = 2, WEAR_BOTH = 3 };
 enum WearPressure { WEAR_WINKLER = 0, WEAR_HERTZ = 1 };
@@ -64,7 +67,7 @@ enum WearPressure { WEAR_WINKLER = 0, WEAR_HERTZ = 1 };
 // The fields of the connector's `stiffness` matrix, in the order of layout.py's LAYOUT; a
 // test compares this table (exported as the module's LAYOUT) with layout.py's.
 enum Field {
-    JOINT_ID, ROLE, TOKEN, JOURNAL_RADIUS, BEARING_RADIUS, MAX_PENETRATION,
+    JOINT_ID, ROLE, JOINT_TYPE, INNER_RADIUS, OUTER_RADIUS, MAX_PENETRATION,
     IMPACT_STEP, STIFFNESS_CODE, DAMPING_FACTOR, V_MIN, FRICTION_CODE,
     STIFFNESS_CONSTANTS, FRICTION_CONSTANTS,
     SLICES, LENGTH, AXIS_JOURNAL,
@@ -81,8 +84,8 @@ struct FieldPosition {
 };
 
 constexpr FieldPosition LAYOUT[N_FIELDS] = {
-    {"joint_id", 0, 0, 1},        {"role", 0, 1, 1},           {"token", 0, 2, 1},
-    {"journal_radius", 0, 3, 1},  {"bearing_radius", 0, 4, 1}, {"max_penetration", 0, 5, 1},
+    {"joint_id", 0, 0, 1},        {"role", 0, 1, 1},           {"joint_type", 0, 2, 1},
+    {"inner_radius", 0, 3, 1},    {"outer_radius", 0, 4, 1},   {"max_penetration", 0, 5, 1},
     {"impact_step", 1, 0, 1},     {"stiffness_code", 1, 1, 1}, {"damping_factor", 1, 2, 1},
     {"v_min", 1, 3, 1},           {"friction_code", 1, 4, 1},
     {"stiffness_constants", 2, 0, 5},
@@ -100,7 +103,9 @@ double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f
 struct Params {
     long id;
     int role;
-    double r_j, r_b, max_penetration, impact_step;
+    JointType joint_type;
+    double r_j, r_b;  // the contact pair's inner and outer radius (journal and bearing, ball and socket)
+    double max_penetration, impact_step;
     int stiffness_code;
     double damping_factor, v_min;
     int friction_code;
@@ -123,12 +128,13 @@ struct Params {
     double wear_coefficient;
 };
 
-Params decode(const M6& p) {  // every field but the token (which only the Python handle reads)
+Params decode(const M6& p) {
     Params a;
     a.id = static_cast<long>(field(p, JOINT_ID));
     a.role = static_cast<int>(field(p, ROLE));
-    a.r_j = field(p, JOURNAL_RADIUS);
-    a.r_b = field(p, BEARING_RADIUS);
+    a.joint_type = static_cast<JointType>(static_cast<int>(field(p, JOINT_TYPE)));
+    a.r_j = field(p, INNER_RADIUS);
+    a.r_b = field(p, OUTER_RADIUS);
     a.max_penetration = field(p, MAX_PENETRATION);
     a.impact_step = field(p, IMPACT_STEP);
     a.stiffness_code = static_cast<int>(field(p, STIFFNESS_CODE));

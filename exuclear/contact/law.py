@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from ..checks import check_choice, check_open_closed, check_positive, check_real
-from ..geometry import BearingGeometry
 from .damping import (
     DAMPING_MODELS,
     DampingModel,
@@ -23,6 +22,7 @@ from .damping import (
     ZhiyingQishaoDamping,
     damping_model,
 )
+from .pair import ContactGeometry
 from .stiffness import EXPONENT_METAL, STIFFNESS_MODELS, Liu, PointContact, StiffnessModel, stiffness_model
 
 #: Default floor of the onset velocity in the damping term [m/s] (docs/physics.md eq. (17)):
@@ -86,7 +86,7 @@ class ContactLaw:
         return f"{self.stiffness_model.name}+{self.damping_model.name}"
 
     @property
-    def geometry(self) -> BearingGeometry:
+    def geometry(self) -> ContactGeometry:
         return self.stiffness_model.geometry
 
     @property
@@ -146,7 +146,7 @@ class ContactLaw:
         return self.normal_force(delta, delta_dot, v0)
 
 
-def compose_law(stiffness: str, damping: str, geometry: BearingGeometry, E_star: float, cr: float = 1.0,
+def compose_law(stiffness: str, damping: str, geometry: ContactGeometry, E_star: float, cr: float = 1.0,
                 v_min: float = V_MIN_DEFAULT, exponent: float | None = None) -> ContactLaw:
     """The contact law of the stiffness model ``stiffness`` and the damping model ``damping``.
 
@@ -164,7 +164,7 @@ class _NamedLaw(ContactLaw):
     _stiffness: ClassVar[type[StiffnessModel]] = PointContact
     _damping: ClassVar[type[DampingModel]] = NoDamping
 
-    def __init__(self, geometry: BearingGeometry, E_star: float, cr: float = 1.0, v_min: float = V_MIN_DEFAULT,
+    def __init__(self, geometry: ContactGeometry, E_star: float, cr: float = 1.0, v_min: float = V_MIN_DEFAULT,
                  exponent: float = EXPONENT_METAL) -> None:
         super().__init__(self._stiffness(geometry, E_star, exponent), self._damping(cr), v_min)
 
@@ -192,7 +192,7 @@ class Hertz(_NamedLaw):
 
     name: ClassVar[str] = "hertz"
 
-    def __init__(self, geometry: BearingGeometry, E_star: float, cr: float = 1.0, v_min: float = V_MIN_DEFAULT,
+    def __init__(self, geometry: ContactGeometry, E_star: float, cr: float = 1.0, v_min: float = V_MIN_DEFAULT,
                  exponent: float = EXPONENT_METAL) -> None:
         if check_open_closed("cr", cr, 0.0, 1.0) != 1.0:
             raise ValueError(f"`cr` must be 1 for the elastic Hertz law, got {cr}")
@@ -230,10 +230,10 @@ DEFAULT_LAW = WangLiu.name
 PAIR_SEPARATOR = "+"
 
 
-def pair_name(stiffness: str | None = None, damping: str | None = None) -> str:
-    """``"STIFFNESS+DAMPING"``; a missing member is that of the default law (``liu``,
-    ``zhiying-qishao``)."""
-    default_s, default_d = ALIASES[DEFAULT_LAW]
+def pair_name(stiffness: str | None = None, damping: str | None = None, default_law: str = DEFAULT_LAW) -> str:
+    """``"STIFFNESS+DAMPING"``; a missing member is that of ``default_law`` (by default
+    :data:`DEFAULT_LAW`: ``liu``, ``zhiying-qishao``)."""
+    default_s, default_d = split_law_name(default_law)
     return f"{stiffness or default_s}{PAIR_SEPARATOR}{damping or default_d}"
 
 
@@ -260,7 +260,7 @@ def is_elastic(name: str) -> bool:
 
 def contact_law(
     name: str,
-    geometry: BearingGeometry,
+    geometry: ContactGeometry,
     E_star: float,
     cr: float = 1.0,
     v_min: float = V_MIN_DEFAULT,
@@ -289,7 +289,7 @@ def law_and_restitution(law: str | None = None, stiffness: str | None = None, da
     if stiffness is not None or damping is not None:
         if law is not None:
             raise ValueError("give either `law` or `stiffness`/`damping`, not both")
-        law = pair_name(stiffness, damping)
+        law = pair_name(stiffness, damping, default_law)
     elif law is None:
         law = default_law
     split_law_name(law)  # unknown names fail here, listing the known ones

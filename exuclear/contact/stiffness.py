@@ -1,4 +1,8 @@
-"""Stiffness models: the elastic force ``F_e(delta)`` of a cylinder in a conforming hole.
+"""Stiffness models: the elastic force ``F_e(delta)`` of a body in a conforming hole.
+
+Each takes a :class:`~exuclear.contact.pair.ContactGeometry`: Hertz's point contact
+(:class:`PointContact`) serves every joint type; the line-contact models (a cylinder in a
+bore) need its length and refuse a point contact (:func:`~exuclear.contact.pair.line_length`).
 
 The first factor of docs/physics.md eq. (9) (section 2.2); :data:`STIFFNESS_MODELS` names
 them.  Each model names its formula for the compiled kernel by
@@ -13,8 +17,8 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from ..checks import check_choice, check_positive, check_real
-from ..geometry import BearingGeometry
 from ._validity import _warn_validity
+from .pair import ContactGeometry, line_length
 
 #: Hertzian exponent for metallic contact (docs/physics.md section 2.1, eq. (9)).
 EXPONENT_METAL = 1.5
@@ -37,21 +41,23 @@ class StiffnessModel(ABC):
 
     Parameters
     ----------
-    geometry : BearingGeometry
-        ``R_J``, ``R_B`` (radial clearance ``c = Delta R = R_B - R_J``) and the length ``L``.
+    geometry : ContactGeometry
+        The radii ``R_J``, ``R_B`` of the inner and outer body (radial clearance
+        ``c = Delta R = R_B - R_J``) and, for a line contact, the length ``L``.
     E_star : float
         Composite modulus [Pa], ``1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)`` (the paper's eq. 9).
     """
 
-    geometry: BearingGeometry
+    geometry: ContactGeometry
     E_star: float
     name: ClassVar[str] = ""
     #: Which formula the compiled kernel evaluates (see :meth:`kernel_parameters`).
     kernel_code: ClassVar[int] = -1
 
     def __post_init__(self) -> None:
-        if not isinstance(self.geometry, BearingGeometry):
-            raise ValueError(f"`geometry` must be a BearingGeometry, got {type(self.geometry).__name__}")
+        if not isinstance(self.geometry, ContactGeometry):
+            raise ValueError(f"`geometry` must be a ContactGeometry (a joint type's geometry), got "
+                             f"{type(self.geometry).__name__}")
         check_positive("E_star", self.E_star)
         self._setup()
 
@@ -134,7 +140,7 @@ class PointContact(_PowerLaw):
     def _setup(self) -> None:
         check_positive("exponent", self.exponent_)
         g = self.geometry
-        object.__setattr__(self, "_K", 4.0 / 3.0 * self.E_star * math.sqrt(g.bearing_radius * g.journal_radius
+        object.__setattr__(self, "_K", 4.0 / 3.0 * self.E_star * math.sqrt(g.outer_radius * g.inner_radius
                                                                             / g.clearance))
         object.__setattr__(self, "_n", self.exponent_)
 
@@ -162,7 +168,7 @@ class Liu(StiffnessModel):
 
     def _setup(self) -> None:
         check_positive("exponent", self.exponent_)
-        object.__setattr__(self, "_K0", math.pi * self.E_star * self.geometry.length / 2.0)
+        object.__setattr__(self, "_K0", math.pi * self.E_star * line_length(self.geometry, self.name) / 2.0)
         object.__setattr__(self, "_c", self.geometry.clearance)
 
     @property
@@ -217,6 +223,7 @@ class Pereira(_PowerLaw):
 
     def _setup(self) -> None:
         g = self.geometry
+        length = line_length(g, self.name)
         dr_mm = g.clearance * _MM
         low, high = self.RANGE_MM
         if dr_mm * 1e3 <= 1.0:
@@ -231,7 +238,7 @@ class Pereira(_PowerLaw):
             y = 0.0151 * dr_mm + 1.151
         n = y * dr_mm**-0.005
         # F [N] = (a dR_mm + b) L_mm E_MPa / dR_mm * delta_mm^n, written in SI:
-        k = (self.A * dr_mm + self.B_MM) * (g.length * _MM) * (self.E_star * _MPA) / dr_mm * _MM**n
+        k = (self.A * dr_mm + self.B_MM) * (length * _MM) * (self.E_star * _MPA) / dr_mm * _MM**n
         object.__setattr__(self, "_K", k)
         object.__setattr__(self, "_n", n)
 
@@ -280,8 +287,9 @@ class _LogLineContact(StiffnessModel):
         """``(C, beta)`` of the model."""
 
     def _setup(self) -> None:
+        length = line_length(self.geometry, self.name)
         c, beta = self._log_constants()
-        object.__setattr__(self, "_ks", math.pi * self.geometry.length * self.E_star)
+        object.__setattr__(self, "_ks", math.pi * length * self.E_star)
         object.__setattr__(self, "_C", c)
         object.__setattr__(self, "_beta", beta)
         object.__setattr__(self, "_s_peak", c * math.exp(beta - 1.0))
@@ -446,7 +454,7 @@ STIFFNESS_MODELS: dict[str, type[StiffnessModel]] = {
 _FREE_EXPONENT = (PointContact, Liu)
 
 
-def stiffness_model(name: str, geometry: BearingGeometry, E_star: float, exponent: float | None = None) -> StiffnessModel:
+def stiffness_model(name: str, geometry: ContactGeometry, E_star: float, exponent: float | None = None) -> StiffnessModel:
     """Build a stiffness model by its name in :data:`STIFFNESS_MODELS`.
 
     ``exponent`` (default 1.5) applies to ``hertz`` and ``liu``; the other models fix it.

@@ -39,7 +39,7 @@ NO_RIGID_BODY_MARKER = ("BeamGeometricallyExact2D",)
 
 def default_penetration_limit(geometry: Any) -> float:
     """The default penetration bound [m] of a joint (:data:`PENETRATION_LIMIT_CLEARANCE`)."""
-    return max(PENETRATION_LIMIT_CLEARANCE * geometry.clearance, PENETRATION_LIMIT_RADIUS * geometry.journal_radius)
+    return max(PENETRATION_LIMIT_CLEARANCE * geometry.clearance, PENETRATION_LIMIT_RADIUS * geometry.inner_radius)
 
 
 def check_system(mbs: Any) -> None:

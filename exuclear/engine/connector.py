@@ -35,14 +35,7 @@ import numpy as np
 from exudyn.itemInterface import (
     MarkerBodyRigid,
     MarkerKinematicTreeRigid,
-    NodeGenericData,
-    ObjectConnectorRigidBodySpringDamper,
-    ObjectGround,
     ObjectJointGeneric,
-    SensorNode,
-    SensorObject,
-    VObjectConnectorRigidBodySpringDamper,
-    VObjectGround,
     VObjectJointGeneric,
 )
 from exudyn.rigidBodyUtilities import ComputeOrthonormalBasis
@@ -73,10 +66,11 @@ from .arguments import (
 )
 from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
+from .items import add_connectors, finish_items
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
 from .placement import PLACED_BY_POINTS, PLACED_BY_POSITION
-from .registry import REGISTRY_KEY, joints_of, register
+from .registry import REGISTRY_KEY, joints_of
 
 #: Names kept here for the code that imports them from this module.
 __all__ = ["AXIS_UNIT_TOLERANCE", "BACKENDS", "DEFAULT_BACKEND", "DEFAULT_SLICES", "FACE_OUTPUT_PREFIX",
@@ -240,50 +234,19 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     handle.markerNumbers = [m_bearing, m_journal]
     handle._axis_local = frame[:, 2].copy()
     handle._drawing = _drawing or {}
-    fns = handle.user_functions()
-    hidden = VObjectConnectorRigidBodySpringDamper(show=False)
     if bearingRotates is None:
         bearingRotates = not _orientation_is_fixed(mbs, m_bearing)
-    if bearingRotates:
-        # the bearing can rotate: probe before the joint, torque connector after it (module docstring)
-        ground = mbs.AddObject(ObjectGround(visualization=VObjectGround(show=False)))
-        m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
-        probe_node = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0], numberOfDataCoordinates=1))
-        handle.probeNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
-            name=f"{name}:probe" if name else "", markerNumbers=[m_bearing, m_ground], nodeNumber=probe_node,
-            rotationMarker0=rotation0, springForceTorqueUserFunction=fns["probe"],
-            postNewtonStepUserFunction=fns["probe_post_newton"], visualization=hidden))
     n_faces = len(FACE_SIDES) if shoulders is not None else 0
     lubricated = joint.film is not None
     n_data = len(spatial_data_columns(slices, n_faces, lubricated)) if slices else len(data_columns(lubricated))
-    handle.nodeNumber = mbs.AddNode(NodeGenericData(initialCoordinates=[0.0] * n_data, numberOfDataCoordinates=n_data))
-    handle.objectNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
-        name=name, markerNumbers=[m_bearing, m_journal], nodeNumber=handle.nodeNumber,
-        rotationMarker0=rotation0,  # marker 1's rotation enters only Exudyn's relative angles, unused here
-        springForceTorqueUserFunction=fns["force_torque"], postNewtonStepUserFunction=fns["post_newton"],
-        visualization=VObjectConnectorRigidBodySpringDamper(show=show, drawSize=2.0 * joint.geometry.bearing_radius)))
-    if handle.probeNumber is not None:
-        handle.torqueNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
-            name=f"{name}:torque" if name else "", markerNumbers=[m_bearing, m_ground], rotationMarker0=rotation0,
-            springForceTorqueUserFunction=fns["torque"], visualization=hidden))
+    add_connectors(mbs, handle, [m_bearing, m_journal], rotation0, bearingRotates, n_data, show,
+                   2.0 * joint.geometry.bearing_radius)
     if constrainAxial:
         handle.constraintNumber = mbs.AddObject(ObjectJointGeneric(
             name=f"{name}:axial" if name else "", markerNumbers=[m_bearing, m_journal],
             constrainedAxes=[0, 0, 1, 0, 0, 0] if slices else [0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
             visualization=VObjectJointGeneric(show=False)))
-    if show:  # journal and bearing drawn by a graphics function, which only a renderer calls
-        handle.drawingNumber = mbs.AddObject(ObjectGround(visualization=VObjectGround(
-            show=True, graphicsDataUserFunction=drawing_function(handle))))
-    handle._write_parameters()
-    register(mbs, handle)
-    if record:
-        handle.sensorNumber = mbs.AddSensor(SensorNode(nodeNumber=handle.nodeNumber, storeInternal=True,
-                                                       writeToFile=False,
-                                                       outputVariableType=exu.OutputVariableType.Coordinates))
-        if slices:  # the resultant load of all slices and faces, as the connector applies it
-            handle.loadSensorNumbers = [mbs.AddSensor(SensorObject(
-                objectNumber=handle.objectNumber, storeInternal=True, writeToFile=False, outputVariableType=kind))
-                for kind in (exu.OutputVariableType.ForceLocal, exu.OutputVariableType.TorqueLocal)]
+    finish_items(mbs, handle, drawing_function if show else None, record, load_sensors=bool(slices))
     return handle
 
 

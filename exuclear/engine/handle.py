@@ -24,7 +24,7 @@ from . import outputs as _outputs
 from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
-from .layout import MAIN, PROBE, TORQUE, parameters, read, uses_bearing_motion
+from .layout import MAIN, PROBE, TORQUE, TOKEN_ENTRY, parameters, uses_bearing_motion
 from .placement import PLACED_BY_MARKERS
 from .registry import label
 from .steering import _RunStart
@@ -135,6 +135,11 @@ class ClearanceJointHandle:
         return id(self.__dict__)
 
     @property
+    def joint_type(self) -> str:
+        """``"revolute"`` or ``"spherical"``: the type of the joint's contact pair."""
+        return self._joint.geometry.joint_type
+
+    @property
     def frame(self) -> np.ndarray:
         """The joint frame in global coordinates in the reference configuration (3 x 3,
         columns x, y and z = the bearing axis): the frame of the connector's ``ForceLocal``
@@ -161,6 +166,9 @@ class ClearanceJointHandle:
     def joint(self, joint: ClearanceJoint) -> None:
         if not isinstance(joint, ClearanceJoint):
             raise ValueError(f"`joint` must be a ClearanceJoint, got {type(joint).__name__}")
+        if joint.geometry.joint_type != self.joint_type:
+            raise ValueError(f"a {self.joint_type} joint cannot take the physics of a {joint.geometry.joint_type} "
+                             "joint; create a new clearance joint")
         if (joint.film is None) != (self._joint.film is None):
             raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
                              "create a new clearance joint")
@@ -192,12 +200,15 @@ class ClearanceJointHandle:
         """The parameter matrix of the connector of ``role`` (:data:`exuclear.engine.layout.LAYOUT`)."""
         return parameters(self._joint, self.joint_id, role, self.max_penetration, self._impact_step,
                           self._rate_limit, compiled=self._backend.compiled, slices=self.slices, axis_journal=self.axis_journal,
-                          shoulders=self.shoulders, token=self.token)
+                          shoulders=self.shoulders)
 
     def _write_parameters(self) -> None:
         for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
                 self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
+        mark = np.zeros((6, 6))
+        mark[TOKEN_ENTRY] = self.token
+        self.mbs.SetObjectParameter(self.objectNumber, "damping", mark.tolist())
         # the probe and torque connectors run only where the loads use the bearing's spin
         active = uses_bearing_motion(self._joint, self.slices)
         for number in (self.probeNumber, self.torqueNumber):
@@ -207,8 +218,8 @@ class ClearanceJointHandle:
     def is_live(self) -> bool:
         """Whether the joint's connector is still in its system (not removed by ``mbs.Reset()``)."""
         try:
-            stiffness = self.mbs.GetObjectParameter(self.objectNumber, "stiffness")
-            return read(stiffness, "token") == float(self.token)
+            mark = self.mbs.GetObjectParameter(self.objectNumber, "damping")
+            return float(np.asarray(mark)[TOKEN_ENTRY]) == float(self.token)
         except Exception:  # the index no longer exists, or is another kind of object
             return False
 

@@ -1,5 +1,10 @@
 """Where a clearance joint's parameters and outputs sit in its Exudyn items.
 
+Every joint type shares one parameter matrix: the fields of row 0 to 3 (the radii of the
+contact pair, the law, friction, the step control) serve every type; rows 4 and 5 hold the
+revolute joint's own (slices, length, axial clearance, film, wear), which a spherical joint
+leaves at 0.  ``joint_type`` says which contacts the kernels build from them.
+
 Parameters.  Exudyn hands a connector's ``stiffness`` matrix (6 x 6) to its user
 functions on every call, so the joint's physics lives there, readable by the compiled
 and the Python kernel alike (``mbs.GetObject(joint.objectNumber)["stiffness"]``).
@@ -31,6 +36,11 @@ from ..spatial import ShoulderGeometry
 from ..wear.law import Wear
 
 MAIN, PROBE, TORQUE = 0, 1, 2
+#: Joint type (``ContactGeometry.joint_type``) -> code in the parameter matrix (layout.hpp ``JointType``).
+JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1}
+#: Where the handle marks its connector (``is_live``): an entry of the connector's ``damping``
+#: matrix, which Exudyn hands to the user functions and neither kernel reads.
+TOKEN_ENTRY = (0, 0)
 #: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
 MATRIX_SIZE = 6
 
@@ -49,9 +59,9 @@ class Field(NamedTuple):
 LAYOUT = (
     Field("joint_id", 0, 0, 1, "the joint's entry in the compiled kernel's table (-1: the Python kernel)"),
     Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque"),
-    Field("token", 0, 2, 1, "which handle owns the connector (read by the handle only: is_live)"),
-    Field("journal_radius", 0, 3, 1, "R_J [m]"),
-    Field("bearing_radius", 0, 4, 1, "R_B [m]"),
+    Field("joint_type", 0, 2, 1, "the joint type's code (JOINT_TYPE_CODES): which contacts the kernels build"),
+    Field("inner_radius", 0, 3, 1, "R_J [m] of the journal, R_B of the ball (ContactGeometry.inner_radius)"),
+    Field("outer_radius", 0, 4, 1, "R_B [m] of the bearing, R_S of the socket (ContactGeometry.outer_radius)"),
     Field("max_penetration", 0, 5, 1, "penetration [m] beyond which a run stops"),
     Field("impact_step", 1, 0, 1, "step [s] that redoes a step in which a contact begins (0: off)"),
     Field("stiffness_code", 1, 1, 1, "the stiffness model's kernel_code (-1: a law for the Python kernel only)"),
@@ -281,22 +291,22 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
                impact_step: float = 0.0, rate_limit: float = RATE_LIMIT_DEFAULT, compiled: bool = True, slices: int = 0,
                axis_journal: tuple[float, float, float] = (0.0, 0.0, 1.0),
-               shoulders: ShoulderGeometry | None = None, token: int = 0) -> list[list[float]]:
+               shoulders: ShoulderGeometry | None = None) -> list[list[float]]:
     """The ``stiffness`` matrix that carries ``joint`` to the kernels (:data:`LAYOUT`);
     ``compiled=False`` (the Python kernel) accepts laws without a compiled form; ``slices``
     > 0 makes it a spatial joint whose journal axis is ``axis_journal`` in the journal
-    marker's frame, with the axial clearance ``shoulders`` (or None); ``token`` marks the
-    handle that owns the connector."""
+    marker's frame, with the axial clearance ``shoulders`` (or None)."""
     law, g = joint.law, joint.geometry
     code, extra = law_code(law) if compiled else (-1, ())
     f_code, f_params = friction_code(joint.friction) if compiled else (-1, ())
     p = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
-    values = {"joint_id": joint_id, "role": role, "token": token, "journal_radius": g.journal_radius,
-              "bearing_radius": g.bearing_radius, "max_penetration": max_penetration, "impact_step": impact_step,
+    values = {"joint_id": joint_id, "role": role, "joint_type": JOINT_TYPE_CODES[g.joint_type],
+              "inner_radius": g.inner_radius, "outer_radius": g.outer_radius, "max_penetration": max_penetration,
+              "impact_step": impact_step,
               "rate_limit": rate_limit,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
-              "slices": slices, "length": g.length, "axis_journal": axis_journal,
+              "slices": slices, "length": g.length or 0.0, "axis_journal": axis_journal,
               "bearing_motion": float(uses_bearing_motion(joint, slices))}
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,

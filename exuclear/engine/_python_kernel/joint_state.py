@@ -86,7 +86,7 @@ class JointState:
     def joint(self, joint: ClearanceJoint) -> None:
         g = joint.geometry
         self._joint = joint
-        self.r_j, self.r_b = g.journal_radius, g.bearing_radius
+        self.r_j, self.r_b = g.inner_radius, g.outer_radius
         self.centres = slice_centres(g.length, self.slices)                               # eq. (33)
         slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
         self.contacts: list[Contact] = [slice_contact] * self.slices
