@@ -1,9 +1,10 @@
-"""exuclear: revolute clearance joints for the Exudyn multibody engine.
+"""exuclear: clearance joints (revolute, spherical) for the Exudyn multibody engine.
 
 The public API is the names of ``__all__`` below, by role:
 
-- **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (Exudyn items; they
-  return a :class:`ClearanceJointHandle`), and the physics of one joint,
+- **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (the revolute joint)
+  and :func:`CreateSphericalClearanceJoint` (a ball in a socket), Exudyn items; they
+  return a :class:`ClearanceJointHandle`; and the physics of one joint,
   :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
   :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``),
   :class:`Wear` (Archard's law) makes its surfaces wear (``wear=``), and
@@ -42,6 +43,7 @@ from .engine import (
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
+    CreateSphericalClearanceJoint,
     SimulationResult,
     simulate,
 )
@@ -79,7 +81,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     # joints
-    "CreateClearanceJoint", "AddClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
+    "CreateClearanceJoint", "AddClearanceJoint", "CreateSphericalClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
     "make_joint", "Lubrication", "Wear", "predict_wear",
     # contact laws
     "contact_law", "ContactLaw",

@@ -17,6 +17,7 @@ from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .history import ContactState
 from .materials import Material, composite_modulus
+from .spherical import SphereGeometry
 from .wear.law import Wear
 
 
@@ -60,6 +61,9 @@ _NO_LOADS = JointLoads(0.0, 0.0, 0.0, 0.0)
 
 #: Journal and bearing material where none is given (the paper's).
 DEFAULT_MATERIAL = "steel"
+#: The spherical joint's law where none is given: Hertz's ball in a socket with Lankarani and
+#: Nikravesh's damping, the pair of the ball-joint literature (Flores et al. 2006).
+DEFAULT_SPHERICAL_LAW = "hertz+lankarani-nikravesh"
 
 
 @dataclass(frozen=True)
@@ -176,6 +180,35 @@ def make_joint(
     law = _law(geometry, law, cr, ("journal_material", journal_material), ("bearing_material", bearing_material),
                E_star, v_min, stiffness, damping, DEFAULT_LAW)
     return ClearanceJoint(law, friction_law(friction), film, wear)
+
+
+def make_spherical_joint(
+    *,
+    ball_radius: float,
+    socket_radius: float,
+    law: str | ContactLaw | None = None,
+    cr: float | None = None,
+    ball_material: str | Material | None = None,
+    socket_material: str | Material | None = None,
+    E_star: float | None = None,
+    friction: str | FrictionLaw = "none",
+    v_min: float | None = None,
+    stiffness: str | None = None,
+    damping: str | None = None,
+) -> ClearanceJoint:
+    """Build the physics of a spherical clearance joint: a ball of radius ``ball_radius`` in
+    a socket of radius ``socket_radius`` > ``ball_radius`` [m] (:class:`exuclear.spherical.SphereGeometry`).
+
+    The other arguments are :func:`make_joint`'s, with the ball's and the socket's
+    materials; the default law is :data:`DEFAULT_SPHERICAL_LAW` (Hertz's sphere in a
+    sphere, docs/physics.md eq. (13) with the ball's and the socket's radii).  The
+    line-contact stiffness models (``liu``, ``johnson``, ...) need a contact length, which
+    a ball does not have: they raise ``ValueError``.
+    """
+    geometry = SphereGeometry(ball_radius, socket_radius)
+    law = _law(geometry, law, cr, ("ball_material", ball_material), ("socket_material", socket_material), E_star,
+               v_min, stiffness, damping, DEFAULT_SPHERICAL_LAW)
+    return ClearanceJoint(law, friction_law(friction))
 
 
 def _law(geometry: ContactGeometry, law: str | ContactLaw | None, cr: float | None, inner: tuple[str, Any],

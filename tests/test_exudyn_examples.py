@@ -116,10 +116,10 @@ def test_clearance_model_through_simulate_stays_in_its_bearing(name, changes):
     # (measured 0.005 c to 0.04 c), far from a tenth of the gap
     assert pen <= PENETRATION_WRONG * c
     out = model.joint.outputs()
-    if "ecc_x" in out and np.ndim(out["ecc_x"]) == 1:
+    if "ecc_x" in out and np.ndim(out["ecc_x"]) == 1:  # a spherical joint: ecc_z too
         # penetration = eccentricity - c (docs/physics.md): the element's per-step maximum
         # bounds the eccentricity at every output time; 1e-12 m for round-off
-        ecc = np.hypot(out["ecc_x"], out["ecc_y"])
+        ecc = np.sqrt(out["ecc_x"] ** 2 + out["ecc_y"] ** 2 + out.get("ecc_z", 0.0) ** 2)
         assert ecc.max() <= c + pen + 1e-12
     if model.probe_bound is not None:
         diff = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))

@@ -5,18 +5,20 @@
 // The same formulas as the Python statement of the physics, in the same order and with
 // the same names, so that the two can be read side by side and agree to round-off:
 //   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
-//                                               planar joint's eqs. (1)-(8) as one slice)
+//                                               planar joint's eqs. (1)-(8) as one slice),
+//                       exuclear/spherical.py  (the spherical joint's ball, eqs. (85)-(88))
 //   normal force        exuclear/contact/      (law.py eq. (9) once, damped_normal_force; stiffness.py, damping.py eqs. (10)-(17))
 //   friction            exuclear/friction.py   (eqs. (20)-(23))
 //   one contact         exuclear/engine/_python_kernel/contacts.py Contact (response: onset velocity,
 //                       normal force, friction; the same for slices and end faces)
-//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54))
+//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54)); spherical.py (eqs. (89), (90))
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   film                exuclear/film/         (laws.py, loads.py: eqs. (55)-(70))
 //   the joint           exuclear/engine/_python_kernel/joint_state.py JointState (which history an
 //                       evaluation uses; force and post-Newton drivers over the contacts)
 // The planar joint is the spatial joint with one slice and no end faces, whose motion is
-// projected on the plane normal to the bearing axis.
+// projected on the plane normal to the bearing axis; the spherical joint (joint_type) has one
+// contact, its ball, and the spatial joint's motion.
 //
 // Exudyn calls these functions through raw function pointers, without Python, when they
 // are bound by pybind11, capture nothing and have exactly Exudyn's signature
@@ -117,6 +119,11 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
     bool conformal = worn_joint && in_worn_contact(s);
     steer_jacobian(s, switched ? INF : h, conformal);
     report_growth(s, a.id, system, t, allow, h);
+    if (a.joint_type == SPHERICAL) {  // layout.BALL_DATA_COLUMNS: the ball's entries, then its ecc_z
+        data_values(s.cur[0], out);
+        out.push_back(q.p[2]);
+        return out;
+    }
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         data_values(s.cur[0], out);
         if (a.film_model != FILM_NONE) {
@@ -332,6 +339,10 @@ PYBIND11_MODULE(_ckernel, m) {
     py::list layout;
     for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
     m.attr("LAYOUT") = layout;
+    py::dict joint_types;  // layout.py JOINT_TYPE_CODES
+    joint_types["revolute"] = static_cast<int>(REVOLUTE);
+    joint_types["spherical"] = static_cast<int>(SPHERICAL);
+    m.attr("JOINT_TYPES") = joint_types;
     m.attr("N_DATA") = N_DATA;
     m.attr("N_FILM_DATA") = N_FILM_DATA;
     m.attr("STIFFNESS_CODES") = STIFFNESS_CODES;

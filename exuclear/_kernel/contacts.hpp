@@ -1,6 +1,6 @@
 // One contact: its history (exuclear/history.py), its response (onset velocity, normal force,
-// friction; the same for slices and end faces) and its loads (exuclear/spatial.py, eqs.
-// (41)-(45), (54)).  Python: exuclear/engine/_python_kernel/contacts.py.
+// friction; the same for slices, end faces and the ball) and its loads (exuclear/spatial.py, eqs.
+// (41)-(45), (54); exuclear/spherical.py, eqs. (89), (90)).  Python: exuclear/engine/_python_kernel/contacts.py.
 
 #pragma once
 
@@ -35,20 +35,25 @@ double onset_velocity(const History& h, double delta, double delta_dot) {
 }
 
 // ---- one contact: _python_kernel/contacts.py's Contact classes ----------------------------------------
-// A joint's contacts are its slices (one for the planar joint), then its two end faces where
-// it has an axial clearance.  The kind decides the stiffness, the slip friction acts against
-// and where the loads go; response() is the same for all.
+// A revolute joint's contacts are its slices (one for the planar joint), then its two end faces
+// where it has an axial clearance; a spherical joint's is its ball.  The kind decides the
+// stiffness, the slip friction acts against and where the loads go; response() is the same for all.
 enum ContactKind {
     PLANAR_SLICE,  // the planar joint's one slice: the joint's law, slip v_T (eqs. (9), (20))
     SLICE,         // a spatial slice: its share w / L of the law, slip |v_s| (eqs. (41), (42))
-    FACE           // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
+    FACE,          // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
+    BALL           // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (88))
 };
 
 int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
 
+// the planar revolute joint (one slice, the motion projected on the plane normal to the axis)
+bool planar(const Params& a) { return a.joint_type == REVOLUTE && a.slices == 0; }
+
 size_t contact_count(const Params& a) { return static_cast<size_t>(slice_count(a)) + (a.play > 0.0 ? 2u : 0u); }
 
 ContactKind contact_kind(const Params& a, size_t i) {
+    if (a.joint_type == SPHERICAL) return BALL;
     if (i >= static_cast<size_t>(slice_count(a))) return FACE;
     return a.slices > 0 ? SLICE : PLANAR_SLICE;
 }
@@ -152,6 +157,23 @@ void add_slice_loads(double* loads, double r_j, const V3& u, const Kinematics& k
     }
 }
 
+// spherical.py add_ball_loads: the ball's loads = [force (3), torque (3), correction (3)]
+void add_ball_loads(double* loads, double r_b, const Kinematics& k, double f_n, double f_t) {
+    V3 t_force{0.0, 0.0, 0.0};
+    if (k.v_t > 0.0) {
+        double scale = f_t / k.v_t;
+        t_force = V3{scale * k.v_s[0], scale * k.v_s[1], scale * k.v_s[2]};  // friction on the socket, eq. (89)
+    }
+    V3 total{f_n * k.nx + t_force[0], f_n * k.ny + t_force[1], f_n * k.nz + t_force[2]};
+    V3 rim = cross(V3{r_b * k.nx, r_b * k.ny, r_b * k.nz}, t_force);
+    V3 couple = cross(V3{k.delta * k.nx, k.delta * k.ny, k.delta * k.nz}, t_force);
+    for (int i = 0; i < 3; ++i) {
+        loads[i] += total[i];                                           // eq. (89)
+        loads[3 + i] += rim[i];                                         // eq. (90)
+        loads[6 + i] -= couple[i];                                      // eq. (90), p x F added at the end
+    }
+}
+
 void add_face_loads(double* loads, double r_e, const V3& u, const Kinematics& k, double f_n, double f_t) {
     V3 total{0.0, 0.0, -k.side * f_n};                                  // on the bearing, at c_f
     V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
@@ -180,6 +202,9 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
         }
         case FACE:
             add_face_loads(loads, a.friction_radius, u, k, r.f_n, r.f_t);
+            break;
+        case BALL:  // eqs. (89), (90)
+            add_ball_loads(loads, a.r_j, k, r.f_n, r.f_t);
             break;
     }
 }

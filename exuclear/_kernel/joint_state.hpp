@@ -193,6 +193,12 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     V3 dv, dw, w_j;
     // the bearing's spin from the probe, where the loads use it (its probe is off otherwise)
     const V3 w_b = a.bearing_motion ? s.omega_bearing : V3{0.0, 0.0, 0.0};
+    if (a.joint_type == SPHERICAL) {  // the ball, eqs. (85)-(88); u: the socket frame's z axis
+        q.p = displacement;
+        q.u = V3{0.0, 0.0, 1.0};
+        s.kins[0] = ball_kinematics(a.r_j, a.r_b, q.p, velocity, angularVelocity, w_b);
+        return q;
+    }
     if (a.slices == 0) {  // the planar joint: the motion projected on the plane normal to the axis
         q.p = V3{displacement[0], displacement[1], 0.0};
         q.u = V3{0.0, 0.0, 1.0};
@@ -339,7 +345,7 @@ V6 joint_force(const Params& a, double t, const V3& displacement, const V3& rota
             }
         }
     }
-    if (a.slices == 0) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
+    if (planar(a)) {  // the planar slice's loads hold the bearing's whole moment (eq. (26))
         s.torque_correction = V3{loads[6], loads[7], loads[8]};
     } else {
         V3 force{loads[0], loads[1], loads[2]};

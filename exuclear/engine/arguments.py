@@ -35,6 +35,9 @@ RIGID_MARKERS = ("BodyRigid", "NodeRigid", "KinematicTreeRigid", "SuperElementRi
 #: (the element gives a connector no angular velocity).  Their nodes are rigid-body nodes,
 #: which a ``MarkerNodeRigid`` carries.
 NO_RIGID_BODY_MARKER = ("BeamGeometricallyExact2D",)
+#: Object types without an orientation: Exudyn refuses a ``MarkerBodyRigid`` on them when the
+#: system is assembled ("requires an object with orientation (rotation) information").
+NO_ORIENTATION = ("MassPoint", "MassPoint2D")
 
 
 def default_penetration_limit(geometry: Any) -> float:
@@ -115,6 +118,10 @@ def check_rigid_body_marker(mbs: exu.MainSystem, body: Any, where: str) -> None:
     (:data:`NO_RIGID_BODY_MARKER`), naming the marker to give instead."""
     item = mbs.GetObject(body)
     kind = item["objectType"]
+    if kind in NO_ORIENTATION:
+        raise ValueError(f"{where} is object {int(body)}, an Object{kind}, a point mass without orientation: a "
+                         "clearance joint needs a body with a rigid marker (position and orientation), e.g. "
+                         "mbs.CreateRigidBody")
     if kind in NO_RIGID_BODY_MARKER:
         nodes = [int(n) for n in item.get("nodeNumbers", [])]
         raise ValueError(f"{where} is on object {int(body)}, an Object{kind}, on which Exudyn's MarkerBodyRigid fails at "

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import exudyn as exu
 import numpy as np
@@ -384,55 +384,12 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     """
     check_system(mbs)
     check_contact_mode(contact_mode)
-    if bodyNumbers is not None:
-        if tuple(itemNumbers) != (None, None):
-            raise ValueError("give `itemNumbers` only: `bodyNumbers` is its deprecated name, and both were given")
-        warnings.warn("`bodyNumbers` is deprecated (as in Exudyn's CreateRevoluteJoint): use `itemNumbers`",
-                      DeprecationWarning, stacklevel=2)
-        itemNumbers = bodyNumbers
-    if isinstance(itemNumbers, (str, bytes)) or len(itemNumbers) != 2:
-        raise ValueError(f"`itemNumbers` must be [bearing item, journal item] (bodies or rigid markers), "
-                         f"got {itemNumbers!r}")
-    if not isinstance(useGlobalFrame, bool):
-        raise ValueError(f"`useGlobalFrame` must be True or False, got {useGlobalFrame!r}")
     draw = drawing_sizes(axisRadius, axisLength, color)
-    kinds = []
-    for k, (role, item) in enumerate(zip(("bearing", "journal"), itemNumbers)):
-        if item is None:
-            raise ValueError(f"`itemNumbers` needs the {role} item (a body or a rigid marker)")
-        where = f"`itemNumbers[{k}]`"
-        if isinstance(item, exu.MarkerIndex):
-            check_marker(mbs, item, where)
-            kinds.append("marker")
-            continue
-        kind = object_type(mbs, item, f"{role} body")
-        if kind == "KinematicTree":
-            raise ValueError(f"{where} is an ObjectKinematicTree: a joint on a tree sits on one of its links, whose "
-                             "motion the tree's own joints hold: give the journal's link its in-plane play in the tree "
-                             "(PrismaticX and PrismaticY links before its revolute joint), and give MarkerKinematicTreeRigid "
-                             "markers (objectNumber, linkNumber, localPosition) in `itemNumbers` "
-                             "(validation/exudyn_examples/kinematic_tree_chain.py)")
-        check_rigid_body_marker(mbs, item, where)
-        kinds.append(kind)
-    b0, b1 = itemNumbers
-    if "marker" not in kinds:
-        if int(b0) == int(b1):
-            raise ValueError("`itemNumbers` names the same body twice; the bearing and the journal are on different "
-                             "bodies")
-        if kinds == ["Ground", "Ground"]:
-            raise ValueError("`itemNumbers` are both ground objects: one must be a moving body")
     a = check_axis(axis)
-    p0, a0 = _reference_pose(mbs, b0, "`itemNumbers[0]`")
-    p1, a1 = _reference_pose(mbs, b1, "`itemNumbers[1]`")
-    if "marker" in kinds:  # the marker sets the joint's centre (mbs.CreateRevoluteJoint's rule)
-        if position is not None and len(position) != 0:
-            raise ValueError(f"`position` must be omitted (or []) where `itemNumbers` gives a marker: the marker sets "
-                             f"the joint's centre, got {position!r}")
-        p = p0 if kinds[0] == "marker" else p1
-    else:
-        p = vector3("position", (0.0, 0.0, 0.0) if position is None else position)
-        if not useGlobalFrame:
-            p = a0 @ p + p0
+    items = joint_items(mbs, itemNumbers, bodyNumbers, ("bearing", "journal"), position, useGlobalFrame,
+                        "CreateRevoluteJoint", tree_advice=REVOLUTE_TREE_ADVICE)
+    (b0, b1), kinds, p = items.items, items.kinds, items.centre
+    (p0, a0), (p1, a1) = items.poses
     if not useGlobalFrame:
         a = a0 @ a
     # the joint frame of mbs.CreateRevoluteJoint, carried by the markers' localHT as Exudyn
@@ -456,6 +413,77 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     if "marker" not in kinds:
         handle.placed_by = PLACED_BY_POSITION
     return handle
+
+
+#: What a revolute joint on a kinematic tree needs beyond a link's marker (``joint_items``).
+REVOLUTE_TREE_ADVICE = ("give the journal's link its in-plane play in the tree (PrismaticX and PrismaticY links before "
+                        "its revolute joint), and ")
+
+
+class JointItems(NamedTuple):
+    """The two items of a ``Create*ClearanceJoint`` as :func:`joint_items` checks them: the
+    items, their kinds (an object type, or ``"marker"``), the joint's centre (global, in the
+    reference configuration) and each item's reference pose (position, rotation matrix)."""
+
+    items: tuple[Any, Any]
+    kinds: list[str]
+    centre: np.ndarray
+    poses: tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def joint_items(mbs: exu.MainSystem, itemNumbers: Any, bodyNumbers: Any, roles: tuple[str, str],  # noqa: N803
+                position: Any, useGlobalFrame: Any, exudyn_name: str, tree_advice: str = "") -> JointItems:  # noqa: N803
+    """The items of a joint builder with Exudyn's keywords (``itemNumbers``, its deprecated
+    ``bodyNumbers``, ``position``, ``useGlobalFrame``; the rules of Exudyn's ``exudyn_name``):
+    each a body with a rigid marker or a rigid marker, ``roles`` naming them in messages; a
+    marker sets the centre, else ``position`` (global, or in item 0's frame)."""
+    if bodyNumbers is not None:
+        if tuple(itemNumbers) != (None, None):
+            raise ValueError("give `itemNumbers` only: `bodyNumbers` is its deprecated name, and both were given")
+        warnings.warn(f"`bodyNumbers` is deprecated (as in Exudyn's {exudyn_name}): use `itemNumbers`",
+                      DeprecationWarning, stacklevel=3)
+        itemNumbers = bodyNumbers
+    if isinstance(itemNumbers, (str, bytes)) or len(itemNumbers) != 2:
+        raise ValueError(f"`itemNumbers` must be [{roles[0]} item, {roles[1]} item] (bodies or rigid markers), "
+                         f"got {itemNumbers!r}")
+    if not isinstance(useGlobalFrame, bool):
+        raise ValueError(f"`useGlobalFrame` must be True or False, got {useGlobalFrame!r}")
+    kinds = []
+    for k, (role, item) in enumerate(zip(roles, itemNumbers)):
+        if item is None:
+            raise ValueError(f"`itemNumbers` needs the {role} item (a body or a rigid marker)")
+        where = f"`itemNumbers[{k}]`"
+        if isinstance(item, exu.MarkerIndex):
+            check_marker(mbs, item, where)
+            kinds.append("marker")
+            continue
+        kind = object_type(mbs, item, f"{role} body")
+        if kind == "KinematicTree":
+            raise ValueError(f"{where} is an ObjectKinematicTree: a joint on a tree sits on one of its links, whose "
+                             f"motion the tree's own joints hold: {tree_advice}give MarkerKinematicTreeRigid "
+                             "markers (objectNumber, linkNumber, localPosition) in `itemNumbers` "
+                             "(validation/exudyn_examples/kinematic_tree_chain.py)")
+        check_rigid_body_marker(mbs, item, where)
+        kinds.append(kind)
+    b0, b1 = itemNumbers
+    if "marker" not in kinds:
+        if int(b0) == int(b1):
+            raise ValueError(f"`itemNumbers` names the same body twice; the {roles[0]} and the {roles[1]} are on "
+                             "different bodies")
+        if kinds == ["Ground", "Ground"]:
+            raise ValueError("`itemNumbers` are both ground objects: one must be a moving body")
+    p0, a0 = _reference_pose(mbs, b0, "`itemNumbers[0]`")
+    p1, a1 = _reference_pose(mbs, b1, "`itemNumbers[1]`")
+    if "marker" in kinds:  # the marker sets the joint's centre (Exudyn's rule)
+        if position is not None and len(position) != 0:
+            raise ValueError(f"`position` must be omitted (or []) where `itemNumbers` gives a marker: the marker sets "
+                             f"the joint's centre, got {position!r}")
+        p = p0 if kinds[0] == "marker" else p1
+    else:
+        p = vector3("position", (0.0, 0.0, 0.0) if position is None else position)
+        if not useGlobalFrame:
+            p = a0 @ p + p0
+    return JointItems((b0, b1), kinds, p, ((p0, a0), (p1, a1)))
 
 
 def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> Any:

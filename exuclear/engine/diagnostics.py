@@ -118,7 +118,9 @@ def unheld_motion(mbs: exu.MainSystem, joints: Sequence[ClearanceJointHandle] | 
     :data:`UNHELD_MAX_COORDINATES` coordinates are not checked (an empty result).
     """
     joints = list(joints_of(mbs) if joints is None else joints)
-    checked = [h for h in joints if h.constraintNumber is None and not (h.slices and h.shoulders is not None)]
+    # a spherical joint leaves the rotations free as the ideal one does, and its ball holds the translation
+    checked = [h for h in joints if h.joint_type == "revolute" and h.constraintNumber is None
+               and not (h.slices and h.shoulders is not None)]
     if not checked:
         return {}
     init, cur = exu.ConfigurationType.Initial, exu.ConfigurationType.Current

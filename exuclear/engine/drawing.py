@@ -47,11 +47,37 @@ def drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Vis
     return draw
 
 
-def drawing_sizes(radius: Any, length: Any, color: Any) -> dict:
-    """``axisRadius``, ``axisLength`` and ``color`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`, checked."""
+#: Colour of the drawn socket: see-through, so that the ball inside it shows.
+SOCKET_COLOR = [0.7, 0.7, 0.7, 0.3]
+
+
+def ball_drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Visualization) -> Any:
+    """Graphics function of the spherical joint ``handle``: the ball as a sphere of radius R_B
+    and the socket as a see-through sphere of radius R_S, at the markers' current positions
+    (``jointRadius`` scales both, ``color`` the ball's)."""
+    geometry = handle.joint.geometry  # read now: the function must not keep the handle (see drawing_function)
+    m_socket, m_ball = handle.markerNumbers
+    sizes = getattr(handle, "_drawing", {})
+    scale = sizes["radius"] / geometry.ball_radius if "radius" in sizes else 1.0
+    ball_color = sizes.get("color", JOURNAL_COLOR)
+
+    def draw(mbs: exu.MainSystem, item: int) -> list:
+        out = []
+        for marker, radius, color in ((m_ball, scale * geometry.ball_radius, ball_color),
+                                      (m_socket, scale * geometry.socket_radius, SOCKET_COLOR)):
+            centre = mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position, configuration=configuration)
+            out.append(exu.graphics.Sphere(point=list(centre), radius=radius, color=color, nTiles=16))
+        return out
+
+    return draw
+
+
+def drawing_sizes(radius: Any, length: Any, color: Any, radius_name: str = "axisRadius") -> dict:
+    """``axisRadius``, ``axisLength`` and ``color`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`
+    (``jointRadius`` and ``color`` of :func:`~exuclear.engine.spherical.CreateSphericalClearanceJoint`), checked."""
     out: dict[str, Any] = {}
     if radius is not None:
-        out["radius"] = check_positive("axisRadius", radius)
+        out["radius"] = check_positive(radius_name, radius)
     if length is not None:
         out["length"] = check_positive("axisLength", length)
     if color is not None:

@@ -389,8 +389,11 @@ class ClearanceJointHandle:
             if data[0, 0] == initial[0].time:  # the data node holds no state before the first step
                 data = data.copy()
                 data[0, 1:] = _outputs.initial_data(self.slices, initial, *self._backend.initial_pose(),
-                                                    lubricated=self._joint.film is not None)
+                                                    lubricated=self._joint.film is not None,
+                                                    joint_type=self.joint_type)
         loads = [np.asarray(self.mbs.GetSensorStoredData(n), dtype=float) for n in self.loadSensorNumbers]
+        if self.joint_type == "spherical":
+            return _outputs.assemble_ball(data, loads)
         return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0,
                                  self._joint.film, loads)
 

@@ -123,6 +123,10 @@ DATA_COLUMNS = ("time", "penetration", "penetration_rate", "ecc_x", "ecc_y", "no
 #: eqs. (68)-(69), at the accepted state); a dry joint's node keeps :data:`DATA_COLUMNS` only.
 FILM_DATA_COLUMNS = ("film_fx", "film_fy", "film_torque")
 
+#: The spherical joint's data node: :data:`DATA_COLUMNS` of its ball, then the ball's
+#: eccentricity along z (the joint frame's), as its ``ecc_x``, ``ecc_y``.
+BALL_DATA_COLUMNS = DATA_COLUMNS + ("ecc_z",)
+
 #: The spatial joint's own entries, before the slices' (``spatial_data_values``).
 SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
 #: Each slice's entries in the spatial data node, in order.

@@ -10,7 +10,7 @@ import numpy as np
 from ..film import FilmLaw
 from ..history import ContactState
 from ._python_kernel import data_values, spatial_data_values
-from .layout import FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
+from .layout import BALL_DATA_COLUMNS, FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).  A planar joint
 #: without friction or film runs without its bearing-spin probe (nothing in its loads needs
@@ -45,14 +45,21 @@ FACE_OUTPUT_PREFIX = "face_"
 #: eccentricity, eq. (70)), 2 metal contact (penetration > 0, the dry law and the film).
 FILM_OUTPUT_COLUMNS = ("film_fx", "film_fy", "film_force", "film_torque", "eccentricity_ratio", "attitude_angle",
                        "min_film_thickness", "regime")
+#: The spherical joint's outputs: :data:`OUTPUT_COLUMNS` of its ball (``slip_velocity`` the
+#: slip speed, ``tangential_force`` the friction force's magnitude), the ball's ``ecc_z``
+#: [m], and ``force``, ``moment`` (shape (times, 3)), the connector's load on the socket in
+#: the joint frame (its ``ForceLocal`` and ``TorqueLocal``) [N, N m].
+BALL_OUTPUT_COLUMNS = (*OUTPUT_COLUMNS, "ecc_z", "force", "moment")
 #: Codes of the ``regime`` output.
 REGIME_FILM, REGIME_BLEND, REGIME_CONTACT = 0, 1, 2
 
 
 def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: float,
-                 lubricated: bool = False) -> list[float]:
+                 lubricated: bool = False, joint_type: str = "revolute") -> list[float]:
     """The data node's entries at a run's initial state: the per-contact ``states`` and the
-    journal's initial ``axis`` and ``axial`` displacement."""
+    journal's initial ``axis`` and ``axial`` displacement (the ball's ``ecc_z``)."""
+    if joint_type == "spherical":
+        return [*data_values(states[0]), axial]
     if not slices:
         return data_values(states[0], lubricated)
     return spatial_data_values(states[0].time, axis, axial, states, slices if lubricated else 0)
@@ -95,6 +102,17 @@ def assemble(data: np.ndarray, slices: int, faces: int, film: FilmLaw | None = N
         column = {c: block[:, :, k] for k, c in enumerate(FILM_DATA_COLUMNS)}
         column.update({c: out[c] for c in ("ecc_x", "ecc_y", "penetration")})
         out.update(film_outputs(column, film))
+    return out
+
+
+def assemble_ball(data: np.ndarray, loads: Sequence[np.ndarray] = ()) -> dict[str, np.ndarray]:
+    """The spherical joint's outputs (:data:`BALL_OUTPUT_COLUMNS`) from the sensor's rows
+    ``data`` and those of its ``loads`` sensors (ForceLocal, TorqueLocal)."""
+    column = {c: data[:, k + 1] for k, c in enumerate(BALL_DATA_COLUMNS)}
+    out = {"time": data[:, 0], **{c: column[c] for c in (*OUTPUT_COLUMNS, "ecc_z")}}
+    for name, rows in zip(("force", "moment"), loads):
+        if rows.ndim == 2 and rows.shape[0] == data.shape[0] and np.array_equal(rows[:, 0], data[:, 0]):
+            out[name] = rows[:, 1:4]
     return out
 
 

@@ -18,10 +18,13 @@ if TYPE_CHECKING:
 PLACED_BY_POSITION = "the joint's `position` and the initial coordinates of the bodies in `itemNumbers`"
 PLACED_BY_MARKERS = "the positions of `markerNumbers` on their bodies and the bodies' initial coordinates"
 PLACED_BY_POINTS = "`journal_point` / `bearing_point` and the bodies' initial coordinates"
+#: Joint type -> (outer, inner) part, as messages name them.
+PARTS = {"revolute": ("bearing", "journal"), "spherical": ("socket", "ball")}
 
 
 def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
-    """Penetration ``e - c`` [m] of a joint in the initial configuration, in the plane of its joint frame."""
+    """Penetration ``e - c`` [m] of a joint in the initial configuration: a revolute joint's in the
+    plane of its joint frame, a spherical joint's in space."""
     ref = exu.ConfigurationType.Initial
     b, j = handle.markerNumbers
     p_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.Position, configuration=ref), dtype=float)
@@ -30,7 +33,8 @@ def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> fl
                      dtype=float).reshape(3, 3)
     frame = a_b @ np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
     local = frame.T @ (p_j - p_b)
-    return float(math.hypot(local[0], local[1]) - handle.joint.geometry.clearance)
+    ecc = np.linalg.norm(local) if handle.joint_type == "spherical" else math.hypot(local[0], local[1])
+    return float(ecc - handle.joint.geometry.clearance)
 
 
 def outside_bearing(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
@@ -44,6 +48,7 @@ def outside_bearing(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> str:
     if not delta > handle.max_penetration:
         return ""
     c = handle.joint.geometry.clearance
-    return (f"the journal starts outside its bearing (penetration {delta:.4g} m, {delta / c:.3g} clearances, beyond "
-            f"the limit {handle.max_penetration:.3g} m); place the journal centre within the clearance "
-            f"({c:.3g} m) of the bearing centre: check {handle.placed_by} (in metres)")
+    outer, inner = PARTS[handle.joint_type]
+    return (f"the {inner} starts outside its {outer} (penetration {delta:.4g} m, {delta / c:.3g} clearances, beyond "
+            f"the limit {handle.max_penetration:.3g} m); place the {inner} centre within the clearance "
+            f"({c:.3g} m) of the {outer} centre: check {handle.placed_by} (in metres)")

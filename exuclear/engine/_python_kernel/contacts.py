@@ -1,5 +1,5 @@
 """One contact of a joint (:class:`Contact`): a slice of the spatial joint, the planar joint's
-one slice, or an end face.  One :meth:`Contact.response` (onset velocity, normal force,
+one slice, an end face, or the spherical joint's ball.  One :meth:`Contact.response` (onset velocity, normal force,
 friction; :mod:`.laws`) serves them all; the kind of contact decides the stiffness, the slip
 that friction acts against and where the loads go.  The compiled kernel's ``contacts.hpp``."""
 from __future__ import annotations
@@ -14,10 +14,12 @@ from ...spatial import ShoulderGeometry
 from . import laws
 from .kinematics import (
     V3,
+    BallKinematics,
     ContactKinematics,
     FaceKinematics,
     Kinematics,
     SliceKinematics,
+    add_ball_loads,
     add_face_loads,
     add_slice_loads,
     friction_components,
@@ -121,3 +123,16 @@ class Face(Contact):
 
     def add_loads(self, loads: list[float], u: V3, kin: FaceKinematics, r: ContactResponse) -> None:
         add_face_loads(loads, self.friction_radius, u, kin, r.f_n, r.f_t)                # eq. (54)
+
+
+class Ball(Contact):
+    """The spherical joint's one contact, a ball in its socket (docs/physics.md section 12):
+    the whole law, friction against the slip speed across the normal (eq. (88)), loads of
+    eqs. (89), (90)."""
+
+    def __init__(self, joint: ClearanceJoint) -> None:
+        super().__init__(joint.law.normal_force, joint.friction)
+        self.r_b = joint.geometry.inner_radius
+
+    def add_loads(self, loads: list[float], u: V3, kin: BallKinematics, r: ContactResponse) -> None:
+        add_ball_loads(loads, self.r_b, kin, r.f_n, r.f_t)                                 # eqs. (89), (90)

@@ -13,12 +13,13 @@ from ...geometry import BearingGeometry
 from ...history import ContactState, ImpactRecord
 from ...joint import ClearanceJoint
 from ...spatial import ShoulderGeometry
-from .contacts import Contact, Face, PlanarSlice, Slice
+from .contacts import Ball, Contact, Face, PlanarSlice, Slice
 from .film import Film, FilmInput, slice_film_input
 from .kinematics import (
     FACE_SIDES,
     V3,
     Kinematics,
+    ball_kinematics,
     contact_kinematics,
     face_kinematics,
     finite,
@@ -57,16 +58,19 @@ class JointState:
     contact a :class:`ContactState` at the start and at the end of the last step, and its
     records (module docstring).
 
-    ``slices`` 0 for the planar joint, else the spatial joint's number of slices N;
+    The joint's type (``joint.geometry.joint_type``) decides its contacts.  A revolute
+    joint: ``slices`` 0 for the planar joint, else the spatial joint's number of slices N;
     ``axis_journal`` the journal axis in the journal marker's frame; ``shoulders`` the
     axial clearance (section 9.6) or None.  The end faces follow the slices in every
-    per-contact sequence (states, records, data).
+    per-contact sequence (states, records, data).  A spherical joint: one contact, the ball
+    (section 12), whose motion is the spatial joint's (its loads end as a slice's).
     """
 
     def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
                  shoulders: ShoulderGeometry | None = None) -> None:
-        self.planar = slices == 0
-        self.slices = 1 if self.planar else slices
+        self.spherical = joint.geometry.joint_type == "spherical"
+        self.planar = slices == 0 and not self.spherical
+        self.slices = 1 if slices == 0 else slices  # the planar joint and the ball: one contact
         self.axis_journal = tuple(float(v) for v in axis_journal)
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
@@ -87,9 +91,13 @@ class JointState:
         g = joint.geometry
         self._joint = joint
         self.r_j, self.r_b = g.inner_radius, g.outer_radius
-        self.centres = slice_centres(g.length, self.slices)                               # eq. (33)
-        slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
-        self.contacts: list[Contact] = [slice_contact] * self.slices
+        if self.spherical:
+            self.centres: tuple[float, ...] = ()
+            self.contacts: list[Contact] = [Ball(joint)]
+        else:
+            self.centres = slice_centres(g.length, self.slices)                           # eq. (33)
+            slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
+            self.contacts = [slice_contact] * self.slices
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
         self.film = Film(joint.film, 1.0 if self.planar else 1.0 / self.slices) if joint.film is not None else None
@@ -175,8 +183,14 @@ class JointState:
         (the planar joint's one, eqs. (1)-(8); a spatial joint's, eqs. (35)-(40)), then the
         end faces (eqs. (48)-(51)) where there is an axial clearance.  ``bearing_motion``
         False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion).
-        A worn joint's slice is the contact of the worn surfaces (eqs. (75), (76)) at time ``t``."""
+        A worn joint's slice is the contact of the worn surfaces (eqs. (75), (76)) at time ``t``.
+        A spherical joint: its ball (eqs. (85)-(88)); ``u`` is then the socket frame's z axis."""
         w_j = self.omega_bearing if bearing_motion else (0.0, 0.0, 0.0)
+        if self.spherical:
+            p = (displacement[0], displacement[1], displacement[2])
+            dv = (velocity[0], velocity[1], velocity[2])
+            dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
+            return p, (0.0, 0.0, 1.0), [ball_kinematics(self.r_j, self.r_b, p, dv, dw, w_j)]
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
             omega_j = w_j[2]
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
@@ -270,8 +284,11 @@ class JointState:
 
     def data_values(self, t: float, u: Any, axial: float, states: Any) -> list[float]:
         """The data node's entries for the contacts' ``states``: :func:`data_values` of the
-        one slice for the planar joint, :func:`spatial_data_values` for the spatial joint."""
+        one slice for the planar joint, :func:`spatial_data_values` for the spatial joint,
+        :func:`data_values` and the ball's ``ecc_z`` (``axial``) for the spherical joint."""
         lubricated = self.film is not None
+        if self.spherical:
+            return [*data_values(states[0]), axial]
         if self.planar:
             return data_values(states[0], lubricated)
         return spatial_data_values(t, u, axial, states, self.slices if lubricated else 0)
