@@ -2,7 +2,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -201,14 +203,25 @@ def _match(run: list[ImpactRecord], ref: list[ImpactRecord]) -> list[tuple[int, 
     return [(i, int(j)) for i, j in enumerate(nearest_b) if nearest_a[j] == i]
 
 
+def _eccentricity(outputs: Mapping[str, Any]) -> list[str]:
+    """The eccentricity's output columns: x and y, and z where the joint has it (a ball)."""
+    return [k for k in ("ecc_x", "ecc_y", "ecc_z") if k in outputs]
+
+
+def _length(components: list[np.ndarray]) -> np.ndarray:
+    """The length of a vector given by its components' arrays (hypot, component by component)."""
+    out = np.hypot(components[0], components[1])
+    for more in components[2:]:
+        out = np.hypot(out, more)
+    return out
+
+
 def _compare_joint(a: JointRecord, b: JointRecord, end: float, bound: float) -> JointComparison:
     c = b.clearance
     ta, tb = a.outputs["time"], b.outputs["time"]
     inside = _span(tb, end)
     t = tb[inside]
-    dx = np.interp(t, ta, a.outputs["ecc_x"]) - b.outputs["ecc_x"][inside]
-    dy = np.interp(t, ta, a.outputs["ecc_y"]) - b.outputs["ecc_y"][inside]
-    de = np.hypot(dx, dy) / c
+    de = _length([np.interp(t, ta, a.outputs[k]) - b.outputs[k][inside] for k in _eccentricity(b.outputs)]) / c
     horizon = _horizon(t, de, bound, end)
     before = t <= horizon
 
@@ -253,8 +266,8 @@ def _compare_joint(a: JointRecord, b: JointRecord, end: float, bound: float) -> 
                                np.array([r.peak_force for r in ib])))
     stats.append(_distribution("onset velocity [m/s]", np.array([r.onset_velocity for r in ia]),
                                np.array([r.onset_velocity for r in ib])))
-    stats.append(_spectrum("|e|/c", ta, np.hypot(a.outputs["ecc_x"], a.outputs["ecc_y"]) / c, tb,
-                           np.hypot(b.outputs["ecc_x"], b.outputs["ecc_y"]) / c, end))
+    stats.append(_spectrum("|e|/c", ta, _length([a.outputs[k] for k in _eccentricity(a.outputs)]) / c, tb,
+                           _length([b.outputs[k] for k in _eccentricity(b.outputs)]) / c, end))
     return JointComparison(
         clearance=c, time=t, de=de, horizon=horizon, path_agrees=bool(de.max() <= bound) if de.size else True,
         max_de=float(de.max()) if de.size else 0.0,

@@ -19,7 +19,7 @@ quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
 ``OutputVariableType.Coordinates`` records them.  A spatial joint's node holds
 :func:`spatial_data_columns` instead: the journal's tilt and axial position, then the
 planar columns (without the time) once per slice, then, with an axial clearance, once per
-end face.
+end face.  A spherical joint's node holds :data:`BALL_DATA_COLUMNS`.
 """
 from __future__ import annotations
 
@@ -288,7 +288,9 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
     frictionless joint needs it nowhere: its penetration rate is the relative velocity along
     ``n`` in any frame (eq. (7)) and its normal force passes through both centres, so its
     probe and torque connectors are switched off (they would only cost Jacobian columns);
-    its recorded ``slip_velocity`` then leaves out the bearing's term ``omega_B (R_B - R_J)``."""
+    its recorded ``slip_velocity`` then leaves out the bearing's term ``omega_B (R_B - R_J)``.
+    A spherical joint's ball (docs/physics.md section 12) likewise needs it for friction only:
+    its normal rate has no spin in it and its normal force passes through both centres."""
     return slices > 0 or joint.film is not None or type(joint.friction) is not NoFriction
 
 

@@ -14,9 +14,10 @@ loads), :mod:`exuclear.contact`, :mod:`exuclear.friction` and
 :mod:`exuclear.history` (the contact history).  This package assembles a joint from its
 contacts and keeps their histories the way Exudyn's calling pattern needs:
 
-- **Contacts.**  A joint is a sequence of contacts (:class:`~.contacts.Contact`): its slices (the
-  planar joint has one, whose motion is projected on the plane normal to the bearing
-  axis), then its two end faces where it has an axial clearance.  One
+- **Contacts.**  A joint is a sequence of contacts (:class:`~.contacts.Contact`): a revolute
+  joint's slices (the planar joint has one, whose motion is projected on the plane normal to
+  the bearing axis), then its two end faces where it has an axial clearance; a spherical
+  joint's one ball (:mod:`exuclear.spherical`).  The joint type in the parameters says which.  One
   :meth:`~.contacts.Contact.response` (onset velocity, normal force, friction) serves them all; the
   kind of contact decides the stiffness (the law's share, or the face's flat punch), the
   slip that friction acts against and where the loads go.
