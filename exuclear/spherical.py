@@ -22,6 +22,7 @@ from typing import ClassVar, NamedTuple
 
 from .checks import check_positive, warn_unit
 from .contact.pair import ContactGeometry
+from .geometry import SIZE_WARN_ABOVE
 from .spatial import V3, cross
 
 #: Clearances above this fraction of the ball radius are legal but unusual for a ball joint:
@@ -47,6 +48,9 @@ class SphereGeometry(ContactGeometry):
         if r_s - r_b > BALL_CLEARANCE_WARN_FRACTION * r_b:
             warn_unit(f"the radial clearance {r_s - r_b:.3g} m is more than {BALL_CLEARANCE_WARN_FRACTION:g} of the "
                       f"ball radius {r_b:.3g} m; lengths are in metres: was a value given in mm?")
+        elif r_s > SIZE_WARN_ABOVE:
+            warn_unit(f"the socket radius {r_s:.3g} m is above {SIZE_WARN_ABOVE:g} m; lengths are in metres: was it "
+                      "given in mm?")
 
     @property
     def inner_radius(self) -> float:

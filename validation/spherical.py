@@ -68,14 +68,15 @@ PENDULUM_CLEARANCES = (1e-4, 1e-5, 1e-6)
 ZOO_MODELS = ("spherical_joint_chain", "generic_joint_chain")
 
 
-def socket_scene(p0, v0, w0=(0.0, 0.0, 0.0), gravity=(0.0, 0.0, 0.0), backend=None, **joint_options):
-    """A free ball in a socket on the ground: (system, ball body, joint handle), not assembled."""
+def socket_scene(p0, v0, w0=(0.0, 0.0, 0.0), gravity=(0.0, 0.0, 0.0), backend=None,
+                 node_type=exu.NodeType.RotationRotationVector, **joint_options):
+    """A free ball in a socket on the ground: (system, ball body, joint handle), not assembled;
+    the ball's rotation node ``node_type`` (a Lie-group node by default: explicit solvers run)."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.CreateGround()
     ball = mbs.CreateRigidBody(inertia=eu.InertiaSphere(MASS, BALL_RADIUS), referencePosition=[0.0, 0.0, 0.0],
                                initialDisplacement=list(p0), initialVelocity=list(v0),
-                               initialAngularVelocity=list(w0), gravity=list(gravity),
-                               nodeType=exu.NodeType.RotationRotationVector)  # a Lie-group node: explicit solvers run
+                               initialAngularVelocity=list(w0), gravity=list(gravity), nodeType=node_type)
     options = {"law": "hertz+lankarani-nikravesh", "cr": IMPACT_CR, **joint_options}
     joint = exuclear.CreateSphericalClearanceJoint(mbs, itemNumbers=[ground, ball], position=[0.0, 0.0, 0.0],
                                                    ball_radius=BALL_RADIUS, socket_radius=SOCKET_RADIUS,
@@ -130,13 +131,15 @@ def impact_start():
     return (0.0, 0.0, IMPACT_OFFSET * CLEARANCE), (0.0, -IMPACT_SPEED, 0.0)
 
 
-def oblique_impact(damping="lankarani-nikravesh", mu=0.0, backend=None, cr=IMPACT_CR):
-    """The oblique impact under the law ``hertz+DAMPING`` (and Coulomb's ``mu``): :class:`Impact`."""
+def oblique_impact(damping="lankarani-nikravesh", mu=0.0, backend=None, cr=IMPACT_CR, node_type=None, settings=None):
+    """The oblique impact under the law ``hertz+DAMPING`` (and Coulomb's ``mu``): :class:`Impact`;
+    ``node_type`` and ``settings`` other than :func:`socket_scene`'s and :data:`IMPACT_SETTINGS`."""
     p0, v0 = impact_start()
     friction = f"coulomb:{mu}" if mu > 0.0 else "none"
-    mbs, ball, joint = socket_scene(p0, v0, backend=backend, law=f"hertz+{damping}", cr=cr, friction=friction)
+    nodes = {} if node_type is None else {"node_type": node_type}
+    mbs, ball, joint = socket_scene(p0, v0, backend=backend, law=f"hertz+{damping}", cr=cr, friction=friction, **nodes)
     mbs.Assemble()
-    _run(mbs, IMPACT_SETTINGS)
+    _run(mbs, IMPACT_SETTINGS if settings is None else settings)
     out = joint.outputs()
     k = int(np.argmax(out["penetration"]))
     n = np.array([out["ecc_x"][k], out["ecc_y"][k], out["ecc_z"][k]])
