@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import exudyn as exu
+import exudyn.utilities as eu
 import numpy as np
 from exudyn.itemInterface import (
     MarkerBodyPosition,
@@ -62,6 +63,16 @@ def system() -> tuple[exu.MainSystem, int, int]:
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=1.0, inertia=1e-3))
     return mbs, body, ground
+
+
+def ball_system() -> exu.MainSystem:
+    """A fresh system for a ball joint: the ground (object 0), a 3D rigid body (object 1) and
+    a point mass (object 2)."""
+    mbs = exu.SystemContainer().AddSystem()
+    mbs.CreateGround()
+    mbs.CreateRigidBody(inertia=eu.InertiaSphere(0.03, 9.9e-3), referencePosition=[0.0, 0.0, 0.0])
+    mbs.CreateMassPoint(mass=0.03, referencePosition=[0.0, 0.0, 0.0])
+    return mbs
 
 
 def markers() -> tuple[exu.MainSystem, list]:
@@ -114,6 +125,7 @@ def build_journal(params: JournalBearingParams) -> object:
 NAMESPACE = {"exuclear": exuclear, "PAPER": PAPER, "SliderCrankParams": SliderCrankParams,
              "JournalBearingParams": JournalBearingParams, "system": system, "markers": markers,
              "build_journal": build_journal, "on_marker": on_marker, "beam": beam, "kinematic_tree": kinematic_tree,
+             "ball_system": ball_system,
              "nan": math.nan, "inf": math.inf}
 
 
@@ -276,6 +288,22 @@ BAD_INPUTS: tuple[BadInput, ...] = (
     BadInput("API", "inconsistent input", 'exuclear.make_joint(journal_radius=9.9e-3, bearing_radius=10e-3, '
                                           'length=0.03, cr=0.9, lubrication=exuclear.Lubrication(0.05, "finite"))',
              "ValueError", says="B/D"),
+    # -- API: the spherical joint (a ball in a socket)
+    BadInput("API", "inconsistent input", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 1], "
+                                          "ball_radius=10e-3, socket_radius=10e-3, cr=0.9)", "ValueError",
+             says="`ball_radius` must be smaller than `socket_radius`"),
+    BadInput("API", "missing value", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 1], "
+                                     "socket_radius=10e-3, cr=0.9)", "ValueError", says="`ball_radius` is required"),
+    BadInput("API", "unknown name", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 1], "
+                                    'ball_radius=9.9e-3, socket_radius=10e-3, law="hertzian", cr=0.9)', "ValueError"),
+    BadInput("API", "inconsistent input", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 1], "
+                                          'ball_radius=9.9e-3, socket_radius=10e-3, law="wang-liu", cr=0.9)',
+             "ValueError", says="spherical joint's contact is a point"),
+    BadInput("API", "inconsistent input", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 2], "
+                                          "ball_radius=9.9e-3, socket_radius=10e-3, cr=0.9)", "ValueError",
+             says="`itemNumbers[1]`"),
+    BadInput("API", "likely unit mistake", "exuclear.CreateSphericalClearanceJoint(ball_system(), itemNumbers=[0, 1], "
+                                           "ball_radius=9.9, socket_radius=10, cr=0.9)", "UnitWarning"),
     # -- API: likely unit mistakes
     BadInput("API", "likely unit mistake", "exuclear.Lubrication(viscosity=50)", "UnitWarning"),
     BadInput("API", "likely unit mistake", "exuclear.Material(3e6, 0.4)", "UnitWarning"),
