@@ -68,12 +68,16 @@ DEFAULT_SPHERICAL_LAW = "hertz+lankarani-nikravesh"
 
 @dataclass(frozen=True)
 class ClearanceJoint:
-    """A revolute clearance joint: geometry, normal contact law and friction law.
+    """A clearance joint: geometry, normal contact law and friction law.
+
+    The law's geometry is the joint's type: a :class:`BearingGeometry` for the revolute joint
+    (:func:`make_joint`), a :class:`~exuclear.spherical.SphereGeometry` for the spherical one
+    (:func:`make_spherical_joint`, which takes no film and no wear).
 
     Parameters
     ----------
     law : ContactLaw
-        Normal contact law; it carries the :class:`BearingGeometry`.
+        Normal contact law; it carries the joint's geometry.
     friction : FrictionLaw
         Friction law; default frictionless.
     film : FilmLaw, optional
@@ -105,6 +109,9 @@ class ClearanceJoint:
                                  f"{self.law.geometry}")
         if self.wear is not None and not isinstance(self.wear, Wear):
             raise ValueError(f"`wear` must be an exuclear.Wear or None (no wear), got {type(self.wear).__name__}")
+        if self.wear is not None and not isinstance(self.law.geometry, BearingGeometry):
+            raise ValueError(f"`wear` is modelled for the revolute joint's journal and bearing (docs/physics.md "
+                             f"section 11), not for the {self.law.geometry.joint_type} joint: give wear=None")
 
     @property
     def geometry(self) -> ContactGeometry:

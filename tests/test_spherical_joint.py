@@ -243,3 +243,9 @@ def test_a_beams_node_carries_the_ball():
     # the beam falls across its clearance and comes to hang: the penetration is what its weight
     # and impacts need (measured 0.007 c), far below a tenth of the gap
     assert out["penetration"].max() < 0.1 * c
+
+
+def test_wear_is_the_revolute_joints():
+    law = make_spherical_joint(ball_radius=R_B, socket_radius=R_S, cr=0.9).law
+    with pytest.raises(ValueError, match="`wear` is modelled for the revolute joint.*spherical joint"):
+        exuclear.ClearanceJoint(law, wear=exuclear.Wear(coefficient=1e-10))
