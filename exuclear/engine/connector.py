@@ -202,15 +202,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices = check_slices(slices)
     shoulders = check_shoulders(axial_clearance, shoulder_radius, slices, constrainAxial, joint)
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
-    backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
-    if backend == "compiled" and kernel.COMPILED is None:
-        raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
+    backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     check_wear(joint, slices, backend)
-    if maxPenetration is None:
-        maxPenetration = default_penetration_limit(joint.geometry)
-    check_positive("maxPenetration", maxPenetration)
-
-    parameters(joint, 0, MAIN, maxPenetration, compiled=backend == "compiled")  # refuses what the kernel cannot do
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)
@@ -413,6 +406,20 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     if "marker" not in kinds:
         handle.placed_by = PLACED_BY_POSITION
     return handle
+
+
+def kernel_settings(joint: ClearanceJoint, backend: str | None, max_penetration: float | None) -> tuple[str, float]:
+    """A builder's ``backend`` (None: the default) and ``maxPenetration`` (None:
+    :func:`default_penetration_limit`), checked, after a trial of the parameters the kernel
+    will take, which refuses a law or friction it has no compiled form of."""
+    backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
+    if backend == "compiled" and kernel.COMPILED is None:
+        raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
+    if max_penetration is None:
+        max_penetration = default_penetration_limit(joint.geometry)
+    check_positive("maxPenetration", max_penetration)
+    parameters(joint, 0, MAIN, max_penetration, compiled=backend == "compiled")  # refuses what the kernel cannot do
+    return backend, float(max_penetration)
 
 
 #: What a revolute joint on a kinematic tree needs beyond a link's marker (``joint_items``).

@@ -16,16 +16,14 @@ import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import MarkerBodyRigid
 
-from ..checks import check_choice, check_positive
 from ..joint import ClearanceJoint, make_spherical_joint
 from ..spherical import SphereGeometry
-from . import kernel
-from .arguments import check_flags, check_system, default_penetration_limit
-from .connector import BACKENDS, _orientation_is_fixed, _turned_marker, joint_items
+from .arguments import check_flags, check_system
+from .connector import _orientation_is_fixed, _turned_marker, joint_items, kernel_settings
 from .drawing import ball_drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
-from .layout import BALL_DATA_COLUMNS, parameters
+from .layout import BALL_DATA_COLUMNS
 from .placement import PLACED_BY_POSITION
 
 
@@ -101,13 +99,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     check_flags(name, bearingRotates, record=record, show=show)
     joint = _physics(joint, joint_parameters)
     draw = drawing_sizes(jointRadius, None, color, radius_name="jointRadius")
-    backend = kernel.default_backend() if backend is None else check_choice("backend", backend, BACKENDS)
-    if backend == "compiled" and kernel.COMPILED is None:
-        raise ValueError(f"backend 'compiled' is not available: {kernel.REASON}")
-    if maxPenetration is None:
-        maxPenetration = default_penetration_limit(joint.geometry)
-    check_positive("maxPenetration", maxPenetration)
-    parameters(joint, 0, 0, maxPenetration, compiled=backend == "compiled")  # refuses what the kernel cannot do
+    backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
 
     items = joint_items(mbs, itemNumbers, bodyNumbers, ("socket", "ball"), position, useGlobalFrame,
                         "CreateSphericalJoint")
@@ -125,7 +117,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
                              "give a MarkerBodyRigid or MarkerNodeRigid with localHT, or the body")
         markers.append(marker)
 
-    handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration))
+    handle = ClearanceJointHandle(mbs, joint, name, backend, maxPenetration)
     if "marker" not in kinds:
         handle.placed_by = PLACED_BY_POSITION
     handle.markerNumbers = markers
