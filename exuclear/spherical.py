@@ -1,5 +1,5 @@
 """A ball in a spherical socket: the spherical clearance joint's contact (docs/physics.md
-section 12, eqs. (85)-(90)).
+section 13, eqs. (93)-(98)).
 
 Pure Python, no exudyn, plain float arithmetic on 3-tuples (it runs inside the force
 callback; the compiled kernel ``exuclear/_kernel/kinematics.hpp`` and ``contacts.hpp`` write
@@ -67,7 +67,7 @@ class SphereGeometry(ContactGeometry):
 
 
 class BallKinematics(NamedTuple):
-    """The ball's contact quantities, eqs. (85)-(88), in J0 (SI units).
+    """The ball's contact quantities, eqs. (93)-(96), in J0 (SI units).
 
     ``(ex, ey, ez)`` the eccentricity ``p``, ``ecc = |p|``, ``(nx, ny, nz)`` the normal;
     ``delta``, ``delta_dot`` the penetration and its rate; ``(vx, vy, vz)`` the slip of the
@@ -92,40 +92,40 @@ class BallKinematics(NamedTuple):
 
 def ball_kinematics(r_b: float, r_s: float, p: V3, dv: V3, dw: V3, w_j: V3) -> BallKinematics:
     """The kinematics of the ball of radius ``r_b`` in the socket of radius ``r_s``
-    (docs/physics.md eqs. (85)-(88))."""
+    (docs/physics.md eqs. (93)-(96))."""
     ecc = math.sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
     if ecc > 0.0:
-        n = (p[0] / ecc, p[1] / ecc, p[2] / ecc)                # eq. (85)
+        n = (p[0] / ecc, p[1] / ecc, p[2] / ecc)                # eq. (93)
     else:  # the ball at the socket's centre: no contact, any normal keeps the values finite
         n = (1.0, 0.0, 0.0)
-    delta = ecc - (r_s - r_b)                                   # eq. (86)
-    delta_dot = n[0] * dv[0] + n[1] * dv[1] + n[2] * dv[2]      # eq. (87): the spins do not enter
+    delta = ecc - (r_s - r_b)                                   # eq. (94)
+    delta_dot = n[0] * dv[0] + n[1] * dv[1] + n[2] * dv[2]      # eq. (95): the spins do not enter
     r = (r_b * n[0], r_b * n[1], r_b * n[2])                    # Q_ball - P_ball
     lever = (delta * n[0] - p[0], delta * n[1] - p[1], delta * n[2] - p[2])  # Q_ball - Q_socket - p
     wr = cross(dw, r)
     wl = cross(w_j, lever)
     v = (dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2])
     vn = n[0] * v[0] + n[1] * v[1] + n[2] * v[2]
-    vs = (v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2])  # eq. (88)
+    vs = (v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2])  # eq. (96)
     v_t = math.sqrt(vs[0] * vs[0] + vs[1] * vs[1] + vs[2] * vs[2])
     return BallKinematics(p[0], p[1], p[2], ecc, n[0], n[1], n[2], delta, delta_dot, vs[0], vs[1], vs[2], v_t)
 
 
 def add_ball_loads(loads: list[float], r_b: float, kin: BallKinematics, f_n: float, f_t: float) -> None:
     """Add the ball's loads to ``loads`` = [force (3), torque (3), correction (3)] (eqs.
-    (89), (90)): ``F_N n`` and the friction ``F_T`` along the slip on the socket, the
+    (97), (98)): ``F_N n`` and the friction ``F_T`` along the slip on the socket, the
     friction's moment ``R_B n x F_T`` about the ball's centre; the correction (the socket's
     moment beyond ``T``) gets ``-delta n x F_T`` here and ``p x F`` at the end
     (:func:`exuclear.spatial.finish_loads`), which make ``R_S n x F_T``."""
     if kin.v_t > 0.0:
         scale = f_t / kin.v_t
-        t_force = (scale * kin.vx, scale * kin.vy, scale * kin.vz)  # friction on the socket, eq. (89)
+        t_force = (scale * kin.vx, scale * kin.vy, scale * kin.vz)  # friction on the socket, eq. (97)
     else:
         t_force = (0.0, 0.0, 0.0)
     total = (f_n * kin.nx + t_force[0], f_n * kin.ny + t_force[1], f_n * kin.nz + t_force[2])
     rim = cross((r_b * kin.nx, r_b * kin.ny, r_b * kin.nz), t_force)
     couple = cross((kin.delta * kin.nx, kin.delta * kin.ny, kin.delta * kin.nz), t_force)
     for i in range(3):
-        loads[i] += total[i]                                    # eq. (89)
-        loads[3 + i] += rim[i]                                  # eq. (90)
-        loads[6 + i] -= couple[i]                               # eq. (90), p x F added at the end
+        loads[i] += total[i]                                    # eq. (97)
+        loads[3 + i] += rim[i]                                  # eq. (98)
+        loads[6 + i] -= couple[i]                               # eq. (98), p x F added at the end

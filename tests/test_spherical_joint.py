@@ -1,4 +1,4 @@
-"""The spherical clearance joint (a ball in a socket, docs/physics.md section 12): its law,
+"""The spherical clearance joint (a ball in a socket, docs/physics.md section 13): its law,
 both kernels, its builder's checks, its outputs and the analytic checks of validation/spherical.py."""
 from __future__ import annotations
 
@@ -112,7 +112,7 @@ def test_outputs_impacts_and_drawing():
     out = joint.outputs()
     assert set(out) == {"time", *exuclear.engine.outputs.BALL_OUTPUT_COLUMNS}
     ecc = np.sqrt(out["ecc_x"] ** 2 + out["ecc_y"] ** 2 + out["ecc_z"] ** 2)
-    # penetration = |e| - (R_S - R_B) (docs/physics.md eq. (86)) at every output; round-off
+    # penetration = |e| - (R_S - R_B) (docs/physics.md eq. (94)) at every output; round-off
     np.testing.assert_allclose(out["penetration"], ecc - (R_S - R_B), rtol=0, atol=1e-15)
     sliding = out["normal_force"] > 0.0
     # Coulomb's law at the recorded slip speed (eq. (20)): F_T = mu F_N beyond v_eps

@@ -2,7 +2,7 @@
 joint, Exudyn's own hollow-sphere contact and two of Exudyn's examples (issue 49).
 
 Source problems: a free steel ball (R_B = 9.9 mm) in a steel socket (R_S = 10 mm, c = 0.1 mm)
-fixed to the ground (docs/physics.md section 12):
+fixed to the ground (docs/physics.md section 13):
 
 - resting under gravity: its sink against Hertz's static ``(m g / K)^(2/3)``, ``K`` of eq. (13)
   with the ball's and the socket's radii;
@@ -53,7 +53,7 @@ IMPACT_SPEED, IMPACT_OFFSET = 0.5, 0.5
 #: Restitution the impacts ask of each damping law (within every law's range).
 IMPACT_CR = 0.8
 #: Coulomb's coefficient of the friction impact: 3.5 mu (1 + e) v_n < v_t, so that the ball
-#: slides throughout (a solid ball's slip changes by -3.5 mu P_n / m, docs/physics.md 12.4).
+#: slides throughout (a solid ball's slip changes by -3.5 mu P_n / m, docs/physics.md section 13.4).
 IMPACT_MU = 0.05
 #: The impact's integration: DOPRI5, tight tolerances and a largest step far below the
 #: contact time (~35 us): the restitution it measures is the law's, not the integrator's.

@@ -6,12 +6,12 @@
 // the same names, so that the two can be read side by side and agree to round-off:
 //   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
 //                                               planar joint's eqs. (1)-(8) as one slice),
-//                       exuclear/spherical.py  (the spherical joint's ball, eqs. (85)-(88))
+//                       exuclear/spherical.py  (the spherical joint's ball, eqs. (93)-(96))
 //   normal force        exuclear/contact/      (law.py eq. (9) once, damped_normal_force; stiffness.py, damping.py eqs. (10)-(17))
 //   friction            exuclear/friction.py   (eqs. (20)-(23))
 //   one contact         exuclear/engine/_python_kernel/contacts.py Contact (response: onset velocity,
 //                       normal force, friction; the same for slices and end faces)
-//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54)); spherical.py (eqs. (89), (90))
+//   loads               exuclear/spatial.py    (eqs. (41)-(45), (54)); spherical.py (eqs. (97), (98))
 //   contact history     exuclear/history.py    (onset velocity, records)
 //   film                exuclear/film/         (laws.py, loads.py: eqs. (55)-(70))
 //   the joint           exuclear/engine/_python_kernel/joint_state.py JointState (which history an

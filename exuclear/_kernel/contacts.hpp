@@ -1,6 +1,6 @@
 // One contact: its history (exuclear/history.py), its response (onset velocity, normal force,
 // friction; the same for slices, end faces and the ball) and its loads (exuclear/spatial.py, eqs.
-// (41)-(45), (54); exuclear/spherical.py, eqs. (89), (90)).  Python: exuclear/engine/_python_kernel/contacts.py.
+// (41)-(45), (54); exuclear/spherical.py, eqs. (97), (98)).  Python: exuclear/engine/_python_kernel/contacts.py.
 
 #pragma once
 
@@ -42,7 +42,7 @@ enum ContactKind {
     PLANAR_SLICE,  // the planar joint's one slice: the joint's law, slip v_T (eqs. (9), (20))
     SLICE,         // a spatial slice: its share w / L of the law, slip |v_s| (eqs. (41), (42))
     FACE,          // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
-    BALL           // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (88))
+    BALL           // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (96))
 };
 
 int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
@@ -162,15 +162,15 @@ void add_ball_loads(double* loads, double r_b, const Kinematics& k, double f_n, 
     V3 t_force{0.0, 0.0, 0.0};
     if (k.v_t > 0.0) {
         double scale = f_t / k.v_t;
-        t_force = V3{scale * k.v_s[0], scale * k.v_s[1], scale * k.v_s[2]};  // friction on the socket, eq. (89)
+        t_force = V3{scale * k.v_s[0], scale * k.v_s[1], scale * k.v_s[2]};  // friction on the socket, eq. (97)
     }
     V3 total{f_n * k.nx + t_force[0], f_n * k.ny + t_force[1], f_n * k.nz + t_force[2]};
     V3 rim = cross(V3{r_b * k.nx, r_b * k.ny, r_b * k.nz}, t_force);
     V3 couple = cross(V3{k.delta * k.nx, k.delta * k.ny, k.delta * k.nz}, t_force);
     for (int i = 0; i < 3; ++i) {
-        loads[i] += total[i];                                           // eq. (89)
-        loads[3 + i] += rim[i];                                         // eq. (90)
-        loads[6 + i] -= couple[i];                                      // eq. (90), p x F added at the end
+        loads[i] += total[i];                                           // eq. (97)
+        loads[3 + i] += rim[i];                                         // eq. (98)
+        loads[6 + i] -= couple[i];                                      // eq. (98), p x F added at the end
     }
 }
 
@@ -203,7 +203,7 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
         case FACE:
             add_face_loads(loads, a.friction_radius, u, k, r.f_n, r.f_t);
             break;
-        case BALL:  // eqs. (89), (90)
+        case BALL:  // eqs. (97), (98)
             add_ball_loads(loads, a.r_j, k, r.f_n, r.f_t);
             break;
     }

@@ -193,7 +193,7 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
     V3 dv, dw, w_j;
     // the bearing's spin from the probe, where the loads use it (its probe is off otherwise)
     const V3 w_b = a.bearing_motion ? s.omega_bearing : V3{0.0, 0.0, 0.0};
-    if (a.joint_type == SPHERICAL) {  // the ball, eqs. (85)-(88); u: the socket frame's z axis
+    if (a.joint_type == SPHERICAL) {  // the ball, eqs. (93)-(96); u: the socket frame's z axis
         q.p = displacement;
         q.u = V3{0.0, 0.0, 1.0};
         s.kins[0] = ball_kinematics(a.r_j, a.r_b, q.p, velocity, angularVelocity, w_b);

@@ -1,6 +1,6 @@
 // The contact kinematics of a slice, the planar joint, an end face and the spherical joint's ball:
 // exuclear/geometry.py, exuclear/spatial.py and exuclear/spherical.py (docs/physics.md eqs. (1)-(8),
-// (33)-(40), (48)-(51), (85)-(88)).  Python:
+// (33)-(40), (48)-(51), (93)-(96)).  Python:
 // exuclear/engine/_python_kernel/kinematics.py.
 
 #pragma once
@@ -140,21 +140,21 @@ Kinematics face_kinematics(double length, double play, double r_e, int side, con
     return k;
 }
 
-// spherical.py ball_kinematics, eqs. (85)-(88): the ball of radius r_b in the socket of radius r_s
+// spherical.py ball_kinematics, eqs. (93)-(96): the ball of radius r_b in the socket of radius r_s
 Kinematics ball_kinematics(double r_b, double r_s, const V3& p, const V3& dv, const V3& dw, const V3& w_j) {
     Kinematics k{};
     k.ecc = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     V3 n{1.0, 0.0, 0.0};  // the ball at the socket's centre: no contact, any normal keeps the values finite
-    if (k.ecc > 0.0) n = V3{p[0] / k.ecc, p[1] / k.ecc, p[2] / k.ecc};  // eq. (85)
-    k.delta = k.ecc - (r_s - r_b);                                      // eq. (86)
-    k.delta_dot = n[0] * dv[0] + n[1] * dv[1] + n[2] * dv[2];           // eq. (87): the spins do not enter
+    if (k.ecc > 0.0) n = V3{p[0] / k.ecc, p[1] / k.ecc, p[2] / k.ecc};  // eq. (93)
+    k.delta = k.ecc - (r_s - r_b);                                      // eq. (94)
+    k.delta_dot = n[0] * dv[0] + n[1] * dv[1] + n[2] * dv[2];           // eq. (95): the spins do not enter
     V3 r{r_b * n[0], r_b * n[1], r_b * n[2]};                            // Q_ball - P_ball
     V3 lever{k.delta * n[0] - p[0], k.delta * n[1] - p[1], k.delta * n[2] - p[2]};  // Q_ball - Q_socket - p
     V3 wr = cross(dw, r);
     V3 wl = cross(w_j, lever);
     V3 v{dv[0] + wr[0] + wl[0], dv[1] + wr[1] + wl[1], dv[2] + wr[2] + wl[2]};
     double vn = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
-    k.v_s = V3{v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]};  // eq. (88)
+    k.v_s = V3{v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]};  // eq. (96)
     k.v_t = std::sqrt(k.v_s[0] * k.v_s[0] + k.v_s[1] * k.v_s[1] + k.v_s[2] * k.v_s[2]);
     k.ex = p[0];
     k.ey = p[1];

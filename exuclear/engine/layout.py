@@ -289,7 +289,7 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
     ``n`` in any frame (eq. (7)) and its normal force passes through both centres, so its
     probe and torque connectors are switched off (they would only cost Jacobian columns);
     its recorded ``slip_velocity`` then leaves out the bearing's term ``omega_B (R_B - R_J)``.
-    A spherical joint's ball (docs/physics.md section 12) likewise needs it for friction only:
+    A spherical joint's ball (docs/physics.md section 13) likewise needs it for friction only:
     its normal rate has no spin in it and its normal force passes through both centres."""
     return slices > 0 or joint.film is not None or type(joint.friction) is not NoFriction
 

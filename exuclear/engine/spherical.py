@@ -2,7 +2,7 @@
 
 A ball (on the second body) in a spherical socket (on the first), the clearance form of
 ``mbs.CreateSphericalJoint``.  The joint is the revolute joint's connector with the ball's
-contact (:mod:`exuclear.spherical`, docs/physics.md section 12): the same items
+contact (:mod:`exuclear.spherical`, docs/physics.md section 13): the same items
 (:mod:`~exuclear.engine.items`), kernels, history, step control, notes and outputs; its type
 (``joint.geometry.joint_type``) tells the kernels which contact to build.  The joint frame is
 the global frame in the reference configuration, carried by the socket's marker.

@@ -126,13 +126,13 @@ class Face(Contact):
 
 
 class Ball(Contact):
-    """The spherical joint's one contact, a ball in its socket (docs/physics.md section 12):
-    the whole law, friction against the slip speed across the normal (eq. (88)), loads of
-    eqs. (89), (90)."""
+    """The spherical joint's one contact, a ball in its socket (docs/physics.md section 13):
+    the whole law, friction against the slip speed across the normal (eq. (96)), loads of
+    eqs. (97), (98)."""
 
     def __init__(self, joint: ClearanceJoint) -> None:
         super().__init__(joint.law.normal_force, joint.friction)
         self.r_b = joint.geometry.inner_radius
 
     def add_loads(self, loads: list[float], u: V3, kin: BallKinematics, r: ContactResponse) -> None:
-        add_ball_loads(loads, self.r_b, kin, r.f_n, r.f_t)                                 # eqs. (89), (90)
+        add_ball_loads(loads, self.r_b, kin, r.f_n, r.f_t)                                 # eqs. (97), (98)

@@ -63,7 +63,7 @@ class JointState:
     ``axis_journal`` the journal axis in the journal marker's frame; ``shoulders`` the
     axial clearance (section 9.6) or None.  The end faces follow the slices in every
     per-contact sequence (states, records, data).  A spherical joint: one contact, the ball
-    (section 12), whose motion is the spatial joint's (its loads end as a slice's).
+    (section 13), whose motion is the spatial joint's (its loads end as a slice's).
     """
 
     def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
@@ -184,7 +184,7 @@ class JointState:
         end faces (eqs. (48)-(51)) where there is an axial clearance.  ``bearing_motion``
         False: the bearing's spin is taken as 0 (its probe is off: layout.uses_bearing_motion).
         A worn joint's slice is the contact of the worn surfaces (eqs. (75), (76)) at time ``t``.
-        A spherical joint: its ball (eqs. (85)-(88)); ``u`` is then the socket frame's z axis."""
+        A spherical joint: its ball (eqs. (93)-(96)); ``u`` is then the socket frame's z axis."""
         w_j = self.omega_bearing if bearing_motion else (0.0, 0.0, 0.0)
         if self.spherical:
             p = (displacement[0], displacement[1], displacement[2])

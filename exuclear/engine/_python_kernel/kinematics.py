@@ -1,6 +1,6 @@
 """The contact kinematics the kernel evaluates: those of :mod:`exuclear.geometry` (the planar
 joint, eqs. (1)-(8)), :mod:`exuclear.spatial` (a slice and an end face, eqs. (33)-(40),
-(48)-(51)) and :mod:`exuclear.spherical` (the ball, eqs. (85)-(88)).  The compiled kernel's ``kinematics.hpp``."""
+(48)-(51)) and :mod:`exuclear.spherical` (the ball, eqs. (93)-(96)).  The compiled kernel's ``kinematics.hpp``."""
 from __future__ import annotations
 
 import math
