@@ -1,9 +1,10 @@
-"""exuclear: clearance joints (revolute, spherical) for the Exudyn multibody engine.
+"""exuclear: clearance joints (revolute, spherical, translational) for the Exudyn multibody engine.
 
 The public API is the names of ``__all__`` below, by role:
 
 - **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (the revolute joint)
-  and :func:`CreateSphericalClearanceJoint` (a ball in a socket), Exudyn items; they
+  :func:`CreateSphericalClearanceJoint` (a ball in a socket) and
+  :func:`CreatePrismaticClearanceJoint` (a slider in a guide), Exudyn items; they
   return a :class:`ClearanceJointHandle`; and the physics of one joint,
   :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
   :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``),
@@ -43,6 +44,7 @@ from .engine import (
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
+    CreatePrismaticClearanceJoint,
     CreateSphericalClearanceJoint,
     SimulationResult,
     simulate,
@@ -81,7 +83,8 @@ __version__ = "0.1.0"
 
 __all__ = [
     # joints
-    "CreateClearanceJoint", "AddClearanceJoint", "CreateSphericalClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
+    "CreateClearanceJoint", "AddClearanceJoint", "CreateSphericalClearanceJoint", "CreatePrismaticClearanceJoint",
+    "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
     "make_joint", "Lubrication", "Wear", "predict_wear",
     # contact laws
     "contact_law", "ContactLaw",

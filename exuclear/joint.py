@@ -10,13 +10,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
-from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, law_and_restitution
+from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, damping_model, law_and_restitution
 from .contact.pair import ContactGeometry
+from .contact.stiffness import EXPONENT_METAL, GivenStiffness
 from .film import FilmLaw, Lubrication
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
 from .history import ContactState
 from .materials import Material, composite_modulus
+from .prismatic import GuideGeometry
 from .spherical import SphereGeometry
 from .wear.law import Wear
 
@@ -215,6 +217,39 @@ def make_spherical_joint(
     geometry = SphereGeometry(ball_radius, socket_radius)
     law = _law(geometry, law, cr, ("ball_material", ball_material), ("socket_material", socket_material), E_star,
                v_min, stiffness, damping, DEFAULT_SPHERICAL_LAW)
+    return ClearanceJoint(law, friction_law(friction))
+
+
+def make_prismatic_joint(
+    *,
+    slider_length: float,
+    slider_height: float,
+    clearance: float,
+    stiffness: float,
+    exponent: float | None = None,
+    damping: str = "lankarani-nikravesh",
+    cr: float | None = None,
+    friction: str | FrictionLaw = "none",
+    v_min: float | None = None,
+) -> ClearanceJoint:
+    """Build the physics of a planar translational clearance joint: a slider
+    ``slider_length`` by ``slider_height`` [m] in a guide ``slider_height + 2 clearance``
+    wide (:class:`exuclear.prismatic.GuideGeometry`), four corners against two walls.
+
+    A corner has no radius of curvature: its law is ``F_e = K delta^n`` with ``K =
+    stiffness`` [N/m^n] and ``n = exponent`` (default 1.5), damped by the damping model
+    ``damping`` (:data:`exuclear.contact.DAMPING_MODELS`) of restitution ``cr`` (required
+    unless ``damping="none"``), with ``v_min`` [m/s] as in :func:`make_joint`; ``friction``
+    acts along the wall.
+    """
+    geometry = GuideGeometry(slider_length, slider_height, clearance)
+    if cr is None:
+        if str(damping).lower() != "none":
+            raise ValueError(f"`cr` is required with damping={damping!r}: the corners' coefficient of restitution, "
+                             "0 < cr <= 1 (or damping='none' for elastic corners)")
+        cr = 1.0
+    given = GivenStiffness(geometry, 1.0, stiffness, EXPONENT_METAL if exponent is None else exponent)
+    law = ContactLaw(given, damping_model(damping, cr), V_MIN_DEFAULT if v_min is None else v_min)
     return ClearanceJoint(law, friction_law(friction))
 
 

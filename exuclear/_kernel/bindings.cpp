@@ -124,6 +124,11 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
         out.push_back(q.p[2]);
         return out;
     }
+    if (a.joint_type == PRISMATIC) {  // layout.pair_data_columns: the time, then each pair's entries
+        out.push_back(t);
+        for (const History& h : s.cur) data_values(h, out, 1);
+        return out;
+    }
     if (a.slices == 0) {  // the planar data node: layout.DATA_COLUMNS (and FILM_DATA_COLUMNS)
         data_values(s.cur[0], out);
         if (a.film_model != FILM_NONE) {
@@ -342,6 +347,7 @@ PYBIND11_MODULE(_ckernel, m) {
     py::dict joint_types;  // layout.py JOINT_TYPE_CODES
     joint_types["revolute"] = static_cast<int>(REVOLUTE);
     joint_types["spherical"] = static_cast<int>(SPHERICAL);
+    joint_types["prismatic"] = static_cast<int>(PRISMATIC);
     m.attr("JOINT_TYPES") = joint_types;
     m.attr("N_DATA") = N_DATA;
     m.attr("N_FILM_DATA") = N_FILM_DATA;

@@ -42,7 +42,8 @@ enum ContactKind {
     PLANAR_SLICE,  // the planar joint's one slice: the joint's law, slip v_T (eqs. (9), (20))
     SLICE,         // a spatial slice: its share w / L of the law, slip |v_s| (eqs. (41), (42))
     FACE,          // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
-    BALL           // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (96))
+    BALL,          // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (96))
+    CORNER         // a slider's corner against a guide's wall: the joint's law, slip v_t along the wall
 };
 
 int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
@@ -50,10 +51,14 @@ int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
 // the planar revolute joint (one slice, the motion projected on the plane normal to the axis)
 bool planar(const Params& a) { return a.joint_type == REVOLUTE && a.slices == 0; }
 
-size_t contact_count(const Params& a) { return static_cast<size_t>(slice_count(a)) + (a.play > 0.0 ? 2u : 0u); }
+size_t contact_count(const Params& a) {
+    if (a.joint_type == PRISMATIC) return static_cast<size_t>(N_CORNERS * N_WALLS);  // prismatic.py PAIRS
+    return static_cast<size_t>(slice_count(a)) + (a.play > 0.0 ? 2u : 0u);
+}
 
 ContactKind contact_kind(const Params& a, size_t i) {
     if (a.joint_type == SPHERICAL) return BALL;
+    if (a.joint_type == PRISMATIC) return CORNER;
     if (i >= static_cast<size_t>(slice_count(a))) return FACE;
     return a.slices > 0 ? SLICE : PLANAR_SLICE;
 }
@@ -174,6 +179,15 @@ void add_ball_loads(double* loads, double r_b, const Kinematics& k, double f_n, 
     }
 }
 
+// prismatic.py add_corner_loads: on the guide F = F_N n + F_T x, T = r x F; p x F added at the end
+void add_corner_loads(double* loads, const Kinematics& k, double f_n, double f_t) {
+    double fx = f_t + f_n * k.nx;
+    double fy = f_n * k.ny;
+    loads[0] += fx;
+    loads[1] += fy;
+    loads[5] += k.rx * fy - k.ry * fx;                                  // T = -(r x (-F)) = r x F
+}
+
 void add_face_loads(double* loads, double r_e, const V3& u, const Kinematics& k, double f_n, double f_t) {
     V3 total{0.0, 0.0, -k.side * f_n};                                  // on the bearing, at c_f
     V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
@@ -205,6 +219,9 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
             break;
         case BALL:  // eqs. (97), (98)
             add_ball_loads(loads, a.r_j, k, r.f_n, r.f_t);
+            break;
+        case CORNER:
+            add_corner_loads(loads, k, r.f_n, r.f_t);
             break;
     }
 }

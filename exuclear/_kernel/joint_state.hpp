@@ -199,6 +199,19 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
         s.kins[0] = ball_kinematics(a.r_j, a.r_b, q.p, velocity, angularVelocity, w_b);
         return q;
     }
+    if (a.joint_type == PRISMATIC) {  // the slider's corners in the plane normal to z (prismatic.py PAIRS)
+        q.p = V3{displacement[0], displacement[1], 0.0};
+        q.u = V3{0.0, 0.0, 1.0};
+        size_t i = 0;
+        for (int wall = 0; wall < N_WALLS; ++wall) {
+            for (int corner = 0; corner < N_CORNERS; ++corner) {
+                s.kins[i++] = corner_kinematics(0.5 * a.length, a.r_j, a.r_b, corner, wall, displacement[0],
+                                                displacement[1], rotation[2], velocity[0], velocity[1],
+                                                angularVelocity[2], w_b[2]);
+            }
+        }
+        return q;
+    }
     if (a.slices == 0) {  // the planar joint: the motion projected on the plane normal to the axis
         q.p = V3{displacement[0], displacement[1], 0.0};
         q.u = V3{0.0, 0.0, 1.0};

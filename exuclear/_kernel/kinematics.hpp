@@ -35,12 +35,14 @@ V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) 
 }
 
 // One contact's kinematics: spatial.py's SliceKinematics (side 0) or FaceKinematics (side -1, +1),
-// or spherical.py's BallKinematics (ez, nz and the slip vector v_s; v_t its length)
+// or spherical.py's BallKinematics (ez, nz and the slip vector v_s; v_t its length), or
+// prismatic.py's CornerKinematics (rx, ry the corner relative to the slider's centre)
 struct Kinematics {
     int side;
     double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
     double ez, nz;
     V3 v_s;
+    double rx, ry;
 };
 
 // geometry.py kinematics_along: the rest of contact_kinematics once |e| (ecc) and the normal
@@ -162,6 +164,35 @@ Kinematics ball_kinematics(double r_b, double r_s, const V3& p, const V3& dv, co
     k.nx = n[0];
     k.ny = n[1];
     k.nz = n[2];
+    return k;
+}
+
+// prismatic.py CORNER_SIGNS (as signs of L/2, H/2) and WALL_SIDES
+const double CORNER_SIGNS[4][2] = {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}};
+const double WALL_SIDES[2] = {-1.0, 1.0};
+const int N_CORNERS = 4;
+const int N_WALLS = 2;
+
+// prismatic.py corner_kinematics: a corner of the slider (2 half_length x 2 half_height) against
+// a wall of the guide (2 half_width wide), the slider at (px, py) turned by theta in J0
+Kinematics corner_kinematics(double half_length, double half_height, double half_width, int corner, int wall,
+                             double px, double py, double theta, double dvx, double dvy, double dw, double w_j) {
+    Kinematics k{};
+    double sx = CORNER_SIGNS[corner][0], sy = CORNER_SIGNS[corner][1];
+    double s = WALL_SIDES[wall];
+    double cos_t = std::cos(theta), sin_t = std::sin(theta);
+    k.rx = cos_t * sx * half_length - sin_t * sy * half_height;        // R(theta) c_k
+    k.ry = sin_t * sx * half_length + cos_t * sy * half_height;
+    k.ex = px + k.rx;                                                   // the corner in J0
+    k.ey = py + k.ry;
+    k.delta = s * k.ey - half_width;
+    // the corner's velocity over the guide's point under it: dv + dw x r - w_j x p
+    double vx = dvx - dw * k.ry + w_j * py;
+    double vy = dvy + dw * k.rx - w_j * px;
+    k.nx = 0.0;
+    k.ny = s;
+    k.delta_dot = s * vy;
+    k.v_t = vx;
     return k;
 }
 

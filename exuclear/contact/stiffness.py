@@ -146,6 +146,26 @@ class PointContact(_PowerLaw):
 
 
 @dataclass(frozen=True)
+class GivenStiffness(_PowerLaw):
+    """A given ``F_e = K delta^n``, for a contact without radii of curvature (a slider's
+    corner against a flat wall, :mod:`exuclear.prismatic`): ``K`` [N/m^n] and the exponent
+    ``n`` are the user's (Flores, Ambrosio, Claro, Lankarani 2008 take Hertz's form with a
+    fitted ``K``).  ``E_star`` is not read.
+
+    Kernel code 0: ``F_e = p[0] * delta^p[1]``.
+    """
+
+    K: float = 0.0
+    exponent_: float = EXPONENT_METAL
+    name: ClassVar[str] = "given"
+    kernel_code: ClassVar[int] = 0
+
+    def _setup(self) -> None:
+        object.__setattr__(self, "_K", check_positive("stiffness", self.K))
+        object.__setattr__(self, "_n", check_positive("exponent", self.exponent_))
+
+
+@dataclass(frozen=True)
 class Liu(StiffnessModel):
     """Liu's improved elastic-foundation model of conformal cylinders, as used by Wang-Liu.
 

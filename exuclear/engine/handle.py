@@ -17,6 +17,7 @@ from ..checks import check_nonnegative
 from ..exceptions import AccuracyWarning
 from ..history import ContactState, ImpactRecord, merge_overlapping
 from ..joint import ClearanceJoint
+from ..prismatic import PAIRS, pair_name
 from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..wear.profile import WearProfile
@@ -283,6 +284,15 @@ class ClearanceJointHandle:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
         return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
 
+    def pair_impacts(self) -> list[tuple[str, ImpactRecord]]:
+        """A translational joint's ended contacts in order, each with the name of its
+        corner-wall pair (``"corner front-lower / lower wall"``, :func:`exuclear.prismatic.pair_name`)."""
+        if self.joint_type != "prismatic":
+            raise ValueError(f"joint {label(self)} is a {self.joint_type} joint: it has no corner-wall pairs")
+        self._report()
+        named = [(pair_name(k), r) for k, rs in enumerate(self._backend.records()) for r in rs]
+        return sorted(named, key=lambda item: item[1].onset_time)
+
     def wear_profile(self) -> WearProfile:
         """The worn profiles after the last accepted step (before a run: those the joint's
         :class:`exuclear.Wear` starts from); docs/physics.md section 11.  A spatial joint's
@@ -394,6 +404,8 @@ class ClearanceJointHandle:
         loads = [np.asarray(self.mbs.GetSensorStoredData(n), dtype=float) for n in self.loadSensorNumbers]
         if self.joint_type == "spherical":
             return _outputs.assemble_ball(data, loads)
+        if self.joint_type == "prismatic":
+            return _outputs.assemble_pairs(data, len(PAIRS), loads)
         return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0,
                                  self._joint.film, loads)
 

@@ -3,7 +3,7 @@
 Every joint type shares one parameter matrix: the fields of row 0 to 3 (the radii of the
 contact pair, the law, friction, the step control) serve every type; rows 4 and 5 hold the
 revolute joint's own (slices, length, axial clearance, film, wear), which a spherical joint
-leaves at 0.  ``joint_type`` says which contacts the kernels build from them.
+leaves at 0 and a translational joint uses only for its slider's length.  ``joint_type`` says which contacts the kernels build from them.
 
 Parameters.  Exudyn hands a connector's ``stiffness`` matrix (6 x 6) to its user
 functions on every call, so the joint's physics lives there, readable by the compiled
@@ -37,7 +37,7 @@ from ..wear.law import Wear
 
 MAIN, PROBE, TORQUE = 0, 1, 2
 #: Joint type (``ContactGeometry.joint_type``) -> code in the parameter matrix (layout.hpp ``JointType``).
-JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1}
+JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1, "prismatic": 2}
 #: Where the handle marks its connector (``is_live``): an entry of the connector's ``damping``
 #: matrix, which Exudyn hands to the user functions and neither kernel reads.
 TOKEN_ENTRY = (0, 0)
@@ -60,8 +60,8 @@ LAYOUT = (
     Field("joint_id", 0, 0, 1, "the joint's entry in the compiled kernel's table (-1: the Python kernel)"),
     Field("role", 0, 1, 1, "which connector: 0 the joint, 1 the bearing-spin probe, 2 the bearing torque"),
     Field("joint_type", 0, 2, 1, "the joint type's code (JOINT_TYPE_CODES): which contacts the kernels build"),
-    Field("inner_radius", 0, 3, 1, "R_J [m] of the journal, R_B of the ball (ContactGeometry.inner_radius)"),
-    Field("outer_radius", 0, 4, 1, "R_B [m] of the bearing, R_S of the socket (ContactGeometry.outer_radius)"),
+    Field("inner_radius", 0, 3, 1, "R_J [m] of the journal, R_B of the ball, a slider's H/2 (ContactGeometry.inner_radius)"),
+    Field("outer_radius", 0, 4, 1, "R_B [m] of the bearing, R_S of the socket, a guide's H/2 + c (ContactGeometry.outer_radius)"),
     Field("max_penetration", 0, 5, 1, "penetration [m] beyond which a run stops"),
     Field("impact_step", 1, 0, 1, "step [s] that redoes a step in which a contact begins (0: off)"),
     Field("stiffness_code", 1, 1, 1, "the stiffness model's kernel_code (-1: a law for the Python kernel only)"),
@@ -72,7 +72,7 @@ LAYOUT = (
                                           "models'; the row's last entry holds wear_code)"),
     Field("friction_constants", 3, 0, 4, "Coulomb (mu, v_eps); modified Coulomb (mu_s, mu_d, v_s, v_d)"),
     Field("slices", 4, 0, 1, "number of slices N of the spatial joint (0: the planar joint)"),
-    Field("length", 4, 1, 1, "bearing length L [m]"),
+    Field("length", 4, 1, 1, "bearing length L [m]; a translational joint's slider length"),
     Field("axis_journal", 4, 2, 3, "the journal axis in the journal marker's frame (eq. (34))"),
     Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
     Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
@@ -131,6 +131,14 @@ BALL_DATA_COLUMNS = DATA_COLUMNS + ("ecc_z",)
 SPATIAL_JOINT_COLUMNS = ("time", "tilt_x", "tilt_y", "axial_displacement")
 #: Each slice's entries in the spatial data node, in order.
 SLICE_COLUMNS = DATA_COLUMNS[1:]
+
+
+#: The translational joint's data node: the time, then :data:`SLICE_COLUMNS` of each
+#: corner-wall pair in :data:`exuclear.prismatic.PAIRS`' order (``ecc_x``, ``ecc_y``: the corner).
+def pair_data_columns(pairs: int) -> tuple[str, ...]:
+    """Names of the translational joint's data-node entries: ``"time"``, then ``SLICE_COLUMNS``
+    of pair 0, 1, ... as ``"normal_force[3]"``."""
+    return ("time", *(f"{c}[{k}]" for k in range(pairs) for c in SLICE_COLUMNS))
 
 
 def spatial_data_columns(slices: int, faces: int = 0, lubricated: bool = False) -> tuple[str, ...]:
@@ -290,8 +298,11 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
     probe and torque connectors are switched off (they would only cost Jacobian columns);
     its recorded ``slip_velocity`` then leaves out the bearing's term ``omega_B (R_B - R_J)``.
     A spherical joint's ball (docs/physics.md section 13) likewise needs it for friction only:
-    its normal rate has no spin in it and its normal force passes through both centres."""
-    return slices > 0 or joint.film is not None or type(joint.friction) is not NoFriction
+    its normal rate has no spin in it and its normal force passes through both centres.
+    A translational joint's corners need it always: the guide's spin moves its walls under
+    the slider (:func:`exuclear.prismatic.corner_kinematics`)."""
+    return (slices > 0 or joint.geometry.joint_type == "prismatic" or joint.film is not None
+            or type(joint.friction) is not NoFriction)
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
@@ -312,7 +323,7 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
               "rate_limit": rate_limit,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
-              "slices": slices, "length": g.length or 0.0, "axis_journal": axis_journal,
+              "slices": slices, "length": getattr(g, "slider_length", None) or g.length or 0.0, "axis_journal": axis_journal,
               "bearing_motion": float(uses_bearing_motion(joint, slices))}
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,

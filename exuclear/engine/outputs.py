@@ -9,7 +9,7 @@ import numpy as np
 
 from ..film import FilmLaw
 from ..history import ContactState
-from ._python_kernel import data_values, spatial_data_values
+from ._python_kernel import data_values, pair_data_values, spatial_data_values
 from .layout import BALL_DATA_COLUMNS, FILM_DATA_COLUMNS, SLICE_COLUMNS, SPATIAL_JOINT_COLUMNS, data_columns
 
 #: Columns of :meth:`ClearanceJointHandle.outputs` after ``time`` (SI units).  A planar joint
@@ -50,6 +50,11 @@ FILM_OUTPUT_COLUMNS = ("film_fx", "film_fy", "film_force", "film_torque", "eccen
 #: [m], and ``force``, ``moment`` (shape (times, 3)), the connector's load on the socket in
 #: the joint frame (its ``ForceLocal`` and ``TorqueLocal``) [N, N m].
 BALL_OUTPUT_COLUMNS = (*OUTPUT_COLUMNS, "ecc_z", "force", "moment")
+#: The translational joint's outputs: :data:`OUTPUT_COLUMNS`, each of shape (times, 8), one
+#: column per corner-wall pair in :data:`exuclear.prismatic.PAIRS`' order (``ecc_x``,
+#: ``ecc_y`` the corner in the guide's joint frame, ``slip_velocity`` its signed slip along
+#: the wall), and ``force``, ``moment`` (shape (times, 3)), the connector's load on the guide.
+PAIR_OUTPUT_COLUMNS = (*OUTPUT_COLUMNS, "force", "moment")
 #: Codes of the ``regime`` output.
 REGIME_FILM, REGIME_BLEND, REGIME_CONTACT = 0, 1, 2
 
@@ -60,6 +65,8 @@ def initial_data(slices: int, states: Sequence[ContactState], axis: Any, axial: 
     journal's initial ``axis`` and ``axial`` displacement (the ball's ``ecc_z``)."""
     if joint_type == "spherical":
         return [*data_values(states[0]), axial]
+    if joint_type == "prismatic":
+        return pair_data_values(states[0].time, states)
     if not slices:
         return data_values(states[0], lubricated)
     return spatial_data_values(states[0].time, axis, axial, states, slices if lubricated else 0)
@@ -110,6 +117,19 @@ def assemble_ball(data: np.ndarray, loads: Sequence[np.ndarray] = ()) -> dict[st
     ``data`` and those of its ``loads`` sensors (ForceLocal, TorqueLocal)."""
     column = {c: data[:, k + 1] for k, c in enumerate(BALL_DATA_COLUMNS)}
     out = {"time": data[:, 0], **{c: column[c] for c in (*OUTPUT_COLUMNS, "ecc_z")}}
+    for name, rows in zip(("force", "moment"), loads):
+        if rows.ndim == 2 and rows.shape[0] == data.shape[0] and np.array_equal(rows[:, 0], data[:, 0]):
+            out[name] = rows[:, 1:4]
+    return out
+
+
+def assemble_pairs(data: np.ndarray, pairs: int, loads: Sequence[np.ndarray] = ()) -> dict[str, np.ndarray]:
+    """The translational joint's outputs (:data:`PAIR_OUTPUT_COLUMNS`) from the sensor's rows
+    ``data`` (sensor time, the data node's time, then ``pairs`` blocks of ``SLICE_COLUMNS``)
+    and those of its ``loads`` sensors (ForceLocal, TorqueLocal)."""
+    n_pair = len(SLICE_COLUMNS)
+    block = data[:, 2:2 + pairs * n_pair].reshape(data.shape[0], pairs, n_pair)
+    out = {"time": data[:, 0], **{c: block[:, :, SLICE_COLUMNS.index(c)] for c in OUTPUT_COLUMNS}}
     for name, rows in zip(("force", "moment"), loads):
         if rows.ndim == 2 and rows.shape[0] == data.shape[0] and np.array_equal(rows[:, 0], data[:, 0]):
             out[name] = rows[:, 1:4]

@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING
 import exudyn as exu
 import numpy as np
 
+from ..prismatic import PAIRS, corner_kinematics
+
 if TYPE_CHECKING:
     from .handle import ClearanceJointHandle
 
@@ -19,12 +21,12 @@ PLACED_BY_POSITION = "the joint's `position` and the initial coordinates of the 
 PLACED_BY_MARKERS = "the positions of `markerNumbers` on their bodies and the bodies' initial coordinates"
 PLACED_BY_POINTS = "`journal_point` / `bearing_point` and the bodies' initial coordinates"
 #: Joint type -> (outer, inner) part, as messages name them.
-PARTS = {"revolute": ("bearing", "journal"), "spherical": ("socket", "ball")}
+PARTS = {"revolute": ("bearing", "journal"), "spherical": ("socket", "ball"), "prismatic": ("guide", "slider")}
 
 
 def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
     """Penetration ``e - c`` [m] of a joint in the initial configuration: a revolute joint's in the
-    plane of its joint frame, a spherical joint's in space."""
+    plane of its joint frame, a spherical joint's in space, a translational joint's deepest corner."""
     ref = exu.ConfigurationType.Initial
     b, j = handle.markerNumbers
     p_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.Position, configuration=ref), dtype=float)
@@ -33,6 +35,14 @@ def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> fl
                      dtype=float).reshape(3, 3)
     frame = a_b @ np.asarray(mbs.GetObject(handle.objectNumber)["rotationMarker0"], dtype=float)
     local = frame.T @ (p_j - p_b)
+    if handle.joint_type == "prismatic":
+        a_j = np.asarray(mbs.GetMarkerOutput(j, exu.OutputVariableType.RotationMatrix, configuration=ref),
+                         dtype=float).reshape(3, 3)
+        turn = frame.T @ a_j  # the slider marker's frame is the joint frame in the reference configuration
+        g = handle.joint.geometry
+        return max(corner_kinematics(0.5 * g.slider_length, g.inner_radius, g.outer_radius, corner, wall, local[0],
+                                     local[1], math.atan2(turn[1, 0], turn[0, 0]), 0.0, 0.0, 0.0, 0.0).delta
+                   for corner, wall in PAIRS)
     ecc = np.linalg.norm(local) if handle.joint_type == "spherical" else math.hypot(local[0], local[1])
     return float(ecc - handle.joint.geometry.clearance)
 

@@ -37,7 +37,7 @@ contacts and keeps their histories the way Exudyn's calling pattern needs:
 from __future__ import annotations
 
 from .bindings import JointKernel
-from .joint_state import KernelFailure, StepControl, data_values, spatial_data_values
+from .joint_state import KernelFailure, StepControl, data_values, pair_data_values, spatial_data_values
 from .step_control import (
     GROWTH_GAP,
     GROWTH_LIMIT,
@@ -61,4 +61,4 @@ from .step_control import (
 __all__ = ["GROWTH_GAP", "GROWTH_LIMIT", "GROWTH_MIN", "MAX_CUT", "MIN_STEP_MARGIN", "ONSET_FLOOR", "ONSET_IDLE_STEPS",
            "ONSET_TAIL", "ONSET_TARGET", "PENETRATION_CUT", "PENETRATION_RETRIES", "REDO_STEP_ERROR", "SOLVER_STEP_CUT",
            "STEP_SAFETY", "STEP_SLACK", "JointKernel", "KernelFailure", "StepControl", "data_values", "onset_step",
-           "spatial_data_values", "time_to_wall"]
+           "pair_data_values", "spatial_data_values", "time_to_wall"]

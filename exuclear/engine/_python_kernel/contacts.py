@@ -1,5 +1,5 @@
 """One contact of a joint (:class:`Contact`): a slice of the spatial joint, the planar joint's
-one slice, an end face, or the spherical joint's ball.  One :meth:`Contact.response` (onset velocity, normal force,
+one slice, an end face, the spherical joint's ball, or a slider's corner against a wall.  One :meth:`Contact.response` (onset velocity, normal force,
 friction; :mod:`.laws`) serves them all; the kind of contact decides the stiffness, the slip
 that friction acts against and where the loads go.  The compiled kernel's ``contacts.hpp``."""
 from __future__ import annotations
@@ -16,10 +16,12 @@ from .kinematics import (
     V3,
     BallKinematics,
     ContactKinematics,
+    CornerKinematics,
     FaceKinematics,
     Kinematics,
     SliceKinematics,
     add_ball_loads,
+    add_corner_loads,
     add_face_loads,
     add_slice_loads,
     friction_components,
@@ -136,3 +138,15 @@ class Ball(Contact):
 
     def add_loads(self, loads: list[float], u: V3, kin: BallKinematics, r: ContactResponse) -> None:
         add_ball_loads(loads, self.r_b, kin, r.f_n, r.f_t)                                 # eqs. (97), (98)
+
+
+class Corner(Contact):
+    """One corner-wall pair of the translational joint (:mod:`exuclear.prismatic`): the
+    whole law, friction along the wall against the corner's signed slip ``v_t``, loads on
+    the guide and the slider's moment about its centre."""
+
+    def __init__(self, joint: ClearanceJoint) -> None:
+        super().__init__(joint.law.normal_force, joint.friction)
+
+    def add_loads(self, loads: list[float], u: V3, kin: CornerKinematics, r: ContactResponse) -> None:
+        add_corner_loads(loads, kin, r.f_n, r.f_t)

@@ -13,7 +13,8 @@ from ...geometry import BearingGeometry
 from ...history import ContactState, ImpactRecord
 from ...joint import ClearanceJoint
 from ...spatial import ShoulderGeometry
-from .contacts import Ball, Contact, Face, PlanarSlice, Slice
+from ...prismatic import PAIRS
+from .contacts import Ball, Contact, Corner, Face, PlanarSlice, Slice
 from .film import Film, FilmInput, slice_film_input
 from .kinematics import (
     FACE_SIDES,
@@ -21,6 +22,7 @@ from .kinematics import (
     Kinematics,
     ball_kinematics,
     contact_kinematics,
+    corner_kinematics,
     face_kinematics,
     finite,
     journal_axis,
@@ -63,14 +65,18 @@ class JointState:
     ``axis_journal`` the journal axis in the journal marker's frame; ``shoulders`` the
     axial clearance (section 9.6) or None.  The end faces follow the slices in every
     per-contact sequence (states, records, data).  A spherical joint: one contact, the ball
-    (section 13), whose motion is the spatial joint's (its loads end as a slice's).
+    (section 13), whose motion is the spatial joint's (its loads end as a slice's).  A
+    translational (prismatic) joint: its eight corner-wall pairs (:data:`exuclear.prismatic.PAIRS`),
+    in the plane normal to z, whose loads end as a slice's.
     """
 
     def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
                  shoulders: ShoulderGeometry | None = None) -> None:
         self.spherical = joint.geometry.joint_type == "spherical"
-        self.planar = slices == 0 and not self.spherical
-        self.slices = 1 if slices == 0 else slices  # the planar joint and the ball: one contact
+        self.prismatic = joint.geometry.joint_type == "prismatic"
+        self.planar = slices == 0 and not (self.spherical or self.prismatic)
+        # the planar joint and the ball: one contact; the slider: its pairs
+        self.slices = len(PAIRS) if self.prismatic else 1 if slices == 0 else slices
         self.axis_journal = tuple(float(v) for v in axis_journal)
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
@@ -94,6 +100,9 @@ class JointState:
         if self.spherical:
             self.centres: tuple[float, ...] = ()
             self.contacts: list[Contact] = [Ball(joint)]
+        elif self.prismatic:
+            self.centres = ()
+            self.contacts = [Corner(joint)] * self.slices
         else:
             self.centres = slice_centres(g.length, self.slices)                           # eq. (33)
             slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
@@ -191,6 +200,12 @@ class JointState:
             dv = (velocity[0], velocity[1], velocity[2])
             dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
             return p, (0.0, 0.0, 1.0), [ball_kinematics(self.r_j, self.r_b, p, dv, dw, w_j)]
+        if self.prismatic:  # the slider's corners in the plane normal to z
+            half_length = 0.5 * self._joint.geometry.slider_length
+            kins = [corner_kinematics(half_length, self.r_j, self.r_b, corner, wall, displacement[0], displacement[1],
+                                      rotation[2], velocity[0], velocity[1], angular_velocity[2], w_j[2])
+                    for corner, wall in PAIRS]
+            return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), kins
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
             omega_j = w_j[2]
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
@@ -289,6 +304,8 @@ class JointState:
         lubricated = self.film is not None
         if self.spherical:
             return [*data_values(states[0]), axial]
+        if self.prismatic:
+            return pair_data_values(t, states)
         if self.planar:
             return data_values(states[0], lubricated)
         return spatial_data_values(t, u, axial, states, self.slices if lubricated else 0)
@@ -302,6 +319,15 @@ def data_values(s: ContactState, lubricated: bool = False) -> list[float]:
     return [s.time, 0.0 if s.delta == float("-inf") else s.delta, s.delta_dot, s.ecc_x, s.ecc_y, s.normal_force,
             s.tangential_force, s.slip_velocity, s.v0, 1.0 if s.in_contact else 0.0, float(s.onsets), s.onset_time,
             s.peak_force, s.max_penetration, *film]
+
+
+def pair_data_values(t: float, states: Any) -> list[float]:
+    """The translational joint's data-node entries (layout.pair_data_columns): time, then each
+    corner-wall pair's ``data_values`` without the time."""
+    out = [t]
+    for s in states:
+        out.extend(data_values(s)[1:])
+    return out
 
 
 def spatial_data_values(t: float, u: Any, axial: float, states: Any, film_slices: int = 0) -> list[float]:

@@ -1,6 +1,7 @@
 """The contact kinematics the kernel evaluates: those of :mod:`exuclear.geometry` (the planar
 joint, eqs. (1)-(8)), :mod:`exuclear.spatial` (a slice and an end face, eqs. (33)-(40),
-(48)-(51)) and :mod:`exuclear.spherical` (the ball, eqs. (93)-(96)).  The compiled kernel's ``kinematics.hpp``."""
+(48)-(51)) and :mod:`exuclear.spherical` (the ball, eqs. (93)-(96)) and :mod:`exuclear.prismatic` (a slider's
+corner against a guide's wall).  The compiled kernel's ``kinematics.hpp``."""
 from __future__ import annotations
 
 import math
@@ -20,14 +21,15 @@ from ...spatial import (
     slice_centres,
     slice_kinematics,
 )
+from ...prismatic import CornerKinematics, add_corner_loads, corner_kinematics
 from ...spherical import BallKinematics, add_ball_loads, ball_kinematics
 
-__all__ = ["FACE_SIDES", "V3", "BallKinematics", "ContactKinematics", "FaceKinematics", "Kinematics", "SliceKinematics",
-           "add_ball_loads", "add_face_loads", "add_slice_loads", "ball_kinematics", "contact_kinematics",
+__all__ = ["FACE_SIDES", "V3", "BallKinematics", "ContactKinematics", "CornerKinematics", "FaceKinematics", "Kinematics",
+           "SliceKinematics", "add_ball_loads", "add_corner_loads", "add_face_loads", "corner_kinematics", "add_slice_loads", "ball_kinematics", "contact_kinematics",
            "face_kinematics", "finish_loads", "finite", "friction_components", "joint_loads", "journal_axis",
            "slice_centres", "slice_kinematics"]
 
-Kinematics = ContactKinematics | SliceKinematics | FaceKinematics | BallKinematics
+Kinematics = ContactKinematics | SliceKinematics | FaceKinematics | BallKinematics | CornerKinematics
 
 
 def finite(kin: Kinematics) -> bool:

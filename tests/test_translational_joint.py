@@ -1,0 +1,142 @@
+"""The planar translational clearance joint (a slider in a guide, exuclear/prismatic.py): its
+law, both kernels, its builder's checks, its outputs and the analytic checks of
+validation/translational.py."""
+from __future__ import annotations
+
+import warnings
+
+import exudyn as exu
+import numpy as np
+import pytest
+from exudyn.itemInterface import MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+import exuclear
+from exuclear.engine import kernel
+from exuclear.engine.layout import JOINT_TYPE_CODES, pair_data_columns, parameters, read
+from exuclear.joint import make_prismatic_joint
+from exuclear.prismatic import PAIRS, corner_kinematics, pair_name
+from validation import translational as val
+
+compiled_only = pytest.mark.skipif(kernel.COMPILED is None, reason="the compiled kernel is not built")
+GUIDE = dict(slider_length=val.SLIDER_LENGTH, slider_height=val.SLIDER_HEIGHT, clearance=val.CLEARANCE)
+
+
+def test_the_corner_law_is_the_given_power_law():
+    joint = make_prismatic_joint(**GUIDE, stiffness=2e9, exponent=1.3, damping="carvalho-martins", cr=0.4)
+    law = joint.law
+    assert law.kernel_parameters() == (2e9, 1.3)
+    # F_e = K delta^n exactly (the same float operations)
+    assert law.elastic_force(1e-5) == 2e9 * 1e-5**1.3
+    assert joint.geometry.clearance == pytest.approx(val.CLEARANCE, rel=1e-12)  # (H/2 + c) - H/2: round-off
+    p = parameters(joint, 0, 0, 1e-3)
+    assert read(p, "joint_type") == JOINT_TYPE_CODES["prismatic"]
+    assert read(p, "length") == val.SLIDER_LENGTH
+
+
+def test_corners_and_walls():
+    # the slider turned by 0.01 rad, lifted by 0.5 mm: each pair's penetration is s q_y - (H/2 + c), by hand
+    half_l, half_h, half_w = 0.05, 0.025, 0.026
+    theta, py = 0.01, 5e-4
+    for pair, (corner, wall) in enumerate(PAIRS):
+        sx, sy = ((-1, -1), (1, -1), (1, 1), (-1, 1))[corner]
+        s = (-1, 1)[wall]
+        qy = py + np.sin(theta) * sx * half_l + np.cos(theta) * sy * half_h
+        kin = corner_kinematics(half_l, half_h, half_w, corner, wall, 0.0, py, theta, 0.0, 0.0, 0.0, 0.0)
+        assert kin.delta == pytest.approx(s * qy - half_w, abs=1e-15), pair_name(pair)
+    assert pair_name(1) == "corner front-lower / lower wall"
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    ({"slider_length": None}, r"`slider_length` is required"),
+    ({"stiffness": None}, r"`stiffness` is required"),
+    ({"clearance": -1e-3}, r"`clearance` must be positive"),
+    ({"stiffness": -1.0}, r"`stiffness` must be positive"),
+    ({"cr": None}, r"`cr` is required with damping='lankarani-nikravesh'"),
+    ({"damping": "no-such-damping"}, r"damping"),
+    ({"axis": [0.6, 0.0, 0.8]}, r"`axis` must lie in the global x-y plane"),
+])
+def test_bad_input_is_refused_naming_the_argument(change, message):
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=val.MASS, inertia=val.INERTIA))
+    kwargs = {**GUIDE, "stiffness": 1e8, "cr": 0.5, "axis": [1.0, 0.0, 0.0], **change}
+    kwargs = {k: v for k, v in kwargs.items() if v is not None}
+    with pytest.raises(ValueError, match=message):
+        exuclear.CreatePrismaticClearanceJoint(mbs, itemNumbers=[ground, body], **kwargs)
+
+
+def test_a_marker_is_refused():
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=val.MASS, inertia=val.INERTIA))
+    marker = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))
+    with pytest.raises(ValueError, match=r"`itemNumbers` must be \[guide body, slider body\]"):
+        exuclear.CreatePrismaticClearanceJoint(mbs, itemNumbers=[ground, marker], **GUIDE, stiffness=1e8, cr=0.5)
+
+
+def _turning_guide(backend: str):
+    """A free guide turning at 5 rad/s with the slider spinning and rattling inside it,
+    Coulomb friction: every term of the corners' kinematics and loads, the probe and torque
+    connectors active."""
+    mbs, joint, node = val.slider_in_guide(backend, velocity=(0.2, 0.3, 3.0), gravity=0.0, guide_spin=5.0,
+                                           friction="coulomb:0.2")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", exuclear.AccuracyWarning)
+        result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=0.02, **val.SETTINGS))
+    assert result.success, result.message
+    return mbs, joint
+
+
+@compiled_only
+def test_both_kernels_give_the_same_slider_to_round_off():
+    (m_c, j_c), (m_p, j_p) = _turning_guide("compiled"), _turning_guide("python")
+    out_c, out_p = j_c.outputs(), j_p.outputs()
+    assert len(j_c.pair_impacts()) >= 4  # several corners, both walls
+    assert set(out_c) == set(out_p)
+    for key in out_c:
+        # the same formulas in the same order, no fused multiply-add (setup.py): round-off only
+        np.testing.assert_allclose(out_c[key], out_p[key], rtol=1e-12, atol=1e-15, err_msg=key)
+    np.testing.assert_allclose(m_c.systemData.GetODE2Coordinates(), m_p.systemData.GetODE2Coordinates(),
+                               rtol=1e-12, atol=1e-15)
+
+
+def test_outputs_name_the_pairs():
+    mbs, joint = _turning_guide("python")
+    out = joint.outputs()
+    assert set(out) == {"time", *exuclear.engine.outputs.PAIR_OUTPUT_COLUMNS}
+    assert out["penetration"].shape == (len(out["time"]), len(PAIRS))
+    assert len(pair_data_columns(len(PAIRS))) == mbs.GetNode(joint.nodeNumber)["numberOfDataCoordinates"]
+    # Coulomb's law where a corner slides faster than the smoothing (eq. (20)): F_T = mu |F_N|, signed with the slip
+    fast = (out["normal_force"] > 0.0) & (np.abs(out["slip_velocity"]) > 1e-2)
+    assert fast.sum() > 0
+    np.testing.assert_allclose(out["tangential_force"][fast],
+                               0.2 * np.sign(out["slip_velocity"][fast]) * out["normal_force"][fast], rtol=1e-9)
+    named = joint.pair_impacts()
+    assert {name for name, _ in named} <= {pair_name(k) for k in range(len(PAIRS))}
+    assert [r for _, r in named] == joint.impacts()
+
+
+# -- the analytic checks of validation/translational.py ---------------------------------------------
+def test_resting_slider_carries_half_its_weight_on_each_lower_corner():
+    r = val.resting()
+    # the corners' oscillation has died out under the damping in 0.3 s: measured agreement 1e-12
+    np.testing.assert_allclose(r["force"], r["half_weight"], rtol=1e-6)
+    np.testing.assert_allclose(r["sink"], r["static_sink"], rtol=1e-6)
+
+
+def test_sliding_slider_slows_as_coulomb_says():
+    s = val.sliding()
+    # F_T = mu F_N at every sliding output (the slip is far above the smoothing speed)
+    assert s["ratio_min"] == pytest.approx(s["mu"], rel=1e-9)
+    assert s["ratio_max"] == pytest.approx(s["mu"], rel=1e-9)
+    # v0 - mu g t: the integration's error at rtol 1e-8; measured 1e-9 relative
+    assert s["speed"] == pytest.approx(s["coulomb_speed"], rel=1e-6)
+
+
+def test_elastic_corners_keep_the_energy():
+    e = val.elastic_rattle()
+    assert e["contacts"] >= 20
+    # DOPRI5 at rtol 1e-8 over some 50 impacts: measured 1.3e-5 relative
+    assert e["end"] == pytest.approx(e["start"], rel=1e-4)

@@ -1,0 +1,140 @@
+"""The translational clearance joint (a slider in a guide) against analytic results and the
+SciPy reference of the Flores-Leine-Glocker slider-crank (issue 50).
+
+Source problems (:mod:`exuclear.prismatic`; planar, gravity along -y, the guide on the ground):
+
+- a slider resting flat on its guide: each lower corner carries ``m g / 2`` and the slider
+  sinks ``(m g / (2 K))^(1/n)``;
+- a slider sliding along the lower wall under gravity at 0.5 m/s: Coulomb's ``F_T = mu N``
+  at each lower corner, and the slider's speed falling as ``v0 - mu g t``;
+- elastic corners (``damping="none"``, no gravity, no friction): a slider spinning and
+  rattling between the walls keeps its kinetic energy;
+- the Flores-Leine-Glocker slider-crank (:mod:`models.guided_slider_crank`): the scene
+  against :mod:`validation.reference.guided_slider_crank` over the first contacts, its
+  energy with elastic corners over the benchmark's two crank turns, and a table over the
+  corners' stiffness K.
+
+    python -m validation.translational
+"""
+from __future__ import annotations
+
+import argparse
+import warnings
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import Force, MarkerNodePosition, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+
+import exuclear
+from validation._tables import markdown_table
+
+#: The benchmark's slider (Flores, Leine, Glocker 2010, table 1): 0.10 m x 0.05 m, 0.076 kg,
+#: 2.7e-6 kg m^2, 1 mm of clearance per side.
+SLIDER_LENGTH, SLIDER_HEIGHT, CLEARANCE = 0.10, 0.05, 1e-3  # [m]
+MASS, INERTIA, GRAVITY = 0.076, 2.7e-6, 9.81  # [kg], [kg m^2], [m/s^2]
+#: A corner's stiffness for the analytic checks [N/m^1.5]: soft enough for steps of 1e-5 s.
+STIFFNESS, EXPONENT = 1e8, 1.5
+#: Coulomb's coefficient of the sliding check, and the slider's initial speed along the wall [m/s].
+SLIDE_MU, SLIDE_SPEED = 0.2, 0.5
+#: DOPRI5 at tolerances the sliding slider meets (its corners' friction couples the stiff rocking mode).
+SETTINGS = dict(method="dopri5", step=1e-5, rtol=1e-8, atol=1e-12, output_step=1e-4)
+
+
+def slider_in_guide(backend: str | None = None, velocity=(0.0, 0.0, 0.0), gravity: float = GRAVITY,
+                    guide_spin: float | None = None, **law):
+    """A 2D slider in a guide centred at the origin along x; the guide on the ground or, with
+    ``guide_spin`` [rad/s], a free heavy body turning at that rate.  Returns (mbs, joint,
+    slider node)."""
+    mbs = exu.SystemContainer().AddSystem()
+    if guide_spin is None:
+        guide = mbs.AddObject(ObjectGround())
+    else:
+        guide_node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0],
+                                                 initialVelocities=[0.0, 0.0, guide_spin]))
+        guide = mbs.AddObject(ObjectRigidBody2D(nodeNumber=guide_node, mass=2.0, inertia=5e-3))
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0], initialVelocities=list(velocity)))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=MASS, inertia=INERTIA))
+    if gravity:
+        marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=node))
+        mbs.AddLoad(Force(markerNumber=marker, loadVector=[0.0, -MASS * gravity, 0.0]))
+    parameters = dict(slider_length=SLIDER_LENGTH, slider_height=SLIDER_HEIGHT, clearance=CLEARANCE,
+                      stiffness=STIFFNESS, exponent=EXPONENT, damping="lankarani-nikravesh", cr=0.5)
+    parameters.update(law)
+    joint = exuclear.CreatePrismaticClearanceJoint(mbs, itemNumbers=[guide, body], position=[0.0, 0.0, 0.0],
+                                                   axis=[1.0, 0.0, 0.0], backend=backend, **parameters)
+    mbs.Assemble()
+    return mbs, joint, node
+
+
+def _run(mbs, end_time: float) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", exuclear.AccuracyWarning)
+        result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=end_time, **SETTINGS))
+    if not result.success:
+        raise RuntimeError(result.message)
+
+
+def resting() -> dict[str, float]:
+    """The slider dropped from the guide's centre, at rest after 0.3 s: the lower corners'
+    forces against ``m g / 2`` and their penetration against ``(m g / (2 K))^(1/n)``."""
+    mbs, joint, _ = slider_in_guide()
+    _run(mbs, 0.3)
+    out = joint.outputs()
+    return {"force": out["normal_force"][-1, :2].tolist(), "half_weight": MASS * GRAVITY / 2.0,
+            "sink": out["penetration"][-1, :2].tolist(),
+            "static_sink": (MASS * GRAVITY / (2.0 * STIFFNESS)) ** (1.0 / EXPONENT)}
+
+
+def sliding() -> dict[str, float]:
+    """The slider resting on the lower wall and pushed along it at :data:`SLIDE_SPEED`, with
+    Coulomb friction :data:`SLIDE_MU`: after 0.05 s its speed against ``v0 - mu g t`` and the
+    lower corners' ``F_T / F_N`` against ``mu`` while it slides."""
+    sink = (MASS * GRAVITY / (2.0 * STIFFNESS)) ** (1.0 / EXPONENT)
+    mbs, joint, node = slider_in_guide(velocity=(SLIDE_SPEED, 0.0, 0.0), friction=f"coulomb:{SLIDE_MU}")
+    # start on the wall, at the static sink: no drop before the slide
+    mbs.SetNodeParameter(node, "referenceCoordinates", [0.0, -(CLEARANCE + sink), 0.0])
+    mbs.Assemble()
+    end = 0.05
+    _run(mbs, end)
+    out = joint.outputs()
+    v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]
+    sliding_rows = out["normal_force"][:, 0] > 0.0
+    ratio = out["tangential_force"][sliding_rows, :2] / out["normal_force"][sliding_rows, :2]
+    return {"speed": float(v), "coulomb_speed": SLIDE_SPEED - SLIDE_MU * GRAVITY * end,
+            "ratio_min": float(ratio.min()), "ratio_max": float(ratio.max()), "mu": SLIDE_MU}
+
+
+def elastic_rattle(end_time: float = 0.05) -> dict[str, float]:
+    """A slider spinning and rattling between the walls with elastic corners, no gravity, no
+    friction: its kinetic energy at the end against its start, and the contacts it made."""
+    omega, vy = 2.0, 0.2
+    mbs, joint, node = slider_in_guide(velocity=(0.3, vy, omega), gravity=0.0, damping="none", cr=None)
+    _run(mbs, end_time)
+    v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
+    w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
+    start = 0.5 * MASS * (0.3**2 + vy**2) + 0.5 * INERTIA * omega**2
+    end = 0.5 * MASS * (v[0] ** 2 + v[1] ** 2) + 0.5 * INERTIA * w**2
+    return {"start": start, "end": end, "contacts": len(joint.pair_impacts())}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.parse_args(argv)
+    rows = []
+    r = resting()
+    rows.append(("resting: lower corners' force [N]", f"{r['force'][0]:.6g}, {r['force'][1]:.6g}",
+                 f"m g / 2 = {r['half_weight']:.6g}"))
+    rows.append(("resting: sink [m]", f"{r['sink'][0]:.6g}", f"(m g / (2K))^(1/n) = {r['static_sink']:.6g}"))
+    s = sliding()
+    rows.append(("sliding: speed after 0.05 s [m/s]", f"{s['speed']:.6g}", f"v0 - mu g t = {s['coulomb_speed']:.6g}"))
+    rows.append(("sliding: F_T / F_N at the lower corners", f"{s['ratio_min']:.6g} ... {s['ratio_max']:.6g}",
+                 f"mu = {s['mu']:g}"))
+    e = elastic_rattle()
+    rows.append(("elastic rattle: kinetic energy [J]", f"{e['end']:.8g} ({e['contacts']} contacts)",
+                 f"{e['start']:.8g}"))
+    print(markdown_table(("check", "exuclear", "analytic"), rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
