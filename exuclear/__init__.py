@@ -1,10 +1,11 @@
-"""exuclear: clearance joints (revolute, spherical, translational) for the Exudyn multibody engine.
+"""exuclear: clearance joints (revolute, spherical, translational, pin-in-slot) for the Exudyn multibody engine.
 
 The public API is the names of ``__all__`` below, by role:
 
 - **joints**: :func:`CreateClearanceJoint`, :func:`AddClearanceJoint` (the revolute joint)
-  :func:`CreateSphericalClearanceJoint` (a ball in a socket) and
-  :func:`CreatePrismaticClearanceJoint` (a slider in a guide), Exudyn items; they
+  :func:`CreateSphericalClearanceJoint` (a ball in a socket),
+  :func:`CreatePrismaticClearanceJoint` (a slider in a guide) and
+  :func:`CreatePinSlotClearanceJoint` (a pin in a slot), Exudyn items; they
   return a :class:`ClearanceJointHandle`; and the physics of one joint,
   :class:`ClearanceJoint` with its :class:`BearingGeometry`, built by :func:`make_joint`;
   :class:`Lubrication` (viscosity, film model) makes a joint lubricated (``lubrication=``),
@@ -44,6 +45,7 @@ from .engine import (
     AddClearanceJoint,
     ClearanceJointHandle,
     CreateClearanceJoint,
+    CreatePinSlotClearanceJoint,
     CreatePrismaticClearanceJoint,
     CreateSphericalClearanceJoint,
     SimulationResult,
@@ -84,7 +86,7 @@ __version__ = "0.1.0"
 __all__ = [
     # joints
     "CreateClearanceJoint", "AddClearanceJoint", "CreateSphericalClearanceJoint", "CreatePrismaticClearanceJoint",
-    "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
+    "CreatePinSlotClearanceJoint", "ClearanceJointHandle", "ClearanceJoint", "BearingGeometry",
     "make_joint", "Lubrication", "Wear", "predict_wear",
     # contact laws
     "contact_law", "ContactLaw",

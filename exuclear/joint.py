@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, damping_model, law_and_restitution
+from .checks import check_positive
 from .contact.pair import ContactGeometry
 from .contact.stiffness import EXPONENT_METAL, GivenStiffness
 from .film import FilmLaw, Lubrication
@@ -19,6 +20,7 @@ from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_load
 from .history import ContactState
 from .materials import Material, composite_modulus
 from .prismatic import GuideGeometry
+from .slot import SlotGeometry
 from .spherical import SphereGeometry
 from .wear.law import Wear
 
@@ -217,6 +219,43 @@ def make_spherical_joint(
     geometry = SphereGeometry(ball_radius, socket_radius)
     law = _law(geometry, law, cr, ("ball_material", ball_material), ("socket_material", socket_material), E_star,
                v_min, stiffness, damping, DEFAULT_SPHERICAL_LAW)
+    return ClearanceJoint(law, friction_law(friction))
+
+
+def make_pin_slot_joint(
+    *,
+    pin_radius: float,
+    slot_width: float,
+    slot_length: float,
+    length: float,
+    law: str | ContactLaw | None = None,
+    cr: float | None = None,
+    pin_material: str | Material | None = None,
+    slot_material: str | Material | None = None,
+    E_star: float | None = None,
+    friction: str | FrictionLaw = "none",
+    v_min: float | None = None,
+    stiffness: str | None = None,
+    damping: str | None = None,
+) -> ClearanceJoint:
+    """Build the physics of a pin-in-slot clearance joint: a pin of radius ``pin_radius`` in a
+    slot of width ``slot_width`` > 2 ``pin_radius`` whose end centres lie ``slot_length`` >= 0
+    apart, the pin ``length`` long in contact [m] (:class:`exuclear.slot.SlotGeometry`).
+
+    The law is the revolute joint's of a journal of radius ``pin_radius`` in a bearing of
+    radius ``slot_width / 2`` (:func:`make_joint`'s arguments, with the pin's and the slot's
+    materials): at ``slot_length = 0`` the joint is that revolute joint.  It takes no film
+    and no wear.
+    """
+    check_positive("pin_radius", pin_radius)
+    check_positive("slot_width", slot_width)
+    check_positive("length", length)
+    if not slot_width > 2.0 * pin_radius:
+        raise ValueError(f"`slot_width` must be larger than the pin's diameter 2 `pin_radius` (clearance W/2 - R_P > 0), "
+                         f"got W = {slot_width}, R_P = {pin_radius}")
+    geometry = SlotGeometry(pin_radius, 0.5 * slot_width, length, slot_length)
+    law = _law(geometry, law, cr, ("pin_material", pin_material), ("slot_material", slot_material), E_star, v_min,
+               stiffness, damping, DEFAULT_LAW)
     return ClearanceJoint(law, friction_law(friction))
 
 

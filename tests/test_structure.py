@@ -154,9 +154,10 @@ def test_no_source_file_is_too_long_to_read_at_once(folder):
     assert long_files(ROOT / folder) == {}
 
 
-def test_public_api_has_at_most_30_names():
+def test_public_api_has_at_most_32_names():
     # a reader can hold the API at once; tables and constants live in their modules
-    assert len(exuclear.__all__) <= 30
+    # the joint family's four builders (revolute, spherical, translational, pin-in-slot) raised it from 30
+    assert len(exuclear.__all__) <= 32
 
 
 def test_the_library_knows_no_scene_figure():

@@ -26,6 +26,7 @@ import numpy as np
 from exudyn.itemInterface import Force, MarkerNodePosition, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
 import exuclear
+from exuclear.joint import make_pin_slot_joint
 from validation._tables import markdown_table
 
 #: The benchmark's slider (Flores, Leine, Glocker 2010, table 1): 0.10 m x 0.05 m, 0.076 kg,
@@ -117,6 +118,86 @@ def elastic_rattle(end_time: float = 0.05) -> dict[str, float]:
     return {"start": start, "end": end, "contacts": len(joint.pair_impacts())}
 
 
+#: The pin-in-slot checks: a steel pin of 10 mm radius, 20 mm long, in a slot 20.2 mm wide.
+PIN_RADIUS, SLOT_WIDTH, PIN_LENGTH = 10e-3, 20.2e-3, 20e-3  # [m]
+PIN_MASS = 7850.0 * np.pi * PIN_RADIUS**2 * PIN_LENGTH  # [kg]
+PIN_INERTIA = 0.5 * PIN_MASS * PIN_RADIUS**2  # a solid pin [kg m^2]
+
+
+def pin_in_slot(slot_length: float | None, backend: str | None = None, axis=(1.0, 0.0, 0.0),
+                velocity=(0.0, 0.0, 0.0), start=(0.0, 0.0), slot_spin: float | None = None, gravity: float = GRAVITY,
+                **law):
+    """A 2D steel pin in a slot centred at the origin: the slot on the ground or, with
+    ``slot_spin`` [rad/s], a free heavy body turning at that rate; ``slot_length`` None: the
+    revolute clearance joint of the same pin and hole (``CreateClearanceJoint``).  Returns
+    (mbs, joint, pin node)."""
+    mbs = exu.SystemContainer().AddSystem()
+    if slot_spin is None:
+        slot = mbs.AddObject(ObjectGround())
+    else:
+        slot_node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0],
+                                                initialVelocities=[0.0, 0.0, slot_spin]))
+        slot = mbs.AddObject(ObjectRigidBody2D(nodeNumber=slot_node, mass=5.0, inertia=1e-2))
+    # the pin's centre is the slot's in the reference configuration, ``start`` away from it initially
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0], initialCoordinates=[start[0], start[1], 0.0],
+                                       initialVelocities=list(velocity)))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=PIN_MASS, inertia=PIN_INERTIA))
+    if gravity:
+        mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)),
+                          loadVector=[0.0, -PIN_MASS * gravity, 0.0]))
+    parameters = dict(law="hertz+lankarani-nikravesh", cr=0.7)
+    parameters.update(law)
+    if slot_length is None:
+        joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[slot, body], position=[0.0, 0.0, 0.0],
+                                              journal_radius=PIN_RADIUS, bearing_radius=0.5 * SLOT_WIDTH,
+                                              length=PIN_LENGTH, backend=backend, **parameters)
+    else:
+        joint = exuclear.CreatePinSlotClearanceJoint(mbs, itemNumbers=[slot, body], position=[0.0, 0.0, 0.0],
+                                                     axis=list(axis), pin_radius=PIN_RADIUS, slot_width=SLOT_WIDTH,
+                                                     slot_length=slot_length, length=PIN_LENGTH, backend=backend,
+                                                     **parameters)
+    mbs.Assemble()
+    return mbs, joint, node
+
+
+def pin_against_revolute(axis=(0.0, -1.0, 0.0), end_time: float = 0.05) -> dict[str, float]:
+    """The pin in a slot of length 0 on a slot turning at 20 rad/s, the pin flung across it
+    spinning, Coulomb friction: its coordinates against the revolute clearance joint's (whose
+    joint frame for the z axis has x along -y: ``axis=(0, -1, 0)`` is the same frame).
+    Returns the largest difference [m or rad] and the impacts."""
+    runs = []
+    for slot_length in (0.0, None):
+        mbs, joint, node = pin_in_slot(slot_length, axis=axis, velocity=(0.3, 0.2, 40.0), slot_spin=20.0,
+                                       friction="coulomb:0.15")
+        _run(mbs, end_time)
+        runs.append((np.asarray(mbs.systemData.GetODE2Coordinates()), len(joint.impacts())))
+    (q_slot, n_slot), (q_rev, n_rev) = runs
+    return {"difference": float(np.abs(q_slot - q_rev).max()), "impacts": n_slot, "revolute_impacts": n_rev}
+
+
+def pin_sliding(end_time: float = 0.04) -> dict[str, float]:
+    """The pin resting on the slot's lower flat side, pushed along it at :data:`SLIDE_SPEED`
+    with Coulomb friction :data:`SLIDE_MU`: while it slips (until ``v0 / (3 mu g)`` for a
+    solid pin) its speed falls as ``v0 - mu g t`` and its spin grows as ``2 mu g t / R_P``;
+    ``F_T / F_N = mu``."""
+    law = make_pin_slot_joint(pin_radius=PIN_RADIUS, slot_width=SLOT_WIDTH, slot_length=0.2, length=PIN_LENGTH,
+                              law="hertz+lankarani-nikravesh", cr=0.7).law
+    sink = (PIN_MASS * GRAVITY / law.stiffness(0.0)) ** (1.0 / law.exponent)  # Hertz's static penetration
+    c = 0.5 * SLOT_WIDTH - PIN_RADIUS
+    mbs, joint, node = pin_in_slot(0.2, velocity=(SLIDE_SPEED, 0.0, 0.0), start=(0.0, -(c + sink)),
+                                   friction=f"coulomb:{SLIDE_MU}")
+    _run(mbs, end_time)
+    out = joint.outputs()
+    v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]
+    w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
+    rows = out["normal_force"] > 0.0
+    ratio = np.abs(out["tangential_force"][rows]) / out["normal_force"][rows]
+    g = SLIDE_MU * GRAVITY * end_time
+    return {"speed": float(v), "coulomb_speed": SLIDE_SPEED - g, "spin": float(abs(w)),
+            "coulomb_spin": 2.0 * g / PIN_RADIUS, "ratio_min": float(ratio.min()), "ratio_max": float(ratio.max()),
+            "mu": SLIDE_MU}
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.parse_args(argv)
@@ -132,6 +213,17 @@ def main(argv: list[str] | None = None) -> int:
     e = elastic_rattle()
     rows.append(("elastic rattle: kinetic energy [J]", f"{e['end']:.8g} ({e['contacts']} contacts)",
                  f"{e['start']:.8g}"))
+    p = pin_against_revolute()
+    rows.append(("pin in a slot of length 0 vs revolute joint: largest coordinate difference",
+                 f"{p['difference']:.3g} ({p['impacts']} impacts)", f"0 ({p['revolute_impacts']} impacts)"))
+    p = pin_against_revolute(axis=(0.8, 0.6, 0.0))
+    rows.append(("the same, the slot frame turned by 126.87 degrees", f"{p['difference']:.3g}", "round-off"))
+    s = pin_sliding()
+    rows.append(("pin sliding on a flat: speed after 0.04 s [m/s]", f"{s['speed']:.6g}",
+                 f"v0 - mu g t = {s['coulomb_speed']:.6g}"))
+    rows.append(("pin sliding on a flat: spin after 0.04 s [rad/s]", f"{s['spin']:.6g}",
+                 f"2 mu g t / R_P = {s['coulomb_spin']:.6g}"))
+    rows.append(("pin sliding on a flat: F_T / F_N", f"{s['ratio_min']:.6g} ... {s['ratio_max']:.6g}", f"mu = {s['mu']:g}"))
     print(markdown_table(("check", "exuclear", "analytic"), rows))
     return 0
 

@@ -6,7 +6,9 @@
 // the same names, so that the two can be read side by side and agree to round-off:
 //   contact kinematics  exuclear/spatial.py    (docs/physics.md eqs. (33)-(40), (48)-(51); the
 //                                               planar joint's eqs. (1)-(8) as one slice),
-//                       exuclear/spherical.py  (the spherical joint's ball, eqs. (93)-(96))
+//                       exuclear/spherical.py  (the spherical joint's ball, eqs. (93)-(96)),
+//                       exuclear/prismatic.py  (a slider's corner against a guide's wall),
+//                       exuclear/slot.py       (a pin against a slot's centre segment)
 //   normal force        exuclear/contact/      (law.py eq. (9) once, damped_normal_force; stiffness.py, damping.py eqs. (10)-(17))
 //   friction            exuclear/friction.py   (eqs. (20)-(23))
 //   one contact         exuclear/engine/_python_kernel/contacts.py Contact (response: onset velocity,
@@ -348,6 +350,7 @@ PYBIND11_MODULE(_ckernel, m) {
     joint_types["revolute"] = static_cast<int>(REVOLUTE);
     joint_types["spherical"] = static_cast<int>(SPHERICAL);
     joint_types["prismatic"] = static_cast<int>(PRISMATIC);
+    joint_types["pin-slot"] = static_cast<int>(PIN_SLOT);
     m.attr("JOINT_TYPES") = joint_types;
     m.attr("N_DATA") = N_DATA;
     m.attr("N_FILM_DATA") = N_FILM_DATA;

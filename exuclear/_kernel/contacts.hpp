@@ -43,13 +43,14 @@ enum ContactKind {
     SLICE,         // a spatial slice: its share w / L of the law, slip |v_s| (eqs. (41), (42))
     FACE,          // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
     BALL,          // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (96))
-    CORNER         // a slider's corner against a guide's wall: the joint's law, slip v_t along the wall
+    CORNER,        // a slider's corner against a guide's wall: the joint's law, slip v_t along the wall
+    SLOT_SLICE     // the pin-in-slot joint's slice: the planar slice against the slot's centre segment
 };
 
 int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
 
 // the planar revolute joint (one slice, the motion projected on the plane normal to the axis)
-bool planar(const Params& a) { return a.joint_type == REVOLUTE && a.slices == 0; }
+bool planar(const Params& a) { return (a.joint_type == REVOLUTE || a.joint_type == PIN_SLOT) && a.slices == 0; }
 
 size_t contact_count(const Params& a) {
     if (a.joint_type == PRISMATIC) return static_cast<size_t>(N_CORNERS * N_WALLS);  // prismatic.py PAIRS
@@ -59,6 +60,7 @@ size_t contact_count(const Params& a) {
 ContactKind contact_kind(const Params& a, size_t i) {
     if (a.joint_type == SPHERICAL) return BALL;
     if (a.joint_type == PRISMATIC) return CORNER;
+    if (a.joint_type == PIN_SLOT) return SLOT_SLICE;
     if (i >= static_cast<size_t>(slice_count(a))) return FACE;
     return a.slices > 0 ? SLICE : PLANAR_SLICE;
 }
@@ -145,6 +147,18 @@ void joint_loads(double* loads, double r_j, double r_b, const Kinematics& k, dou
     loads[8] += m_j + m_i;
 }
 
+// contacts.py SlotSlice.add_loads: joint_loads, and the slot's moment S x (-F_i) about its centre
+void slot_loads(double* loads, double r_j, double r_b, const Kinematics& k, double f_n, double f_t) {
+    double fx = -f_n * k.nx - f_t * k.ny;                                // eq. (24)
+    double fy = -f_n * k.ny + f_t * k.nx;
+    double m_i = r_j * f_t;                                              // eq. (25)
+    double m_j = -r_b * f_t;                                             // eq. (26)
+    loads[0] += -fx;
+    loads[1] += -fy;
+    loads[5] += -m_i;
+    loads[8] += m_j + m_i - k.segment * fy;
+}
+
 // spatial.py add_slice_loads: a slice's share of loads = [force (3), torque (3), correction (3)]
 void add_slice_loads(double* loads, double r_j, const V3& u, const Kinematics& k, double f_n, double f_t,
                      double f_a) {
@@ -222,6 +236,9 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
             break;
         case CORNER:
             add_corner_loads(loads, k, r.f_n, r.f_t);
+            break;
+        case SLOT_SLICE:  // eqs. (24)-(26) at the segment's point
+            slot_loads(loads, a.r_j, a.r_b, k, r.f_n, r.f_t);
             break;
     }
 }

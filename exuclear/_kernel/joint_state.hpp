@@ -226,7 +226,12 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
         w_j = w_b;
     }
     if (a.slices == 0) {  // eqs. (1)-(8): omega_i = dw_z + omega_j, the journal's own spin
-        s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        if (a.joint_type == PIN_SLOT) {  // the pin against the slot's centre segment (slot.py); length: the slot's
+            s.kins[0] = slot_kinematics(a.r_j, a.r_b, 0.5 * a.length, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2],
+                                        w_j[2]);
+        } else {
+            s.kins[0] = contact_kinematics(a.r_j, a.r_b, q.p[0], q.p[1], dv[0], dv[1], dw[2] + w_j[2], w_j[2]);
+        }
         if (wears(a, s)) {  // psi: the journal's turn about the axis
             s.kins[0] = s.wear[0].kinematics(a, wear_profiles(s, t), s.kins[0], rotation[2], dv[0], dv[1],
                                              dw[2] + w_j[2], w_j[2]);

@@ -36,13 +36,15 @@ V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) 
 
 // One contact's kinematics: spatial.py's SliceKinematics (side 0) or FaceKinematics (side -1, +1),
 // or spherical.py's BallKinematics (ez, nz and the slip vector v_s; v_t its length), or
-// prismatic.py's CornerKinematics (rx, ry the corner relative to the slider's centre)
+// prismatic.py's CornerKinematics (rx, ry the corner relative to the slider's centre), or
+// slot.py's SlotKinematics (segment: the x of the slot's centre-segment point under the pin)
 struct Kinematics {
     int side;
     double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
     double ez, nz;
     V3 v_s;
     double rx, ry;
+    double segment;
 };
 
 // geometry.py kinematics_along: the rest of contact_kinematics once |e| (ecc) and the normal
@@ -164,6 +166,16 @@ Kinematics ball_kinematics(double r_b, double r_s, const V3& p, const V3& dv, co
     k.nx = n[0];
     k.ny = n[1];
     k.nz = n[2];
+    return k;
+}
+
+// slot.py slot_kinematics: the pin at (px, py) in the slot of half-length half_length, as the
+// planar joint's slice against the segment's nearest point S; the slot's spin moves S at w_j x S
+Kinematics slot_kinematics(double r_j, double r_b, double half_length, double px, double py, double dvx, double dvy,
+                           double omega_i, double omega_j) {
+    double sx = std::min(std::max(px, -half_length), half_length);
+    Kinematics k = contact_kinematics(r_j, r_b, px - sx, py, dvx, dvy - omega_j * sx, omega_i, omega_j);
+    k.segment = sx;
     return k;
 }
 

@@ -58,7 +58,7 @@ enum FrictionCode { FRICTION_NONE = 0, FRICTION_COULOMB = 1, FRICTION_MODIFIED_C
 // layout.py FILM_CODES
 enum FilmCode { FILM_NONE = 0, FILM_SHORT = 1, FILM_LONG = 2, FILM_FINITE = 3 };
 // layout.py JOINT_TYPE_CODES: which contacts a joint has (joint_state.hpp joint_kinematics)
-enum JointType { REVOLUTE = 0, SPHERICAL = 1, PRISMATIC = 2 };
+enum JointType { REVOLUTE = 0, SPHERICAL = 1, PRISMATIC = 2, PIN_SLOT = 3 };
 
 // layout.py WEAR_SURFACE_CODES and WEAR_PRESSURE_CODES, packed in the field wear_code
 enum WearSurface { WEAR_NONE = 0, WEAR_BEARING = 1, WEAR_JOURNAL = 2, WEAR_BOTH = 3 };

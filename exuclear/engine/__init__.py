@@ -35,10 +35,11 @@ from .handle import ClearanceJointHandle
 from .layout import DATA_COLUMNS
 from .outputs import OUTPUT_COLUMNS
 from .prismatic import CreatePrismaticClearanceJoint
+from .slot import CreatePinSlotClearanceJoint
 from .solver import SimulationResult, simulate, simulation_settings
 from .spherical import CreateSphericalClearanceJoint
 
 __all__ = ["BACKENDS", "DEFAULT_BACKEND", "OUTPUT_COLUMNS", "DATA_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle",
-           "CreateClearanceJoint", "CreateSphericalClearanceJoint", "CreatePrismaticClearanceJoint", "add_clearance_joint", "default_penetration_limit", "KernelWarning",
+           "CreateClearanceJoint", "CreateSphericalClearanceJoint", "CreatePrismaticClearanceJoint", "CreatePinSlotClearanceJoint", "add_clearance_joint", "default_penetration_limit", "KernelWarning",
            "AccuracyWarning", "SimulationResult", "simulate", "simulation_settings", "OutOfPlaneWarning",
            "unheld_motion"]

@@ -29,6 +29,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..contact import ContactLaw
+from ..contact.pair import ContactGeometry
 from ..friction import Coulomb, FrictionLaw, ModifiedCoulomb, NoFriction
 from ..joint import ClearanceJoint
 from ..settings import RATE_LIMIT_DEFAULT
@@ -37,7 +38,7 @@ from ..wear.law import Wear
 
 MAIN, PROBE, TORQUE = 0, 1, 2
 #: Joint type (``ContactGeometry.joint_type``) -> code in the parameter matrix (layout.hpp ``JointType``).
-JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1, "prismatic": 2}
+JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1, "prismatic": 2, "pin-slot": 3}
 #: Where the handle marks its connector (``is_live``): an entry of the connector's ``damping``
 #: matrix, which Exudyn hands to the user functions and neither kernel reads.
 TOKEN_ENTRY = (0, 0)
@@ -72,7 +73,7 @@ LAYOUT = (
                                           "models'; the row's last entry holds wear_code)"),
     Field("friction_constants", 3, 0, 4, "Coulomb (mu, v_eps); modified Coulomb (mu_s, mu_d, v_s, v_d)"),
     Field("slices", 4, 0, 1, "number of slices N of the spatial joint (0: the planar joint)"),
-    Field("length", 4, 1, 1, "bearing length L [m]; a translational joint's slider length"),
+    Field("length", 4, 1, 1, "bearing length L [m]; a translational joint's slider length, a pin-in-slot joint's slot length"),
     Field("axis_journal", 4, 2, 3, "the journal axis in the journal marker's frame (eq. (34))"),
     Field("axial_clearance", 5, 0, 1, "total axial play g [m] of the end faces (0: none; section 9.6)"),
     Field("friction_radius", 5, 1, 1, "R_e [m] of the end faces, eq. (51)"),
@@ -300,9 +301,22 @@ def uses_bearing_motion(joint: ClearanceJoint, slices: int = 0) -> bool:
     A spherical joint's ball (docs/physics.md section 13) likewise needs it for friction only:
     its normal rate has no spin in it and its normal force passes through both centres.
     A translational joint's corners need it always: the guide's spin moves its walls under
-    the slider (:func:`exuclear.prismatic.corner_kinematics`)."""
-    return (slices > 0 or joint.geometry.joint_type == "prismatic" or joint.film is not None
-            or type(joint.friction) is not NoFriction)
+    the slider (:func:`exuclear.prismatic.corner_kinematics`).  A pin in a slot needs it
+    where the slot has a length: its spin moves the segment's point under the pin
+    (:mod:`exuclear.slot`)."""
+    return (slices > 0 or joint.geometry.joint_type == "prismatic" or getattr(joint.geometry, "slot_length", 0.0) > 0.0
+            or joint.film is not None or type(joint.friction) is not NoFriction)
+
+
+def length_field(geometry: ContactGeometry) -> float:
+    """The parameter matrix's ``length``: the revolute joint's bearing length, a translational
+    joint's slider length, a pin-in-slot joint's slot length (its pin's length enters only
+    its law's constants), 0 for the spherical joint."""
+    if geometry.joint_type == "prismatic":
+        return geometry.slider_length
+    if geometry.joint_type == "pin-slot":
+        return geometry.slot_length
+    return geometry.length or 0.0
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,
@@ -323,7 +337,7 @@ def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration:
               "rate_limit": rate_limit,
               "stiffness_code": code, "damping_factor": law.damping_factor, "v_min": law.v_min,
               "friction_code": f_code, "stiffness_constants": extra, "friction_constants": f_params,
-              "slices": slices, "length": getattr(g, "slider_length", None) or g.length or 0.0, "axis_journal": axis_journal,
+              "slices": slices, "length": length_field(g), "axis_journal": axis_journal,
               "bearing_motion": float(uses_bearing_motion(joint, slices))}
     if joint.film is not None:
         values.update(film_model=FILM_CODES[joint.film.name], viscosity=joint.film.viscosity,

@@ -21,12 +21,13 @@ PLACED_BY_POSITION = "the joint's `position` and the initial coordinates of the 
 PLACED_BY_MARKERS = "the positions of `markerNumbers` on their bodies and the bodies' initial coordinates"
 PLACED_BY_POINTS = "`journal_point` / `bearing_point` and the bodies' initial coordinates"
 #: Joint type -> (outer, inner) part, as messages name them.
-PARTS = {"revolute": ("bearing", "journal"), "spherical": ("socket", "ball"), "prismatic": ("guide", "slider")}
+PARTS = {"revolute": ("bearing", "journal"), "spherical": ("socket", "ball"), "prismatic": ("guide", "slider"),
+         "pin-slot": ("slot", "pin")}
 
 
 def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> float:
     """Penetration ``e - c`` [m] of a joint in the initial configuration: a revolute joint's in the
-    plane of its joint frame, a spherical joint's in space, a translational joint's deepest corner."""
+    plane of its joint frame, a spherical joint's in space, a translational joint's deepest corner, a pin's from its slot's centre segment."""
     ref = exu.ConfigurationType.Initial
     b, j = handle.markerNumbers
     p_b = np.asarray(mbs.GetMarkerOutput(b, exu.OutputVariableType.Position, configuration=ref), dtype=float)
@@ -43,6 +44,9 @@ def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> fl
         return max(corner_kinematics(0.5 * g.slider_length, g.inner_radius, g.outer_radius, corner, wall, local[0],
                                      local[1], math.atan2(turn[1, 0], turn[0, 0]), 0.0, 0.0, 0.0, 0.0).delta
                    for corner, wall in PAIRS)
+    if handle.joint_type == "pin-slot":  # from the slot's centre segment (exuclear/slot.py)
+        half = 0.5 * handle.joint.geometry.slot_length
+        local[0] -= min(max(local[0], -half), half)
     ecc = np.linalg.norm(local) if handle.joint_type == "spherical" else math.hypot(local[0], local[1])
     return float(ecc - handle.joint.geometry.clearance)
 

@@ -20,6 +20,7 @@ from .kinematics import (
     FaceKinematics,
     Kinematics,
     SliceKinematics,
+    SlotKinematics,
     add_ball_loads,
     add_corner_loads,
     add_face_loads,
@@ -89,6 +90,19 @@ class PlanarSlice(Contact):
         loads[1] += -fy
         loads[5] += -m_i
         loads[8] += m_j + m_i
+
+
+class SlotSlice(PlanarSlice):
+    """The pin-in-slot joint's one contact (:mod:`exuclear.slot`): the planar slice of a pin
+    against the slot's nearest centre-segment point ``S``, whose loads on the slot gain the
+    moment ``S x (-F_i)`` about the slot's centre."""
+
+    def add_loads(self, loads: list[float], u: V3, kin: SlotKinematics, r: ContactResponse) -> None:
+        fx, fy, m_i, m_j = joint_loads(self.geometry, kin, r.f_n, r.f_t)
+        loads[0] += -fx
+        loads[1] += -fy
+        loads[5] += -m_i
+        loads[8] += m_j + m_i - kin.segment * fy
 
 
 class Slice(Contact):

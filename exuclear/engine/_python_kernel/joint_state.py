@@ -14,7 +14,7 @@ from ...history import ContactState, ImpactRecord
 from ...joint import ClearanceJoint
 from ...spatial import ShoulderGeometry
 from ...prismatic import PAIRS
-from .contacts import Ball, Contact, Corner, Face, PlanarSlice, Slice
+from .contacts import Ball, Contact, Corner, Face, PlanarSlice, Slice, SlotSlice
 from .film import Film, FilmInput, slice_film_input
 from .kinematics import (
     FACE_SIDES,
@@ -28,6 +28,7 @@ from .kinematics import (
     journal_axis,
     slice_centres,
     slice_kinematics,
+    slot_kinematics,
 )
 from .layout import STEP_CONTROL, RunStart
 from .wear import CONFORMAL_DEPTH, WearState
@@ -105,7 +106,10 @@ class JointState:
             self.contacts = [Corner(joint)] * self.slices
         else:
             self.centres = slice_centres(g.length, self.slices)                           # eq. (33)
-            slice_contact = PlanarSlice(joint) if self.planar else Slice(joint, 1.0 / self.slices)
+            if self.planar:  # a pin in a slot is the planar slice against the slot's centre segment
+                slice_contact = SlotSlice(joint) if g.joint_type == "pin-slot" else PlanarSlice(joint)
+            else:
+                slice_contact = Slice(joint, 1.0 / self.slices)
             self.contacts = [slice_contact] * self.slices
         if self.shoulders is not None:
             self.contacts += [Face(joint, self.shoulders)] * len(FACE_SIDES)
@@ -209,8 +213,13 @@ class JointState:
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
             omega_j = w_j[2]
             omega_i = angular_velocity[2] + omega_j  # the journal's own spin
-            kin = contact_kinematics(self._joint.geometry, displacement[0], displacement[1], velocity[0], velocity[1],
-                                     omega_i, 0.0, 0.0, 0.0, 0.0, omega_j)
+            g = self._joint.geometry
+            if g.joint_type == "pin-slot":  # the pin against the slot's centre segment (exuclear/slot.py)
+                kin = slot_kinematics(g, 0.5 * g.slot_length, displacement[0], displacement[1], velocity[0],
+                                      velocity[1], omega_i, omega_j)
+            else:
+                kin = contact_kinematics(g, displacement[0], displacement[1], velocity[0], velocity[1], omega_i, 0.0,
+                                         0.0, 0.0, 0.0, omega_j)
             if self.wear is not None:
                 kin = self.wear[0].kinematics(self.wear_profiles(t), kin, rotation[2], velocity[0], velocity[1],
                                               omega_i, omega_j)

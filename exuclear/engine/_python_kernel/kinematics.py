@@ -1,7 +1,7 @@
 """The contact kinematics the kernel evaluates: those of :mod:`exuclear.geometry` (the planar
 joint, eqs. (1)-(8)), :mod:`exuclear.spatial` (a slice and an end face, eqs. (33)-(40),
 (48)-(51)) and :mod:`exuclear.spherical` (the ball, eqs. (93)-(96)) and :mod:`exuclear.prismatic` (a slider's
-corner against a guide's wall).  The compiled kernel's ``kinematics.hpp``."""
+corner against a guide's wall) and :mod:`exuclear.slot` (a pin in a slot).  The compiled kernel's ``kinematics.hpp``."""
 from __future__ import annotations
 
 import math
@@ -22,14 +22,15 @@ from ...spatial import (
     slice_kinematics,
 )
 from ...prismatic import CornerKinematics, add_corner_loads, corner_kinematics
+from ...slot import SlotKinematics, slot_kinematics
 from ...spherical import BallKinematics, add_ball_loads, ball_kinematics
 
 __all__ = ["FACE_SIDES", "V3", "BallKinematics", "ContactKinematics", "CornerKinematics", "FaceKinematics", "Kinematics",
-           "SliceKinematics", "add_ball_loads", "add_corner_loads", "add_face_loads", "corner_kinematics", "add_slice_loads", "ball_kinematics", "contact_kinematics",
+           "SliceKinematics", "SlotKinematics", "add_ball_loads", "add_corner_loads", "add_face_loads", "corner_kinematics", "add_slice_loads", "ball_kinematics", "contact_kinematics",
            "face_kinematics", "finish_loads", "finite", "friction_components", "joint_loads", "journal_axis",
-           "slice_centres", "slice_kinematics"]
+           "slice_centres", "slice_kinematics", "slot_kinematics"]
 
-Kinematics = ContactKinematics | SliceKinematics | FaceKinematics | BallKinematics | CornerKinematics
+Kinematics = ContactKinematics | SliceKinematics | FaceKinematics | BallKinematics | CornerKinematics | SlotKinematics
 
 
 def finite(kin: Kinematics) -> bool:

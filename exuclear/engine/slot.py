@@ -1,0 +1,107 @@
+"""The pin-in-slot clearance joint as Exudyn items: ``CreatePinSlotClearanceJoint``.
+
+A pin (on the second body) in a slot (on the first), planar: the revolute joint's items and
+connector (:func:`~exuclear.engine.connector.AddClearanceJoint`) with the pin's contact
+against the slot's centre segment (:mod:`exuclear.slot`).  The joint frame has ``x`` along
+the slot's ``axis`` and ``z`` the global z axis (the plane's normal), carried by both markers
+in the reference configuration.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import MarkerBodyRigid
+
+from ..joint import ClearanceJoint, make_pin_slot_joint
+from ..slot import SlotGeometry
+from .arguments import check_axis, check_system
+from .connector import AddClearanceJoint, joint_items
+from .handle import ClearanceJointHandle
+from .placement import PLACED_BY_POSITION
+from .prismatic import PLANE_TOLERANCE
+
+
+def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
+    mbs: exu.MainSystem,
+    name: str = "",
+    itemNumbers: Sequence[Any] = (None, None),  # noqa: N803 - Exudyn's argument names
+    position: Sequence[float] | None = None,
+    axis: Sequence[float] = (1.0, 0.0, 0.0),
+    useGlobalFrame: bool = True,  # noqa: N803
+    show: bool = True,
+    bodyNumbers: Sequence[Any] | None = None,  # noqa: N803
+    *,
+    joint: ClearanceJoint | None = None,
+    backend: str | None = None,
+    maxPenetration: float | None = None,  # noqa: N803
+    bearingRotates: bool | None = None,  # noqa: N803
+    record: bool = True,
+    **joint_parameters: Any,
+) -> ClearanceJointHandle:
+    """Create a planar pin-in-slot clearance joint: the slot on ``itemNumbers[0]``, centred at
+    ``position`` and running along ``axis``; the pin on ``itemNumbers[1]``, its centre at
+    ``position`` in the reference configuration.
+
+    Parameters
+    ----------
+    mbs, name, itemNumbers, position, useGlobalFrame, show, bodyNumbers
+        As in :func:`exuclear.CreatePrismaticClearanceJoint` (bodies, not markers).
+    axis : 3 floats
+        The slot's direction, in the global x-y plane: global, or in item 0's frame.
+    joint : ClearanceJoint, optional
+        The physics, ready built (:func:`exuclear.joint.make_pin_slot_joint`); else built from
+        the keyword arguments ``pin_radius``, ``slot_width`` (> 2 ``pin_radius``),
+        ``slot_length`` (the end centres' distance, >= 0), ``length`` (the pin's length in
+        contact, for the line-contact laws) and the law's arguments of
+        :func:`exuclear.CreateClearanceJoint` (``law``, ``cr``, ``stiffness``/``damping``,
+        ``friction``, ``v_min``, ``E_star``, ``pin_material``, ``slot_material``).
+    backend, maxPenetration, bearingRotates, record
+        As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the slot can turn).
+
+    Returns
+    -------
+    ClearanceJointHandle
+        The planar revolute joint's outputs; ``ecc_x``, ``ecc_y`` are the pin's centre
+        relative to the slot's nearest centre-segment point, in the slot's frame.  At
+        ``slot_length = 0`` the joint is :func:`exuclear.CreateClearanceJoint` with
+        ``journal_radius = pin_radius`` and ``bearing_radius = slot_width / 2``.
+    """
+    check_system(mbs)
+    joint = _physics(joint, joint_parameters)
+    axis_given = check_axis(axis)
+    items = joint_items(mbs, itemNumbers, bodyNumbers, ("slot", "pin"), position, useGlobalFrame,
+                        "CreateRevoluteJoint")
+    if "marker" in items.kinds:
+        raise ValueError("`itemNumbers` must be [slot body, pin body]: the pin-in-slot clearance joint places its own "
+                         "markers at `position`")
+    p, a0 = items.centre, items.poses[0][1]
+    x = (axis_given if useGlobalFrame else a0 @ axis_given) / np.linalg.norm(axis_given)
+    if abs(x[2]) > PLANE_TOLERANCE:
+        raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got {axis!r}")
+    z = np.array([0.0, 0.0, 1.0])
+    frame = np.column_stack((x, np.cross(z, x), z))  # the slot frame's axes in the global frame
+    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
+        rotation=rot.T @ frame, translation=rot.T @ (p - pos)))) for item, (pos, rot) in zip(items.items, items.poses)]
+    handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
+                               bearingRotates=bearingRotates, record=record, show=show)
+    handle.placed_by = PLACED_BY_POSITION
+    return handle
+
+
+def _physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJoint:
+    """The joint's physics: ``joint`` as given (a pin in a slot), or built by
+    :func:`exuclear.joint.make_pin_slot_joint`."""
+    if joint is None:
+        for required in ("pin_radius", "slot_width", "slot_length", "length"):
+            if required not in joint_parameters:
+                raise ValueError(f"`{required}` is required: the pin-in-slot clearance joint is a pin (`pin_radius`, "
+                                 "`length`) in a slot (`slot_width`, `slot_length` between its end centres), in metres")
+        return make_pin_slot_joint(**joint_parameters)
+    if joint_parameters:
+        raise ValueError(f"give either `joint` or joint parameters, not both (got {sorted(joint_parameters)})")
+    if not isinstance(joint, ClearanceJoint) or not isinstance(joint.geometry, SlotGeometry):
+        raise ValueError(f"`joint` must be a pin-in-slot ClearanceJoint (exuclear.joint.make_pin_slot_joint), got {joint!r}")
+    return joint
