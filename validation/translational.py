@@ -9,17 +9,20 @@ Source problems (:mod:`exuclear.prismatic`; planar, gravity along -y, the guide 
   at each lower corner, and the slider's speed falling as ``v0 - mu g t``;
 - elastic corners (``damping="none"``, no gravity, no friction): a slider spinning and
   rattling between the walls keeps its kinetic energy;
+- a pin in a slot of length 0 against the revolute clearance joint; a pin sliding along a
+  flat side under gravity (Coulomb's ``mu N``, its speed and spin);
 - the Flores-Leine-Glocker slider-crank (:mod:`models.guided_slider_crank`): the scene
-  against :mod:`validation.reference.guided_slider_crank` over the first contacts, its
-  energy with elastic corners over the benchmark's two crank turns, and a table over the
+  against :mod:`validation.reference.guided_slider_crank` over the benchmark at two steps,
+  its energy with elastic corners over the benchmark's two crank turns, and a table over the
   corners' stiffness K.
 
-    python -m validation.translational
+    python -m validation.translational [--no-slider-crank]
 """
 from __future__ import annotations
 
 import argparse
 import warnings
+from dataclasses import replace
 
 import exudyn as exu
 import numpy as np
@@ -27,7 +30,10 @@ from exudyn.itemInterface import Force, MarkerNodePosition, NodeRigidBody2D, Obj
 
 import exuclear
 from exuclear.joint import make_pin_slot_joint
+from models import guided_slider_crank as slider_crank
+from models.guided_slider_crank import BENCHMARK_END_TIME
 from validation._tables import markdown_table
+from validation.reference import guided_slider_crank as reference
 
 #: The benchmark's slider (Flores, Leine, Glocker 2010, table 1): 0.10 m x 0.05 m, 0.076 kg,
 #: 2.7e-6 kg m^2, 1 mm of clearance per side.
@@ -68,9 +74,13 @@ def slider_in_guide(backend: str | None = None, velocity=(0.0, 0.0, 0.0), gravit
 
 
 def _run(mbs, end_time: float) -> None:
+    _run_settings(mbs, exuclear.SolverSettings(end_time=end_time, **SETTINGS))
+
+
+def _run_settings(mbs, settings: exuclear.SolverSettings) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", exuclear.AccuracyWarning)
-        result = exuclear.simulate(mbs, exuclear.SolverSettings(end_time=end_time, **SETTINGS))
+        result = exuclear.simulate(mbs, settings)
     if not result.success:
         raise RuntimeError(result.message)
 
@@ -198,9 +208,66 @@ def pin_sliding(end_time: float = 0.04) -> dict[str, float]:
             "mu": SLIDE_MU}
 
 
+#: The scene's steps of the agreement check [s]: its default, and a quarter of it.
+AGREEMENT_STEPS = (1e-6, 2.5e-7)
+#: The corners' stiffness of the table over K [N/m^1.5], each with a step that resolves its contact [s].
+STIFFNESS_STEPS = ((1e8, 1e-6), (1e9, 1e-6), (1e10, 1e-6), (1e11, 2.5e-7))
+
+
+def _scene_run(step: float, end_time: float = BENCHMARK_END_TIME, **changes):
+    params = slider_crank.GuidedSliderCrankParams.benchmark(**changes)
+    return params, slider_crank.run(params, replace(slider_crank.default_settings(params, end_time), step=step))
+
+
+def reference_agreement(end_time: float = BENCHMARK_END_TIME) -> list[dict[str, float]]:
+    """The scene against the SciPy reference over the benchmark, at each of :data:`AGREEMENT_STEPS`:
+    until when the slider's place across the guide agrees within 1e-3 c and 1e-2 c, and the
+    crank's speed within 1 %, and the largest differences."""
+    theirs = reference.simulate(reference.GuidedSliderCrank.benchmark(), end_time, output_step=1e-5)
+    rows = []
+    for step in AGREEMENT_STEPS:
+        params, mine = _scene_run(step, end_time)
+        y = np.interp(mine.time, theirs.time, theirs.slider[:, 1])
+        speed = np.interp(mine.time, theirs.time, theirs.u[:, 0])
+        dy, dw = np.abs(mine.slider[:, 1] - y) / params.clearance, np.abs(mine.crank_speed - speed)
+
+        def until(bad: np.ndarray) -> float:
+            return float(mine.time[np.argmax(bad)]) if bad.any() else float(mine.time[-1])
+
+        rows.append({"step": step, "y 1e-3 c": until(dy > 1e-3), "y 1e-2 c": until(dy > 1e-2),
+                     "speed 1 %": until(dw > 0.01 * np.abs(speed)), "max dy / c": float(dy.max()),
+                     "max dw [rad/s]": float(dw.max()), "contacts": len(mine.impacts), "reference onsets": len(theirs.impacts)})
+    return rows
+
+
+def elastic_benchmark(end_time: float = BENCHMARK_END_TIME) -> dict[str, float]:
+    """The benchmark with elastic corners and no friction over its two crank turns: the
+    energy at the end against the start (generalized-alpha without numerical damping)."""
+    params = slider_crank.GuidedSliderCrankParams.benchmark(damping="none", friction="none")
+    scene = slider_crank.build(params)
+    start = slider_crank.energy(scene)
+    _run_settings(scene.mbs, replace(slider_crank.default_settings(params, end_time), spectral_radius=1.0))
+    return {"start": start, "end": slider_crank.energy(scene), "contacts": len(scene.joint.pair_impacts())}
+
+
+def stiffness_table(end_time: float = BENCHMARK_END_TIME) -> list[dict[str, float]]:
+    """The benchmark's features over the corners' stiffness K (:data:`STIFFNESS_STEPS`): the
+    contacts, the slider's excursion across the guide, the crank's lowest and last speed
+    and the largest corner force; as K grows they settle to the rigid-impact solution's."""
+    rows = []
+    for stiffness, step in STIFFNESS_STEPS:
+        params, r = _scene_run(step, end_time, stiffness=stiffness)
+        rows.append({"K": stiffness, "contacts": len(r.impacts), "y/c min": r.slider[:, 1].min() / params.clearance,
+                     "y/c max": r.slider[:, 1].max() / params.clearance, "crank min": r.crank_speed.min(),
+                     "crank end": r.crank_speed[-1], "largest force": r.normal_force.max()})
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.parse_args(argv)
+    parser.add_argument("--no-slider-crank", action="store_true",
+                        help="leave out the slider-crank (its reference run and the table over K take a minute)")
+    args = parser.parse_args(argv)
     rows = []
     r = resting()
     rows.append(("resting: lower corners' force [N]", f"{r['force'][0]:.6g}, {r['force'][1]:.6g}",
@@ -225,6 +292,17 @@ def main(argv: list[str] | None = None) -> int:
                  f"2 mu g t / R_P = {s['coulomb_spin']:.6g}"))
     rows.append(("pin sliding on a flat: F_T / F_N", f"{s['ratio_min']:.6g} ... {s['ratio_max']:.6g}", f"mu = {s['mu']:g}"))
     print(markdown_table(("check", "exuclear", "analytic"), rows))
+    if args.no_slider_crank:
+        return 0
+    print("\nThe Flores-Leine-Glocker slider-crank against the SciPy reference (times until the first departure):")
+    agreement = reference_agreement()
+    print(markdown_table(tuple(agreement[0]), [[f"{v:.4g}" for v in row.values()] for row in agreement]))
+    e = elastic_benchmark()
+    print(f"\nElastic corners over the benchmark's {BENCHMARK_END_TIME} s: energy {e['start']:.10g} J -> "
+          f"{e['end']:.10g} J (relative {(e['end'] - e['start']) / e['start']:.3g}, {e['contacts']} contacts)")
+    print("\nThe benchmark over the corners' stiffness K:")
+    table = stiffness_table()
+    print(markdown_table(tuple(table[0]), [[f"{v:.4g}" for v in row.values()] for row in table]))
     return 0
 
 

@@ -284,11 +284,20 @@ class ClearanceJointHandle:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
         return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
 
+    def pair_states(self, which: str = "current") -> list[ContactState]:
+        """A translational joint's corner-wall pairs' histories after the last accepted step
+        (``which="initial"``: at the run's initial state), in :data:`exuclear.prismatic.PAIRS`' order."""
+        self._check_pairs()
+        return self._backend.states(which)
+
+    def _check_pairs(self) -> None:
+        if self.joint_type != "prismatic":
+            raise ValueError(f"joint {label(self)} is a {self.joint_type} joint: it has no corner-wall pairs")
+
     def pair_impacts(self) -> list[tuple[str, ImpactRecord]]:
         """A translational joint's ended contacts in order, each with the name of its
         corner-wall pair (``"corner front-lower / lower wall"``, :func:`exuclear.prismatic.pair_name`)."""
-        if self.joint_type != "prismatic":
-            raise ValueError(f"joint {label(self)} is a {self.joint_type} joint: it has no corner-wall pairs")
+        self._check_pairs()
         self._report()
         named = [(pair_name(k), r) for k, rs in enumerate(self._backend.records()) for r in rs]
         return sorted(named, key=lambda item: item[1].onset_time)
