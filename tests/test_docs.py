@@ -24,7 +24,7 @@ DOCS = ROOT / "docs"
 #: The gallery has at least this many examples (issue 32).
 MIN_EXAMPLES = 8
 #: The Python modules a user reaches besides exuclear itself; each has an API page.
-MODULES = ("contact", "friction", "film", "geometry", "spherical", "materials", "timescales", "history", "nonlinear")
+MODULES = ("contact", "friction", "film", "geometry", "spherical", "prismatic", "slot", "materials", "timescales", "history", "nonlinear")
 
 
 def _require(module: str) -> None:
