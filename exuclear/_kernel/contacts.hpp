@@ -149,14 +149,9 @@ void joint_loads(double* loads, double r_j, double r_b, const Kinematics& k, dou
 
 // contacts.py SlotSlice.add_loads: joint_loads, and the slot's moment S x (-F_i) about its centre
 void slot_loads(double* loads, double r_j, double r_b, const Kinematics& k, double f_n, double f_t) {
-    double fx = -f_n * k.nx - f_t * k.ny;                                // eq. (24)
-    double fy = -f_n * k.ny + f_t * k.nx;
-    double m_i = r_j * f_t;                                              // eq. (25)
-    double m_j = -r_b * f_t;                                             // eq. (26)
-    loads[0] += -fx;
-    loads[1] += -fy;
-    loads[5] += -m_i;
-    loads[8] += m_j + m_i - k.segment * fy;
+    joint_loads(loads, r_j, r_b, k, f_n, f_t);
+    double fy = -f_n * k.ny + f_t * k.nx;                                // F_i's y, eq. (24)
+    loads[8] -= k.segment * fy;
 }
 
 // spatial.py add_slice_loads: a slice's share of loads = [force (3), torque (3), correction (3)]

@@ -93,22 +93,8 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     check_flags(name, bearingRotates, record=record, show=show)
     joint = _physics(joint, joint_parameters)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
-    axis_given = check_axis(axis)
-
-    items = joint_items(mbs, itemNumbers, bodyNumbers, ("guide", "slider"), position, useGlobalFrame,
-                        "CreatePrismaticJoint")
-    if "marker" in items.kinds:
-        raise ValueError("`itemNumbers` must be [guide body, slider body]: the translational clearance joint places "
-                         "its own markers at `position`")
-    p = items.centre
-    a0 = items.poses[0][1]
-    x = (axis_given if useGlobalFrame else a0 @ axis_given) / np.linalg.norm(axis_given)
-    if abs(x[2]) > PLANE_TOLERANCE:
-        raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got {axis!r}")
-    z = np.array([0.0, 0.0, 1.0])
-    frame = np.column_stack((x, np.cross(z, x), z))  # the joint frame's axes in the global frame
-    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
-        rotation=rot.T @ frame, translation=rot.T @ (p - pos)))) for item, (pos, rot) in zip(items.items, items.poses)]
+    markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("guide", "slider"), position, axis, useGlobalFrame,
+                            "CreatePrismaticJoint")
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, maxPenetration)
     handle.placed_by = PLACED_BY_POSITION
@@ -120,6 +106,27 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
                    joint.geometry.slider_height)
     finish_items(mbs, handle, None, record, load_sensors=True)
     return handle
+
+
+def plane_markers(mbs: exu.MainSystem, itemNumbers: Any, bodyNumbers: Any, roles: tuple[str, str],  # noqa: N803
+                  position: Any, axis: Any, useGlobalFrame: Any, exudyn_name: str) -> list:  # noqa: N803
+    """The two markers of a planar joint on the bodies ``itemNumbers`` (checked as
+    :func:`~exuclear.engine.connector.joint_items` checks them, ``roles`` naming them), both
+    at ``position`` with the joint frame: ``x`` along ``axis`` (in the global x-y plane),
+    ``z`` the global z axis (the plane's normal)."""
+    axis_given = check_axis(axis)
+    items = joint_items(mbs, itemNumbers, bodyNumbers, roles, position, useGlobalFrame, exudyn_name)
+    if "marker" in items.kinds:
+        raise ValueError(f"`itemNumbers` must be [{roles[0]} body, {roles[1]} body]: the joint places its own markers "
+                         "at `position`")
+    p, a0 = items.centre, items.poses[0][1]
+    x = (axis_given if useGlobalFrame else a0 @ axis_given) / np.linalg.norm(axis_given)
+    if abs(x[2]) > PLANE_TOLERANCE:
+        raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got {axis!r}")
+    z = np.array([0.0, 0.0, 1.0])
+    frame = np.column_stack((x, np.cross(z, x), z))  # the joint frame's axes in the global frame
+    return [mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
+        rotation=rot.T @ frame, translation=rot.T @ (p - pos)))) for item, (pos, rot) in zip(items.items, items.poses)]
 
 
 def _physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJoint:

@@ -12,16 +12,14 @@ from collections.abc import Sequence
 from typing import Any
 
 import exudyn as exu
-import numpy as np
-from exudyn.itemInterface import MarkerBodyRigid
 
 from ..joint import ClearanceJoint, make_pin_slot_joint
 from ..slot import SlotGeometry
-from .arguments import check_axis, check_system
-from .connector import AddClearanceJoint, joint_items
+from .arguments import check_system
+from .connector import AddClearanceJoint
 from .handle import ClearanceJointHandle
 from .placement import PLACED_BY_POSITION
-from .prismatic import PLANE_TOLERANCE
+from .prismatic import plane_markers
 
 
 def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
@@ -71,20 +69,8 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
     """
     check_system(mbs)
     joint = _physics(joint, joint_parameters)
-    axis_given = check_axis(axis)
-    items = joint_items(mbs, itemNumbers, bodyNumbers, ("slot", "pin"), position, useGlobalFrame,
-                        "CreateRevoluteJoint")
-    if "marker" in items.kinds:
-        raise ValueError("`itemNumbers` must be [slot body, pin body]: the pin-in-slot clearance joint places its own "
-                         "markers at `position`")
-    p, a0 = items.centre, items.poses[0][1]
-    x = (axis_given if useGlobalFrame else a0 @ axis_given) / np.linalg.norm(axis_given)
-    if abs(x[2]) > PLANE_TOLERANCE:
-        raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got {axis!r}")
-    z = np.array([0.0, 0.0, 1.0])
-    frame = np.column_stack((x, np.cross(z, x), z))  # the slot frame's axes in the global frame
-    markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
-        rotation=rot.T @ frame, translation=rot.T @ (p - pos)))) for item, (pos, rot) in zip(items.items, items.poses)]
+    markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("slot", "pin"), position, axis, useGlobalFrame,
+                            "CreateRevoluteJoint")
     handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
                                bearingRotates=bearingRotates, record=record, show=show)
     handle.placed_by = PLACED_BY_POSITION

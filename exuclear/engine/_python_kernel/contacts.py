@@ -98,11 +98,9 @@ class SlotSlice(PlanarSlice):
     moment ``S x (-F_i)`` about the slot's centre."""
 
     def add_loads(self, loads: list[float], u: V3, kin: SlotKinematics, r: ContactResponse) -> None:
-        fx, fy, m_i, m_j = joint_loads(self.geometry, kin, r.f_n, r.f_t)
-        loads[0] += -fx
-        loads[1] += -fy
-        loads[5] += -m_i
-        loads[8] += m_j + m_i - kin.segment * fy
+        super().add_loads(loads, u, kin, r)
+        fy = -r.f_n * kin.ny + r.f_t * kin.nx  # F_i's y, eq. (24)
+        loads[8] -= kin.segment * fy
 
 
 class Slice(Contact):
