@@ -264,8 +264,12 @@ def make_prismatic_joint(
     slider_length: float,
     slider_height: float,
     clearance: float,
-    stiffness: float,
+    stiffness: float | str,
     exponent: float | None = None,
+    corner_radius: float | None = None,
+    slider_material: str | Material | None = None,
+    guide_material: str | Material | None = None,
+    E_star: float | None = None,
     damping: str = "lankarani-nikravesh",
     cr: float | None = None,
     friction: str | FrictionLaw = "none",
@@ -275,11 +279,15 @@ def make_prismatic_joint(
     ``slider_length`` by ``slider_height`` [m] in a guide ``slider_height + 2 clearance``
     wide (:class:`exuclear.prismatic.GuideGeometry`), four corners against two walls.
 
-    A corner has no radius of curvature: its law is ``F_e = K delta^n`` with ``K =
-    stiffness`` [N/m^n] and ``n = exponent`` (default 1.5), damped by the damping model
-    ``damping`` (:data:`exuclear.contact.DAMPING_MODELS`) of restitution ``cr`` (required
-    unless ``damping="none"``), with ``v_min`` [m/s] as in :func:`make_joint`; ``friction``
-    acts along the wall.
+    A sharp corner has no radius of curvature: its law is ``F_e = K delta^n`` with ``K =
+    stiffness`` [N/m^n] and ``n = exponent`` (default 1.5).  A corner rounded to
+    ``corner_radius`` [m] may take the named stiffness ``stiffness="hertz"`` instead:
+    Hertz's sphere on a flat, ``K = 4/3 E* sqrt(corner_radius)``, ``n = 1.5`` (docs/physics.md
+    eq. (13) with the flat's radius infinite), ``E*`` from ``E_star`` or the slider's and the
+    guide's materials (default steel).  The damping model ``damping``
+    (:data:`exuclear.contact.DAMPING_MODELS`) has restitution ``cr`` (required unless
+    ``damping="none"``), ``v_min`` [m/s] as in :func:`make_joint`; ``friction`` acts along
+    the wall.
     """
     geometry = GuideGeometry(slider_length, slider_height, clearance)
     if cr is None:
@@ -287,9 +295,37 @@ def make_prismatic_joint(
             raise ValueError(f"`cr` is required with damping={damping!r}: the corners' coefficient of restitution, "
                              "0 < cr <= 1 (or damping='none' for elastic corners)")
         cr = 1.0
+    stiffness, exponent = _corner_stiffness(stiffness, exponent, corner_radius, slider_material, guide_material,
+                                            E_star)
     given = GivenStiffness(geometry, 1.0, stiffness, EXPONENT_METAL if exponent is None else exponent)
     law = ContactLaw(given, damping_model(damping, cr), V_MIN_DEFAULT if v_min is None else v_min)
     return ClearanceJoint(law, friction_law(friction))
+
+
+def _corner_stiffness(stiffness: float | str, exponent: float | None, corner_radius: float | None,
+                      slider_material: Any, guide_material: Any, E_star: float | None) -> tuple[float, float | None]:
+    """A corner's ``(K, n)`` from :func:`make_prismatic_joint`'s arguments: a number ``K`` as
+    given, or ``"hertz"`` with a ``corner_radius`` (Hertz's sphere on a flat)."""
+    named = isinstance(stiffness, str)
+    materials = [name for name, value in (("slider_material", slider_material), ("guide_material", guide_material),
+                                          ("E_star", E_star)) if value is not None]
+    if not named:
+        if corner_radius is not None or materials:
+            given = ", ".join(f"`{name}`" for name in (["corner_radius"] if corner_radius is not None else []) + materials)
+            raise ValueError(f"a numeric `stiffness` is the corner's K itself: leave out {given}, or give "
+                             "stiffness='hertz' with `corner_radius`")
+        return stiffness, exponent
+    if stiffness.lower() != "hertz":
+        raise ValueError(f"`stiffness` must be a number K [N/m^n] or 'hertz' (with `corner_radius`), got {stiffness!r}")
+    if corner_radius is None:
+        raise ValueError("stiffness='hertz' needs `corner_radius` [m], the radius of the slider's rounded corners")
+    if exponent is not None:
+        raise ValueError("`exponent` is fixed (1.5) by the 'hertz' stiffness; leave it out")
+    check_positive("corner_radius", corner_radius)
+    if E_star is None:
+        E_star = composite_modulus(DEFAULT_MATERIAL if slider_material is None else slider_material,
+                                   DEFAULT_MATERIAL if guide_material is None else guide_material)
+    return 4.0 / 3.0 * check_positive("E_star", E_star) * corner_radius ** 0.5, EXPONENT_METAL
 
 
 def _law(geometry: ContactGeometry, law: str | ContactLaw | None, cr: float | None, inner: tuple[str, Any],

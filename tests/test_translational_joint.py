@@ -14,6 +14,7 @@ import exuclear
 from exuclear.engine import kernel
 from exuclear.engine.layout import JOINT_TYPE_CODES, pair_data_columns, parameters, read
 from exuclear.joint import make_prismatic_joint
+from exuclear.materials import composite_modulus
 from exuclear.prismatic import PAIRS, corner_kinematics, pair_name
 from validation import translational as val
 
@@ -31,6 +32,19 @@ def test_the_corner_law_is_the_given_power_law():
     p = parameters(joint, 0, 0, 1e-3)
     assert read(p, "joint_type") == JOINT_TYPE_CODES["prismatic"]
     assert read(p, "length") == val.SLIDER_LENGTH
+
+
+def test_a_rounded_corner_takes_hertz_on_a_flat():
+    # Hertz's sphere on a flat (docs/physics.md eq. (13), R_B -> infinity): K = 4/3 E* sqrt(r)
+    joint = make_prismatic_joint(**GUIDE, stiffness="hertz", corner_radius=1e-3, cr=0.5)
+    e_star = composite_modulus("steel", "steel")
+    assert joint.law.kernel_parameters() == pytest.approx((4.0 / 3.0 * e_star * 1e-3**0.5, 1.5), rel=1e-15)
+    with pytest.raises(ValueError, match=r"needs `corner_radius`"):
+        make_prismatic_joint(**GUIDE, stiffness="hertz", cr=0.5)
+    with pytest.raises(ValueError, match=r"a numeric `stiffness` is the corner's K itself: leave out `corner_radius`"):
+        make_prismatic_joint(**GUIDE, stiffness=1e9, corner_radius=1e-3, cr=0.5)
+    with pytest.raises(ValueError, match=r"`stiffness` must be a number K \[N/m\^n\] or 'hertz'"):
+        make_prismatic_joint(**GUIDE, stiffness="liu", corner_radius=1e-3, cr=0.5)
 
 
 def test_corners_and_walls():
