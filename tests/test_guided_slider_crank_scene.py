@@ -67,3 +67,21 @@ def test_elastic_corners_keep_the_energy():
     assert len(built.joint.pair_impacts()) >= 2
     # generalized-alpha without numerical damping (spectral radius 1) at 1e-6 s: measured 1.5e-8
     assert scene.energy(built) == pytest.approx(start, rel=1e-6)
+
+
+def test_the_convergence_check_reads_the_corners_paths():
+    # the scene at its step and at a quarter of it over its first four contacts: the corners'
+    # largest departure is the path the check compares (measured 1e-3 c), within its 1 % bound
+    p = scene.GuidedSliderCrankParams.benchmark()
+
+    def run(settings):
+        built = scene.build(p)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", exuclear.AccuracyWarning)
+            result = exuclear.simulate(built.mbs, settings)
+        return exuclear.RunRecord.from_handles(result, {"guide": built.joint})
+
+    check = exuclear.check_convergence(run, scene.default_settings(p, 0.007))
+    joint = check.joints["guide"]
+    assert joint.de.ndim == 1 and joint.path_agrees and joint.max_de < 0.01
+    assert joint.impacts == joint.impacts_ref == 4

@@ -208,6 +208,23 @@ def _eccentricity(outputs: Mapping[str, Any]) -> list[str]:
     return [k for k in ("ecc_x", "ecc_y", "ecc_z") if k in outputs]
 
 
+def _interp(t: np.ndarray, ta: np.ndarray, ya: np.ndarray) -> np.ndarray:
+    """``ya`` (times, or times x pairs of a translational joint) at the times ``t``."""
+    if ya.ndim == 1:
+        return np.interp(t, ta, ya)
+    return np.column_stack([np.interp(t, ta, ya[:, k]) for k in range(ya.shape[1])])
+
+
+def _path_signal(outputs: Mapping[str, Any]) -> np.ndarray:
+    """The joint's path as one signal: ``|e|`` of a journal, a ball or a pin; a translational
+    joint's slider centre across the guide (the mean of its corner-wall pairs' ``ecc_y``: the
+    corners' offsets from the centre cancel)."""
+    components = [np.asarray(outputs[k]) for k in _eccentricity(outputs)]
+    if components[0].ndim == 2:
+        return outputs["ecc_y"].mean(axis=1)
+    return _length(components)
+
+
 def _length(components: list[np.ndarray]) -> np.ndarray:
     """The length of a vector given by its components' arrays (hypot, component by component)."""
     out = np.hypot(components[0], components[1])
@@ -221,7 +238,9 @@ def _compare_joint(a: JointRecord, b: JointRecord, end: float, bound: float) -> 
     ta, tb = a.outputs["time"], b.outputs["time"]
     inside = _span(tb, end)
     t = tb[inside]
-    de = _length([np.interp(t, ta, a.outputs[k]) - b.outputs[k][inside] for k in _eccentricity(b.outputs)]) / c
+    de = _length([_interp(t, ta, a.outputs[k]) - b.outputs[k][inside] for k in _eccentricity(b.outputs)]) / c
+    if de.ndim == 2:  # a translational joint: its corners' largest departure
+        de = de.max(axis=1)
     horizon = _horizon(t, de, bound, end)
     before = t <= horizon
 
@@ -266,8 +285,7 @@ def _compare_joint(a: JointRecord, b: JointRecord, end: float, bound: float) -> 
                                np.array([r.peak_force for r in ib])))
     stats.append(_distribution("onset velocity [m/s]", np.array([r.onset_velocity for r in ia]),
                                np.array([r.onset_velocity for r in ib])))
-    stats.append(_spectrum("|e|/c", ta, _length([a.outputs[k] for k in _eccentricity(a.outputs)]) / c, tb,
-                           _length([b.outputs[k] for k in _eccentricity(b.outputs)]) / c, end))
+    stats.append(_spectrum("|e|/c", ta, _path_signal(a.outputs) / c, tb, _path_signal(b.outputs) / c, end))
     return JointComparison(
         clearance=c, time=t, de=de, horizon=horizon, path_agrees=bool(de.max() <= bound) if de.size else True,
         max_de=float(de.max()) if de.size else 0.0,
