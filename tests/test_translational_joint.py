@@ -127,6 +127,8 @@ def test_outputs_name_the_pairs():
     assert fast.sum() > 0
     np.testing.assert_allclose(out["tangential_force"][fast],
                                0.2 * np.sign(out["slip_velocity"][fast]) * out["normal_force"][fast], rtol=1e-9)
+    draw = exuclear.engine.drawing.slider_drawing_function(joint, exu.ConfigurationType.Current)
+    assert len(draw(mbs, 0)) == 3  # the slider and the guide's two walls
     named = joint.pair_impacts()
     assert {name for name, _ in named} <= {pair_name(k) for k in range(len(PAIRS))}
     assert [r for _, r in named] == joint.impacts()

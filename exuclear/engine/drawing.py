@@ -72,6 +72,36 @@ def ball_drawing_function(handle: Any, configuration: Any = exu.ConfigurationTyp
     return draw
 
 
+#: Length of the drawn guide walls, relative to the slider's length; their thickness, to its height.
+GUIDE_WALL_LENGTH, GUIDE_WALL_THICKNESS = 3.0, 0.1
+
+
+def slider_drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Visualization) -> Any:
+    """Graphics function of the translational joint ``handle``: the slider as a box of its
+    length and height at the slider marker's pose, and the guide's two walls at
+    ``+-(H/2 + c)`` about the guide marker, :data:`GUIDE_WALL_LENGTH` slider lengths long."""
+    geometry = handle.joint.geometry  # read now: the function must not keep the handle (see drawing_function)
+    m_guide, m_slider = handle.markerNumbers
+    length, height = geometry.slider_length, geometry.slider_height
+    wall = GUIDE_WALL_THICKNESS * height
+    offset = geometry.outer_radius + 0.5 * wall  # a wall's centre line from the guide's
+
+    def draw(mbs: exu.MainSystem, item: int) -> list:
+        out = []
+        for marker, boxes, color in ((m_slider, (([0.0, 0.0, 0.0], [length, height, height]),), JOURNAL_COLOR),
+                                     (m_guide, (([0.0, side * offset, 0.0], [GUIDE_WALL_LENGTH * length, wall, height])
+                                                for side in (-1.0, 1.0)), BEARING_COLOR)):
+            centre = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position, configuration=configuration))
+            rot = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.RotationMatrix,
+                                                 configuration=configuration)).reshape(3, 3)
+            for local, size in boxes:
+                box = exu.graphics.Brick(centerPoint=local, size=size, color=color)
+                out.append(exu.graphics.Move(box, centre.tolist(), rot.tolist()))
+        return out
+
+    return draw
+
+
 def drawing_sizes(radius: Any, length: Any, color: Any, radius_name: str = "axisRadius") -> dict:
     """``axisRadius``, ``axisLength`` and ``color`` of :func:`~exuclear.engine.connector.CreateClearanceJoint`
     (``jointRadius`` and ``color`` of :func:`~exuclear.engine.spherical.CreateSphericalClearanceJoint`), checked."""

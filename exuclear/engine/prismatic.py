@@ -21,6 +21,7 @@ from ..joint import ClearanceJoint, make_prismatic_joint
 from ..prismatic import PAIRS, GuideGeometry
 from .arguments import check_axis, check_flags, check_system
 from .connector import _orientation_is_fixed, joint_items, kernel_settings
+from .drawing import slider_drawing_function
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
 from .layout import pair_data_columns
@@ -69,7 +70,8 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         The sliding direction, in the global x-y plane (the joint's plane of motion):
         global, or in item 0's frame; default x.
     useGlobalFrame, show, bodyNumbers
-        As in ``mbs.CreatePrismaticJoint`` (``show``: the connector's own drawing).
+        As in ``mbs.CreatePrismaticJoint`` (``show``: draw the slider and the guide's walls;
+        only a renderer draws).
     joint : ClearanceJoint, optional
         The physics, ready built (:func:`exuclear.joint.make_prismatic_joint`); else built
         from the keyword arguments ``slider_length``, ``slider_height``, ``clearance`` (per
@@ -105,7 +107,7 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         bearingRotates = not _orientation_is_fixed(mbs, markers[0])
     add_connectors(mbs, handle, markers, np.eye(3).tolist(), bearingRotates, len(pair_data_columns(len(PAIRS))), show,
                    joint.geometry.slider_height)
-    finish_items(mbs, handle, None, record, load_sensors=True)
+    finish_items(mbs, handle, slider_drawing_function if show else None, record, load_sensors=True)
     return handle
 
 
