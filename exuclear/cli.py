@@ -38,7 +38,7 @@ SUBCOMMANDS: dict[str, tuple[str, str]] = {
 def usage() -> str:
     """The text of ``exuclear --help``."""
     width = max(map(len, SUBCOMMANDS))
-    lines = ["usage: exuclear SUBCOMMAND [options]", "", "Revolute clearance joints for Exudyn: the paper's scenes "
+    lines = ["usage: exuclear SUBCOMMAND [options]", "", "Clearance joints for Exudyn: the paper's scenes "
              "and parameter studies from the command line.", "", "subcommands:"]
     lines += [f"  {name:<{width}}  {what}" for name, (_, what) in SUBCOMMANDS.items()]
     lines += ["", "options:", f"  {'-h, --help':<{width}}  this message; `exuclear SUBCOMMAND --help` lists a "

@@ -1,7 +1,7 @@
 """The documentation is a product: the site builds without a warning, documents every
 public name, and runs its gallery (docs/conf.py, docs/examples).
 
-The build takes about a minute on two cores (the gallery's eleven examples are most of it),
+The build takes about a minute on two cores (the gallery's thirteen examples are most of it),
 so it is marked slow; it is skipped, saying so, where the ``docs`` extra is not installed
 (``pip install -e ".[docs]"``).  The page of Getting started is checked by running its
 code.
