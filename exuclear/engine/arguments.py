@@ -12,6 +12,7 @@ import numpy as np
 from ..checks import check_positive
 from ..joint import ClearanceJoint, make_joint
 from ..spatial import ShoulderGeometry
+from .modes import resolve_contact_mode
 
 #: Recommended number of slices of a spatial joint (docs/physics.md section 9.3): total
 #: force within 0.22 % and restoring moment within 0.47 % while the contact zone spans at
@@ -61,15 +62,10 @@ def vector3(name: str, value: Any) -> np.ndarray:
     return v
 
 
-def check_contact_mode(contact_mode: Any) -> None:
-    """``contact_mode`` is None or ``"compliant"``, the one mode: the contact law at every step.
-    The opt-in prototype ``"follow"`` was removed; its study is docs/design/contact_following.md."""
-    if contact_mode is None or contact_mode == "compliant":
-        return
-    if contact_mode == "follow":
-        raise ValueError("`contact_mode` 'follow' was removed (its study: docs/design/contact_following.md); "
-                         "leave `contact_mode` out for the compliant contact, the default and only mode")
-    raise ValueError(f"`contact_mode` must be 'compliant' (the default and only mode), got {contact_mode!r}")
+def check_contact_mode(contact_mode: Any) -> str:
+    """The mode ``contact_mode`` asks for (None: the environment's, else ``"compliant"``),
+    checked (:func:`exuclear.engine.modes.resolve_contact_mode`)."""
+    return resolve_contact_mode(contact_mode)
 
 
 def check_axis(axis: Any) -> np.ndarray:

@@ -66,8 +66,10 @@ from .arguments import (
 )
 from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
+from .impulse import ImpulseJointHandle, add_impulse_joint
 from .items import add_connectors, finish_items
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
+from .modes import IMPULSE, choose_mode
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
 from .placement import PLACED_BY_POINTS, PLACED_BY_POSITION
 from .registry import REGISTRY_KEY, joints_of
@@ -181,7 +183,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     _frame: np.ndarray | None = None,
     _drawing: dict | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle:
     """Add a clearance joint between two rigid markers: the bearing hole's centre on
     ``markerNumbers[0]``, the journal's centre on ``markerNumbers[1]``.
 
@@ -204,6 +206,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     check_wear(joint, slices, backend)
+    mode = choose_mode(contact_mode, joint, slices, backend, name)
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)
@@ -215,6 +218,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         m_bearing, m_journal = (_turned_marker(mbs, m_bearing, frame),
                                 _turned_marker(mbs, m_journal, a_journal.T @ a_bearing @ frame))
         a_bearing, a_journal, frame = _marker_rotation(mbs, m_bearing), _marker_rotation(mbs, m_journal), np.eye(3)
+    if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes)
+        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame[:, 2])
     rotation0 = frame.tolist()
     relative = a_journal.T @ a_bearing @ frame  # the same joint frame, seen from marker 1
     if np.abs(relative - np.eye(3)).max() <= SAME_FRAME_ROUNDOFF:
@@ -265,7 +270,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices: int | None = None,
     contact_mode: str | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
     for an ideal one: the bearing (hole) on ``itemNumbers[0]``, the journal (pin) on
     ``itemNumbers[1]``, both centred at ``position`` in the reference configuration.
@@ -366,9 +371,14 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
     contact_mode : str, optional
-        ``"compliant"`` (the default and the only mode): the contact law acts at every step.
-        The prototype ``"follow"`` was removed (docs/design/contact_following.md); passing it
-        raises ``ValueError``.
+        ``"compliant"`` (the default; where None, the environment variable
+        ``EXUCLEAR_CONTACT_MODE`` names the mode where set): the contact law acts at every
+        step.  ``"impulse"``: impacts as velocity jumps at the user's step, resting contact
+        as a unilateral condition (:mod:`exuclear.engine.impulse`, docs/guide/contact_modes.md),
+        for the dry frictionless planar joint under generalized-alpha with spectral radius 1;
+        it refuses other joints and runs with a ``ValueError`` naming the cause, and returns
+        an :class:`~exuclear.engine.impulse.ImpulseJointHandle`.  The prototype ``"follow"``
+        was removed (docs/design/contact_following.md); passing it raises ``ValueError``.
 
     Returns
     -------

@@ -24,6 +24,7 @@ from .drawing import ball_drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
 from .layout import BALL_DATA_COLUMNS
+from .modes import choose_mode
 from .placement import PLACED_BY_POSITION
 
 
@@ -43,6 +44,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     maxPenetration: float | None = None,  # noqa: N803
     bearingRotates: bool | None = None,  # noqa: N803
     record: bool = True,
+    contact_mode: str | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a spherical clearance joint, as ``mbs.CreateSphericalJoint`` creates an ideal
@@ -85,6 +87,10 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     backend, maxPenetration, bearingRotates, record
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the socket
         body can turn; its spin enters the slip).
+    contact_mode : str, optional
+        ``"compliant"`` (the default): the one mode of this joint type.  ``"impulse"`` raises
+        ``ValueError`` (the mode covers the planar revolute joint); where the environment
+        variable ``EXUCLEAR_CONTACT_MODE`` asks for it, the joint warns and stays compliant.
 
     Returns
     -------
@@ -100,6 +106,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     joint = _physics(joint, joint_parameters)
     draw = drawing_sizes(jointRadius, None, color, radius_name="jointRadius")
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
+    choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
 
     items = joint_items(mbs, itemNumbers, bodyNumbers, ("socket", "ball"), position, useGlobalFrame,
                         "CreateSphericalJoint")
