@@ -221,25 +221,30 @@ class ImpulseJointHandle:
         v = np.asarray(data.GetODE2Coordinates_t(), dtype=float)
         unit = np.zeros_like(v)
         rows = []
-        for sign, marker, indices in zip((-1.0, 1.0), self.markerNumbers, self._ltg):
+        for marker, indices in zip(self.markerNumbers, self._ltg):
             row = np.zeros((1, len(indices)))
             for j, g in enumerate(indices):
                 unit[g] = 1.0
                 data.SetODE2Coordinates_t(unit)
-                row[0, j] = sign * (n @ np.asarray(mbs.GetMarkerOutput(marker, ov.Velocity), dtype=float))
+                row[0, j] = n @ np.asarray(mbs.GetMarkerOutput(marker, ov.Velocity), dtype=float)
                 unit[g] = 0.0
             rows.append(row)
         data.SetODE2Coordinates_t(v)
         self._rows = rows
-        rate = sum(float(row[0, :len(i)] @ v[i]) for row, i in zip(rows, self._ltg))
-        return e, rate, norm - self._joint.geometry.clearance
+        return e, self._normal(v), norm - self._joint.geometry.clearance
+
+    def _normal(self, x: np.ndarray) -> float:
+        """``n . (x_journal - x_bearing)`` for the coordinates' rates ``x`` (velocities or
+        accelerations) through the rows: the condition's own measure, ``S1 q1_t - S0 q0_t``
+        (Exudyn's ``ObjectConnectorCoordinateVector`` subtracts marker 0's term)."""
+        (bearing, journal), (i_b, i_j) = self._rows, self._ltg
+        return float(journal[0] @ x[i_j]) - float(bearing[0] @ x[i_b])
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
         """The normal acceleration towards the wall at the current state, ``n^T dv/dq_t q_tt``
         (the rows' part; the centripetal part ``d(n^T dv/dq_t)/dt q_t`` is left out: it
         only sets whether a rebound counts as resting)."""
-        a = np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float)
-        return sum(float(row[0, :len(i)] @ a[i]) for row, i in zip(self._rows, self._ltg))
+        return self._normal(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
     def _multiplier(self, mbs: exu.MainSystem) -> float:
         force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
@@ -251,9 +256,12 @@ class ImpulseJointHandle:
         mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", self._rows[1])
         mbs.SetObjectParameter(self.objectNumber, "offset", [end_rate])
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
+        _request_jacobian(mbs)
+
 
     def _release(self, mbs: exu.MainSystem, state: str) -> None:
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", False)
+        _request_jacobian(mbs)
         self._state = state
 
     def _step_decision(self, mbs: exu.MainSystem, t_end: float) -> None:
@@ -361,6 +369,13 @@ def add_impulse_joint(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, mar
     journal] whose bearing axis is ``axis`` in the bearing marker's frame: the condition and
     the pre-step function."""
     return ImpulseJointHandle(mbs, joint, name, markers, axis)
+
+
+def _request_jacobian(mbs: exu.MainSystem) -> None:
+    """A new Jacobian for the coming step: a modified Newton iteration on the Jacobian of
+    the step before, without the condition's row or with its old normal, does not converge
+    (on the paper's slider-crank it failed at the first resting contact)."""
+    mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
 
 
 def _installed(installed: Any) -> Any:
