@@ -371,14 +371,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         the joint law's damping, and the joint's friction law against the relative spin
         at the annulus's friction radius.  Not with ``constrainAxial=True``.
     contact_mode : str, optional
-        ``"compliant"`` (the default; where None, the environment variable
-        ``EXUCLEAR_CONTACT_MODE`` names the mode where set): the contact law acts at every
-        step.  ``"impulse"``: impacts as velocity jumps at the user's step, resting contact
-        as a unilateral condition (:mod:`exuclear.engine.impulse`, docs/guide/contact_modes.md),
-        for the dry frictionless planar joint under generalized-alpha with spectral radius 1;
-        it refuses other joints and runs with a ``ValueError`` naming the cause, and returns
-        an :class:`~exuclear.engine.impulse.ImpulseJointHandle`.  The prototype ``"follow"``
-        was removed (docs/design/contact_following.md); passing it raises ``ValueError``.
+        ``"compliant"`` (the default; None: ``EXUCLEAR_CONTACT_MODE`` where set) or
+        ``"impulse"`` (docs/guide/contact_modes.md: velocity jumps, resting contact as a
+        condition; returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`).
 
     Returns
     -------

@@ -17,9 +17,9 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   (:func:`exuclear.contact.restitution_of_damping`; below the law's ``v_min`` its damping
   term weighs ``v_n / v_min`` of ``D``), and off again after it.
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
-  the normal acceleration the last free step showed, the journal stays on the wall: the
-  condition is held from step to step with a rate that takes back
-  :data:`RATE_GAIN` of the penetration per step, and let go where its multiplier pulls.
+  the normal acceleration at the step's start, the journal stays on the wall: the condition
+  is held from step to step with a rate that takes the penetration back, critically damped
+  (:meth:`ImpulseJointHandle._resting_rate`), and let go where its reaction pulls.
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows (:func:`closed_form_impact`).
@@ -50,8 +50,8 @@ from ..timescales import stored_energy
 from .bodies import joint_mass
 from .steering import explicit_solver
 
-#: Share of the penetration the resting condition takes back per step (no drift of the
-#: wall's position through round-off of the held rate).
+#: The resting condition takes the penetration back at the rate ``RATE_GAIN / h``
+#: (critically damped): about 0.75 of it is left after each step.
 RATE_GAIN = 0.5
 #: A rebound that would land within this many steps is a resting contact: the bounces of a
 #: journal on its wall would otherwise shrink geometrically, one impact a step (a Zeno
@@ -60,6 +60,8 @@ REST_STEPS = 2.0
 #: Spectral radius of generalized-alpha the mode needs: 1 (module docstring).  Exudyn keeps
 #: the radius to round-off; the tolerance only absorbs that.
 SPECTRAL_RADIUS_TOLERANCE = 1e-12
+#: Two step starts closer than this (relative) are one step, redone by the solver.
+REDO_TOLERANCE = 1e-12
 #: Samples of the compression phase in which :func:`closed_form_impact` looks for the peak force.
 PEAK_SAMPLES = 64
 #: Relative tolerance of the bisections of :func:`closed_form_impact`.
@@ -246,6 +248,15 @@ class ImpulseJointHandle:
         only sets whether a rebound counts as resting)."""
         return self._normal(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
+    def _resting_rate(self, mbs: exu.MainSystem, rate: float, gap: float, h: float) -> float:
+        """The end rate of a resting step: the trapezoidal rule's ``v0 + h (a0 + a1) / 2`` with
+        the end acceleration ``a1 = -w^2 gap - 2 w v0`` (critically damped, ``w = RATE_GAIN / h``),
+        so that the held rate takes back the penetration smoothly and the acceleration the
+        solver derives from it keeps no step-to-step alternation (a rate jumped to its target
+        leaves one, undamped under the trapezoidal rule, in the multipliers)."""
+        w = RATE_GAIN / h
+        return rate + 0.5 * h * (self._closing_acceleration(mbs) - w * w * gap - 2.0 * w * rate)
+
     def _multiplier(self, mbs: exu.MainSystem) -> float:
         force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
         return force if isinstance(force, float) else float(np.ravel(force)[0])
@@ -268,6 +279,12 @@ class ImpulseJointHandle:
         """At the start of the step that ends at ``t_end`` (Exudyn's pre-step time)."""
         h = float(mbs.sys["dynamicSolver"].it.currentStepSize)
         t = t_end - h
+        if self._records and abs(t - self._records[-1][0]) <= REDO_TOLERANCE * max(1.0, abs(t)):
+            self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
+                             "Exudyn redoes a step there (its Newton iteration did not converge with the contact's "
+                             "condition, as where a held contact slides along the wall), and the mode's decisions "
+                             "are taken once per step; use contact_mode='compliant'")
+            raise ValueError(self._problem)
         force = self._multiplier(mbs) if self._state in (IMPACT, REST) else 0.0
         if self._pending is not None:  # the impact step's multiplier: its impulse, the effective mass
             tk, vk, ek, _ = self._impacts[self._pending]
@@ -293,14 +310,14 @@ class ImpulseJointHandle:
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
                 self._release(mbs, FREE)
             else:
-                self._hold(mbs, -RATE_GAIN * gap / h)
+                self._hold(mbs, self._resting_rate(mbs, rate, gap, h))
         if self._state == FREE and gap + h * rate >= 0.0 and rate > 0.0:
             restitution = impact_restitution(self._joint.law, rate)
             rebound = restitution * rate
             accel = self._closing_acceleration(mbs)
             if accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h:
                 self._state, self._resting = REST, 0
-                self._hold(mbs, -RATE_GAIN * max(gap, 0.0) / h)
+                self._hold(mbs, self._resting_rate(mbs, rate, max(gap, 0.0), h))
                 restitution = 0.0
             else:
                 self._state = IMPACT
