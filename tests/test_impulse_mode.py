@@ -181,3 +181,13 @@ def test_a_moving_bearing_rebounds_with_the_laws_restitution(monkeypatch):
         assert after.onset_velocity / before.onset_velocity == pytest.approx(impact_restitution(joint.law, 0.3),
                                                                              rel=1e-9)
     assert handle.outputs()["penetration"].max() < 0.3 * 1e-4  # Moreau-Jean's: below v h
+
+
+def test_a_pre_step_function_set_after_the_joint_is_refused_when_the_run_is_read(monkeypatch):
+    # the mode runs from a pre-step function; one set later replaces it and the journal flies
+    # through the wall unseen: reading the run says so instead of returning no impacts
+    s, joint = scene(monkeypatch)
+    s.mbs.SetPreStepUserFunction(lambda mbs, t: True)
+    assert solve(s, 1e-5, 1e-3)
+    with pytest.raises(RuntimeError, match="journal-bearing: the impulse mode did not run .*pre-step function"):
+        joint.impacts()

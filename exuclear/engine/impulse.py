@@ -331,12 +331,15 @@ class ImpulseJointHandle:
         if self._problem:
             raise ValueError(self._problem)
         mbs = self._mbs()
-        if mbs is not None and self._records:
-            end = float(mbs.systemData.GetTime())
-            if end > self._records[-1][0] + 2.0 * self._step + 1e-12:
-                raise RuntimeError(f"joint {self.name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s "
-                                   "(last step at {self._records[-1][0]:g} s): a pre-step function set after the joint "
-                                   "was built replaced it; set yours before building the joint")
+        if mbs is None:
+            return
+        end = float(mbs.systemData.GetTime())
+        last = self._records[-1][0] if self._records else 0.0
+        if end > last + 2.0 * self._step + 1e-12 * max(1.0, end):
+            raise RuntimeError(f"joint {self.name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
+                               f"last step began at {last:g} s): a pre-step function set after the joint was built "
+                               "replaced the mode's; set yours before building the joint, or use "
+                               "contact_mode='compliant'")
 
     def impacts(self) -> list[ClosedFormImpact]:
         """The impacts of the last run, resting contacts' onsets included (restitution 0), with
