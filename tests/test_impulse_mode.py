@@ -191,3 +191,24 @@ def test_a_pre_step_function_set_after_the_joint_is_refused_when_the_run_is_read
     assert solve(s, 1e-5, 1e-3)
     with pytest.raises(RuntimeError, match="journal-bearing: the impulse mode did not run .*pre-step function"):
         joint.impacts()
+
+
+def test_the_translational_and_pin_in_slot_joints_refuse_the_mode(monkeypatch):
+    # the mode's gap is the journal's |e| - c: a slider's corners and a slot's segment are
+    # other contacts, refused by name (and, from the environment, kept compliant with a warning)
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.1, inertia=1e-4))
+    slot = dict(itemNumbers=[ground, body], pin_radius=4.9e-3, slot_width=10e-3, slot_length=20e-3, length=10e-3,
+                cr=0.9)
+    with pytest.raises(ValueError, match="joint S: .*not the pin-slot joint.*use contact_mode='compliant'"):
+        exuclear.CreatePinSlotClearanceJoint(mbs, name="S", contact_mode="impulse", **slot)
+    guide = dict(itemNumbers=[ground, body], slider_length=0.04, slider_height=0.02, clearance=1e-4, stiffness=1e9,
+                 cr=0.9)
+    with pytest.raises(ValueError, match="joint G: .*not the prismatic joint"):
+        exuclear.CreatePrismaticClearanceJoint(mbs, name="G", contact_mode="impulse", **guide)
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
+    with pytest.warns(UserWarning, match="joint P: .*pin-slot joint.*compliant contact"):
+        handle = exuclear.CreatePinSlotClearanceJoint(mbs, name="P", **slot)
+    assert isinstance(handle, exuclear.ClearanceJointHandle)

@@ -206,7 +206,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     check_wear(joint, slices, backend)
-    mode = choose_mode(contact_mode, joint, slices, backend, name)
+    mode = choose_mode(contact_mode, joint, slices, backend, name, joint_type=joint.geometry.joint_type)
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)

@@ -25,6 +25,7 @@ from .drawing import slider_drawing_function
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
 from .layout import pair_data_columns
+from .modes import choose_mode
 from .placement import PLACED_BY_POSITION
 
 #: Largest z component of a unit ``axis``: the planar joint slides in the global x-y plane.
@@ -46,6 +47,7 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     maxPenetration: float | None = None,  # noqa: N803
     bearingRotates: bool | None = None,  # noqa: N803
     record: bool = True,
+    contact_mode: str | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a planar translational clearance joint, as ``mbs.CreatePrismaticJoint``
@@ -79,9 +81,10 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         ``K`` [N/m^n], or ``"hertz"`` with ``corner_radius``, ``slider_material``,
         ``guide_material``, ``E_star``), ``exponent`` (default 1.5), ``damping`` (default
         ``"lankarani-nikravesh"``) with ``cr``, ``friction``, ``v_min``.
-    backend, maxPenetration, bearingRotates, record
+    backend, maxPenetration, bearingRotates, record, contact_mode
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the guide
-        can turn; its spin moves the walls under the corners).
+        can turn; its spin moves the walls under the corners; ``contact_mode="impulse"``
+        is refused: it covers the revolute joint).
 
     Returns
     -------
@@ -96,6 +99,7 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     check_flags(name, bearingRotates, record=record, show=show)
     joint = _physics(joint, joint_parameters)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
+    choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
     markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("guide", "slider"), position, axis, useGlobalFrame,
                             "CreatePrismaticJoint")
 

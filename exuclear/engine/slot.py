@@ -37,6 +37,7 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
     maxPenetration: float | None = None,  # noqa: N803
     bearingRotates: bool | None = None,  # noqa: N803
     record: bool = True,
+    contact_mode: str | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
     """Create a planar pin-in-slot clearance joint: the slot on ``itemNumbers[0]``, centred at
@@ -56,8 +57,9 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
         contact, for the line-contact laws) and the law's arguments of
         :func:`exuclear.CreateClearanceJoint` (``law``, ``cr``, ``stiffness``/``damping``,
         ``friction``, ``v_min``, ``E_star``, ``pin_material``, ``slot_material``).
-    backend, maxPenetration, bearingRotates, record
-        As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the slot can turn).
+    backend, maxPenetration, bearingRotates, record, contact_mode
+        As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the slot can turn;
+        ``contact_mode="impulse"`` is refused: it covers the revolute joint).
 
     Returns
     -------
@@ -72,7 +74,8 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
     markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("slot", "pin"), position, axis, useGlobalFrame,
                             "CreateRevoluteJoint")
     handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=maxPenetration,
-                               bearingRotates=bearingRotates, record=record, show=show)
+                               bearingRotates=bearingRotates, record=record, show=show,
+                               contact_mode=contact_mode)
     handle.placed_by = PLACED_BY_POSITION
     return handle
 
