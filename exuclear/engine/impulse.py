@@ -60,6 +60,10 @@ REST_STEPS = 2.0
 #: Spectral radius of generalized-alpha the mode needs: 1 (module docstring).  Exudyn keeps
 #: the radius to round-off; the tolerance only absorbs that.
 SPECTRAL_RADIUS_TOLERANCE = 1e-12
+#: A penetration beyond this many clearances stops the run: the positions are then off by
+#: the journal's travel across the clearance (steps too long for it), or the condition lost
+#: the contact.  The restitution of each jump stays the law's, the path does not.
+LOST_CONTACT = 1.0
 #: Two step starts closer than this (relative) are one step, redone by the solver.
 REDO_TOLERANCE = 1e-12
 #: Samples of the compression phase in which :func:`closed_form_impact` looks for the peak force.
@@ -292,6 +296,14 @@ class ImpulseJointHandle:
             self._pending = None
         e, rate, gap = self._kinematics(mbs)
         self._left_pen = max(self._left_pen, gap)
+        clearance = self._joint.geometry.clearance
+        if gap > LOST_CONTACT * clearance:
+            self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
+                             f"the journal is {gap:.3g} m into the wall, more than {LOST_CONTACT:g} times the "
+                             f"clearance ({clearance:.3g} m): the steps are too long for the motion across the "
+                             "clearance, or the condition could not follow the contact; take shorter steps or use "
+                             "contact_mode='compliant'")
+            raise ValueError(self._problem)
         # the resting multiplier alternates from step to step about the load under the
         # trapezoidal rule (an undamped mode of the held velocity's acceleration): its
         # two-step mean is the reaction

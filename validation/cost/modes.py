@@ -15,9 +15,10 @@ take says why (its refusal), and a run it refuses says so.
 The issue's target rows:
 
 - ``restitution``: the paper's journal impact (no gravity: the journal crosses the bearing
-  and hits the far wall again and again) at steps of 10, 100 and 1000 times the law's
+  and hits the far wall again and again) at steps of 3, 10, 100 and 1000 times the law's
   impact duration; the largest relative error of the ratio of successive impact velocities
-  against the law's restitution;
+  against the law's restitution, or the mode's refusal (steps longer than the flight
+  across the clearance);
 - ``elastic``: a journal of cr 1 dropped from the bearing's centre under gravity: its energy
   at the run's end against the start, in shares of the fall's ``m g c``;
 - ``resting``: a journal on its wall under gravity: the impacts after the first, and the
@@ -145,7 +146,10 @@ def _journal(step: float, end_time: float, **changes: Any) -> Any:
     ss.timeIntegration.numberOfSteps = int(round(end_time / step))
     ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
     ss.timeIntegration.verboseMode = 0
-    scene.mbs.SolveDynamic(ss)
+    try:
+        scene.mbs.SolveDynamic(ss)
+    except Exception:  # Exudyn wraps the mode's refusal; the joint keeps it (impacts() raises it)
+        pass
     return scene
 
 
@@ -212,10 +216,15 @@ def target_rows() -> list[list[str]]:
     c = jb.JournalBearingParams.paper().joint().geometry.clearance
     duration = closed_form_impact(law, 0.04, 0.3)[1]
     expected = impact_restitution(law, 0.3)
-    for periods in (10, 100, 1000):
+    for periods in (3, 10, 100, 1000):
         step = periods * duration
         scene = _journal(step, max(8.0 * 2.0 * c / 0.3 / 0.9**8, 40 * step))
-        impacts = scene.joints["journal-bearing"].impacts()
+        try:
+            impacts = scene.joints["journal-bearing"].impacts()
+        except ValueError as err:
+            rows.append([f"restitution, step {periods} impact durations ({step:.3g} s)", "-",
+                         "stopped: " + str(err).split(": ", 2)[-1], "refused"])
+            continue
         ratios = [b.onset_velocity / a.onset_velocity for a, b in zip(impacts, impacts[1:])]
         error = max(abs(r / expected - 1.0) for r in ratios)
         rows.append([f"restitution, step {periods} impact durations ({step:.3g} s)", f"{len(impacts)} impacts",
