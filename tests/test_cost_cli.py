@@ -11,9 +11,10 @@ def test_the_listing_names_every_script_with_its_summary(capsys):
     for name in cost.SCRIPTS:
         assert f"  {name} " in listing
         assert cost.summary(name) in listing
-    # the scripts that moved here from validation/ (each was python -m validation.<old name>) and wear's
+    # the scripts that moved here from validation/ (each was python -m validation.<old name>), wear's and
+    # the contact modes'
     assert set(cost.SCRIPTS) == {"benchmark", "film", "fine_steps", "friction", "jacobian",
-                                 "jacobian_steps", "newton", "spectral_radius", "speed_sweep", "study_benchmark", "wear",
+                                 "jacobian_steps", "modes", "newton", "spectral_radius", "speed_sweep", "study_benchmark", "wear",
                                  "work_precision"}
 
 
