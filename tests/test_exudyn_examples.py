@@ -257,6 +257,25 @@ def test_a_run_exudyn_ends_in_contact_is_told_with_the_tolerance_that_works():
     assert model.joint.notes == []
 
 
+def test_every_step_that_lands_beyond_the_wall_is_redone_shorter():
+    # the scissor's pin crosses its slot many times; at 2.05 s it leaves the lower wall and a
+    # step of 10 ms (simulate's longest, end_time / 1000) carries it 27 m "into" the upper
+    # one.  Each such step gets its own shorter retries (PENETRATION_RETRIES), also after the
+    # run's first four, and a step the joint redoes is not taken for an accepted penetration:
+    # the run goes on, and the pin stays in its slot
+    model = REGISTRY["scissor_pin_slot"](True, 2.2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", exuclear.AccuracyWarning)
+        result = exuclear.simulate(model.mbs, model.solver_settings)
+    assert result.success, result.message
+    pen, _force = joint_peaks(model.joint)
+    assert pen <= PENETRATION_WRONG * model.clearance
+    out = model.joint.outputs()
+    # the pin's distance from the slot's centre segment is c + penetration at most (the
+    # output's per-step maximum bounds it); 1e-12 m for round-off
+    assert np.hypot(out["ecc_x"], out["ecc_y"]).max() <= model.clearance + pen + 1e-12
+
+
 def test_lubricated_big_end_is_carried_by_its_film():
     # the piston engine's lubricated variant (issue 23) with the example's own settings: the
     # film alone carries the big end (eccentricity ratio below eps_film = 0.9, where the

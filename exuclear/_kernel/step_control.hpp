@@ -74,7 +74,10 @@ std::string fmt(double x) {
     return o.str();
 }
 
-bool same(double x, double y) { return std::fabs(x - y) <= STEP_SLACK * std::fabs(y) + 1e-300; }
+// _python_kernel/step_control.py _same: x is y up to STEP_SLACK; an unset time (-INF) is the same as no finite one
+bool same(double x, double y) {
+    return x == y || (std::isfinite(y) && std::fabs(x - y) <= STEP_SLACK * std::fabs(y) + 1e-300);
+}
 
 // _python_kernel/step_control.py onset_step: the step that lets a contact begun at `share` of the step h begin in
 // the last ONSET_TARGET of a step: of this one, or of the second of two equal steps (SOLVER_STEP_CUT)
@@ -104,6 +107,9 @@ double impact_redo(const Params& a, const JointState& s, const std::vector<Histo
     }
     return 0.0;
 }
+
+double rate_control(const Params& a, JointState& s, const std::vector<History>& base, double t, double h,
+                    bool shortens);
 
 // Whether the step [base.time, t] resolves the joint's contacts; 0: yes (accept it), else the
 // shorter step to redo it with.  A step the solver cannot shorten (its settings forbid it, its
@@ -143,7 +149,12 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
             double h_new = h * PENETRATION_CUT;
             return h_new > c.min_step ? h_new : c.min_step * (1.0 + STEP_SLACK);
         }
-        if (c.over_limit == 0) {  // accepted: the run goes on, the handle says so (a simulate run stops)
+    }
+    double h_new = rate_control(a, s, base, t, h, shortens);
+    if (deepest > a.max_penetration && h_new == 0.0) {
+        // accepted beyond the limit: the run goes on, the handle says so (a simulate run
+        // stops); a step the rate rules redo is judged again when it comes back
+        if (c.over_limit == 0) {
             c.over_time = t;
             c.over_step = h;
             s.failure = "penetration " + fmt(deepest) + " m exceeds the limit " + fmt(a.max_penetration) + " m";
@@ -153,6 +164,14 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
         c.deepest = deepest > c.deepest ? deepest : c.deepest;
         if (c.over_limit == 1) tell(s);
     }
+    return h_new;
+}
+
+// _python_kernel/step_control.py JointStepControl._rate_control: the onset, rate, held and separation rules of
+// step_control for the step h ending at t: 0 to accept it, else the shorter step to redo it with.
+double rate_control(const Params& a, JointState& s, const std::vector<History>& base, double t, double h,
+                    bool shortens) {
+    StepControl& c = s.control;
     // an explicit impact_step overrides the rate criterion (the caller resolves contacts so)
     double kappa = c.rate && !(a.impact_step > 0.0) ? a.rate_limit * c.rate_scale : 0.0;
     if (!(kappa > 0.0)) return 0.0;

@@ -80,7 +80,8 @@ STEP_GROUP_KEY = "exuclear.step_group"
 
 
 def _same(x: float, y: float) -> bool:
-    return abs(x - y) <= STEP_SLACK * abs(y) + 1e-300
+    """Whether ``x`` is ``y`` up to STEP_SLACK; an unset time (-inf) is the same as no finite one."""
+    return x == y or (math.isfinite(y) and abs(x - y) <= STEP_SLACK * abs(y) + 1e-300)
 
 
 class JointStepControl(JointState):
@@ -227,7 +228,11 @@ class JointStepControl(JointState):
                 c.last_time, c.last_step = t, h
                 h_new = h * PENETRATION_CUT
                 return h_new if h_new > c.min_step else c.min_step * (1.0 + STEP_SLACK)
-            if c.over_limit == 0:  # accepted: the run goes on, the handle says so (a simulate run stops)
+        h_new = self._rate_control(kins, base, t, h, shortens, kappa, impact_step)
+        if deepest > max_penetration and h_new == 0.0:
+            # accepted beyond the limit: the run goes on, the handle says so (a simulate run
+            # stops); a step the rate rules redo is judged again when it comes back
+            if c.over_limit == 0:
                 c.over_time, c.over_step = t, h
                 self.failure = f"penetration {deepest:.4g} m exceeds the limit {max_penetration:.4g} m"
                 self.failure_time = t
@@ -235,6 +240,13 @@ class JointStepControl(JointState):
             c.deepest = max(c.deepest, deepest)
             if c.over_limit == 1:
                 self.tell()
+        return h_new
+
+    def _rate_control(self, kins: list[Kinematics], base: tuple[ContactState, ...], t: float, h: float,
+                      shortens: bool, kappa: float, impact_step: float) -> float:
+        """The onset, rate, held and separation rules of :meth:`step_control` for the step
+        ``h`` ending at ``t``: 0 to accept it, else the shorter step to redo it with."""
+        c = self.control
         kappa *= c.rate_scale
         if not c.rate or impact_step > 0.0:  # an explicit impact_step overrides the rate criterion
             kappa = 0.0
