@@ -39,6 +39,15 @@ class ImpactRecord(NamedTuple):
     max_penetration: float
 
 
+class PairImpact(NamedTuple("_PairImpactFields", [*((f, float) for f in ImpactRecord._fields), ("pair", str)])):
+    """One contact of a joint with several contact pairs (the translational joint's corners
+    against its walls): the :class:`ImpactRecord` fields, then ``pair``, the pair's name
+    (``"corner front-lower / lower wall"``, :func:`exuclear.prismatic.pair_name`).  Read by
+    name as an :class:`ImpactRecord` is."""
+
+    __slots__ = ()
+
+
 @dataclass(frozen=True)
 class ContactState:
     """The contact history after an accepted state, and the joint's outputs there.

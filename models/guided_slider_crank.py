@@ -152,8 +152,9 @@ def default_settings(params: GuidedSliderCrankParams, end_time: float = BENCHMAR
 class GuidedSliderCrankResult:
     """A run's outputs on the sensors' grid (SI units): ``time``; ``crank_speed`` [rad/s];
     ``slider`` (times, 3): the slider's x, y, angle; ``penetration``, ``normal_force`` (times,
-    8): each corner-wall pair's (:data:`exuclear.prismatic.PAIRS`); ``impacts``: (name, record)
-    per contact; ``success``, ``message``, ``wall_time``."""
+    8): each corner-wall pair's (:data:`exuclear.prismatic.PAIRS`); ``impacts``:
+    ``joint.impacts()``, each naming its corner and wall; ``success``, ``message``,
+    ``wall_time``."""
 
     time: np.ndarray
     crank_speed: np.ndarray
@@ -180,7 +181,7 @@ def run(params: GuidedSliderCrankParams, settings: SolverSettings | None = None)
     n = min(len(out["time"]), len(crank), len(slider))
     slider_xy = slider[:n, 1:4] + np.array([params.crank_length + params.rod_length, 0.0, 0.0])  # displacement + reference
     return GuidedSliderCrankResult(out["time"][:n], crank[:n, 3], slider_xy, out["penetration"][:n],
-                                   out["normal_force"][:n], joint.pair_impacts(), result.success, result.message,
+                                   out["normal_force"][:n], joint.impacts(), result.success, result.message,
                                    result.wall_time)
 
 

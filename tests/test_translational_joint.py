@@ -107,7 +107,7 @@ def _turning_guide(backend: str):
 def test_both_kernels_give_the_same_slider_to_round_off():
     (m_c, j_c), (m_p, j_p) = _turning_guide("compiled"), _turning_guide("python")
     out_c, out_p = j_c.outputs(), j_p.outputs()
-    assert len(j_c.pair_impacts()) >= 4  # several corners, both walls
+    assert len(j_c.impacts()) >= 4  # several corners, both walls
     assert set(out_c) == set(out_p)
     for key in out_c:
         # the same formulas in the same order, no fused multiply-add (setup.py): round-off only
@@ -129,9 +129,16 @@ def test_outputs_name_the_pairs():
                                0.2 * np.sign(out["slip_velocity"][fast]) * out["normal_force"][fast], rtol=1e-9)
     draw = exuclear.engine.drawing.slider_drawing_function(joint, exu.ConfigurationType.Current)
     assert len(draw(mbs, 0)) == 3  # the slider and the guide's two walls
-    named = joint.pair_impacts()
-    assert {name for name, _ in named} <= {pair_name(k) for k in range(len(PAIRS))}
-    assert [r for _, r in named] == joint.impacts()
+    # impacts() names each contact's corner and wall: per pair, as many records as its history
+    # closed, the last one that history's last contact (the same floats)
+    impacts = joint.impacts()
+    assert [r.onset_time for r in impacts] == sorted(r.onset_time for r in impacts)
+    assert len({r.pair for r in impacts}) >= 4  # several corners, both walls
+    for k, state in enumerate(joint.pair_states()):
+        mine = [r for r in impacts if r.pair == pair_name(k)]
+        assert len(mine) == state.closed
+        if mine and not state.in_contact:
+            assert (mine[-1].onset_time, mine[-1].peak_force) == (state.onset_time, state.peak_force)
 
 
 # -- the analytic checks of validation/translational.py ---------------------------------------------

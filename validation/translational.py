@@ -125,7 +125,7 @@ def elastic_rattle(end_time: float = 0.05) -> dict[str, float]:
     w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
     start = 0.5 * MASS * (0.3**2 + vy**2) + 0.5 * INERTIA * omega**2
     end = 0.5 * MASS * (v[0] ** 2 + v[1] ** 2) + 0.5 * INERTIA * w**2
-    return {"start": start, "end": end, "contacts": len(joint.pair_impacts())}
+    return {"start": start, "end": end, "contacts": len(joint.impacts())}
 
 
 #: The pin-in-slot checks: a steel pin of 10 mm radius, 20 mm long, in a slot 20.2 mm wide.
@@ -247,7 +247,7 @@ def elastic_benchmark(end_time: float = BENCHMARK_END_TIME) -> dict[str, float]:
     scene = slider_crank.build(params)
     start = slider_crank.energy(scene)
     _run_settings(scene.mbs, replace(slider_crank.default_settings(params, end_time), spectral_radius=1.0))
-    return {"start": start, "end": slider_crank.energy(scene), "contacts": len(scene.joint.pair_impacts())}
+    return {"start": start, "end": slider_crank.energy(scene), "contacts": len(scene.joint.impacts())}
 
 
 def stiffness_table(end_time: float = BENCHMARK_END_TIME) -> list[dict[str, float]]:

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..checks import check_nonnegative
 from ..exceptions import AccuracyWarning
-from ..history import ContactState, ImpactRecord, merge_overlapping
+from ..history import ContactState, ImpactRecord, PairImpact, merge_overlapping
 from ..joint import ClearanceJoint
 from ..prismatic import PAIRS, pair_name
 from ..settings import RATE_LIMIT_DEFAULT
@@ -277,9 +277,13 @@ class ClearanceJointHandle:
         going on at the end is :meth:`state` (``in_contact``).  A spatial joint: its
         physical impacts, the slices' records that overlap in time merged into one
         (:func:`exuclear.history.merge_overlapping`; per slice: :meth:`slice_impacts`),
-        and the end faces' records with an axial clearance (:meth:`face_impacts`)."""
+        and the end faces' records with an axial clearance (:meth:`face_impacts`).  A
+        translational joint: each record a :class:`~exuclear.history.PairImpact`, which also
+        names its corner and wall (``pair``); per pair: :meth:`pair_states`."""
         self._report()
         records = self._backend.records()
+        if self.joint_type == "prismatic":
+            records = [[PairImpact(*r, pair_name(k)) for r in rs] for k, rs in enumerate(records)]
         if self.slices:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
         return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
@@ -293,14 +297,6 @@ class ClearanceJointHandle:
     def _check_pairs(self) -> None:
         if self.joint_type != "prismatic":
             raise ValueError(f"joint {label(self)} is a {self.joint_type} joint: it has no corner-wall pairs")
-
-    def pair_impacts(self) -> list[tuple[str, ImpactRecord]]:
-        """A translational joint's ended contacts in order, each with the name of its
-        corner-wall pair (``"corner front-lower / lower wall"``, :func:`exuclear.prismatic.pair_name`)."""
-        self._check_pairs()
-        self._report()
-        named = [(pair_name(k), r) for k, rs in enumerate(self._backend.records()) for r in rs]
-        return sorted(named, key=lambda item: item[1].onset_time)
 
     def wear_profile(self) -> WearProfile:
         """The worn profiles after the last accepted step (before a run: those the joint's

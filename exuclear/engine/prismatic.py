@@ -91,9 +91,9 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     ClearanceJointHandle
         ``objectNumber`` is the connector; ``outputs()`` has :data:`OUTPUT_COLUMNS` per
         corner-wall pair (shape (times, 8), :data:`exuclear.prismatic.PAIRS`' order) and
-        ``force``, ``moment`` (the load on the guide); ``pair_impacts()`` names each
-        contact's corner and wall; ``impacts()``, ``notes`` and ``counts`` as for the
-        revolute joint.
+        ``force``, ``moment`` (the load on the guide); ``impacts()`` names each
+        contact's corner and wall (:class:`exuclear.history.PairImpact`); ``notes`` and
+        ``counts`` as for the revolute joint.
     """
     check_system(mbs)
     check_flags(name, bearingRotates, record=record, show=show)
