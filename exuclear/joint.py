@@ -13,7 +13,7 @@ from typing import Any, NamedTuple
 from .contact import DEFAULT_LAW, V_MIN_DEFAULT, ContactLaw, contact_law, damping_model, law_and_restitution
 from .checks import check_positive
 from .contact.pair import ContactGeometry
-from .contact.stiffness import EXPONENT_METAL, GivenStiffness
+from .contact.stiffness import EXPONENT_METAL, STIFFNESS_MODELS, GivenStiffness, StiffnessModel, stiffness_model
 from .film import FilmLaw, Lubrication
 from .friction import NO_FRICTION, FrictionLaw, friction_law
 from .geometry import BearingGeometry, ContactKinematics, JointLoads, joint_loads
@@ -267,6 +267,7 @@ def make_prismatic_joint(
     stiffness: float | str,
     exponent: float | None = None,
     corner_radius: float | None = None,
+    corner_length: float | None = None,
     slider_material: str | Material | None = None,
     guide_material: str | Material | None = None,
     E_star: float | None = None,
@@ -280,52 +281,78 @@ def make_prismatic_joint(
     wide (:class:`exuclear.prismatic.GuideGeometry`), four corners against two walls.
 
     A sharp corner has no radius of curvature: its law is ``F_e = K delta^n`` with ``K =
-    stiffness`` [N/m^n] and ``n = exponent`` (default 1.5).  A corner rounded to
-    ``corner_radius`` [m] may take the named stiffness ``stiffness="hertz"`` instead:
-    Hertz's sphere on a flat, ``K = 4/3 E* sqrt(corner_radius)``, ``n = 1.5`` (docs/physics.md
-    eq. (13) with the flat's radius infinite), ``E*`` from ``E_star`` or the slider's and the
-    guide's materials (default steel).  The damping model ``damping``
-    (:data:`exuclear.contact.DAMPING_MODELS`) has restitution ``cr`` (required unless
-    ``damping="none"``), ``v_min`` [m/s] as in :func:`make_joint`; ``friction`` acts along
-    the wall.
+    stiffness`` [N/m^n] and ``n = exponent`` (default 1.5).  A rounded corner may take one
+    of :data:`CORNER_STIFFNESS_MODELS` by name instead, ``E*`` from ``E_star`` or the
+    slider's and the guide's materials (default steel):
+
+    - ``"hertz"`` with ``corner_radius`` [m], a corner rounded to a ball (point contact):
+      Hertz's sphere on a flat, ``K = 4/3 E* sqrt(corner_radius)``, ``n = 1.5``
+      (docs/physics.md eq. (13) with the flat's radius infinite);
+    - ``"dubowsky-freudenstein"`` with ``corner_radius`` and ``corner_length`` [m], a corner
+      edge rounded to a cylinder along the slider's depth (line contact): the
+      Dubowsky-Freudenstein law in its flat limit, ``delta = F / (pi L E*) [ln(pi L^3 E* /
+      (F r)) + 1]`` with ``L = corner_length``, ``r = corner_radius``
+      (:class:`exuclear.contact.stiffness.DubowskyFreudenstein`).
+
+    The damping model ``damping`` (:data:`exuclear.contact.DAMPING_MODELS`) has restitution
+    ``cr`` (required unless ``damping="none"``), ``v_min`` [m/s] as in :func:`make_joint`;
+    ``friction`` acts along the wall.
     """
-    geometry = GuideGeometry(slider_length, slider_height, clearance)
+    geometry = GuideGeometry(slider_length, slider_height, clearance, corner_radius, corner_length)
     if cr is None:
         if str(damping).lower() != "none":
             raise ValueError(f"`cr` is required with damping={damping!r}: the corners' coefficient of restitution, "
                              "0 < cr <= 1 (or damping='none' for elastic corners)")
         cr = 1.0
-    stiffness, exponent = _corner_stiffness(stiffness, exponent, corner_radius, slider_material, guide_material,
-                                            E_star)
-    given = GivenStiffness(geometry, 1.0, stiffness, EXPONENT_METAL if exponent is None else exponent)
-    law = ContactLaw(given, damping_model(damping, cr), V_MIN_DEFAULT if v_min is None else v_min)
+    model = _corner_stiffness(geometry, stiffness, exponent, slider_material, guide_material, E_star)
+    law = ContactLaw(model, damping_model(damping, cr), V_MIN_DEFAULT if v_min is None else v_min)
     return ClearanceJoint(law, friction_law(friction))
 
 
-def _corner_stiffness(stiffness: float | str, exponent: float | None, corner_radius: float | None,
-                      slider_material: Any, guide_material: Any, E_star: float | None) -> tuple[float, float | None]:
-    """A corner's ``(K, n)`` from :func:`make_prismatic_joint`'s arguments: a number ``K`` as
-    given, or ``"hertz"`` with a ``corner_radius`` (Hertz's sphere on a flat)."""
-    named = isinstance(stiffness, str)
+#: The named stiffness models a slider's rounded corner takes on its flat wall: Hertz's
+#: sphere on a flat (a corner rounded to a ball) and the one line-contact law with a flat
+#: limit (an edge rounded to a cylinder); the library's other line laws need a conforming
+#: outer radius (:class:`exuclear.contact.stiffness.DubowskyFreudenstein` says why).
+CORNER_STIFFNESS_MODELS = ("hertz", "dubowsky-freudenstein")
+
+
+def _corner_stiffness(geometry: GuideGeometry, stiffness: float | str, exponent: float | None,
+                      slider_material: Any, guide_material: Any, E_star: float | None) -> StiffnessModel:
+    """A corner's stiffness model from :func:`make_prismatic_joint`'s arguments: a number ``K``
+    as given, or one of :data:`CORNER_STIFFNESS_MODELS` for the rounded corner of ``geometry``."""
+    rounded = [name for name in ("corner_radius", "corner_length") if getattr(geometry, name) is not None]
     materials = [name for name, value in (("slider_material", slider_material), ("guide_material", guide_material),
                                           ("E_star", E_star)) if value is not None]
-    if not named:
-        if corner_radius is not None or materials:
-            given = ", ".join(f"`{name}`" for name in (["corner_radius"] if corner_radius is not None else []) + materials)
-            raise ValueError(f"a numeric `stiffness` is the corner's K itself: leave out {given}, or give "
-                             "stiffness='hertz' with `corner_radius`")
-        return stiffness, exponent
-    if stiffness.lower() != "hertz":
-        raise ValueError(f"`stiffness` must be a number K [N/m^n] or 'hertz' (with `corner_radius`), got {stiffness!r}")
-    if corner_radius is None:
-        raise ValueError("stiffness='hertz' needs `corner_radius` [m], the radius of the slider's rounded corners")
+    known = "'hertz' (with `corner_radius`) or 'dubowsky-freudenstein' (with `corner_radius` and `corner_length`)"
+    if not isinstance(stiffness, str):
+        if rounded or materials:
+            given = ", ".join(f"`{name}`" for name in rounded + materials)
+            raise ValueError(f"a numeric `stiffness` is the corner's K itself: leave out {given}, or give a rounded "
+                             f"corner's stiffness model, {known}")
+        return GivenStiffness(geometry, 1.0, stiffness, EXPONENT_METAL if exponent is None else exponent)
+    name = stiffness.lower()
+    if name not in CORNER_STIFFNESS_MODELS:
+        why = (" (its formula needs the outer radius of a conforming pair, which a flat wall does not have)"
+               if name in STIFFNESS_MODELS else "")
+        raise ValueError(f"`stiffness` must be a number K [N/m^n] or a stiffness model of a corner on a flat wall, "
+                         f"{known}; got {stiffness!r}{why}")
+    if geometry.corner_radius is None:
+        raise ValueError(f"stiffness={stiffness!r} needs `corner_radius` [m], the radius of the slider's rounded corners")
     if exponent is not None:
-        raise ValueError("`exponent` is fixed (1.5) by the 'hertz' stiffness; leave it out")
-    check_positive("corner_radius", corner_radius)
+        raise ValueError(f"`exponent` is fixed by the {stiffness!r} stiffness; leave it out")
     if E_star is None:
         E_star = composite_modulus(DEFAULT_MATERIAL if slider_material is None else slider_material,
                                    DEFAULT_MATERIAL if guide_material is None else guide_material)
-    return 4.0 / 3.0 * check_positive("E_star", E_star) * corner_radius ** 0.5, EXPONENT_METAL
+    E_star = check_positive("E_star", E_star)
+    if name == "hertz":
+        if geometry.corner_length is not None:
+            raise ValueError("stiffness='hertz' is a corner rounded to a ball, a point contact: leave out "
+                             "`corner_length`, or give stiffness='dubowsky-freudenstein' for an edge rounded along it")
+        return GivenStiffness(geometry, 1.0, 4.0 / 3.0 * E_star * geometry.corner_radius ** 0.5, EXPONENT_METAL)
+    if geometry.corner_length is None:
+        raise ValueError(f"stiffness={stiffness!r} is a line contact along the rounded corner edge: give "
+                         "`corner_length` [m], the edge's length (the slider's depth across the plane)")
+    return stiffness_model(name, geometry, E_star)
 
 
 def _law(geometry: ContactGeometry, law: str | ContactLaw | None, cr: float | None, inner: tuple[str, Any],

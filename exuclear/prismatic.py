@@ -55,13 +55,18 @@ class GuideGeometry(ContactGeometry):
 
     As a :class:`ContactGeometry` the corner is a point contact (``length`` None) between
     the slider's half-height (``inner_radius``) and the guide's half-width
-    (``outer_radius``), so that ``clearance`` is their difference; a corner has no radius
-    of curvature, so its stiffness is given (:class:`exuclear.contact.stiffness.GivenStiffness`).
+    (``outer_radius``), so that ``clearance`` is their difference; a sharp corner has no
+    radius of curvature, so its stiffness is given (:class:`exuclear.contact.stiffness.GivenStiffness`).
+    A corner edge rounded to ``corner_radius`` [m] along ``corner_length`` [m] (the slider's
+    depth across the plane) is a cylinder on a flat wall, a line contact: its
+    :attr:`relative_curvature` is ``1 / corner_radius`` and its ``length`` ``corner_length``.
     """
 
     slider_length: float
     slider_height: float
     guide_clearance: float
+    corner_radius: float | None = None
+    corner_length: float | None = None
     joint_type: ClassVar[str] = "prismatic"
 
     def __post_init__(self) -> None:
@@ -74,6 +79,9 @@ class GuideGeometry(ContactGeometry):
         elif max(self.slider_length, h) > SIZE_WARN_ABOVE:
             warn_unit(f"the slider ({self.slider_length:.3g} m x {h:.3g} m) is above {SIZE_WARN_ABOVE:g} m; lengths "
                       "are in metres: was it given in mm?")
+        for name in ("corner_radius", "corner_length"):
+            if getattr(self, name) is not None:
+                check_positive(name, getattr(self, name))
 
     @property
     def inner_radius(self) -> float:
@@ -86,9 +94,17 @@ class GuideGeometry(ContactGeometry):
         return 0.5 * self.slider_height + self.guide_clearance
 
     @property
-    def length(self) -> None:
-        """None: a corner touches a wall at a point."""
-        return None
+    def length(self) -> float | None:
+        """``corner_length``, the length of a rounded corner edge's line contact; None: a
+        corner touches a wall at a point."""
+        return self.corner_length
+
+    @property
+    def relative_curvature(self) -> float:
+        """``1 / corner_radius`` [1/m]: a rounded corner on a flat wall."""
+        if self.corner_radius is None:
+            raise ValueError("a sharp corner (corner_radius None) has no finite curvature: give `corner_radius`")
+        return 1.0 / self.corner_radius
 
 
 class CornerKinematics(NamedTuple):

@@ -3,6 +3,7 @@ law, both kernels, its builder's checks, its outputs and the analytic checks of
 validation/translational.py."""
 from __future__ import annotations
 
+import math
 import warnings
 
 import exudyn as exu
@@ -43,8 +44,39 @@ def test_a_rounded_corner_takes_hertz_on_a_flat():
         make_prismatic_joint(**GUIDE, stiffness="hertz", cr=0.5)
     with pytest.raises(ValueError, match=r"a numeric `stiffness` is the corner's K itself: leave out `corner_radius`"):
         make_prismatic_joint(**GUIDE, stiffness=1e9, corner_radius=1e-3, cr=0.5)
-    with pytest.raises(ValueError, match=r"`stiffness` must be a number K \[N/m\^n\] or 'hertz'"):
+    with pytest.raises(ValueError, match=r"`stiffness` must be a number K \[N/m\^n\] or a stiffness model of a "
+                                         r"corner on a flat wall, 'hertz' .* got 'liu' \(its formula needs the outer"):
         make_prismatic_joint(**GUIDE, stiffness="liu", corner_radius=1e-3, cr=0.5)
+
+
+def test_a_rounded_corner_edge_takes_dubowsky_freudenstein_on_a_flat():
+    # Dubowsky and Freudenstein (J. Eng. Ind. 93 (1971) 305-309, as compiled by Pereira et al.,
+    # Nonlinear Dyn. 63 (2011) 681-697): delta = F (s_i + s_j) / L [ln(L^3 dR / (F (s_i + s_j) R_J R_B)) + 1],
+    # s_k = (1 - nu_k^2) / (pi E_k); a cylinder of radius r on a flat: dR / (R_J R_B) = 1/r - 1/R_B -> 1/r.
+    # Evaluated here from the two materials (steel on aluminium), not from the model's E*.
+    r, length = 0.5e-3, 0.02
+    joint = make_prismatic_joint(**GUIDE, stiffness="dubowsky-freudenstein", corner_radius=r, corner_length=length,
+                                 slider_material="steel", guide_material="aluminium", cr=0.5)
+    steel, aluminium = exuclear.MATERIALS["steel"], exuclear.MATERIALS["aluminium"]
+    s = sum((1.0 - m.nu**2) / (math.pi * m.E) for m in (steel, aluminium))
+    for delta in (1e-8, 1e-6, 2e-5):
+        f = joint.law.elastic_force(delta)
+        by_hand = f * s / length * (math.log(length**3 / (f * s * r)) + 1.0)
+        # the model's root is exact to 1e-13 (IMPLICIT_RTOL); E* from the materials agrees to round-off
+        assert by_hand == pytest.approx(delta, rel=1e-12)
+    line = dict(stiffness="dubowsky-freudenstein", corner_radius=r, cr=0.5)
+    with pytest.raises(ValueError, match=r"is a line contact along the rounded corner edge: give `corner_length`"):
+        make_prismatic_joint(**GUIDE, **line)
+    with pytest.raises(ValueError, match=r"`exponent` is fixed by the 'dubowsky-freudenstein' stiffness"):
+        make_prismatic_joint(**GUIDE, **line, corner_length=length, exponent=1.5)
+    with pytest.raises(ValueError, match=r"stiffness='hertz' is a corner rounded to a ball, a point contact: leave out "
+                                         r"`corner_length`"):
+        make_prismatic_joint(**GUIDE, stiffness="hertz", corner_radius=r, corner_length=length, cr=0.5)
+    for name in ("johnson", "radzimovsky", "esdu-78035", "pereira"):
+        with pytest.raises(ValueError, match=rf"got '{name}' \(its formula needs the outer radius of a conforming pair"):
+            make_prismatic_joint(**GUIDE, stiffness=name, corner_radius=r, corner_length=length, cr=0.5)
+    with pytest.raises(ValueError, match=r"`corner_length` must be positive"):
+        make_prismatic_joint(**GUIDE, **line, corner_length=-1.0)
 
 
 def test_corners_and_walls():
@@ -147,6 +179,22 @@ def test_resting_slider_carries_half_its_weight_on_each_lower_corner():
     # the corners' oscillation has died out under the damping in 0.3 s: measured agreement 1e-12
     np.testing.assert_allclose(r["force"], r["half_weight"], rtol=1e-6)
     np.testing.assert_allclose(r["sink"], r["static_sink"], rtol=1e-6)
+
+
+def test_resting_slider_sinks_as_dubowsky_freudenstein_says_on_rounded_edges():
+    # corner edges rounded to r along l: each lower corner carries m g / 2 and sinks
+    # delta = F / (pi l E*) [ln(pi l^3 E* / (F r)) + 1], the law's own equation evaluated forwards
+    # (a soft E* keeps the contact period above the run's 1e-5 s steps)
+    r, length, e_star = 1e-3, 0.02, 1e9
+    mbs, joint, _ = val.slider_in_guide(stiffness="dubowsky-freudenstein", exponent=None, corner_radius=r,
+                                        corner_length=length, E_star=e_star)
+    val._run(mbs, 0.3)
+    out = joint.outputs()
+    f = val.MASS * val.GRAVITY / 2.0
+    sink = f / (math.pi * length * e_star) * (math.log(math.pi * length**3 * e_star / (f * r)) + 1.0)
+    # the oscillation has died out under the damping in 0.3 s (as for the K delta^n corners): measured 1e-9
+    np.testing.assert_allclose(out["normal_force"][-1, :2], f, rtol=1e-6)
+    np.testing.assert_allclose(out["penetration"][-1, :2], sink, rtol=1e-6)
 
 
 def test_sliding_slider_slows_as_coulomb_says():

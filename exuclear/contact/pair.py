@@ -39,6 +39,12 @@ class ContactGeometry(ABC):
         """The radial clearance ``c = R_outer - R_inner`` [m]."""
         return self.outer_radius - self.inner_radius
 
+    @property
+    def relative_curvature(self) -> float:
+        """``1/R_inner - 1/R_outer = c / (R_inner R_outer)`` [1/m]: how much more the convex
+        surface curves than the concave one (``1/R_inner`` against a flat)."""
+        return self.clearance / (self.inner_radius * self.outer_radius)
+
 
 def line_length(geometry: ContactGeometry, model: str) -> float:
     """The length of ``geometry``'s line contact, which the stiffness model ``model`` needs;

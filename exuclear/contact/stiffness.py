@@ -452,7 +452,12 @@ class DubowskyFreudenstein(_LogLineContact):
     93 (1971) 305-309, as compiled by Pereira et al. (2011).  This is the dimensionally
     consistent reading (with ``L^3`` and the total force); the same choice of ``s_k`` as
     for :class:`ESDU78035`.  Solvable up to ``delta = C`` (2.3 ``Delta R`` at the paper's
-    geometry).
+    geometry).  The radii enter only as the relative curvature ``Delta R / (R_J R_B) = 1/R_J -
+    1/R_B`` (:attr:`ContactGeometry.relative_curvature`), and ``C`` stays finite as ``R_B``
+    grows: its limit ``C = L^2 / R_J`` is a cylinder of radius ``R_J`` on a flat, which is how
+    a slider's rounded corner edge takes this model (:func:`exuclear.joint.make_prismatic_joint`).
+    The other line models measure the approach between the two centres (``C = 4 Delta R``)
+    or fit a conforming pair, and have no flat limit.
 
     Kernel code 5 (the implicit solve of :class:`_LogLineContact`).
     """
@@ -462,7 +467,7 @@ class DubowskyFreudenstein(_LogLineContact):
 
     def _log_constants(self) -> tuple[float, float]:
         g = self.geometry
-        return g.length**2 * g.clearance / (g.journal_radius * g.bearing_radius), 1.0
+        return g.length**2 * g.relative_curvature, 1.0
 
 
 #: Name -> stiffness model class.

@@ -78,7 +78,8 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         The physics, ready built (:func:`exuclear.joint.make_prismatic_joint`); else built
         from the keyword arguments ``slider_length``, ``slider_height``, ``clearance`` (per
         side: the guide is ``slider_height + 2 clearance`` wide), ``stiffness`` (a corner's
-        ``K`` [N/m^n], or ``"hertz"`` with ``corner_radius``, ``slider_material``,
+        ``K`` [N/m^n], or ``"hertz"`` with ``corner_radius``, or ``"dubowsky-freudenstein"``
+        with ``corner_radius`` and ``corner_length``, and ``slider_material``,
         ``guide_material``, ``E_star``), ``exponent`` (default 1.5), ``damping`` (default
         ``"lankarani-nikravesh"``) with ``cr``, ``friction``, ``v_min``.
     backend, maxPenetration, bearingRotates, record, contact_mode
