@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
 from .checks import check_nonnegative
-from .geometry import BearingGeometry, contact_kinematics
+from .geometry import BearingGeometry, ContactKinematics, contact_kinematics
 
 
 @dataclass(frozen=True)
@@ -41,20 +41,12 @@ class SlotGeometry(BearingGeometry):
         check_nonnegative("slot_length", self.slot_length)
 
 
-class SlotKinematics(NamedTuple):
+class SlotKinematics(NamedTuple("_SlotFields", [*((f, float) for f in ContactKinematics._fields), ("segment", float)])):
     """The revolute joint's :class:`~exuclear.geometry.ContactKinematics` of the pin against
-    the segment's nearest point, and that point's position ``segment`` along x [m]
-    (``ecc_x``, ``ecc_y`` are ``p - S``)."""
+    the segment's nearest point (its fields, read by the same names), then that point's
+    position ``segment`` along x [m] (``ecc_x``, ``ecc_y`` are ``p - S``)."""
 
-    ex: float
-    ey: float
-    ecc: float
-    nx: float
-    ny: float
-    delta: float
-    delta_dot: float
-    v_t: float
-    segment: float
+    __slots__ = ()
 
 
 def slot_kinematics(geometry: BearingGeometry, half_length: float, px: float, py: float, dvx: float, dvy: float,

@@ -42,6 +42,8 @@ def test_a_slot_of_length_zero_is_the_revolute_joints_kinematics():
     slot = slot_kinematics(g, 0.0, *args, 20.0)
     revolute = contact_kinematics(g, *args, 0.0, 0.0, 0.0, 0.0, 20.0)
     assert tuple(slot)[:-1] == tuple(revolute)  # the same floats
+    # the slot's record is the revolute joint's fields, read by the same names, and the segment's point
+    assert slot._fields == (*type(revolute)._fields, "segment") and slot.delta == revolute.delta and slot.segment == 0.0
 
 
 @pytest.mark.parametrize(("change", "message"), [
