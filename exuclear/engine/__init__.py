@@ -7,8 +7,9 @@ Its modules in layers, each importing only from the layers below it
    ``SolveDynamic``, with its settings mapping and its result;
 2. **items and frames** -- :mod:`~exuclear.engine.connector`: the clearance joint as Exudyn
    items (``CreateClearanceJoint``, ``AddClearanceJoint``, the helper connectors), with the
-   builders' argument checks (:mod:`~exuclear.engine.arguments`) and the joint's drawing
-   (:mod:`~exuclear.engine.drawing`);
+   builders' argument checks (:mod:`~exuclear.engine.arguments`), the joint's drawing
+   (:mod:`~exuclear.engine.drawing`) and the deprecated body-point builder
+   ``add_clearance_joint`` (:mod:`~exuclear.engine.legacy`);
 3. **the handle** -- :mod:`~exuclear.engine.handle`: the handle the builders return (item
    numbers, physics, results), its outputs (:mod:`~exuclear.engine.outputs`) and its
    backends (:mod:`~exuclear.engine.backends`: compiled and Python, the same methods);
@@ -29,10 +30,11 @@ The warnings are those of :mod:`exuclear.exceptions`.
 """
 from ..exceptions import AccuracyWarning, KernelWarning, OutOfPlaneWarning
 from .arguments import default_penetration_limit
-from .connector import BACKENDS, DEFAULT_BACKEND, AddClearanceJoint, CreateClearanceJoint, add_clearance_joint
+from .connector import BACKENDS, DEFAULT_BACKEND, AddClearanceJoint, CreateClearanceJoint
 from .diagnostics import unheld_motion
 from .handle import ClearanceJointHandle
 from .layout import DATA_COLUMNS
+from .legacy import add_clearance_joint
 from .outputs import OUTPUT_COLUMNS
 from .prismatic import CreatePrismaticClearanceJoint
 from .slot import CreatePinSlotClearanceJoint

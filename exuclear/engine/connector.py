@@ -20,8 +20,9 @@ this relies on.
 
 The other roles live next to this file: the handle a builder returns
 (:mod:`~exuclear.engine.handle`, with its backends :mod:`~exuclear.engine.backends`), its
-outputs (:mod:`~exuclear.engine.outputs`), its drawing (:mod:`~exuclear.engine.drawing`)
-and the builders' argument checks (:mod:`~exuclear.engine.arguments`).
+outputs (:mod:`~exuclear.engine.outputs`), its drawing (:mod:`~exuclear.engine.drawing`),
+the builders' argument checks (:mod:`~exuclear.engine.arguments`) and the deprecated
+body-point builder (:mod:`~exuclear.engine.legacy`).
 """
 from __future__ import annotations
 
@@ -34,7 +35,6 @@ import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import (
     MarkerBodyRigid,
-    MarkerKinematicTreeRigid,
     ObjectJointGeneric,
     VObjectJointGeneric,
 )
@@ -71,14 +71,14 @@ from .items import add_connectors, finish_items
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .modes import IMPULSE, choose_mode
 from .outputs import FACE_OUTPUT_PREFIX, OUTPUT_COLUMNS, SPATIAL_OUTPUT_COLUMNS
-from .placement import PLACED_BY_POINTS, PLACED_BY_POSITION
+from .placement import PLACED_BY_POSITION
 from .registry import REGISTRY_KEY, joints_of
 
 #: Names kept here for the code that imports them from this module.
 __all__ = ["AXIS_UNIT_TOLERANCE", "BACKENDS", "DEFAULT_BACKEND", "DEFAULT_SLICES", "FACE_OUTPUT_PREFIX",
            "OUTPUT_COLUMNS", "PENETRATION_LIMIT_CLEARANCE", "PENETRATION_LIMIT_RADIUS", "REGISTRY_KEY",
            "SPATIAL_OUTPUT_COLUMNS", "AddClearanceJoint", "ClearanceJointHandle", "CreateClearanceJoint",
-           "JointHistory", "add_clearance_joint", "default_penetration_limit", "drawing_function", "joint_frame",
+           "JointHistory", "default_penetration_limit", "drawing_function", "joint_frame",
            "joints_of", "revolute_frame"]
 
 #: How the joint's user functions are evaluated.
@@ -510,91 +510,3 @@ def _turned_marker(mbs: exu.MainSystem, marker: Any, rotation: np.ndarray) -> An
     copy = {key: value for key, value in data.items() if key not in ("name", "localPosition") and key[0] != "V"}
     copy["localHT"] = exu.HT(data["localHT"]) @ exu.HT(rotation=rotation)
     return mbs.AddMarker(copy)
-
-
-def add_clearance_joint(
-    mbs: exu.MainSystem,
-    journal_body: Any,
-    bearing_body: Any,
-    *,
-    journal_point: Sequence[float] = (0.0, 0.0),
-    bearing_point: Sequence[float] = (0.0, 0.0),
-    journal_link: int | None = None,
-    bearing_link: int | None = None,
-    joint: ClearanceJoint | None = None,
-    record: bool = True,
-    name: str = "",
-    max_penetration: float | None = None,
-    backend: str | None = None,
-    bearing_rotates: bool | None = None,
-    **joint_parameters: Any,
-) -> ClearanceJointHandle:
-    """A planar clearance joint from body-frame points (the form of exuclear 0.1).
-
-    .. deprecated::
-        Use :func:`CreateClearanceJoint` (bearing body first, ``maxPenetration``), or
-        :func:`AddClearanceJoint` with rigid markers; the warning names the call to write.
-
-    The journal's centre is ``journal_point`` (x, y) in ``journal_body``'s frame, the
-    bearing's ``bearing_point`` in ``bearing_body``'s; an ``ObjectKinematicTree`` body
-    needs the link index (``journal_link`` / ``bearing_link``).  The axis is z.  Builds
-    the rigid markers and calls :func:`AddClearanceJoint`.
-    """
-    warnings.warn(_replacement(journal_body, bearing_body, journal_point, bearing_point, journal_link, bearing_link,
-                               max_penetration, bearing_rotates), DeprecationWarning, stacklevel=2)
-    check_system(mbs)
-    if max_penetration is not None:
-        check_positive("max_penetration", max_penetration)
-    markers = [_point_marker(mbs, bearing_body, bearing_point, bearing_link, "bearing"),
-               _point_marker(mbs, journal_body, journal_point, journal_link, "journal")]
-    if object_type(mbs, journal_body, "journal") == "Ground" and object_type(mbs, bearing_body, "bearing") == "Ground":
-        raise ValueError("`journal_body` and `bearing_body` are both the ground: one must be a moving body")
-    if journal_body == bearing_body and journal_link == bearing_link:
-        raise ValueError("`journal_body` and `bearing_body` are the same body")
-    handle = AddClearanceJoint(mbs, markers, name=name, joint=joint, backend=backend, maxPenetration=max_penetration,
-                               bearingRotates=bearing_rotates, record=record, **joint_parameters)
-    handle.placed_by = PLACED_BY_POINTS
-    return handle
-
-
-def _replacement(journal_body: Any, bearing_body: Any, journal_point: Any, bearing_point: Any, journal_link: Any,
-                 bearing_link: Any, max_penetration: Any, bearing_rotates: Any) -> str:
-    """The deprecation message of :func:`add_clearance_joint`: the call to write instead."""
-    options = "".join(f", {k}={v!r}" for k, v in (("maxPenetration", max_penetration),
-                                                    ("bearingRotates", bearing_rotates)) if v is not None)
-    markers = (f"exuclear.AddClearanceJoint(mbs, markerNumbers=[bearing_marker, journal_marker]{options}, ...) with "
-               f"rigid markers at bearing_point {tuple(bearing_point)!r} and journal_point {tuple(journal_point)!r} "
-               "(MarkerBodyRigid, or MarkerKinematicTreeRigid on a kinematic-tree link)")
-    if journal_link is not None or bearing_link is not None:
-        return f"exuclear.engine.add_clearance_joint is deprecated; write {markers}"
-    position = [*(float(v) for v in bearing_point), 0.0]
-    return ("exuclear.engine.add_clearance_joint(mbs, journal_body, bearing_body, ...) is deprecated; write "
-            f"exuclear.CreateClearanceJoint(mbs, itemNumbers=[{bearing_body!r}, {journal_body!r}], "
-            f"position={position!r}, useGlobalFrame=False{options}, ...the same joint parameters) (the bearing "
-            "body first; journal and bearing centred at `position`, in the bearing body's frame), or, where the "
-            f"two points differ in the reference configuration, {markers}")
-
-
-def _point_marker(mbs: exu.MainSystem, body: Any, point: Sequence[float], link: int | None, role: str) -> Any:
-    try:
-        x, y = (float(v) for v in point)
-    except (TypeError, ValueError):
-        raise ValueError(f"`{role}_point` must be two finite numbers (local x, y), got {point!r}") from None
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"`{role}_point` must be two finite numbers (local x, y), got {point!r}")
-    try:
-        item = mbs.GetObject(body)
-    except Exception:  # Exudyn raises its own error types for a bad index
-        raise ValueError(f"`{role}_body` {body!r} is not an object of this MainSystem") from None
-    kind = item["objectType"]
-    if kind == "KinematicTree":
-        n_links = len(item["linkParents"])
-        if isinstance(link, bool) or not isinstance(link, int) or not 0 <= link < n_links:
-            raise ValueError(f"`{role}_link` must be a link index 0..{n_links - 1} of the kinematic tree, got {link!r}")
-        return mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=body, linkNumber=link, localPosition=[x, y, 0.0]))
-    if link is not None:
-        raise ValueError(f"`{role}_link` applies to an ObjectKinematicTree only, but `{role}_body` is a {kind}")
-    try:
-        return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[x, y, 0.0]))
-    except Exception:  # Exudyn refuses a rigid marker on a body that has none
-        raise ValueError(f"`{role}_body` is an object of type {kind!r}, which has no rigid body marker") from None
