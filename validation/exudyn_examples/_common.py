@@ -4,7 +4,10 @@ helpers model authors share.
 A model is a module of this package with ``EXAMPLE`` (the Exudyn example it follows),
 ``BODIES`` (the body and node types it covers), ``REPLACED`` (which revolute joint became
 a clearance joint) and a ``build(clearance, end_time=None, **joint_options) -> ZooModel``
-decorated with :func:`register`.  :mod:`._runs` runs one model four ways (ideal,
+decorated with :func:`register`.  The models come in groups (:data:`GROUPS`), one
+package each: the zoo's default table, this package's own modules, and "beyond", more of
+Exudyn's examples in the subpackage ``beyond``, which run only when asked for.
+:mod:`._runs` runs one model four ways (ideal,
 clearance with the example's own settings, clearance through ``exuclear.simulate``, a
 convergence check); :mod:`._table` runs them all and writes the table and the report
 that ``python -m validation.exudyn_examples`` prints and writes.
@@ -81,7 +84,8 @@ class ZooModel:
 @dataclass(frozen=True)
 class Entry:
     """A registered model: its module (for EXAMPLE, BODIES, REPLACED), its build function
-    and the keyword arguments fixed for this entry (a variant of a model)."""
+    and the keyword arguments fixed for this entry (a variant of a model); its group is
+    its module's package's (:data:`GROUPS`)."""
 
     name: str
     module: ModuleType
@@ -105,11 +109,37 @@ class Entry:
     def replaced(self) -> str:
         return getattr(self.module, "REPLACED", "")
 
+    @property
+    def group(self) -> str:
+        return group_of(self.module.__name__)
 
-#: The registered models by name, in the order of registration.
+
+#: The groups of models, each the package that holds its modules: "zoo", the default table
+#: (``python -m validation.exudyn_examples``, the tests' short runs of every model), and
+#: "beyond", more of Exudyn's examples (a kinematic tree closed by a joint, an ANCF cable on
+#: a driven hub, the spatial slider-crank), which run only when asked for (``--group
+#: beyond``, or their names), so that the default table keeps its cost.
+GROUPS: dict[str, str] = {"zoo": __package__, "beyond": f"{__package__}.beyond"}
+#: The default group.
+DEFAULT_GROUP = "zoo"
+
+#: The registered models by name, in the order of registration: the models of the groups
+#: loaded so far (:func:`load_models`; :func:`group_names` lists one group's).
 REGISTRY: dict[str, Entry] = {}
-#: Modules of this package that failed to import: name -> first line of the error.
+#: Model modules that failed to import: name (for a group other than the default, prefixed
+#: with its package, e.g. ``beyond.crane``) -> first line of the error.
 IMPORT_ERRORS: dict[str, str] = {}
+
+
+def group_of(module_name: str) -> str:
+    """The group (:data:`GROUPS`) of a model module, from its package; ``ValueError`` for a
+    module outside every group's package."""
+    package = module_name.rpartition(".")[0]
+    for group, group_package in GROUPS.items():
+        if package == group_package:
+            return group
+    raise ValueError(f"module {module_name!r} is in no zoo group's package; the groups: "
+                     f"{', '.join(f'{g} ({p})' for g, p in GROUPS.items())}")
 
 
 def register(build: Callable[..., ZooModel] | None = None, *, name: str | None = None,
@@ -123,6 +153,7 @@ def register(build: Callable[..., ZooModel] | None = None, *, name: str | None =
     if build is None:
         return functools.partial(register, name=name, **fixed)  # type: ignore[return-value]
     module = importlib.import_module(build.__module__)
+    group_of(module.__name__)  # a model outside every group's package is refused here, not when listed
     key = name or build.__module__.rsplit(".", 1)[-1]
     if key in REGISTRY and REGISTRY[key].build is not build:
         raise ValueError(f"zoo model {key!r} is registered twice (modules {REGISTRY[key].module.__name__} and "
@@ -131,24 +162,48 @@ def register(build: Callable[..., ZooModel] | None = None, *, name: str | None =
     return build
 
 
-def load_models() -> dict[str, Entry]:
-    """Import every model module of this package (names not starting with ``_``); a module
-    that fails to import is noted in :data:`IMPORT_ERRORS`, not raised."""
-    package = importlib.import_module(__package__)
-    for info in pkgutil.iter_modules(package.__path__):
-        if info.name.startswith("_"):
-            continue
-        try:
-            importlib.import_module(f"{__package__}.{info.name}")
-        except Exception as err:  # a broken model must not stop the others
-            IMPORT_ERRORS[info.name] = f"{type(err).__name__}: {_first_line(err)}"
+def load_models(group: str | None = DEFAULT_GROUP) -> dict[str, Entry]:
+    """Import the model modules (names not starting with ``_``) of ``group`` (None: of every
+    group) into :data:`REGISTRY` and return it; a module that fails to import is noted in
+    :data:`IMPORT_ERRORS`, not raised.  ``ValueError`` for an unknown group."""
+    groups = list(GROUPS) if group is None else [_checked_group(group)]
+    for g in groups:
+        package = importlib.import_module(GROUPS[g])
+        prefix = "" if g == DEFAULT_GROUP else f"{g}."
+        for info in pkgutil.iter_modules(package.__path__):
+            if info.name.startswith("_") or info.ispkg:
+                continue
+            try:
+                importlib.import_module(f"{GROUPS[g]}.{info.name}")
+            except Exception as err:  # a broken model must not stop the others
+                IMPORT_ERRORS[prefix + info.name] = f"{type(err).__name__}: {_first_line(err)}"
     return REGISTRY
 
 
+def group_names(group: str = DEFAULT_GROUP) -> list[str]:
+    """The names of ``group``'s models (:data:`GROUPS`), loaded, in the order of registration."""
+    load_models(group)
+    return [name for name, entry in REGISTRY.items() if entry.group == group]
+
+
+def group_import_errors(group: str) -> dict[str, str]:
+    """The :data:`IMPORT_ERRORS` of ``group``'s modules."""
+    prefix = "" if group == DEFAULT_GROUP else f"{group}."
+    return {name: error for name, error in IMPORT_ERRORS.items()
+            if (name.startswith(prefix) if prefix else "." not in name)}
+
+
+def _checked_group(group: str) -> str:
+    if group not in GROUPS:
+        raise ValueError(f"`group` must be one of {', '.join(GROUPS)}, got {group!r}")
+    return group
+
+
 def model_names(text: str) -> list[str]:
-    """The zoo models named in ``text`` (comma-separated), all modules loaded; ``ValueError``
-    naming the unknown ones and the known ones (the validation scripts' ``--models``)."""
-    load_models()
+    """The zoo models named in ``text`` (comma-separated), the modules of every group loaded;
+    ``ValueError`` naming the unknown ones and the known ones (the validation scripts'
+    ``--models``)."""
+    load_models(None)
     names = [n for n in text.split(",") if n]
     unknown = [n for n in names if n not in REGISTRY]
     if unknown:

@@ -11,7 +11,7 @@ import exudyn as exu
 
 import exuclear
 
-from ._common import IMPORT_ERRORS, REGISTRY, load_models
+from ._common import DEFAULT_GROUP, IMPORT_ERRORS, REGISTRY, group_import_errors, group_names, load_models
 from ._runs import CONVERGED_PENETRATION, PENETRATION_WRONG, QUICK_TIME_LIMIT, REFERENCE_FACTOR, TIME_LIMIT, run_model
 
 #: Columns of the printed table (all columns go to zoo.csv).
@@ -21,13 +21,20 @@ TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time"
 
 
 def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
-            end_time: float | None = None, out: Path | None = None, progress: bool = True) -> Any:
-    """Run the models (all registered ones by default); returns the table (pandas
-    DataFrame) and writes ``zoo.csv`` and ``report.md`` into ``out`` if given."""
+            end_time: float | None = None, out: Path | None = None, progress: bool = True,
+            group: str = DEFAULT_GROUP) -> Any:
+    """Run the models (``names``; none given: every model of ``group``, by default the zoo's
+    table); returns the table (pandas DataFrame) and writes ``zoo.csv`` and ``report.md``
+    into ``out`` if given."""
     import pandas as pd
 
-    load_models()
-    names = list(REGISTRY) if not names else names
+    names_given = bool(names)
+    if names_given:
+        load_models(None)
+        errors = {n: IMPORT_ERRORS[n] for n in names if n in IMPORT_ERRORS}
+    else:
+        names = group_names(group)
+        errors = group_import_errors(group)
     unknown = [n for n in names if n not in REGISTRY and n not in IMPORT_ERRORS]
     if unknown:
         raise ValueError(f"unknown zoo model(s) {unknown}; registered: {sorted(REGISTRY)}")
@@ -42,14 +49,14 @@ def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bo
         rows.append(run_model(name, quick, convergence, end_time))
         if progress:
             print(f"[zoo] {name}: {rows[-1].get('verdict')} ({time.perf_counter() - t0:.0f} s)", flush=True)
-    for name in IMPORT_ERRORS:
-        if name not in names and not any(r["model"] == name for r in rows):
-            rows.append({"model": name, "verdict": "import error", "error": IMPORT_ERRORS[name]})
+    for name, error in errors.items():
+        if name not in names:
+            rows.append({"model": name, "verdict": "import error", "error": error})
     table = pd.DataFrame(rows)
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         table.to_csv(out / "zoo.csv", index=False)
-        (out / "report.md").write_text(report(table, quick, end_time))
+        (out / "report.md").write_text(report(table, quick, end_time, None if names_given else group))
     return table
 
 
@@ -59,8 +66,9 @@ def show(table: Any) -> str:
     return table[cols].to_string(index=False, float_format=lambda x: f"{x:.3g}")
 
 
-def report(table: Any, quick: bool, end_time: float | None) -> str:
-    """The Markdown report: _report.md filled with the tables and the run's notes."""
+def report(table: Any, quick: bool, end_time: float | None, group: str | None = DEFAULT_GROUP) -> str:
+    """The Markdown report: _report.md filled with the tables and the run's notes; ``group``:
+    the group run (None: models named one by one)."""
     template = (Path(__file__).with_name("_report.md")).read_text()
     cols = [c for c in TABLE_COLUMNS if c in table.columns]
     messages = []
@@ -69,11 +77,13 @@ def report(table: Any, quick: bool, end_time: float | None) -> str:
             value = r.get(key)
             if isinstance(value, str) and value:
                 messages.append(f"- `{r['model']}` {key}: {value}")
+    entries = [REGISTRY[n] for n in table["model"] if n in REGISTRY]
     models = "\n".join(f"- `{e.name}`: {e.example} ({e.bodies}); replaced: {e.replaced}"
                        + (f"; with {', '.join(f'{k}={v!r}' for k, v in e.fixed.items())}" if e.fixed else "")
-                       for e in REGISTRY.values())
+                       for e in entries)
     return template.format(
         mode="quick (one run per timing, no convergence check)" if quick else "full (median of 3 timings)",
+        group="the models named" if group is None else f"the group {group!r}",
         end_time="the examples' own" if end_time is None else f"{end_time:g} s for every model",
         exudyn=exu.__version__, exuclear=getattr(exuclear, "__version__", "?"),
         models=models, table=table[cols].to_markdown(index=False, floatfmt=".3g") if _has_tabulate()
