@@ -286,7 +286,8 @@ def run_model(name: str, quick: bool = False, convergence: bool = True,
         c = model.clearance
         pen, force = joint_peaks(model.joint)
         row.update(clearance_um=c * 1e6, own_reached=own.reached, own_time=own.time_reached, own_message=own.message,
-                   own_wall=own.wall, own_steps=own.steps, own_pen_c=pen / c, own_force=force,
+                   own_wall=own.wall, own_steps=own.steps, own_impacts=len(model.joint.impacts()), own_pen_c=pen / c,
+                   own_force=force,
                    own_warnings=" | ".join(own.warnings))
         if own.reached and probe_ideal is not None:
             row["probe_diff"] = float(np.linalg.norm(np.asarray(model.probe(model.mbs), dtype=float) - probe_ideal))
@@ -297,7 +298,8 @@ def run_model(name: str, quick: bool = False, convergence: bool = True,
         sim, result = _solve_simulate(model, limit)
         spen, sforce = joint_peaks(model.joint) if result is not None else (math.nan, math.nan)
         row.update(sim_reached=sim.reached, sim_time=sim.time_reached, sim_message=sim.message, sim_wall=sim.wall,
-                   sim_steps=sim.steps, sim_step=getattr(result, "step", math.nan), sim_pen_c=spen / c,
+                   sim_steps=sim.steps, sim_step=getattr(result, "step", math.nan),
+                   sim_impacts=len(model.joint.impacts()) if result is not None else -1, sim_pen_c=spen / c,
                    sim_force=sforce, sim_warnings=" | ".join(sim.warnings),
                    sim_verdict=verdict(sim, spen / c, None, model.joint, checked=convergence and not quick))
         if sim.reached and probe_ideal is not None:

@@ -15,9 +15,9 @@ from ._common import DEFAULT_GROUP, IMPORT_ERRORS, REGISTRY, group_import_errors
 from ._runs import CONVERGED_PENETRATION, PENETRATION_WRONG, QUICK_TIME_LIMIT, REFERENCE_FACTOR, TIME_LIMIT, run_model
 
 #: Columns of the printed table (all columns go to zoo.csv).
-TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_pen_c",
-                 "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_pen_c",
-                 "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence", "own_newton"]
+TABLE_COLUMNS = ["model", "ideal_wall", "ideal_steps", "own_reached", "own_time", "own_wall", "own_steps", "own_impacts",
+                 "own_pen_c", "own_force", "probe_diff", "own_ratio", "sim_reached", "sim_wall", "sim_steps", "sim_impacts",
+                 "sim_pen_c", "sim_ratio", "verdict", "sim_verdict", "own_convergence", "convergence", "own_newton"]
 
 
 def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bool = True,
