@@ -24,6 +24,7 @@ from typing import Any
 
 import exudyn as exu
 import numpy as np
+from exudyn.itemInterface import LoadMassProportional, MarkerBodyMass, NodePoint2DSlope1, ObjectANCFCable2D
 
 import exuclear
 from exuclear.settings import METHODS
@@ -262,6 +263,25 @@ def rigid_body_energy(bodies: list[Any], inertias: list[Any], gravity: Any) -> C
         return kinetic, potential
 
     return energy
+
+
+def straight_ancf_cable(mbs: exu.MainSystem, length: float, n_elements: int, gravity: Any,
+                        **element: Any) -> tuple[list[int], list[int]]:
+    """A straight cable of ``ObjectANCFCable2D`` elements along x from the origin, as Exudyn's
+    examples build it with the deprecated ``GenerateStraightLineANCFCable2D`` (without its
+    constraints): ``n_elements + 1`` ``NodePoint2DSlope1`` nodes (position x, y, slope (1, 0)),
+    the elements with ``element``'s parameters (``massPerLength`` [kg/m], ``bendingStiffness``
+    [N m^2], ...; their ``length`` is set), a ``LoadMassProportional`` of ``gravity``
+    [m/s^2] on each.  Returns the node and the element numbers."""
+    l_elem = length / n_elements
+    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[k * l_elem, 0.0, 1.0, 0.0]))
+             for k in range(n_elements + 1)]
+    cables = [mbs.AddObject(ObjectANCFCable2D(nodeNumbers=[nodes[k], nodes[k + 1]], length=l_elem, **element))
+              for k in range(n_elements)]
+    for cable in cables:
+        mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=cable)),
+                                         loadVector=list(gravity)))
+    return nodes, cables
 
 
 def scaled_end(settings: exu.SimulationSettings, end_time: float | None) -> None:

@@ -43,20 +43,19 @@ from __future__ import annotations
 
 import exudyn as exu
 import numpy as np
-from exudyn.itemInterface import (
-    LoadMassProportional,
-    MarkerBodyMass,
-    MarkerNodeCoordinate,
-    NodePoint2DSlope1,
-    NodePointGround,
-    ObjectANCFCable2D,
-    ObjectConnectorCoordinate,
-    ObjectGround,
-)
+from exudyn.itemInterface import MarkerNodeCoordinate, NodePointGround, ObjectConnectorCoordinate, ObjectGround
 
 import exuclear
 
-from ._common import PROBE_BOUND_CARRIED, ZooModel, example_settings, joint_parameters, register, solver_settings_like
+from ._common import (
+    PROBE_BOUND_CARRIED,
+    ZooModel,
+    example_settings,
+    joint_parameters,
+    register,
+    solver_settings_like,
+    straight_ancf_cable,
+)
 
 EXAMPLE = "main/pythonDev/Examples/flexiblePendulumANCF.py"
 BODIES = "ObjectANCFCable2D on NodePoint2DSlope1 nodes"
@@ -87,17 +86,9 @@ def build(clearance: bool, end_time: float | None = None, **joint_options) -> Zo
     """The example's cable pendulum; ``clearance=True`` puts a clearance joint at the hinge."""
     mbs = exu.SystemContainer().AddSystem()
     area, second_moment = WIDTH * HEIGHT, WIDTH * HEIGHT ** 3 / 12
-    l_elem = LENGTH / N_ELEMENTS
-    # node coordinates: position x, y and slope x, y (a straight cable along x)
-    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[k * l_elem, 0.0, 1.0, 0.0]))
-             for k in range(N_ELEMENTS + 1)]
-    cables = [mbs.AddObject(ObjectANCFCable2D(
-        nodeNumbers=[nodes[k], nodes[k + 1]], length=l_elem, massPerLength=MASS_PER_LENGTH,
-        bendingStiffness=E_MODULUS * second_moment, axialStiffness=E_MODULUS * area,
-        useReducedOrderIntegration=0)) for k in range(N_ELEMENTS)]
-    for cable in cables:
-        mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=cable)),
-                                         loadVector=list(GRAVITY)))
+    nodes, cables = straight_ancf_cable(mbs, LENGTH, N_ELEMENTS, GRAVITY, massPerLength=MASS_PER_LENGTH,
+                                        bendingStiffness=E_MODULUS * second_moment, axialStiffness=E_MODULUS * area,
+                                        useReducedOrderIntegration=0)
     ground = mbs.AddObject(ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
 
     joint = None

@@ -45,14 +45,10 @@ from typing import Any
 import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import (
-    LoadMassProportional,
-    MarkerBodyMass,
     MarkerBodyRigid,
     MarkerNodeCoordinate,
     MarkerNodeRigid,
-    NodePoint2DSlope1,
     NodePointGround,
-    ObjectANCFCable2D,
     ObjectConnectorCoordinate,
     ObjectGround,
     ObjectJointGeneric,
@@ -70,6 +66,7 @@ from .._common import (
     register,
     scaled_end,
     solver_settings_like,
+    straight_ancf_cable,
 )
 
 EXAMPLE = "main/pythonDev/Examples/ANCFrotatingCable2D.py"
@@ -109,17 +106,10 @@ def build(clearance: bool, end_time: float | None = None, **joint_options: Any) 
     """The example's cable on its hub; ``clearance=True`` puts a clearance joint at the hub's pin."""
     mbs = exu.SystemContainer().AddSystem()
     area, second_moment = WIDTH * HEIGHT, WIDTH * HEIGHT ** 3 / 12
-    l_elem = LENGTH / N_ELEMENTS
-    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[k * l_elem, 0.0, 1.0, 0.0]))
-             for k in range(N_ELEMENTS + 1)]
-    cables = [mbs.AddObject(ObjectANCFCable2D(
-        nodeNumbers=[nodes[k], nodes[k + 1]], length=l_elem, massPerLength=DENSITY * area,
-        bendingStiffness=E_MODULUS * second_moment, axialStiffness=E_MODULUS * area,
-        bendingDamping=BENDING_DAMPING * E_MODULUS * second_moment, useReducedOrderIntegration=0))
-        for k in range(N_ELEMENTS)]
-    for cable in cables:
-        mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=cable)),
-                                         loadVector=list(GRAVITY)))
+    nodes, _cables = straight_ancf_cable(mbs, LENGTH, N_ELEMENTS, GRAVITY, massPerLength=DENSITY * area,
+                                         bendingStiffness=E_MODULUS * second_moment, axialStiffness=E_MODULUS * area,
+                                         bendingDamping=BENDING_DAMPING * E_MODULUS * second_moment,
+                                         useReducedOrderIntegration=0)
     ground = mbs.AddObject(ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
     hub = mbs.CreateRigidBody(referencePosition=[0.0, 0.0, 0.0], inertia=InertiaCuboid(HUB_DENSITY, [HUB_SIZE] * 3),
                               create2D=True, returnDict=True, show=False)
