@@ -62,9 +62,12 @@ const double GROWTH_MIN = 2.0;
 const double GROWTH_GAP = 1e-2;
 // A penetration beyond the joint's limit redoes the step with this fraction of it ...
 const double PENETRATION_CUT = 0.25;
-// ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
-// still beyond the limit then is the contact's, not the step's: the step is accepted, the
-// joint's failure() says so and the handle warns (exuclear.simulate stops the run there).
+// ... this many times for one contact, counted from a step that starts out of contact (the
+// step 4^4 = 256 times shorter); a penetration still beyond the limit then is the contact's,
+// not the step's: the step is accepted, the joint's failure() says so and the handle warns
+// (exuclear.simulate stops the run there).  Counted per step instead, a contact whose
+// penetration passes the limit would be approached in ever shorter steps down to the
+// solver's minimum step.
 const int PENETRATION_RETRIES = 4;
 
 std::string fmt(double x) {
@@ -137,7 +140,9 @@ double step_control(const Params& a, JointState& s, const std::vector<History>& 
     double deepest = -INF;
     for (const Kinematics& k : s.kins) deepest = k.delta > deepest ? k.delta : deepest;
     if (deepest > a.max_penetration) {
-        if (!same(base[0].time, c.retry_start)) {
+        bool touching = false;
+        for (const History& b : base) touching = touching || b.in_contact;
+        if (!same(base[0].time, c.retry_start) && !touching) {  // a new contact: its own retries
             c.retry_start = base[0].time;
             c.retries = 0;
         }

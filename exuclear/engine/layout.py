@@ -258,7 +258,7 @@ STEP_CONTROL = (
     # the step control's own memory
     ControlField("last_time", -_INF, "the end [s] of the last rejected step (to see it come back unshortened)"),
     ControlField("last_step", 0.0, "its length [s]"),
-    ControlField("retry_start", -_INF, "the start [s] of the step the penetration retries are about"),
+    ControlField("retry_start", -_INF, "the start [s] of the step out of contact that began the contact the penetration retries are about"),
     ControlField("retries", 0, "the penetration retries of that step so far"),
     ControlField("finished", False, "whether the step that reaches end_time has told the handle"),
 )

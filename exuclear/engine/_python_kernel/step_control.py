@@ -71,9 +71,12 @@ GROWTH_MIN = 2.0
 GROWTH_GAP = 1e-2
 #: A penetration beyond the joint's limit redoes the step with this fraction of it ...
 PENETRATION_CUT = 0.25
-#: ... this many times for one step's start (the step 4^4 = 256 times shorter); a penetration
-#: still beyond the limit then is the contact's, not the step's: the step is accepted, the
-#: joint's failure() says so and the handle warns (exuclear.simulate stops the run there).
+#: ... this many times for one contact, counted from a step that starts out of contact (the
+#: step 4^4 = 256 times shorter); a penetration still beyond the limit then is the contact's,
+#: not the step's: the step is accepted, the joint's failure() says so and the handle warns
+#: (exuclear.simulate stops the run there).  Counted per step instead, a contact whose
+#: penetration passes the limit would be approached in ever shorter steps down to the
+#: solver's minimum step.
 PENETRATION_RETRIES = 4
 #: ``mbs.variables`` key of the Python kernel's step group: ``[time, smallest allowance, joints that reported]``.
 STEP_GROUP_KEY = "exuclear.step_group"
@@ -220,8 +223,8 @@ class JointStepControl(JointState):
         shortens = c.can_shorten and not repeated and h > c.min_step * (1.0 + STEP_SLACK)
         deepest = max(k.delta for k in kins)
         if deepest > max_penetration:
-            if not _same(base[0].time, c.retry_start):
-                c.retry_start, c.retries = base[0].time, 0
+            if not _same(base[0].time, c.retry_start) and not any(b.in_contact for b in base):
+                c.retry_start, c.retries = base[0].time, 0  # a new contact: its own retries
             if shortens and c.retries < PENETRATION_RETRIES:
                 c.retries += 1
                 c.rejected += 1
