@@ -265,6 +265,9 @@ def make_prismatic_joint(
     slider_height: float,
     clearance: float,
     stiffness: float | str,
+    slider_width: float | None = None,
+    clearance_width: float | None = None,
+    guide_length: float | None = None,
     exponent: float | None = None,
     corner_radius: float | None = None,
     corner_length: float | None = None,
@@ -276,9 +279,13 @@ def make_prismatic_joint(
     friction: str | FrictionLaw = "none",
     v_min: float | None = None,
 ) -> ClearanceJoint:
-    """Build the physics of a planar translational clearance joint: a slider
-    ``slider_length`` by ``slider_height`` [m] in a guide ``slider_height + 2 clearance``
-    wide (:class:`exuclear.prismatic.GuideGeometry`), four corners against two walls.
+    """Build the physics of a translational clearance joint: a slider ``slider_length`` by
+    ``slider_height`` [m] in a guide ``slider_height + 2 clearance`` wide
+    (:class:`exuclear.prismatic.GuideGeometry`), four corners against two walls; with
+    ``slider_width`` [m] the spatial joint, a box in a channel ``slider_width + 2
+    clearance_width`` deep (``clearance_width`` default ``clearance``), eight corners against
+    four walls.  ``guide_length`` [m]: the walls end ``guide_length / 2`` either side of the
+    guide's centre point, beyond which a corner is free (default: they do not end).
 
     A sharp corner has no radius of curvature: its law is ``F_e = K delta^n`` with ``K =
     stiffness`` [N/m^n] and ``n = exponent`` (default 1.5).  A rounded corner may take one
@@ -298,7 +305,8 @@ def make_prismatic_joint(
     ``cr`` (required unless ``damping="none"``), ``v_min`` [m/s] as in :func:`make_joint`;
     ``friction`` acts along the wall.
     """
-    geometry = GuideGeometry(slider_length, slider_height, clearance, corner_radius, corner_length)
+    geometry = GuideGeometry(slider_length, slider_height, clearance, corner_radius, corner_length, guide_length,
+                             slider_width, clearance_width)
     if cr is None:
         if str(damping).lower() != "none":
             raise ValueError(f"`cr` is required with damping={damping!r}: the corners' coefficient of restitution, "

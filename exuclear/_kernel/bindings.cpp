@@ -40,8 +40,8 @@
 namespace {
 
 V6 force_torque(const MainSystem&, double t, int, V3 displacement, V3 rotation, V3 velocity, V3 angularVelocity,
-                M6 parameters, M6, M3, M3, V6) {
-    Params a = decode(parameters);
+                M6 parameters, M6 second, M3, M3, V6) {
+    Params a = decode(parameters, second);
     switch (a.role) {
         case PROBE:  // marker 0 the bearing, marker 1 the ground: minus the bearing's spin in J0
             record_bearing_spin(a, angularVelocity);
@@ -157,8 +157,8 @@ StdVector joint_post_newton(const Params& a, const void* system, double t, const
 }
 
 StdVector post_newton(const MainSystem& mbs, double t, int, StdVector data, V3 displacement, V3 rotation,
-                      V3 velocity, V3 angularVelocity, M6 parameters, M6, M3, M3, V6) {
-    Params a = decode(parameters);
+                      V3 velocity, V3 angularVelocity, M6 parameters, M6 second, M3, M3, V6) {
+    Params a = decode(parameters, second);
     if (a.role == PROBE) {
         record_bearing_spin(a, angularVelocity);
         StdVector out = reply(data.size());
@@ -346,6 +346,9 @@ PYBIND11_MODULE(_ckernel, m) {
     py::list layout;
     for (const FieldPosition& f : LAYOUT) layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
     m.attr("LAYOUT") = layout;
+    py::list second_layout;
+    for (const FieldPosition& f : SECOND_LAYOUT) second_layout.append(py::make_tuple(f.name, f.row, f.column, f.size));
+    m.attr("SECOND_LAYOUT") = second_layout;
     py::dict joint_types;  // layout.py JOINT_TYPE_CODES
     joint_types["revolute"] = static_cast<int>(REVOLUTE);
     joint_types["spherical"] = static_cast<int>(SPHERICAL);

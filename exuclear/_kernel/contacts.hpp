@@ -44,6 +44,7 @@ enum ContactKind {
     FACE,          // an end face: flat-punch stiffness K_f, slip at the friction radius (eq. (53))
     BALL,          // the spherical joint's ball: the joint's law, slip |v_s| across the normal (eq. (96))
     CORNER,        // a slider's corner against a guide's wall: the joint's law, slip v_t along the wall
+    BOX_CORNER,    // the spatial slider's corner against a channel's wall: the joint's law, slip |v_s| over the wall
     SLOT_SLICE     // the pin-in-slot joint's slice: the planar slice against the slot's centre segment
 };
 
@@ -52,14 +53,18 @@ int slice_count(const Params& a) { return a.slices > 0 ? a.slices : 1; }
 // the planar revolute joint (one slice, the motion projected on the plane normal to the axis)
 bool planar(const Params& a) { return (a.joint_type == REVOLUTE || a.joint_type == PIN_SLOT) && a.slices == 0; }
 
+// the spatial translational joint: a box in a channel (prismatic.py GuideGeometry.spatial)
+bool box(const Params& a) { return a.joint_type == PRISMATIC && a.half_width > 0.0; }
+
 size_t contact_count(const Params& a) {
+    if (box(a)) return static_cast<size_t>(N_BOX_CORNERS * N_BOX_WALLS);  // prismatic.py BOX_PAIRS
     if (a.joint_type == PRISMATIC) return static_cast<size_t>(N_CORNERS * N_WALLS);  // prismatic.py PAIRS
     return static_cast<size_t>(slice_count(a)) + (a.play > 0.0 ? 2u : 0u);
 }
 
 ContactKind contact_kind(const Params& a, size_t i) {
     if (a.joint_type == SPHERICAL) return BALL;
-    if (a.joint_type == PRISMATIC) return CORNER;
+    if (a.joint_type == PRISMATIC) return box(a) ? BOX_CORNER : CORNER;
     if (a.joint_type == PIN_SLOT) return SLOT_SLICE;
     if (i >= static_cast<size_t>(slice_count(a))) return FACE;
     return a.slices > 0 ? SLICE : PLANAR_SLICE;
@@ -197,6 +202,21 @@ void add_corner_loads(double* loads, const Kinematics& k, double f_n, double f_t
     loads[5] += k.rx * fy - k.ry * fx;                                  // T = -(r x (-F)) = r x F
 }
 
+// prismatic.py add_box_corner_loads: on the guide F = F_N n + F_T v_s / |v_s|, T = r x F; p x F added at the end
+void add_box_corner_loads(double* loads, const Kinematics& k, double f_n, double f_t) {
+    V3 t_force{0.0, 0.0, 0.0};
+    if (k.v_t > 0.0) {
+        double scale = f_t / k.v_t;
+        t_force = V3{scale * k.v_s[0], scale * k.v_s[1], scale * k.v_s[2]};
+    }
+    V3 force{f_n * k.nx + t_force[0], f_n * k.ny + t_force[1], f_n * k.nz + t_force[2]};
+    V3 moment = cross(V3{k.rx, k.ry, k.rz}, force);
+    for (int i = 0; i < 3; ++i) {
+        loads[i] += force[i];
+        loads[3 + i] += moment[i];
+    }
+}
+
 void add_face_loads(double* loads, double r_e, const V3& u, const Kinematics& k, double f_n, double f_t) {
     V3 total{0.0, 0.0, -k.side * f_n};                                  // on the bearing, at c_f
     V3 su{k.s * u[0], k.s * u[1], k.s * u[2]};
@@ -231,6 +251,9 @@ void add_loads(double* loads, const Params& a, ContactKind kind, const V3& u, co
             break;
         case CORNER:
             add_corner_loads(loads, k, r.f_n, r.f_t);
+            break;
+        case BOX_CORNER:
+            add_box_corner_loads(loads, k, r.f_n, r.f_t);
             break;
         case SLOT_SLICE:  // eqs. (24)-(26) at the segment's point
             slot_loads(loads, a.r_j, a.r_b, k, r.f_n, r.f_t);

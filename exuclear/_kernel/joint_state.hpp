@@ -199,15 +199,30 @@ Pose joint_kinematics(const Params& a, JointState& s, const V3& displacement, co
         s.kins[0] = ball_kinematics(a.r_j, a.r_b, q.p, velocity, angularVelocity, w_b);
         return q;
     }
+    if (box(a)) {  // the box's corners against the channel's walls (prismatic.py BOX_PAIRS)
+        q.p = displacement;
+        q.u = V3{0.0, 0.0, 1.0};
+        M3 turned = rotation_xyz(rotation[0], rotation[1], rotation[2]);
+        size_t i = 0;
+        for (int wall = 0; wall < N_BOX_WALLS; ++wall) {
+            for (int corner = 0; corner < N_BOX_CORNERS; ++corner) {
+                s.kins[i] = box_corner_kinematics(0.5 * a.length, a.r_j, a.half_width, a.r_b, a.channel_half_width,
+                                                  corner, wall, q.p, turned, velocity, angularVelocity, w_b);
+                leave_guide(s.kins[i++], a.half_guide);
+            }
+        }
+        return q;
+    }
     if (a.joint_type == PRISMATIC) {  // the slider's corners in the plane normal to z (prismatic.py PAIRS)
         q.p = V3{displacement[0], displacement[1], 0.0};
         q.u = V3{0.0, 0.0, 1.0};
         size_t i = 0;
         for (int wall = 0; wall < N_WALLS; ++wall) {
             for (int corner = 0; corner < N_CORNERS; ++corner) {
-                s.kins[i++] = corner_kinematics(0.5 * a.length, a.r_j, a.r_b, corner, wall, displacement[0],
-                                                displacement[1], rotation[2], velocity[0], velocity[1],
-                                                angularVelocity[2], w_b[2]);
+                s.kins[i] = corner_kinematics(0.5 * a.length, a.r_j, a.r_b, corner, wall, displacement[0],
+                                              displacement[1], rotation[2], velocity[0], velocity[1],
+                                              angularVelocity[2], w_b[2]);
+                leave_guide(s.kins[i++], a.half_guide);
             }
         }
         return q;

@@ -36,14 +36,15 @@ V3 journal_axis(const V3& angles, const V3& axis_journal) {  // eq. (34): Rx(a) 
 
 // One contact's kinematics: spatial.py's SliceKinematics (side 0) or FaceKinematics (side -1, +1),
 // or spherical.py's BallKinematics (ez, nz and the slip vector v_s; v_t its length), or
-// prismatic.py's CornerKinematics (rx, ry the corner relative to the slider's centre), or
+// prismatic.py's CornerKinematics (rx, ry the corner relative to the slider's centre) or
+// BoxCornerKinematics (ez, nz, the slip v_s with v_t its length, rx, ry, rz its r), or
 // slot.py's SlotKinematics (segment: the x of the slot's centre-segment point under the pin)
 struct Kinematics {
     int side;
     double s, ex, ey, ecc, nx, ny, a, delta, delta_dot, v_t, v_a, speed;
     double ez, nz;
     V3 v_s;
-    double rx, ry;
+    double rx, ry, rz;
     double segment;
 };
 
@@ -206,6 +207,54 @@ Kinematics corner_kinematics(double half_length, double half_height, double half
     k.delta_dot = s * vy;
     k.v_t = vx;
     return k;
+}
+
+// prismatic.py BOX_CORNER_SIGNS (as signs of L/2, H/2, B/2) and BOX_WALLS (the axis across a
+// wall, the sign of its normal)
+const double BOX_CORNER_SIGNS[8][3] = {{-1.0, -1.0, -1.0}, {1.0, -1.0, -1.0}, {1.0, 1.0, -1.0}, {-1.0, 1.0, -1.0},
+                                       {-1.0, -1.0, 1.0},  {1.0, -1.0, 1.0},  {1.0, 1.0, 1.0},  {-1.0, 1.0, 1.0}};
+const int BOX_WALL_AXES[4] = {1, 1, 2, 2};
+const double BOX_WALL_SIDES[4] = {-1.0, 1.0, -1.0, 1.0};
+const int N_BOX_CORNERS = 8;
+const int N_BOX_WALLS = 4;
+
+// prismatic.py box_corner_kinematics: a corner of the box (2 half_length x 2 half_height x
+// 2 half_width) against a wall of the channel (walls wall_y, wall_z from its centre line), the
+// box at p turned by the rotation a (rotation_xyz of the connector's angles) relative to the guide
+Kinematics box_corner_kinematics(double half_length, double half_height, double half_width, double wall_y,
+                                 double wall_z, int corner, int wall, const V3& p, const M3& a, const V3& dv,
+                                 const V3& dw, const V3& w_j) {
+    Kinematics k{};
+    double sx = BOX_CORNER_SIGNS[corner][0], sy = BOX_CORNER_SIGNS[corner][1], sz = BOX_CORNER_SIGNS[corner][2];
+    int axis = BOX_WALL_AXES[wall];
+    double s = BOX_WALL_SIDES[wall];
+    V3 c{sx * half_length, sy * half_height, sz * half_width};
+    V3 r{a[0][0] * c[0] + a[0][1] * c[1] + a[0][2] * c[2],             // A c_k
+         a[1][0] * c[0] + a[1][1] * c[1] + a[1][2] * c[2],
+         a[2][0] * c[0] + a[2][1] * c[1] + a[2][2] * c[2]};
+    V3 q{p[0] + r[0], p[1] + r[1], p[2] + r[2]};                         // the corner in J0
+    k.delta = s * q[axis] - (axis == 1 ? wall_y : wall_z);
+    // the corner's velocity over the guide's point under it: dv + dw x r - w_j x p
+    V3 wr = cross(dw, r), wp = cross(w_j, p);
+    V3 v{dv[0] + wr[0] - wp[0], dv[1] + wr[1] - wp[1], dv[2] + wr[2] - wp[2]};
+    k.v_s = V3{v[0], axis == 1 ? 0.0 : v[1], axis == 2 ? 0.0 : v[2]};   // along the wall's plane
+    k.v_t = std::sqrt(k.v_s[0] * k.v_s[0] + k.v_s[1] * k.v_s[1] + k.v_s[2] * k.v_s[2]);
+    k.ex = q[0];
+    k.ey = q[axis];
+    k.ez = q[3 - axis];
+    k.nx = 0.0;
+    k.ny = axis == 1 ? s : 0.0;
+    k.nz = axis == 2 ? s : 0.0;
+    k.delta_dot = s * v[axis];
+    k.rx = r[0];
+    k.ry = r[1];
+    k.rz = r[2];
+    return k;
+}
+
+// prismatic.py leave_guide: a corner beyond the end of a guide 2 half_guide long has no wall under it
+void leave_guide(Kinematics& k, double half_guide) {
+    if (std::fabs(k.ex) > half_guide) k.delta = -INF;
 }
 
 bool finite(const Kinematics& k) {

@@ -100,6 +100,16 @@ constexpr FieldPosition LAYOUT[N_FIELDS] = {
 
 double field(const M6& p, Field f, int i = 0) { return p[LAYOUT[f].row][LAYOUT[f].column + i]; }
 
+// The fields of the connector's `damping` matrix (layout.py SECOND_LAYOUT): the handle's mark and
+// what a joint type needs where the `stiffness` matrix has no free entry; 0 is each field's default.
+enum SecondField { TOKEN, GUIDE_LENGTH, SLIDER_HALF_WIDTH, CHANNEL_HALF_WIDTH, N_SECOND_FIELDS };
+
+constexpr FieldPosition SECOND_LAYOUT[N_SECOND_FIELDS] = {
+    {"token", 0, 0, 1}, {"guide_length", 0, 1, 1}, {"slider_half_width", 0, 2, 1}, {"channel_half_width", 0, 3, 1},
+};
+
+double second_field(const M6& d, SecondField f) { return d[SECOND_LAYOUT[f].row][SECOND_LAYOUT[f].column]; }
+
 struct Params {
     long id;
     int role;
@@ -126,9 +136,15 @@ struct Params {
     // none), the pressure over the arc, the profiles' nodes; and k_D [1/Pa]
     int wear_surface, wear_pressure, wear_nodes;
     double wear_coefficient;
+    // a translational joint's (the damping matrix, SECOND_LAYOUT): half the guide's length (INF:
+    // its walls do not end), the spatial slider's half-width B/2 (0: the planar joint) and its
+    // channel's half-depth B/2 + c_z
+    double half_guide, half_width, channel_half_width;
 };
 
-Params decode(const M6& p) {
+// The parameters of the `stiffness` matrix p and the `damping` matrix d (zeros: every second
+// field at its default).
+Params decode(const M6& p, const M6& d = M6{}) {
     Params a;
     a.id = static_cast<long>(field(p, JOINT_ID));
     a.role = static_cast<int>(field(p, ROLE));
@@ -167,6 +183,10 @@ Params decode(const M6& p) {
         a.wear_nodes = static_cast<int>(wear / 8);
     }
     a.wear_coefficient = field(p, WEAR_COEFFICIENT);
+    double guide_length = second_field(d, GUIDE_LENGTH);
+    a.half_guide = guide_length > 0.0 ? 0.5 * guide_length : INF;
+    a.half_width = second_field(d, SLIDER_HALF_WIDTH);
+    a.channel_half_width = second_field(d, CHANNEL_HALF_WIDTH);
     return a;
 }
 

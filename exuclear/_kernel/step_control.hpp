@@ -274,6 +274,7 @@ double step_growth(const Params& a, const std::vector<History>& before, const st
     for (size_t i = 0; i < end.size(); ++i) {
         const History& e = end[i];
         if (before[i].in_contact || base[i].in_contact || e.in_contact || -e.delta < gap) return 0.0;
+        if (e.delta == -INF) continue;  // no wall under it (a corner beyond its guide's end): it limits nothing
         double to_wall = time_to_wall(e.delta, e.delta_dot, (e.delta_dot - base[i].delta_dot) / h);
         allow = to_wall < allow ? to_wall : allow;
     }

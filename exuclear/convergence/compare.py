@@ -218,7 +218,8 @@ def _interp(t: np.ndarray, ta: np.ndarray, ya: np.ndarray) -> np.ndarray:
 def _path_signal(outputs: Mapping[str, Any]) -> np.ndarray:
     """The joint's path as one signal: ``|e|`` of a journal, a ball or a pin; a translational
     joint's slider centre across the guide (the mean of its corner-wall pairs' ``ecc_y``: the
-    corners' offsets from the centre cancel)."""
+    corners' offsets from the centre cancel; the spatial joint's, whose far and near walls'
+    pairs hold z there, the mean of the centre's y and z)."""
     components = [np.asarray(outputs[k]) for k in _eccentricity(outputs)]
     if components[0].ndim == 2:
         return outputs["ecc_y"].mean(axis=1)

@@ -78,19 +78,26 @@ GUIDE_WALL_LENGTH, GUIDE_WALL_THICKNESS = 3.0, 0.1
 
 def slider_drawing_function(handle: Any, configuration: Any = exu.ConfigurationType.Visualization) -> Any:
     """Graphics function of the translational joint ``handle``: the slider as a box of its
-    length and height at the slider marker's pose, and the guide's two walls at
-    ``+-(H/2 + c)`` about the guide marker, :data:`GUIDE_WALL_LENGTH` slider lengths long."""
+    length and height (and width; the planar slider as deep as high) at the slider marker's
+    pose, and the guide's walls about the guide marker, two at ``+-(H/2 + c)`` (and the
+    spatial joint's two at ``+-(B/2 + c_z)``), ``guide_length`` long (else
+    :data:`GUIDE_WALL_LENGTH` slider lengths)."""
     geometry = handle.joint.geometry  # read now: the function must not keep the handle (see drawing_function)
     m_guide, m_slider = handle.markerNumbers
     length, height = geometry.slider_length, geometry.slider_height
+    width = geometry.slider_width if geometry.spatial else height
     wall = GUIDE_WALL_THICKNESS * height
+    span = geometry.guide_length or GUIDE_WALL_LENGTH * length
     offset = geometry.outer_radius + 0.5 * wall  # a wall's centre line from the guide's
+    walls = [([0.0, side * offset, 0.0], [span, wall, width]) for side in (-1.0, 1.0)]
+    if geometry.spatial:
+        offset_z = geometry.channel_half_width + 0.5 * wall
+        walls += [([0.0, 0.0, side * offset_z], [span, 2.0 * geometry.outer_radius, wall]) for side in (-1.0, 1.0)]
 
     def draw(mbs: exu.MainSystem, item: int) -> list:
         out = []
-        for marker, boxes, color in ((m_slider, (([0.0, 0.0, 0.0], [length, height, height]),), JOURNAL_COLOR),
-                                     (m_guide, (([0.0, side * offset, 0.0], [GUIDE_WALL_LENGTH * length, wall, height])
-                                                for side in (-1.0, 1.0)), BEARING_COLOR)):
+        for marker, boxes, color in ((m_slider, (([0.0, 0.0, 0.0], [length, height, width]),), JOURNAL_COLOR),
+                                     (m_guide, walls, BEARING_COLOR)):
             centre = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Position, configuration=configuration))
             rot = np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.RotationMatrix,
                                                  configuration=configuration)).reshape(3, 3)

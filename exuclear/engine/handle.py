@@ -17,7 +17,7 @@ from ..checks import check_nonnegative
 from ..exceptions import AccuracyWarning
 from ..history import ContactState, ImpactRecord, PairImpact, merge_overlapping
 from ..joint import ClearanceJoint
-from ..prismatic import PAIRS, pair_name
+from ..prismatic import pair_name
 from ..settings import RATE_LIMIT_DEFAULT
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..wear.profile import WearProfile
@@ -25,7 +25,7 @@ from . import outputs as _outputs
 from .arguments import check_wear
 from .backends import make_backend
 from .diagnostics import step_notes
-from .layout import MAIN, PROBE, TORQUE, TOKEN_ENTRY, parameters, uses_bearing_motion
+from .layout import MAIN, PROBE, TORQUE, TOKEN_ENTRY, parameters, second_parameters, uses_bearing_motion
 from .placement import PLACED_BY_MARKERS
 from .registry import label
 from .steering import _RunStart
@@ -170,6 +170,9 @@ class ClearanceJointHandle:
         if joint.geometry.joint_type != self.joint_type:
             raise ValueError(f"a {self.joint_type} joint cannot take the physics of a {joint.geometry.joint_type} "
                              "joint; create a new clearance joint")
+        if getattr(joint.geometry, "spatial", False) != getattr(self._joint.geometry, "spatial", False):
+            raise ValueError("a translational joint cannot change between planar and spatial (its pairs and its "
+                             "markers' frame depend on it); create a new clearance joint")
         if (joint.film is None) != (self._joint.film is None):
             raise ValueError("a joint cannot change between dry and lubricated (its data node's size depends on it); "
                              "create a new clearance joint")
@@ -207,9 +210,7 @@ class ClearanceJointHandle:
         for number, role in ((self.objectNumber, MAIN), (self.probeNumber, PROBE), (self.torqueNumber, TORQUE)):
             if number is not None:
                 self.mbs.SetObjectParameter(number, "stiffness", self.parameters(role))
-        mark = np.zeros((6, 6))
-        mark[TOKEN_ENTRY] = self.token
-        self.mbs.SetObjectParameter(self.objectNumber, "damping", mark.tolist())
+        self.mbs.SetObjectParameter(self.objectNumber, "damping", second_parameters(self._joint, self.token))
         # the probe and torque connectors run only where the loads use the bearing's spin
         active = uses_bearing_motion(self._joint, self.slices)
         for number in (self.probeNumber, self.torqueNumber):
@@ -283,14 +284,16 @@ class ClearanceJointHandle:
         self._report()
         records = self._backend.records()
         if self.joint_type == "prismatic":
-            records = [[PairImpact(*r, pair_name(k)) for r in rs] for k, rs in enumerate(records)]
+            records = [[PairImpact(*r, pair_name(k, self._joint.geometry.spatial)) for r in rs]
+                       for k, rs in enumerate(records)]
         if self.slices:
             records = [merge_overlapping([r for rs in records[:self.slices] for r in rs]), *records[self.slices:]]
         return sorted((r for rs in records for r in rs), key=lambda r: r.onset_time)
 
     def pair_states(self, which: str = "current") -> list[ContactState]:
         """A translational joint's corner-wall pairs' histories after the last accepted step
-        (``which="initial"``: at the run's initial state), in :data:`exuclear.prismatic.PAIRS`' order."""
+        (``which="initial"``: at the run's initial state), in the order of
+        :data:`exuclear.prismatic.PAIRS` (the spatial joint's :data:`~exuclear.prismatic.BOX_PAIRS`)."""
         self._check_pairs()
         return self._backend.states(which)
 
@@ -410,7 +413,7 @@ class ClearanceJointHandle:
         if self.joint_type == "spherical":
             return _outputs.assemble_ball(data, loads)
         if self.joint_type == "prismatic":
-            return _outputs.assemble_pairs(data, len(PAIRS), loads)
+            return _outputs.assemble_pairs(data, len(self._joint.geometry.pairs), loads)
         return _outputs.assemble(data, self.slices, len(FACE_SIDES) if self.shoulders is not None else 0,
                                  self._joint.film, loads)
 

@@ -3,7 +3,9 @@
 Every joint type shares one parameter matrix: the fields of row 0 to 3 (the radii of the
 contact pair, the law, friction, the step control) serve every type; rows 4 and 5 hold the
 revolute joint's own (slices, length, axial clearance, film, wear), which a spherical joint
-leaves at 0 and a translational joint uses only for its slider's length.  ``joint_type`` says which contacts the kernels build from them.
+leaves at 0 and a translational joint uses only for its slider's length (its guide length and
+box width are in the ``damping`` matrix, :data:`SECOND_LAYOUT`).  ``joint_type`` says which
+contacts the kernels build from them.
 
 Parameters.  Exudyn hands a connector's ``stiffness`` matrix (6 x 6) to its user
 functions on every call, so the joint's physics lives there, readable by the compiled
@@ -13,6 +15,10 @@ Both languages read it by name: Python through :func:`read` and :func:`parameter
 compiled kernel through its copy of the table (``Field`` and ``LAYOUT`` in
 ``exuclear/_kernel/layout.hpp``, exported as ``exuclear._ckernel.LAYOUT``), which
 a test keeps equal to this one.
+
+The connector's ``damping`` matrix, handed to the user functions too, holds the handle's
+mark and what a joint type needs beyond :data:`LAYOUT` (:data:`SECOND_LAYOUT`: a
+translational joint's guide length and box width), read by name in the same way.
 
 Outputs.  The joint's ``NodeGenericData`` holds, after every accepted step, the
 quantities of :data:`DATA_COLUMNS` (SI units); a ``SensorNode`` on it with
@@ -39,9 +45,6 @@ from ..wear.law import Wear
 MAIN, PROBE, TORQUE = 0, 1, 2
 #: Joint type (``ContactGeometry.joint_type``) -> code in the parameter matrix (layout.hpp ``JointType``).
 JOINT_TYPE_CODES = {"revolute": 0, "spherical": 1, "prismatic": 2, "pin-slot": 3}
-#: Where the handle marks its connector (``is_live``): an entry of the connector's ``damping``
-#: matrix, which Exudyn hands to the user functions and neither kernel reads.
-TOKEN_ENTRY = (0, 0)
 #: Size of the parameter matrix (Exudyn's connector ``stiffness``: 6 x 6).
 MATRIX_SIZE = 6
 
@@ -93,19 +96,37 @@ LAYOUT = (
 )
 FIELDS = {f.name: f for f in LAYOUT}
 
+#: The connector's ``damping`` matrix (6 x 6), which Exudyn hands to the user functions beside
+#: ``stiffness`` (the connector's own law is the user function, so Exudyn reads neither): the
+#: handle's mark and the fields a joint type needs where :data:`LAYOUT` has no free entry, field
+#: by field (the compiled kernel's ``SECOND_LAYOUT`` in the same order; the Python kernel reads
+#: them of the joint's geometry).  0 in a field is its default.
+SECOND_LAYOUT = (
+    Field("token", 0, 0, 1, "the handle's mark of its connector (is_live); no kernel reads it"),
+    Field("guide_length", 0, 1, 1, "a translational joint's guide length [m] (0: the walls do not end)"),
+    Field("slider_half_width", 0, 2, 1, "the spatial translational joint's slider half-width B/2 [m] (0: the "
+                                        "planar joint)"),
+    Field("channel_half_width", 0, 3, 1, "its channel's half-depth B/2 + c_z [m], the far and near walls' distance "
+                                         "from the centre line"),
+)
+SECOND_FIELDS = {f.name: f for f in SECOND_LAYOUT}
+#: Where the handle marks its connector (``is_live``).
+TOKEN_ENTRY = (SECOND_FIELDS["token"].row, SECOND_FIELDS["token"].column)
 
-def read(matrix: Any, name: str) -> Any:
-    """A field of a parameter matrix: a float, or a tuple for a field of several entries."""
-    f = FIELDS[name]
+
+def read(matrix: Any, name: str, fields: dict[str, Field] = FIELDS) -> Any:
+    """A field of a parameter matrix: a float, or a tuple for a field of several entries
+    (``fields``: :data:`SECOND_FIELDS` for the ``damping`` matrix)."""
+    f = fields[name]
     row = matrix[f.row]
     if f.size == 1:
         return row[f.column]
     return tuple(row[f.column + i] for i in range(f.size))
 
 
-def write(matrix: np.ndarray, name: str, value: float | Sequence[float]) -> None:
+def write(matrix: np.ndarray, name: str, value: float | Sequence[float], fields: dict[str, Field] = FIELDS) -> None:
     """Set a field of a parameter matrix; a field of several entries takes up to ``size`` values."""
-    f = FIELDS[name]
+    f = fields[name]
     if f.size == 1:
         matrix[f.row, f.column] = value
         return
@@ -317,6 +338,19 @@ def length_field(geometry: ContactGeometry) -> float:
     if geometry.joint_type == "pin-slot":
         return geometry.slot_length
     return geometry.length or 0.0
+
+
+def second_parameters(joint: ClearanceJoint, token: float) -> list[list[float]]:
+    """The ``damping`` matrix of the joint's connector (:data:`SECOND_LAYOUT`): the handle's
+    ``token``, and a translational joint's guide length and box width."""
+    d = np.zeros((MATRIX_SIZE, MATRIX_SIZE))
+    write(d, "token", token, SECOND_FIELDS)
+    g = joint.geometry
+    if g.joint_type == "prismatic":
+        write(d, "guide_length", g.guide_length or 0.0, SECOND_FIELDS)
+        write(d, "slider_half_width", g.half_width, SECOND_FIELDS)
+        write(d, "channel_half_width", g.channel_half_width, SECOND_FIELDS)
+    return d.tolist()
 
 
 def parameters(joint: ClearanceJoint, joint_id: int, role: int, max_penetration: float,

@@ -54,6 +54,8 @@ BALL_OUTPUT_COLUMNS = (*OUTPUT_COLUMNS, "ecc_z", "force", "moment")
 #: column per corner-wall pair in :data:`exuclear.prismatic.PAIRS`' order (``ecc_x``,
 #: ``ecc_y`` the corner in the guide's joint frame, ``slip_velocity`` its signed slip along
 #: the wall), and ``force``, ``moment`` (shape (times, 3)), the connector's load on the guide.
+#: The spatial joint's: (times, 32), :data:`exuclear.prismatic.BOX_PAIRS`' order (``ecc_y`` the
+#: corner's coordinate across its wall, y or z; ``slip_velocity`` its slip speed over the wall).
 PAIR_OUTPUT_COLUMNS = (*OUTPUT_COLUMNS, "force", "moment")
 #: Codes of the ``regime`` output.
 REGIME_FILM, REGIME_BLEND, REGIME_CONTACT = 0, 1, 2

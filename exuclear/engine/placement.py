@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import exudyn as exu
 import numpy as np
 
-from ..prismatic import PAIRS, corner_kinematics
+from ..prismatic import box_corner_kinematics, corner_kinematics, leave_guide
 
 if TYPE_CHECKING:
     from .handle import ClearanceJointHandle
@@ -41,9 +41,17 @@ def initial_penetration(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> fl
                          dtype=float).reshape(3, 3)
         turn = frame.T @ a_j  # the slider marker's frame is the joint frame in the reference configuration
         g = handle.joint.geometry
-        return max(corner_kinematics(0.5 * g.slider_length, g.inner_radius, g.outer_radius, corner, wall, local[0],
-                                     local[1], math.atan2(turn[1, 0], turn[0, 0]), 0.0, 0.0, 0.0, 0.0).delta
-                   for corner, wall in PAIRS)
+        if g.spatial:  # the box turned by the slider marker's frame in the joint frame
+            p, zero = (local[0], local[1], local[2]), (0.0, 0.0, 0.0)
+            rows = tuple(tuple(float(v) for v in row) for row in turn)
+            kins = [box_corner_kinematics(0.5 * g.slider_length, g.inner_radius, g.half_width, g.outer_radius,
+                                          g.channel_half_width, corner, wall, p, rows, zero, zero, zero)
+                    for corner, wall in g.pairs]
+        else:
+            kins = [corner_kinematics(0.5 * g.slider_length, g.inner_radius, g.outer_radius, corner, wall, local[0],
+                                      local[1], math.atan2(turn[1, 0], turn[0, 0]), 0.0, 0.0, 0.0, 0.0)
+                    for corner, wall in g.pairs]
+        return max(leave_guide(k, g.half_guide).delta for k in kins)
     if handle.joint_type == "pin-slot":  # from the slot's centre segment (exuclear/slot.py)
         half = 0.5 * handle.joint.geometry.slot_length
         local[0] -= min(max(local[0], -half), half)

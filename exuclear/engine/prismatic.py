@@ -1,12 +1,14 @@
-"""The planar translational clearance joint as Exudyn items: ``CreatePrismaticClearanceJoint``.
+"""The translational clearance joint as Exudyn items: ``CreatePrismaticClearanceJoint``.
 
 A slider (on the second body) in a guide (on the first), the clearance form of
-``mbs.CreatePrismaticJoint`` for motion in a plane.  The joint is the revolute joint's
-connector with the slider's eight corner-wall pairs (:mod:`exuclear.prismatic`): the same
-items (:mod:`~exuclear.engine.items`), kernels, history, step control, notes and outputs;
-its type (``joint.geometry.joint_type``) tells the kernels which contacts to build.  The
-joint frame has ``x`` along ``axis``, ``z`` the global z axis (the plane's normal), and is
-carried by both markers in the reference configuration.
+``mbs.CreatePrismaticJoint``.  The joint is the revolute joint's connector with the
+slider's corner-wall pairs (:mod:`exuclear.prismatic`): the same items
+(:mod:`~exuclear.engine.items`), kernels, history, step control, notes and outputs; its
+type (``joint.geometry.joint_type``) tells the kernels which contacts to build, and its
+geometry whether it is planar (eight pairs) or spatial (``slider_width`` given: a box in a
+channel, 32 pairs).  The joint frame has ``x`` along ``axis``; the planar joint's ``z`` is
+the global z axis (the plane's normal), the spatial joint's ``y`` is ``height_axis`` (default
+``z x axis``, the planar joint's ``y``).  Both markers carry it in the reference configuration.
 """
 from __future__ import annotations
 
@@ -18,8 +20,8 @@ import numpy as np
 from exudyn.itemInterface import MarkerBodyRigid
 
 from ..joint import ClearanceJoint, make_prismatic_joint
-from ..prismatic import PAIRS, GuideGeometry
-from .arguments import check_axis, check_flags, check_system
+from ..prismatic import GuideGeometry
+from .arguments import check_axis, check_flags, check_system, vector3
 from .connector import _orientation_is_fixed, joint_items, kernel_settings
 from .drawing import slider_drawing_function
 from .handle import ClearanceJointHandle
@@ -48,12 +50,15 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     bearingRotates: bool | None = None,  # noqa: N803
     record: bool = True,
     contact_mode: str | None = None,
+    height_axis: Sequence[float] | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
-    """Create a planar translational clearance joint, as ``mbs.CreatePrismaticJoint``
-    creates an ideal one: the guide on ``itemNumbers[0]``, the slider on ``itemNumbers[1]``,
-    the slider's centre at ``position`` (a point of the guide's centre line) in the
-    reference configuration, sliding along ``axis``.
+    """Create a translational clearance joint, as ``mbs.CreatePrismaticJoint`` creates an
+    ideal one: the guide on ``itemNumbers[0]``, the slider on ``itemNumbers[1]``, the
+    slider's centre at ``position`` (a point of the guide's centre line) in the reference
+    configuration, sliding along ``axis``.  Without ``slider_width`` the joint is planar (a
+    rectangle between two walls, motion in the global x-y plane); with it, spatial (a box in
+    a rectangular channel, 3D bodies).
 
     Parameters
     ----------
@@ -69,8 +74,13 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         The slider's centre [m] in the reference configuration: global
         (``useGlobalFrame=True``) or in item 0's frame; default the global origin.
     axis : 3 floats
-        The sliding direction, in the global x-y plane (the joint's plane of motion):
-        global, or in item 0's frame; default x.
+        The sliding direction: global, or in item 0's frame; default x.  The planar joint's
+        lies in the global x-y plane (its plane of motion).
+    height_axis : 3 floats, optional
+        The spatial joint's direction of ``slider_height`` (the joint frame's y; the width
+        is along ``axis x height_axis``), in the frame of ``axis``; its part along ``axis``
+        is dropped.  Default ``z x axis`` (the planar joint's y); required where ``axis``
+        is along z.
     useGlobalFrame, show, bodyNumbers
         As in ``mbs.CreatePrismaticJoint`` (``show``: draw the slider and the guide's walls;
         only a renderer draws).
@@ -81,7 +91,11 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         ``K`` [N/m^n], or ``"hertz"`` with ``corner_radius``, or ``"dubowsky-freudenstein"``
         with ``corner_radius`` and ``corner_length``, and ``slider_material``,
         ``guide_material``, ``E_star``), ``exponent`` (default 1.5), ``damping`` (default
-        ``"lankarani-nikravesh"``) with ``cr``, ``friction``, ``v_min``.
+        ``"lankarani-nikravesh"``) with ``cr``, ``friction``, ``v_min``; ``slider_width``
+        [m] makes it the spatial joint (a box in a channel ``slider_width + 2 clearance_width``
+        deep, ``clearance_width`` default ``clearance``; 3D bodies); ``guide_length`` [m]
+        ends the walls ``guide_length / 2`` either side of ``position`` (default: they do not
+        end).
     backend, maxPenetration, bearingRotates, record, contact_mode
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the guide
         can turn; its spin moves the walls under the corners; ``contact_mode="impulse"``
@@ -92,9 +106,10 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     ClearanceJointHandle
         ``objectNumber`` is the connector; ``outputs()`` has :data:`OUTPUT_COLUMNS` per
         corner-wall pair (shape (times, 8), :data:`exuclear.prismatic.PAIRS`' order) and
-        ``force``, ``moment`` (the load on the guide); ``impacts()`` names each
-        contact's corner and wall (:class:`exuclear.history.PairImpact`); ``notes`` and
-        ``counts`` as for the revolute joint.
+        ``force``, ``moment`` (the load on the guide); the spatial joint has 32 pairs
+        (:data:`exuclear.prismatic.BOX_PAIRS`); ``impacts()`` names each contact's corner
+        and wall (:class:`exuclear.history.PairImpact`); ``notes`` and ``counts`` as for the
+        revolute joint.
     """
     check_system(mbs)
     check_flags(name, bearingRotates, record=record, show=show)
@@ -102,7 +117,7 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
     markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("guide", "slider"), position, axis, useGlobalFrame,
-                            "CreatePrismaticJoint")
+                            "CreatePrismaticJoint", spatial=joint.geometry.spatial, height_axis=height_axis)
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, maxPenetration)
     handle.placed_by = PLACED_BY_POSITION
@@ -110,31 +125,61 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     handle._axis_local = np.array([0.0, 0.0, 1.0])
     if bearingRotates is None:
         bearingRotates = not _orientation_is_fixed(mbs, markers[0])
-    add_connectors(mbs, handle, markers, np.eye(3).tolist(), bearingRotates, len(pair_data_columns(len(PAIRS))), show,
+    add_connectors(mbs, handle, markers, np.eye(3).tolist(), bearingRotates,
+                   len(pair_data_columns(len(joint.geometry.pairs))), show,
                    joint.geometry.slider_height)
     finish_items(mbs, handle, slider_drawing_function if show else None, record, load_sensors=True)
     return handle
 
 
 def plane_markers(mbs: exu.MainSystem, itemNumbers: Any, bodyNumbers: Any, roles: tuple[str, str],  # noqa: N803
-                  position: Any, axis: Any, useGlobalFrame: Any, exudyn_name: str) -> list:  # noqa: N803
+                  position: Any, axis: Any, useGlobalFrame: Any, exudyn_name: str,  # noqa: N803
+                  spatial: bool = False, height_axis: Any = None) -> list:
     """The two markers of a planar joint on the bodies ``itemNumbers`` (checked as
     :func:`~exuclear.engine.connector.joint_items` checks them, ``roles`` naming them), both
     at ``position`` with the joint frame: ``x`` along ``axis`` (in the global x-y plane),
-    ``z`` the global z axis (the plane's normal)."""
+    ``z`` the global z axis (the plane's normal).  ``spatial``: the spatial translational
+    joint's frame instead, ``x`` along ``axis`` (anywhere), ``y`` along ``height_axis``
+    (:func:`CreatePrismaticClearanceJoint`)."""
     axis_given = check_axis(axis)
     items = joint_items(mbs, itemNumbers, bodyNumbers, roles, position, useGlobalFrame, exudyn_name)
     if "marker" in items.kinds:
         raise ValueError(f"`itemNumbers` must be [{roles[0]} body, {roles[1]} body]: the joint places its own markers "
                          "at `position`")
     p, a0 = items.centre, items.poses[0][1]
-    x = (axis_given if useGlobalFrame else a0 @ axis_given) / np.linalg.norm(axis_given)
-    if abs(x[2]) > PLANE_TOLERANCE:
-        raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got {axis!r}")
-    z = np.array([0.0, 0.0, 1.0])
-    frame = np.column_stack((x, np.cross(z, x), z))  # the joint frame's axes in the global frame
+    in_global = (lambda v: v) if useGlobalFrame else (lambda v: a0 @ v)
+    x = in_global(axis_given) / np.linalg.norm(axis_given)
+    if spatial:
+        frame = _channel_frame(x, None if height_axis is None else in_global(vector3("height_axis", height_axis)))
+        flat = [f"`itemNumbers[{k}]` ({kind})" for k, kind in enumerate(items.kinds) if kind.endswith("2D")]
+        if flat:
+            raise ValueError(f"`slider_width` makes the translational joint spatial, for 3D bodies; {flat[0]} is a 2D "
+                             "body: leave `slider_width` out for the planar joint")
+    else:
+        if height_axis is not None:
+            raise ValueError("`height_axis` orients the spatial joint's box: give `slider_width` too, or leave it out "
+                             "(the planar joint's height lies in the x-y plane)")
+        if abs(x[2]) > PLANE_TOLERANCE:
+            raise ValueError(f"`axis` must lie in the global x-y plane (the planar joint's plane of motion), got "
+                             f"{axis!r}; give `slider_width` for the spatial joint")
+        z = np.array([0.0, 0.0, 1.0])
+        frame = np.column_stack((x, np.cross(z, x), z))  # the joint frame's axes in the global frame
     return [mbs.AddMarker(MarkerBodyRigid(bodyNumber=item, localHT=exu.HT(
         rotation=rot.T @ frame, translation=rot.T @ (p - pos)))) for item, (pos, rot) in zip(items.items, items.poses)]
+
+
+def _channel_frame(x: np.ndarray, height: np.ndarray | None) -> np.ndarray:
+    """The spatial joint's frame (columns x, y, z in the global frame): ``x`` the unit axis,
+    ``y`` the ``height`` direction without its part along ``x`` (default ``e_z x x``), ``z = x x y``."""
+    if height is None:
+        height = np.cross([0.0, 0.0, 1.0], x)
+        if not np.linalg.norm(height) > PLANE_TOLERANCE:
+            raise ValueError("`axis` is along z: give `height_axis`, the direction of the slider's height")
+    y = height - (height @ x) * x
+    if not np.linalg.norm(y) > PLANE_TOLERANCE * np.linalg.norm(height):
+        raise ValueError(f"`height_axis` must not be parallel to `axis`, got {height.tolist()!r}")
+    y = y / np.linalg.norm(y)
+    return np.column_stack((x, y, np.cross(x, y)))
 
 
 def _physics(joint: ClearanceJoint | None, joint_parameters: dict) -> ClearanceJoint:

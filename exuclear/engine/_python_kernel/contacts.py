@@ -15,6 +15,7 @@ from . import laws
 from .kinematics import (
     V3,
     BallKinematics,
+    BoxCornerKinematics,
     ContactKinematics,
     CornerKinematics,
     FaceKinematics,
@@ -22,6 +23,7 @@ from .kinematics import (
     SliceKinematics,
     SlotKinematics,
     add_ball_loads,
+    add_box_corner_loads,
     add_corner_loads,
     add_face_loads,
     add_slice_loads,
@@ -162,3 +164,12 @@ class Corner(Contact):
 
     def add_loads(self, loads: list[float], u: V3, kin: CornerKinematics, r: ContactResponse) -> None:
         add_corner_loads(loads, kin, r.f_n, r.f_t)
+
+
+class BoxCorner(Corner):
+    """One corner-wall pair of the spatial translational joint (:mod:`exuclear.prismatic`):
+    the whole law, friction against the corner's slip speed ``|v_s|`` over the wall, along
+    the slip; loads on the guide and the slider's moment about its centre."""
+
+    def add_loads(self, loads: list[float], u: V3, kin: BoxCornerKinematics, r: ContactResponse) -> None:
+        add_box_corner_loads(loads, kin, r.f_n, r.f_t)

@@ -13,19 +13,21 @@ from ...geometry import BearingGeometry
 from ...history import ContactState, ImpactRecord
 from ...joint import ClearanceJoint
 from ...spatial import ShoulderGeometry
-from ...prismatic import PAIRS
-from .contacts import Ball, Contact, Corner, Face, PlanarSlice, Slice, SlotSlice
+from .contacts import Ball, BoxCorner, Contact, Corner, Face, PlanarSlice, Slice, SlotSlice
 from .film import Film, FilmInput, slice_film_input
 from .kinematics import (
     FACE_SIDES,
     V3,
     Kinematics,
     ball_kinematics,
+    box_corner_kinematics,
     contact_kinematics,
     corner_kinematics,
     face_kinematics,
     finite,
     journal_axis,
+    leave_guide,
+    rotation_xyz,
     slice_centres,
     slice_kinematics,
     slot_kinematics,
@@ -68,7 +70,8 @@ class JointState:
     per-contact sequence (states, records, data).  A spherical joint: one contact, the ball
     (section 13), whose motion is the spatial joint's (its loads end as a slice's).  A
     translational (prismatic) joint: its eight corner-wall pairs (:data:`exuclear.prismatic.PAIRS`),
-    in the plane normal to z, whose loads end as a slice's.
+    in the plane normal to z, or the spatial one's 32 (:data:`exuclear.prismatic.BOX_PAIRS`),
+    whose loads end as a slice's.
     """
 
     def __init__(self, joint: ClearanceJoint, slices: int = 0, axis_journal: Any = (0.0, 0.0, 1.0),
@@ -77,7 +80,7 @@ class JointState:
         self.prismatic = joint.geometry.joint_type == "prismatic"
         self.planar = slices == 0 and not (self.spherical or self.prismatic)
         # the planar joint and the ball: one contact; the slider: its pairs
-        self.slices = len(PAIRS) if self.prismatic else 1 if slices == 0 else slices
+        self.slices = len(joint.geometry.pairs) if self.prismatic else 1 if slices == 0 else slices
         self.axis_journal = tuple(float(v) for v in axis_journal)
         self.shoulders = shoulders
         self.n_contacts = self.slices + (len(FACE_SIDES) if shoulders is not None else 0)
@@ -103,7 +106,7 @@ class JointState:
             self.contacts: list[Contact] = [Ball(joint)]
         elif self.prismatic:
             self.centres = ()
-            self.contacts = [Corner(joint)] * self.slices
+            self.contacts = [BoxCorner(joint) if g.spatial else Corner(joint)] * self.slices
         else:
             self.centres = slice_centres(g.length, self.slices)                           # eq. (33)
             if self.planar:  # a pin in a slot is the planar slice against the slot's centre segment
@@ -204,11 +207,23 @@ class JointState:
             dv = (velocity[0], velocity[1], velocity[2])
             dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
             return p, (0.0, 0.0, 1.0), [ball_kinematics(self.r_j, self.r_b, p, dv, dw, w_j)]
-        if self.prismatic:  # the slider's corners in the plane normal to z
-            half_length = 0.5 * self._joint.geometry.slider_length
-            kins = [corner_kinematics(half_length, self.r_j, self.r_b, corner, wall, displacement[0], displacement[1],
-                                      rotation[2], velocity[0], velocity[1], angular_velocity[2], w_j[2])
-                    for corner, wall in PAIRS]
+        if self.prismatic:
+            g = self._joint.geometry
+            half_length, half_guide = 0.5 * g.slider_length, g.half_guide
+            if g.spatial:  # the box's corners against the channel's walls
+                p = (displacement[0], displacement[1], displacement[2])
+                a = rotation_xyz((rotation[0], rotation[1], rotation[2]))
+                dv = (velocity[0], velocity[1], velocity[2])
+                dw = (angular_velocity[0], angular_velocity[1], angular_velocity[2])
+                kins = [leave_guide(box_corner_kinematics(half_length, self.r_j, g.half_width, self.r_b,
+                                                          g.channel_half_width, corner, wall, p, a, dv, dw, w_j),
+                                    half_guide) for corner, wall in g.pairs]
+                return p, (0.0, 0.0, 1.0), kins
+            # the slider's corners in the plane normal to z
+            kins = [leave_guide(corner_kinematics(half_length, self.r_j, self.r_b, corner, wall, displacement[0],
+                                                  displacement[1], rotation[2], velocity[0], velocity[1],
+                                                  angular_velocity[2], w_j[2]), half_guide)
+                    for corner, wall in g.pairs]
             return (displacement[0], displacement[1], 0.0), (0.0, 0.0, 1.0), kins
         if self.planar:  # the motion projected on the plane normal to the axis: eqs. (1)-(8)
             omega_j = w_j[2]

@@ -166,6 +166,8 @@ class JointStepControl(JointState):
         for a, b, s in zip(before, base, states):
             if a.in_contact or b.in_contact or s.in_contact or -s.delta < gap:
                 return 0.0
+            if s.delta == -math.inf:  # no wall under it (a corner beyond its guide's end): it limits nothing
+                continue
             allow = min(allow, time_to_wall(s.delta, s.delta_dot, (s.delta_dot - b.delta_dot) / h))
         return allow if allow >= GROWTH_MIN * h else 0.0
 
