@@ -11,6 +11,7 @@ Source problems (:mod:`exuclear.prismatic`; planar, gravity along -y, the guide 
   rattling between the walls keeps its kinetic energy;
 - a pin in a slot of length 0 against the revolute clearance joint; a pin sliding along a
   flat side under gravity (Coulomb's ``mu N``, its speed and spin);
+- the spatial joint (a box in a channel) and the finite guide: :mod:`validation.translational_box`;
 - the Flores-Leine-Glocker slider-crank (:mod:`models.guided_slider_crank`): the scene
   against :mod:`validation.reference.guided_slider_crank` over the benchmark at two steps,
   its energy with elastic corners over the benchmark's two crank turns, and a table over the
@@ -291,6 +292,9 @@ def main(argv: list[str] | None = None) -> int:
     rows.append(("pin sliding on a flat: spin after 0.04 s [rad/s]", f"{s['spin']:.6g}",
                  f"2 mu g t / R_P = {s['coulomb_spin']:.6g}"))
     rows.append(("pin sliding on a flat: F_T / F_N", f"{s['ratio_min']:.6g} ... {s['ratio_max']:.6g}", f"mu = {s['mu']:g}"))
+    from validation import translational_box  # it builds on this module's slider
+
+    rows += translational_box.rows()
     print(markdown_table(("check", "exuclear", "analytic"), rows))
     if args.no_slider_crank:
         return 0
