@@ -254,3 +254,12 @@ def test_a_slider_leaving_its_guide_loses_the_contact_at_the_end(spatial):
     # within 5.5e-5 m of the guide's end (measured 2e-16 m and 5.0e-5 m)
     assert g["half_guide"] - g["x_last_in"] <= 5.5e-5
     assert g["x_first_out"] - g["half_guide"] <= 5.5e-5
+
+
+def test_a_box_that_starts_outside_its_channel_is_refused():
+    # 2 mm across the width with 1 mm of play: its near corners 1 mm into the near wall, far
+    # beyond the joint's penetration limit; the run refuses to start and names what placed it
+    mbs, joint, _ = val.box_in_channel(start=(0.0, 0.0, 2e-3))
+    with pytest.raises(ValueError, match=r"the slider starts outside its guide \(penetration 0.001 m.*the joint's "
+                                         r"`position` and the initial coordinates of the bodies in `itemNumbers`"):
+        exuclear.simulate(mbs, exuclear.SolverSettings(end_time=1e-3, **planar.SETTINGS))
