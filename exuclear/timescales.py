@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-from .contact import ContactLaw
+from .contact import ContactLaw, restitution_of_damping
 
 #: Steps per contact period below which a contact that opens is not resolved: with
 #: generalized-alpha at 1e-3 s (2.3 contact periods) a resting pendulum leaves the wall
@@ -139,6 +139,53 @@ def impact_duration(law: ContactLaw, mass: float, speed: float) -> float:
                 break
         depth = 0.5 * (lo + hi)
     return math.pi * depth / abs(speed)
+
+
+#: Samples of the compression phase in which :func:`closed_form_impact` looks for the peak force.
+IMPACT_PEAK_SAMPLES = 64
+#: Relative tolerance of the bisections of :func:`closed_form_impact`.
+IMPACT_DEPTH_RTOL = 1e-10
+
+
+def impact_restitution(law: ContactLaw, speed: float) -> float:
+    """The restitution of the joint's law for an impact at ``speed`` [m/s] > 0: its damping
+    factor ``D``, taken at ``D speed / v_min`` below ``v_min`` (docs/physics.md eq. (9):
+    the onset velocity in the damping term is at least ``v_min``)."""
+    d = law.damping_factor * min(1.0, speed / law.v_min)
+    return restitution_of_damping(d) if d > 0.0 else 1.0
+
+
+def closed_form_impact(law: ContactLaw, mass: float, speed: float) -> tuple[float, float, float]:
+    """Peak force [N], duration [s] and largest penetration [m] of one impact of ``mass``
+    [kg] at ``speed`` [m/s] on ``F_e(delta) (1 + D' delta_dot / speed)`` (``D'`` as in
+    :func:`impact_restitution`).  Along the compression ``u = delta_dot / speed`` falls from 1
+    to 0 and ``int_0^delta F_e = m speed^2 ((1 - u) / D' - ln((1 + D') / (1 + D' u)) / D'^2)``
+    (Lankarani and Nikravesh 1990, eq. (13), for any ``F_e``; ``(1 - u^2) / 2`` for ``D' = 0``);
+    the peak is the largest force over :data:`IMPACT_PEAK_SAMPLES` points of it.  The duration is
+    ``pi delta_max / speed`` (:func:`impact_duration`'s estimate)."""
+    d = law.damping_factor * min(1.0, speed / law.v_min)
+    scale = mass * speed * speed
+
+    def energy(u: float) -> float:  # the stored energy at the rate ratio u
+        if d < 1e-8:  # the series' first term: the logarithm's difference loses its digits
+            return 0.5 * scale * (1.0 - u * u)
+        return scale * ((1.0 - u) / d - math.log((1.0 + d) / (1.0 + d * u)) / (d * d))
+
+    def depth(target: float) -> float:  # the penetration that stores ``target``
+        lo, hi = 0.0, law.geometry.clearance
+        if not stored_energy(law, hi) > target:
+            return hi
+        while hi - lo > IMPACT_DEPTH_RTOL * hi:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if stored_energy(law, mid) >= target else (mid, hi)
+        return 0.5 * (lo + hi)
+
+    delta_max = depth(energy(0.0))
+    peak = law.elastic_force(delta_max)
+    for k in range(1, IMPACT_PEAK_SAMPLES):
+        u = k / IMPACT_PEAK_SAMPLES
+        peak = max(peak, law.elastic_force(depth(energy(u))) * (1.0 + d * u))
+    return peak, math.pi * delta_max / speed, delta_max
 
 
 def reduced_mass(m1: float, m2: float) -> float:

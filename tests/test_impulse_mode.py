@@ -12,7 +12,8 @@ from exudyn.utilities import InertiaCuboid
 from scipy.integrate import solve_ivp
 
 import exuclear
-from exuclear.engine.impulse import ImpulseJointHandle, closed_form_impact, impact_restitution
+from exuclear.engine.impulse import ImpulseJointHandle
+from exuclear.timescales import closed_form_impact, impact_restitution
 from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
 
@@ -60,13 +61,13 @@ def test_each_impact_has_the_laws_restitution_at_steps_far_beyond_the_contact(mo
 @pytest.mark.parametrize("periods", [100.0, 1000.0])
 def test_steps_longer_than_the_flight_across_the_clearance_are_refused(monkeypatch, periods):
     # beyond about 20 impact durations a step is longer than the journal's flight across the
-    # clearance (0.67 ms): the journal ends a step more than a clearance into the wall, the
-    # path is lost (the jumps' restitution would still be the law's): the run stops and says so
+    # clearance (0.67 ms): a free step ends more than the clearance's diameter into the wall,
+    # the path is lost (the jumps' restitution would still be the law's): the run stops and says so
     s, joint = scene(monkeypatch)
     step = periods * closed_form_impact(joint.joint.law, 0.04, 0.3)[1]
     with pytest.raises(Exception):
         solve(s, step, 40 * step)
-    with pytest.raises(ValueError, match="journal-bearing.*into the wall, more than 1 times the clearance.*shorter steps"):
+    with pytest.raises(ValueError, match="journal-bearing.*into the wall, more than the clearance's diameter.*shorter steps"):
         joint.impacts()
 
 
@@ -194,14 +195,59 @@ def test_a_moving_bearing_rebounds_with_the_laws_restitution(monkeypatch):
     assert handle.outputs()["penetration"].max() < 0.3 * 1e-4  # Moreau-Jean's: below v h
 
 
-def test_a_pre_step_function_set_after_the_joint_is_refused_when_the_run_is_read(monkeypatch):
-    # the mode runs from a pre-step function; one set later replaces it and the journal flies
-    # through the wall unseen: reading the run says so instead of returning no impacts
+def test_the_users_own_step_functions_set_after_the_joint_leave_the_mode_in_place(monkeypatch):
+    # the mode decides in its own connector's post-Newton function: a pre-step and a
+    # post-Newton function of the system, set after the joint is built (as the zoo's piston
+    # engine sets its own), run beside it, and the impacts keep the law's restitution
     s, joint = scene(monkeypatch)
-    s.mbs.SetPreStepUserFunction(lambda mbs, t: True)
-    assert solve(s, 1e-5, 1e-3)
-    with pytest.raises(RuntimeError, match="journal-bearing: the impulse mode did not run .*pre-step function"):
-        joint.impacts()
+    calls = {"pre": 0, "post": 0}
+
+    def pre_step(mbs, t):
+        calls["pre"] += 1
+        return True
+
+    def post_newton(mbs, t):
+        calls["post"] += 1
+        return [0.0, -1.0]
+
+    s.mbs.SetPreStepUserFunction(pre_step)
+    s.mbs.SetPostNewtonUserFunction(post_newton)
+    step = 10.0 * closed_form_impact(joint.joint.law, 0.04, 0.3)[1]
+    assert solve(s, step, 200 * step)
+    impacts = joint.impacts()
+    assert len(impacts) >= 3
+    for before, after in zip(impacts, impacts[1:]):  # exact up to Newton's tolerance, as without them
+        assert after.onset_velocity / before.onset_velocity == pytest.approx(impact_restitution(joint.joint.law, 0.3),
+                                                                             rel=1e-9)
+    assert calls["pre"] >= 200  # one call per step at least (a step computed again calls it once)
+    assert calls["post"] >= 200 + len(impacts)  # each impact step is computed twice
+
+
+def test_two_joints_in_one_system_each_keep_the_laws_restitution(monkeypatch):
+    # two journals held by the ground in two free bearings moving at different speeds: an
+    # impact of one has Exudyn compute the step again for both, and the other joint, which
+    # had accepted that step, takes its own state back (else its impacts drift off the law)
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
+    joint = jb.JournalBearingParams.paper().joint()
+    c = joint.geometry.clearance
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    handles = []
+    for y, speed in ((0.0, 0.3), (0.1, 0.17)):
+        node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, y, 0], initialVelocities=[-speed, 0, 0]))
+        bearing = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.04, inertia=1e-5))
+        markers = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=bearing)),
+                   mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0, y, 0]))]
+        handles.append(exuclear.AddClearanceJoint(mbs, markers, joint=joint))
+    mbs.Assemble()
+    assert solve(type("S", (), {"mbs": mbs}), 1e-5, 40 * c / 0.17)
+    for handle, speed in zip(handles, (0.3, 0.17)):
+        impacts = handle.impacts()
+        assert len(impacts) >= 5
+        assert impacts[0].onset_velocity == pytest.approx(speed, rel=1e-9)  # no gravity: the speed it started with
+        for before, after in zip(impacts, impacts[1:]):  # exact up to Newton's tolerance
+            assert after.onset_velocity / before.onset_velocity == pytest.approx(
+                impact_restitution(joint.law, before.onset_velocity), rel=1e-9)
 
 
 def test_the_translational_and_pin_in_slot_joints_refuse_the_mode(monkeypatch):

@@ -5,54 +5,81 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
 - **The condition.**  One velocity-level ``ObjectConnectorCoordinateVector`` between the
   coordinates of the joint's two bodies, ``n . (v_journal - v_bearing) = r``, off in free
   flight.  Its rows ``n^T dv/dq_t`` are Exudyn's marker velocities at unit coordinate
-  velocities (any body with a rigid marker), in the normal ``n = e / |e|`` of the step's
-  start.  Under generalized-alpha with spectral radius 1 (the trapezoidal rule) Exudyn
-  holds the mean of the step's start and end velocities on such a condition
-  (/work/shared/research/nonsmooth-impacts-in-exudyn.md), so the offset that gives the end
-  rate ``v1`` is ``(v0 + v1) / 2``.  Under numerical damping the jump leaks into the
-  following steps through the algorithmic accelerations: the mode refuses such a run.
-- **An impact** is a step whose start gap closes within it (``|e| - c + h v_n >= 0`` with
-  ``v_n > 0``): the condition is on for that step with the end rate ``-e(v_n) v_n``, the
-  restitution of the joint's law at the impact velocity
-  (:func:`exuclear.contact.restitution_of_damping`; below the law's ``v_min`` its damping
-  term weighs ``v_n / v_min`` of ``D``), and off again after it.
+  velocities (any body with a rigid marker).  Exudyn holds the step's end velocities on it;
+  under generalized-alpha with spectral radius 1 (the trapezoidal rule) the positions move
+  by ``h (v0 + v1) / 2``.  Under numerical damping a jump leaks into the following steps
+  through the algorithmic accelerations: the mode refuses such a run.
+- **An impact** is a free step that ends in the wall (``|e| > c``): Exudyn computes it
+  again (its discontinuous iteration) with the condition on, in the normal where the step
+  met the wall, holding the end rate ``-e(v_n) v_n`` (``v_n`` the normal rate at the step's
+  start, Moreau-Jean's), the restitution of the joint's law at the impact velocity
+  (:func:`~exuclear.timescales.impact_restitution`).  The step's end accelerations,
+  which carry the impulse, are replaced by its start's, so that the flight after the jump
+  starts at ``v+`` whatever the length of its steps.
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
   the normal acceleration at the step's start, the journal stays on the wall: the condition
-  is held from step to step with a rate that takes the penetration back, critically damped
-  (:meth:`ImpulseJointHandle._resting_rate`), and let go where its reaction pulls.
+  is held from step to step, aimed at an end gap that takes back a share of the
+  penetration, in the normal predicted for the step's end; a step that misses its gap by
+  more than :data:`GAP_TOLERANCE` is computed again in the normal it reached (the journal
+  slides along the wall), and one whose normal turns by more than :data:`MAX_TURN` is
+  computed again shorter where Exudyn's steps are adaptive.  The condition lets go where
+  its reaction pulls or the journal left the wall.
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
-  effective mass the solver's impulse shows (:func:`closed_form_impact`).
+  effective mass the solver's impulse shows
+  (:func:`~exuclear.timescales.closed_form_impact`).
 
-The mode runs from a pre-step function chained before the system's own (the one set when
-the joint is built); a pre-step function set later replaces it, which the handle's outputs
-detect and refuse.
+The mode decides after each Newton iteration of a step, in the post-Newton function of a
+connector of its own without force (the carrier): the system's pre-step, post-step and
+post-Newton functions stay the user's, set before or after the joint.
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import weakref
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any, NamedTuple
 
 import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import (
+    MarkerBodyRigid,
     MarkerNodeCoordinates,
     MarkerObjectODE2Coordinates,
+    NodeGenericData,
     ObjectConnectorCoordinateVector,
+    ObjectConnectorRigidBodySpringDamper,
+    ObjectGround,
     VObjectConnectorCoordinateVector,
+    VObjectConnectorRigidBodySpringDamper,
+    VObjectGround,
 )
 
-from ..contact import restitution_of_damping
+from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
-from ..timescales import stored_energy
 from .bodies import joint_mass
 from .steering import explicit_solver
 
-#: The resting condition takes the penetration back at the rate ``RATE_GAIN / h``
-#: (critically damped): about 0.75 of it is left after each step.
+#: A held step aims its end rate at taking back this share of the gap per step.
 RATE_GAIN = 0.5
+#: A held step whose end gap misses its target by more than this share of the clearance is
+#: computed again (Exudyn's discontinuous iteration) in the normal of its end and with the
+#: miss taken off its rate: a journal that slides along the wall turns the normal within the
+#: step (on the zoo's double pendulum by up to 0.6 rad a step), and a condition in the normal
+#: of the step's start lets it into the wall by ``|e| (1 - cos turn)`` a step.
+GAP_TOLERANCE = 1e-3
+#: A held step in which the normal turns by more than this [rad] is computed again shorter,
+#: where Exudyn's adaptive step allows (its error along the turning wall grows with the
+#: square of the turn, and :data:`GAP_TOLERANCE`'s iteration converges slowly beyond it) ...
+MAX_TURN = 0.1
+#: ... at this share of the step the turn asks for ...
+STEP_SAFETY = 0.8
+#: ... and never below this many times Exudyn's minimum step.
+MIN_STEP_MARGIN = 10.0
+#: A held journal more than this share of the clearance off its wall has left it: the
+#: condition lets go (the journal's next contact is an impact).
+OPEN_GAP = 0.05
 #: A rebound that would land within this many steps is a resting contact: the bounces of a
 #: journal on its wall would otherwise shrink geometrically, one impact a step (a Zeno
 #: sequence the steps cannot resolve).
@@ -64,15 +91,18 @@ SPECTRAL_RADIUS_TOLERANCE = 1e-12
 #: the journal's travel across the clearance (steps too long for it), or the condition lost
 #: the contact.  The restitution of each jump stays the law's, the path does not.
 LOST_CONTACT = 1.0
-#: Two step starts closer than this (relative) are one step, redone by the solver.
+#: A free step that ends more than this many clearances into the wall flew across the whole
+#: clearance (its diameter) within the step: the run stops (the path is lost, the jumps
+#: would keep the law's restitution).
+CROSSING = 2.0
+#: Two step starts closer than this (relative) are one step, computed again by the solver.
 REDO_TOLERANCE = 1e-12
-#: Samples of the compression phase in which :func:`closed_form_impact` looks for the peak force.
-PEAK_SAMPLES = 64
-#: Relative tolerance of the bisections of :func:`closed_form_impact`.
-DEPTH_RTOL = 1e-10
+#: The post-Newton error that has Exudyn compute a step again: anything above its
+#: ``discontinuous.iterationTolerance`` (default 1).
+REDO_ERROR = 1e3
 
 #: The states of the condition between steps.
-FREE, IMPACT, LANDING, REST = "free", "impact", "landing", "rest"
+FREE, IMPACT, REST = "free", "impact", "rest"
 
 
 class ClosedFormImpact(NamedTuple):
@@ -89,47 +119,6 @@ class ClosedFormImpact(NamedTuple):
     restitution: float
     effective_mass: float
     closed_form: bool = True
-
-
-def impact_restitution(law: Any, speed: float) -> float:
-    """The restitution of the joint's law for an impact at ``speed`` [m/s] > 0: its damping
-    factor ``D``, taken at ``D speed / v_min`` below ``v_min`` (docs/physics.md eq. (9):
-    the onset velocity in the damping term is at least ``v_min``)."""
-    d = law.damping_factor * min(1.0, speed / law.v_min)
-    return restitution_of_damping(d) if d > 0.0 else 1.0
-
-
-def closed_form_impact(law: Any, mass: float, speed: float) -> tuple[float, float, float]:
-    """Peak force [N], duration [s] and largest penetration [m] of one impact of ``mass``
-    [kg] at ``speed`` [m/s] on ``F_e(delta) (1 + D' delta_dot / speed)`` (``D'`` as in
-    :func:`impact_restitution`).  Along the compression ``u = delta_dot / speed`` falls from 1
-    to 0 and ``int_0^delta F_e = m speed^2 ((1 - u) / D' - ln((1 + D') / (1 + D' u)) / D'^2)``
-    (Lankarani and Nikravesh 1990, eq. (13), for any ``F_e``; ``(1 - u^2) / 2`` for ``D' = 0``);
-    the peak is the largest force over :data:`PEAK_SAMPLES` points of it.  The duration is
-    ``pi delta_max / speed`` (:func:`exuclear.timescales.impact_duration`'s estimate)."""
-    d = law.damping_factor * min(1.0, speed / law.v_min)
-    scale = mass * speed * speed
-
-    def energy(u: float) -> float:  # the stored energy at the rate ratio u
-        if d < 1e-8:  # the series' first term: the logarithm's difference loses its digits
-            return 0.5 * scale * (1.0 - u * u)
-        return scale * ((1.0 - u) / d - math.log((1.0 + d) / (1.0 + d * u)) / (d * d))
-
-    def depth(target: float) -> float:  # the penetration that stores ``target``
-        lo, hi = 0.0, law.geometry.clearance
-        if not stored_energy(law, hi) > target:
-            return hi
-        while hi - lo > DEPTH_RTOL * hi:
-            mid = 0.5 * (lo + hi)
-            lo, hi = (lo, mid) if stored_energy(law, mid) >= target else (mid, hi)
-        return 0.5 * (lo + hi)
-
-    delta_max = depth(energy(0.0))
-    peak = law.elastic_force(delta_max)
-    for k in range(1, PEAK_SAMPLES):
-        u = k / PEAK_SAMPLES
-        peak = max(peak, law.elastic_force(depth(energy(u))) * (1.0 + d * u))
-    return peak, math.pi * delta_max / speed, delta_max
 
 
 class ImpulseJointHandle:
@@ -163,14 +152,22 @@ class ImpulseJointHandle:
             else:
                 coordinate_markers.append(mbs.AddMarker(MarkerObjectODE2Coordinates(objectNumber=number)))
                 sizes.append(sum(_node_ode2_size(mbs, n) for n in _object_nodes(mbs, number)))
-        self._sizes = sizes
         self.objectNumber = mbs.AddObject(ObjectConnectorCoordinateVector(
             name=name, markerNumbers=coordinate_markers, scalingMarker0=np.zeros((1, sizes[0])),
             scalingMarker1=np.zeros((1, sizes[1])), offset=[0.0], velocityLevel=True, activeConnector=False,
             visualization=VObjectConnectorCoordinateVector()))
+        # the carrier: a connector without force between two ground markers, whose post-Newton
+        # function is the mode's (an item's own function: a user's pre-step or post-Newton
+        # function, set before or after the joint, leaves it in place)
+        ground = mbs.AddObject(ObjectGround(visualization=VObjectGround(show=False)))
+        ends = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground)) for _ in range(2)]
+        self.carrierNumber = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
+            name=f"{name}:carrier" if name else "", markerNumbers=ends,
+            nodeNumber=mbs.AddNode(NodeGenericData(initialCoordinates=[0.0], numberOfDataCoordinates=1)),
+            postNewtonStepUserFunction=self._post_newton,
+            visualization=VObjectConnectorRigidBodySpringDamper(show=False)))
         self._ltg: list[np.ndarray] | None = None
-        self._user_pre = _installed(mbs.GetPreStepUserFunction())
-        mbs.SetPreStepUserFunction(self._pre_step)
+        self._iterations = 2  # Exudyn's discontinuous iterations per step (read at each run's start)
         self._reset()
 
     @property
@@ -180,21 +177,172 @@ class ImpulseJointHandle:
     # -- the run ------------------------------------------------------------------------
     def _reset(self) -> None:
         self._state = FREE
-        self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, multiplier of the step)
-        self._pending: int | None = None  # the impact whose step's multiplier is read next
+        self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
         self._rows: list[np.ndarray] = []
+        self._plan: tuple[bool, list[np.ndarray], float] = (False, [], 0.0)  # the condition: on, rows, offset
         self._records: list[tuple[float, float, float, float, float]] = []  # t, ecc_x, ecc_y, gap, force
         self._step = self._force = 0.0
         self._resting = 0
         self._problem = ""
         self._left_pen = 0.0
+        self._start: float | None = None  # the start [s] of the step the condition is set for
+        self._saved: dict[str, Any] | None = None  # the state before the last accepted step
+        # a held step: its start's eccentricity, the gap it aims at, its length, the normal and
+        # the bias (the part of the rate that the rows' linearization misses) it is held with
+        self._held: tuple | None = None  # (e0, gap aimed at, h, normal, bias, (e0, gap0, rate0))
 
-    def _pre_step(self, mbs: exu.MainSystem, t: float) -> bool:
-        if not self._records or t <= self._records[-1][0]:  # a new run
-            self._reset()
-            self._check_solver(mbs)
-        self._step_decision(mbs, t)
-        return self._user_pre(mbs, t) if self._user_pre is not None else True
+    def _post_newton(self, mbs: exu.MainSystem, t: float, item: int, data: Any, *frame: Any) -> list:
+        """The carrier's ``postNewtonStepUserFunction``: ``[error, recommended step, data]``."""
+        self._shorter = -1.0
+        error = self._after_newton(mbs, t)
+        return [error, self._shorter, *data]
+
+    def _after_newton(self, mbs: exu.MainSystem, t_end: float) -> float:
+        """After Exudyn's Newton iteration of the step that ends at ``t_end``: 0 accepts the
+        step (and sets the condition for the next one), :data:`REDO_ERROR` has Exudyn compute
+        it again from its start with the condition set anew."""
+        h = float(mbs.sys["dynamicSolver"].it.currentStepSize)
+        t = t_end - h
+        tol = REDO_TOLERANCE * max(1.0, abs(t_end))
+        if self._start is None or t < self._start - tol:
+            if self._saved is not None and abs(t - self._saved["_start"]) <= tol:
+                # Exudyn computes again a step the mode had accepted (another item asked for it):
+                # the state before that step; computed once more where the condition it had
+                # is not the one this computation had
+                applied = self._plan
+                self._restore()
+                if not _same_plan(applied, self._plan):
+                    self._apply(mbs)
+                    return REDO_ERROR
+            else:
+                active = self._plan[0]
+                self._reset()  # a new run
+                self._check_solver(mbs)
+                self._start = t
+                if active:  # the last run's condition acted in this step
+                    self._apply(mbs)
+                    return REDO_ERROR
+        elif t > self._start + tol:
+            self._stop(t, "Exudyn took a step the mode did not see")
+        force = self._multiplier(mbs) if self._plan[0] else 0.0
+        e, gap = self._gap(mbs)
+        redo = int(mbs.sys["dynamicSolver"].it.discontinuousIteration) + 1 < self._iterations
+        if self._state == FREE and gap > 0.0 and redo and self._contact(mbs, t, h, e, gap):
+            return REDO_ERROR
+        if self._state == REST and self._held is not None:
+            start = self._held[0]
+            turn = math.atan2(float(np.linalg.norm(np.cross(start, e))), float(start @ e))
+            solver = mbs.sys["dynamicSolver"]
+            if turn > MAX_TURN and solver.it.adaptiveStep and h > MIN_STEP_MARGIN * float(solver.it.minStepSize):
+                # the journal slides along the wall faster than the condition's normal can follow
+                self._shorter = max(h * STEP_SAFETY * MAX_TURN / turn, MIN_STEP_MARGIN * float(solver.it.minStepSize))
+                return REDO_ERROR
+            if redo and self._refine(mbs, e, gap, h):
+                return REDO_ERROR
+        self._saved = self._snapshot()
+        self._left_pen = max(self._left_pen, gap)
+        clearance = self._joint.geometry.clearance
+        if gap > LOST_CONTACT * clearance:
+            self._stop(t_end, f"the journal is {gap:.3g} m into the wall, {self._too_long()}")
+        if self._state == IMPACT:  # the impact step's impulse (the trapezoid of 0 and its multiplier): the effective mass
+            tk, vk, ek, _ = self._impacts[-1]
+            self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
+        # the resting multiplier alternates from step to step about the load under the
+        # trapezoidal rule (an undamped mode of the held velocity's acceleration): its
+        # two-step mean is the reaction
+        reaction = 0.5 * (force + self._force) if self._state == REST and self._resting > 1 else force
+        self._force = force
+        self._records.append((t_end, float(e[0]), float(e[1]), gap, reaction if self._state == REST else 0.0))
+        if self._state == IMPACT:
+            # the impact step ends at v+; its end accelerations carry the impulse over the step
+            # (about 2 (v+ - v-) / h), which the trapezoidal rule would add to the next step's
+            # velocities in proportion to that step's length: the start's accelerations stand
+            # in for them, so that the flight after the jump starts at v+ whatever its steps
+            data = mbs.systemData
+            data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep))
+            self._release(mbs, FREE)
+        elif self._state == REST:
+            self._resting += 1
+            if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
+                self._release(mbs, FREE)
+            elif gap < -OPEN_GAP * clearance:  # the journal left the wall: a condition would act at a distance
+                self._release(mbs, FREE)
+            else:
+                self._hold_resting(mbs, e, h, 2.0 * e - self._held[0])  # the normal's last turn, once more
+        self._start, self._step = t_end, h
+        return 0.0
+
+    def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
+        """Whether a free step that ended ``end_gap`` [m] into the wall is an impact or the
+        onset of a resting contact (not a journal that started in the wall and leaves it);
+        where it is, the condition is set from the state at the step's start, for Exudyn to
+        compute the step again with it."""
+        if end_gap > CROSSING * self._joint.geometry.clearance:
+            self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
+                          "steps are longer than the journal's flight across the clearance; take shorter steps")
+        with _step_start(mbs):
+            # the rows at the step's start, in the normal where it met the wall (the start's
+            # points elsewhere where the journal crossed the bearing's centre)
+            start, rate, gap = self._kinematics(mbs, end / float(np.linalg.norm(end)))
+            if gap >= 0.0 and end_gap <= gap:
+                return False
+            accel = self._closing_acceleration(mbs)
+            # Moreau-Jean's impact velocity: the normal rate at the step's start (one that
+            # reached the wall only under its load, not approaching at the start, rests)
+            restitution = impact_restitution(self._joint.law, rate) if rate > 0.0 else 0.0
+            rebound = restitution * rate
+            if rate <= 0.0 or (accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h):
+                self._state, self._resting, restitution = REST, 0, 0.0
+                self._held = None
+                self._hold_resting(mbs, start, h, end)
+            else:
+                self._state = IMPACT
+                self._hold(mbs, -rebound)
+        self._impacts.append((t, rate, restitution, math.nan))
+        return True
+
+    def _hold_resting(self, mbs: exu.MainSystem, e: np.ndarray, h: float, ahead: np.ndarray) -> None:
+        """The condition of a held step that starts at the current state (eccentricity ``e``),
+        in the normal of ``ahead``, the eccentricity expected at its end.  It aims the end gap
+        at the critically damped path of :meth:`_resting_rate` (the gap's own rate, in the
+        normal of the start), ``gap1 = gap + h (v0 + v1) / 2`` for its end rate ``v1``."""
+        _, rate, gap = self._kinematics(mbs)
+        bias = self._held[4] if self._held is not None and self._held[2] == h else 0.0
+        self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), bias, h)
+
+    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], normal: np.ndarray, bias: float,
+             h: float) -> None:
+        """The condition that ends a step of length ``h`` started at ``start`` (eccentricity,
+        gap, the gap's rate) at the gap ``gap + h (rate + v1) / 2`` of the end rate ``v1`` of
+        :meth:`_resting_rate`, in ``normal``: the trapezoidal rule moves ``n . e`` by
+        ``h (v0 + v1) / 2``, so the condition's end rate is ``2 (c + gap1 - n . e) / h - v0``
+        (``v0`` the start rate along ``n``), plus the ``bias`` that the rows' linearization
+        needs (:meth:`_refine`)."""
+        e, gap, rate = start
+        target = gap + 0.5 * h * (rate + self._resting_rate(gap, h))
+        _, along, _ = self._kinematics(mbs, normal)
+        self._held = (e, target, h, normal, bias, start)
+        self._hold(mbs, 2.0 * (self._joint.geometry.clearance + target - float(normal @ e)) / h - along + bias)
+
+    def _refine(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, h: float) -> bool:
+        """Whether a held step that ended at ``e`` missed its target gap by more than
+        :data:`GAP_TOLERANCE`; where it did, the condition is set again in the normal of
+        ``e``, with the miss along it taken into the bias, for Exudyn to compute the step
+        again."""
+        if self._held is None:
+            return False
+        start, target, planned, normal, bias, begin = self._held
+        if planned != h:  # Exudyn shortened the step: the condition for its length (the bias is a rate of the old)
+            with _step_start(mbs):
+                self._aim(mbs, begin, normal, 0.0, h)
+            return True
+        if abs(gap - target) <= GAP_TOLERANCE * self._joint.geometry.clearance:
+            return False
+        # the rows' linearization missed n . (e1 - e0) - h r along the normal the step was held in
+        miss = float(normal @ (e - start)) - (self._joint.geometry.clearance + target - float(normal @ start))
+        with _step_start(mbs):
+            self._aim(mbs, begin, e / float(np.linalg.norm(e)), bias - 2.0 * miss / h, h)
+        return True
 
     def _check_solver(self, mbs: exu.MainSystem) -> None:
         solver = getattr(mbs, "sys", {}).get("dynamicSolver")
@@ -205,21 +353,34 @@ class ImpulseJointHandle:
             problem = (f"generalized-alpha's spectral radius is {float(solver.spectralRadius):g}: under numerical "
                        "damping the velocity jump leaks into the following steps; set "
                        "timeIntegration.generalizedAlpha.spectralRadius = 1")
+        if not problem:
+            settings = getattr(mbs, "sys", {}).get("simulationSettings")
+            self._iterations = int(settings.timeIntegration.discontinuous.maxIterations) if settings else 2
+            if self._iterations < 2:
+                problem = ("it computes a step again where an impact begins, which needs "
+                           "timeIntegration.discontinuous.maxIterations of at least 2 (Exudyn's default is 5)")
         if problem:
             self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' refuses this run: {problem}; "
                              "or use contact_mode='compliant'")
             raise ValueError(self._problem)
 
-    def _kinematics(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float, float]:
-        """The eccentricity ``e`` (global, in the bearing's plane), the normal rate and the gap
-        ``|e| - c`` at the current state; sets the rows in the normal ``e / |e|``."""
+    def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:
+        """The eccentricity ``e`` (global, in the bearing's plane) and the gap ``|e| - c`` at
+        the current state."""
         ov = exu.OutputVariableType
-        axis = np.asarray(mbs.GetMarkerOutput(self.markerNumbers[0], ov.RotationMatrix), dtype=float).reshape(3, 3) @ self._axis_local
+        rotation = np.asarray(mbs.GetMarkerOutput(self.markerNumbers[0], ov.RotationMatrix), dtype=float)
+        axis = rotation.reshape(3, 3) @ self._axis_local
         p = [np.asarray(mbs.GetMarkerOutput(m, ov.Position), dtype=float) for m in self.markerNumbers]
         e = p[1] - p[0]
         e = e - (e @ axis) * axis
+        return e, float(np.linalg.norm(e)) - self._joint.geometry.clearance
+
+    def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray | None = None) -> tuple[np.ndarray, float, float]:
+        """The eccentricity, the normal rate and the gap at the current state; sets the rows
+        in ``normal`` (default: the present one, ``e / |e|``)."""
+        e, gap = self._gap(mbs)
         norm = float(np.linalg.norm(e))
-        n = e / norm if norm > 0.0 else np.zeros(3)
+        n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
         data = mbs.systemData
         if self._ltg is None:
             self._ltg = [np.asarray(data.GetNodeLTGODE2(k) if kind == "node" else data.GetObjectLTGODE2(k), dtype=int)
@@ -232,12 +393,12 @@ class ImpulseJointHandle:
             for j, g in enumerate(indices):
                 unit[g] = 1.0
                 data.SetODE2Coordinates_t(unit)
-                row[0, j] = n @ np.asarray(mbs.GetMarkerOutput(marker, ov.Velocity), dtype=float)
+                row[0, j] = n @ np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Velocity), dtype=float)
                 unit[g] = 0.0
             rows.append(row)
         data.SetODE2Coordinates_t(v)
         self._rows = rows
-        return e, self._normal(v), norm - self._joint.geometry.clearance
+        return e, self._normal(v), gap
 
     def _normal(self, x: np.ndarray) -> float:
         """``n . (x_journal - x_bearing)`` for the coordinates' rates ``x`` (velocities or
@@ -252,91 +413,59 @@ class ImpulseJointHandle:
         only sets whether a rebound counts as resting)."""
         return self._normal(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
-    def _resting_rate(self, mbs: exu.MainSystem, rate: float, gap: float, h: float) -> float:
-        """The end rate of a resting step: the trapezoidal rule's ``v0 + h (a0 + a1) / 2`` with
-        the end acceleration ``a1 = -w^2 gap - 2 w v0`` (critically damped, ``w = RATE_GAIN / h``),
-        so that the held rate takes back the penetration smoothly and the acceleration the
-        solver derives from it keeps no step-to-step alternation (a rate jumped to its target
-        leaves one, undamped under the trapezoidal rule, in the multipliers)."""
-        w = RATE_GAIN / h
-        return rate + 0.5 * h * (self._closing_acceleration(mbs) - w * w * gap - 2.0 * w * rate)
+    def _resting_rate(self, gap: float, h: float) -> float:
+        """The end rate [m/s] a held step aims at: ``-RATE_GAIN gap / h``, which takes back a
+        share of the penetration each step and leaves no step-to-step alternation of the rate
+        (an end rate set from the position alone, ``2 (gap1 - gap) / h - v0``, alternates
+        about the motion, undamped under the trapezoidal rule, and so do the multipliers)."""
+        return -RATE_GAIN * gap / h
 
     def _multiplier(self, mbs: exu.MainSystem) -> float:
         force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
         return force if isinstance(force, float) else float(np.ravel(force)[0])
 
     def _hold(self, mbs: exu.MainSystem, end_rate: float) -> None:
-        """The condition on for the coming step, holding its end rate at ``end_rate``."""
-        mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", self._rows[0])
-        mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", self._rows[1])
-        mbs.SetObjectParameter(self.objectNumber, "offset", [end_rate])
-        mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
-        _request_jacobian(mbs)
-
+        """The condition on for the coming step, in the rows of :meth:`_kinematics`' last
+        call, holding its end rate at ``end_rate``."""
+        self._plan = (True, list(self._rows), float(end_rate))
+        self._apply(mbs)
 
     def _release(self, mbs: exu.MainSystem, state: str) -> None:
-        mbs.SetObjectParameter(self.objectNumber, "activeConnector", False)
-        _request_jacobian(mbs)
+        self._plan = (False, [], 0.0)
+        self._apply(mbs)
         self._state = state
 
-    def _step_decision(self, mbs: exu.MainSystem, t_end: float) -> None:
-        """At the start of the step that ends at ``t_end`` (Exudyn's pre-step time)."""
-        h = float(mbs.sys["dynamicSolver"].it.currentStepSize)
-        t = t_end - h
-        if self._records and abs(t - self._records[-1][0]) <= REDO_TOLERANCE * max(1.0, abs(t)):
-            self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
-                             "Exudyn redoes a step there (its Newton iteration did not converge with the contact's "
-                             "condition, as where a held contact slides along the wall), and the mode's decisions "
-                             "are taken once per step; use contact_mode='compliant'")
-            raise ValueError(self._problem)
-        force = self._multiplier(mbs) if self._state in (IMPACT, REST) else 0.0
-        if self._pending is not None:  # the impact step's multiplier: its impulse, the effective mass
-            tk, vk, ek, _ = self._impacts[self._pending]
-            self._impacts[self._pending] = (tk, vk, ek, force * self._step)
-            self._pending = None
-        e, rate, gap = self._kinematics(mbs)
-        self._left_pen = max(self._left_pen, gap)
-        clearance = self._joint.geometry.clearance
-        if gap > LOST_CONTACT * clearance:
-            self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
-                             f"the journal is {gap:.3g} m into the wall, more than {LOST_CONTACT:g} times the "
-                             f"clearance ({clearance:.3g} m): the steps are too long for the motion across the "
-                             "clearance, or the condition could not follow the contact; take shorter steps or use "
-                             "contact_mode='compliant'")
-            raise ValueError(self._problem)
-        # the resting multiplier alternates from step to step about the load under the
-        # trapezoidal rule (an undamped mode of the held velocity's acceleration): its
-        # two-step mean is the reaction
-        reaction = 0.5 * (force + self._force) if self._state == REST and self._resting > 1 else force
-        self._force = force
-        self._records.append((t, float(e[0]), float(e[1]), gap, reaction if self._state == REST else 0.0))
-        if self._state == IMPACT:
-            # the impact step held its end rate at the mean of v- and v+; the free step after
-            # it lands on v+ through the step's algorithmic acceleration (module docstring),
-            # so no contact is looked for in it
-            self._release(mbs, LANDING)
-        elif self._state == LANDING:
-            self._state = FREE
-        elif self._state == REST:
-            self._resting += 1
-            if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
-                self._release(mbs, FREE)
-            else:
-                self._hold(mbs, self._resting_rate(mbs, rate, gap, h))
-        if self._state == FREE and gap + h * rate >= 0.0 and rate > 0.0:
-            restitution = impact_restitution(self._joint.law, rate)
-            rebound = restitution * rate
-            accel = self._closing_acceleration(mbs)
-            if accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h:
-                self._state, self._resting = REST, 0
-                self._hold(mbs, self._resting_rate(mbs, rate, max(gap, 0.0), h))
-                restitution = 0.0
-            else:
-                self._state = IMPACT
-                self._hold(mbs, 0.5 * (rate - rebound))
-            self._impacts.append((t, rate, restitution, math.nan))
-            self._pending = len(self._impacts) - 1
-        self._step = h
+    def _apply(self, mbs: exu.MainSystem) -> None:
+        """The condition as :attr:`_plan` says, with a fresh Jacobian (:func:`_request_jacobian`)."""
+        active, rows, offset = self._plan
+        if active:
+            mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", rows[0])
+            mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", rows[1])
+            mbs.SetObjectParameter(self.objectNumber, "offset", [offset])
+        mbs.SetObjectParameter(self.objectNumber, "activeConnector", active)
+        _request_jacobian(mbs)
+
+    def _snapshot(self) -> dict[str, Any]:
+        """What an accepted step changes, to be taken back where Exudyn computes it again."""
+        return {"_state": self._state, "_plan": self._plan, "_step": self._step, "_force": self._force,
+                "_resting": self._resting, "_left_pen": self._left_pen, "_start": self._start,
+                "records": len(self._records), "impacts": list(self._impacts)}
+
+    def _restore(self) -> None:
+        saved, self._saved = dict(self._saved or {}), None
+        del self._records[saved.pop("records"):]
+        self._impacts = saved.pop("impacts")
+        self.__dict__.update(saved)
+
+    def _too_long(self) -> str:
+        return (f"more than {LOST_CONTACT:g} times the clearance ({self._joint.geometry.clearance:.3g} m): the steps "
+                "are too long for the motion across the clearance, or the condition could not follow the contact; "
+                "take shorter steps")
+
+    def _stop(self, t: float, reason: str) -> None:
+        self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
+                         f"{reason}; or use contact_mode='compliant'")
+        raise ValueError(self._problem)
 
     # -- what a run leaves ----------------------------------------------------------------
     def _check_ran(self) -> None:
@@ -347,11 +476,11 @@ class ImpulseJointHandle:
             return
         end = float(mbs.systemData.GetTime())
         last = self._records[-1][0] if self._records else 0.0
-        if end > last + 2.0 * self._step + 1e-12 * max(1.0, end):
+        if end > last + 1e-12 * max(1.0, end):
             raise RuntimeError(f"joint {self.name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
-                               f"last step began at {last:g} s): a pre-step function set after the joint was built "
-                               "replaced the mode's; set yours before building the joint, or use "
-                               "contact_mode='compliant'")
+                               f"last step ended at {last:g} s): Exudyn did not call its post-Newton function (an "
+                               "explicit solver, or timeIntegration.discontinuous.maxIterations = 0); use "
+                               "generalized-alpha with its discontinuous iteration, or contact_mode='compliant'")
 
     def impacts(self) -> list[ClosedFormImpact]:
         """The impacts of the last run, resting contacts' onsets included (restitution 0), with
@@ -365,15 +494,15 @@ class ImpulseJointHandle:
             # carries the load, so there the bodies' reduced mass (joint_mass) stands in
             mass = abs(impulse) / (v * (1.0 + restitution)) if restitution > 0.0 and math.isfinite(impulse) else \
                 joint_mass(self._mbs(), self)
-            peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 else (math.nan,) * 3
+            peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 and v > 0.0 else (math.nan,) * 3
             out.append(ClosedFormImpact(t, v, peak, duration, depth, restitution, mass))
         return out
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """At the start of each step of the last run: ``time``, ``ecc_x``, ``ecc_y`` (the
+        """At the end of each step of the last run: ``time``, ``ecc_x``, ``ecc_y`` (the
         eccentricity, global), ``penetration`` (``|e| - c``, negative in free flight) and
-        ``normal_force`` (the resting condition's multiplier over the step before, 0 in
-        free flight and at impacts; an impact's impulse is not a force)."""
+        ``normal_force`` (the resting condition's multiplier over the step, as a two-step
+        mean; 0 in free flight and at impacts: an impact's impulse is not a force)."""
         self._check_ran()
         data = np.array(self._records, dtype=float).reshape(-1, 5)
         return {key: data[:, k] for k, key in enumerate(("time", "ecc_x", "ecc_y", "penetration", "normal_force"))}
@@ -410,8 +539,28 @@ def _request_jacobian(mbs: exu.MainSystem) -> None:
     mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
 
 
-def _installed(installed: Any) -> Any:
-    return installed["function"] if isinstance(installed, dict) else None
+@contextlib.contextmanager
+def _step_start(mbs: exu.MainSystem) -> Iterator[None]:
+    """The state at the start of the step in the current configuration, where marker outputs
+    are read, for the ``with`` block; the step's end state back after it."""
+    data, start = mbs.systemData, exu.ConfigurationType.StartOfStep
+    end = (data.GetODE2Coordinates(), data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt())
+    data.SetODE2Coordinates(data.GetODE2Coordinates(configuration=start))
+    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(configuration=start))
+    data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=start))
+    try:
+        yield
+    finally:
+        data.SetODE2Coordinates(end[0])
+        data.SetODE2Coordinates_t(end[1])
+        data.SetODE2Coordinates_tt(end[2])
+
+
+def _same_plan(a: tuple[bool, list[np.ndarray], float], b: tuple[bool, list[np.ndarray], float]) -> bool:
+    """Whether two settings of the condition (on, rows, offset) are the same."""
+    if a[0] != b[0]:
+        return False
+    return not a[0] or (a[2] == b[2] and all(np.array_equal(x, y) for x, y in zip(a[1], b[1])))
 
 
 def _coordinate_owner(mbs: Any, marker: Any) -> tuple[str, int]:

@@ -45,7 +45,8 @@ import exudyn as exu
 import numpy as np
 
 import exuclear
-from exuclear.engine.impulse import ImpulseJointHandle, closed_form_impact, impact_restitution
+from exuclear.engine.impulse import ImpulseJointHandle
+from exuclear.timescales import closed_form_impact, impact_restitution
 from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
@@ -86,7 +87,7 @@ def _run(model: Any, radius: float | None = None, factor: float = 1.0) -> tuple[
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the joints' notes are not what this script measures
             ok, problem = bool(model.mbs.SolveDynamic(ss, solverType=model.solver_type)), ""
-    except Exception as err:  # Exudyn wraps a refusal raised in the mode's pre-step function
+    except Exception as err:  # Exudyn wraps a refusal raised in the mode's post-Newton function
         ok, problem = False, str(err).strip().splitlines()[0]
     wall = time.perf_counter() - start
     steps = model.mbs.sys["dynamicSolver"].it.currentStepIndex - 1
@@ -123,7 +124,7 @@ def zoo_row(name: str, factor: float, repeats: int) -> list[str]:
     probe_i = np.asarray(impulse.probe(impulse.mbs), dtype=float)
     try:
         impacts_i = len(impulse.joint.impacts())
-    except RuntimeError as err:  # the model replaced the mode's pre-step function
+    except RuntimeError as err:  # Exudyn did not call the mode (impulse.ImpulseJointHandle._check_ran)
         return row + ["-", "-", "-", "stopped: " + str(err).split(": ", 1)[-1]]
     wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse"), 1.0)[0] for _ in range(repeats - 1)])
     return row + [_ratio(wall_i, ideal_1), str(steps_i), str(impacts_i),
