@@ -168,6 +168,7 @@ class ImpulseJointHandle:
             visualization=VObjectConnectorRigidBodySpringDamper(show=False)))
         self._ltg: list[np.ndarray] | None = None
         self._iterations = 2  # Exudyn's discontinuous iterations per step (read at each run's start)
+        self._nominal = 1.0  # the run's own step [s] (read at each run's start)
         self._reset()
 
     @property
@@ -262,6 +263,12 @@ class ImpulseJointHandle:
             data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep))
             self._release(mbs, FREE)
         elif self._state == REST:
+            # a held step's end accelerations alternate about the motion from step to step (the
+            # trapezoidal rule's undamped mode, which each aim at a gap excites): their mean
+            # with the start's, the step's own (v1 - v0) / h, stands in for them
+            data = mbs.systemData
+            start = data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep)
+            data.SetODE2Coordinates_tt(0.5 * (start + data.GetODE2Coordinates_tt()))
             self._resting += 1
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
                 self._release(mbs, FREE)
@@ -291,7 +298,9 @@ class ImpulseJointHandle:
             # reached the wall only under its load, not approaching at the start, rests)
             restitution = impact_restitution(self._joint.law, rate) if rate > 0.0 else 0.0
             rebound = restitution * rate
-            if rate <= 0.0 or (accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h):
+            if rate <= 0.0 or gap > OPEN_GAP * self._joint.geometry.clearance or \
+                    (accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h):
+                # (a journal in the wall at the step's start is held, which takes its penetration back)
                 self._state, self._resting, restitution = REST, 0, 0.0
                 self._held = None
                 self._hold_resting(mbs, start, h, end)
@@ -319,7 +328,7 @@ class ImpulseJointHandle:
         (``v0`` the start rate along ``n``), plus the ``bias`` that the rows' linearization
         needs (:meth:`_refine`)."""
         e, gap, rate = start
-        target = gap + 0.5 * h * (rate + self._resting_rate(gap, h))
+        target = gap + 0.5 * h * (rate + self._resting_rate(gap))
         _, along, _ = self._kinematics(mbs, normal)
         self._held = (e, target, h, normal, bias, start)
         self._hold(mbs, 2.0 * (self._joint.geometry.clearance + target - float(normal @ e)) / h - along + bias)
@@ -356,6 +365,8 @@ class ImpulseJointHandle:
         if not problem:
             settings = getattr(mbs, "sys", {}).get("simulationSettings")
             self._iterations = int(settings.timeIntegration.discontinuous.maxIterations) if settings else 2
+            ti = settings.timeIntegration if settings else None
+            self._nominal = (ti.endTime - ti.startTime) / max(1, ti.numberOfSteps) if ti else solver.it.currentStepSize
             if self._iterations < 2:
                 problem = ("it computes a step again where an impact begins, which needs "
                            "timeIntegration.discontinuous.maxIterations of at least 2 (Exudyn's default is 5)")
@@ -413,12 +424,14 @@ class ImpulseJointHandle:
         only sets whether a rebound counts as resting)."""
         return self._normal(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
-    def _resting_rate(self, gap: float, h: float) -> float:
-        """The end rate [m/s] a held step aims at: ``-RATE_GAIN gap / h``, which takes back a
-        share of the penetration each step and leaves no step-to-step alternation of the rate
-        (an end rate set from the position alone, ``2 (gap1 - gap) / h - v0``, alternates
-        about the motion, undamped under the trapezoidal rule, and so do the multipliers)."""
-        return -RATE_GAIN * gap / h
+    def _resting_rate(self, gap: float) -> float:
+        """The end rate [m/s] a held step aims at: ``-RATE_GAIN gap / h`` at the run's own step
+        ``h`` (not a step Exudyn shortened, whose rate would pull the journal back at any
+        speed), which takes back a share of the penetration each step and leaves no
+        step-to-step alternation of the rate (an end rate set from the position alone,
+        ``2 (gap1 - gap) / h - v0``, alternates about the motion, undamped under the
+        trapezoidal rule, and so do the multipliers)."""
+        return -RATE_GAIN * gap / self._nominal
 
     def _multiplier(self, mbs: exu.MainSystem) -> float:
         force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
