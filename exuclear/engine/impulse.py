@@ -71,7 +71,9 @@ RATE_GAIN = 0.5
 GAP_TOLERANCE = 1e-3
 #: A held step in which the normal turns by more than this [rad] is computed again shorter,
 #: where Exudyn's adaptive step allows (its error along the turning wall grows with the
-#: square of the turn, and :data:`GAP_TOLERANCE`'s iteration converges slowly beyond it) ...
+#: square of the turn, and :data:`GAP_TOLERANCE`'s iteration converges slowly beyond it),
+#: as is a step that ends more than :data:`LOST_CONTACT` clearances into the wall, or a free
+#: one that ends more than :data:`CROSSING` clearances into it ...
 MAX_TURN = 0.1
 #: ... at this share of the step the turn asks for ...
 STEP_SAFETY = 0.8
@@ -233,18 +235,18 @@ class ImpulseJointHandle:
         if self._state == REST and self._held is not None:
             start = self._held[0]
             turn = math.atan2(float(np.linalg.norm(np.cross(start, e))), float(start @ e))
-            solver = mbs.sys["dynamicSolver"]
-            if turn > MAX_TURN and solver.it.adaptiveStep and h > MIN_STEP_MARGIN * float(solver.it.minStepSize):
-                # the journal slides along the wall faster than the condition's normal can follow
-                self._shorter = max(h * STEP_SAFETY * MAX_TURN / turn, MIN_STEP_MARGIN * float(solver.it.minStepSize))
+            # the journal slides along the wall faster than the condition's normal can follow
+            if turn > MAX_TURN and self._shorten(mbs, h, MAX_TURN / turn):
                 return REDO_ERROR
             if redo and self._refine(mbs, e, gap, h):
                 return REDO_ERROR
-        self._saved = self._snapshot()
-        self._left_pen = max(self._left_pen, gap)
         clearance = self._joint.geometry.clearance
         if gap > LOST_CONTACT * clearance:
+            if self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
+                return REDO_ERROR
             self._stop(t_end, f"the journal is {gap:.3g} m into the wall, {self._too_long()}")
+        self._saved = self._snapshot()
+        self._left_pen = max(self._left_pen, gap)
         if self._state == IMPACT:  # the impact step's impulse (the trapezoid of 0 and its multiplier): the effective mass
             tk, vk, ek, _ = self._impacts[-1]
             self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
@@ -279,12 +281,25 @@ class ImpulseJointHandle:
         self._start, self._step = t_end, h
         return 0.0
 
+    def _shorten(self, mbs: exu.MainSystem, h: float, share: float) -> bool:
+        """Whether Exudyn can compute the step again at ``share`` of its length (times
+        :data:`STEP_SAFETY`): where its steps are adaptive and above
+        :data:`MIN_STEP_MARGIN` times its minimum step."""
+        it = mbs.sys["dynamicSolver"].it
+        floor = MIN_STEP_MARGIN * float(it.minStepSize)
+        if not it.adaptiveStep or h <= floor:
+            return False
+        self._shorter = max(h * STEP_SAFETY * share, floor)
+        return True
+
     def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
         """Whether a free step that ended ``end_gap`` [m] into the wall is an impact or the
         onset of a resting contact (not a journal that started in the wall and leaves it);
         where it is, the condition is set from the state at the step's start, for Exudyn to
         compute the step again with it."""
         if end_gap > CROSSING * self._joint.geometry.clearance:
+            if self._shorten(mbs, h, self._joint.geometry.clearance / end_gap):
+                return True
             self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
                           "steps are longer than the journal's flight across the clearance; take shorter steps")
         with _step_start(mbs):
