@@ -236,13 +236,13 @@ class ImpulseJointHandle:
             start = self._held[0]
             turn = math.atan2(float(np.linalg.norm(np.cross(start, e))), float(start @ e))
             # the journal slides along the wall faster than the condition's normal can follow
-            if turn > MAX_TURN and self._shorten(mbs, h, MAX_TURN / turn):
+            if turn > MAX_TURN and redo and self._shorten(mbs, h, MAX_TURN / turn):
                 return REDO_ERROR
             if redo and self._refine(mbs, e, gap, h):
                 return REDO_ERROR
         clearance = self._joint.geometry.clearance
         if gap > LOST_CONTACT * clearance:
-            if self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
+            if redo and self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
                 return REDO_ERROR
             self._stop(t_end, f"the journal is {gap:.3g} m into the wall, {self._too_long()}")
         self._saved = self._snapshot()
