@@ -190,9 +190,11 @@ class ImpulseJointHandle:
         self._left_pen = 0.0
         self._start: float | None = None  # the start [s] of the step the condition is set for
         self._saved: dict[str, Any] | None = None  # the state before the last accepted step
+        self._free_accelerations = np.zeros(0)  # the end accelerations of an impact step computed free
         # a held step: its start's eccentricity, the gap it aims at, its length, the normal and
         # the bias (the part of the rate that the rows' linearization misses) it is held with
-        self._held: tuple | None = None  # (e0, gap aimed at, h, normal, bias, (e0, gap0, rate0))
+        # (e0, gap aimed at, h, normal held in, bias, (e0, gap0, rate0), move along the normal)
+        self._held: tuple | None = None
 
     def _post_newton(self, mbs: exu.MainSystem, t: float, item: int, data: Any, *frame: Any) -> list:
         """The carrier's ``postNewtonStepUserFunction``: ``[error, recommended step, data]``."""
@@ -259,10 +261,10 @@ class ImpulseJointHandle:
         if self._state == IMPACT:
             # the impact step ends at v+; its end accelerations carry the impulse over the step
             # (about 2 (v+ - v-) / h), which the trapezoidal rule would add to the next step's
-            # velocities in proportion to that step's length: the start's accelerations stand
-            # in for them, so that the flight after the jump starts at v+ whatever its steps
-            data = mbs.systemData
-            data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep))
+            # velocities in proportion to that step's length: the free computation's end
+            # accelerations (the step without the contact) stand in for them, so that the
+            # flight after the jump starts at v+ whatever its steps
+            mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             self._release(mbs, FREE)
         elif self._state == REST:
             # a held step's end accelerations alternate about the motion from step to step (the
@@ -297,6 +299,7 @@ class ImpulseJointHandle:
         onset of a resting contact (not a journal that started in the wall and leaves it);
         where it is, the condition is set from the state at the step's start, for Exudyn to
         compute the step again with it."""
+        self._free_accelerations = np.array(mbs.systemData.GetODE2Coordinates_tt())
         if end_gap > CROSSING * self._joint.geometry.clearance:
             if self._shorten(mbs, h, self._joint.geometry.clearance / end_gap):
                 return True
@@ -334,19 +337,23 @@ class ImpulseJointHandle:
         bias = self._held[4] if self._held is not None and self._held[2] == h else 0.0
         self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), bias, h)
 
-    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], normal: np.ndarray, bias: float,
+    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], ahead: np.ndarray, bias: float,
              h: float) -> None:
         """The condition that ends a step of length ``h`` started at ``start`` (eccentricity,
-        gap, the gap's rate) at the gap ``gap + h (rate + v1) / 2`` of the end rate ``v1`` of
-        :meth:`_resting_rate`, in ``normal``: the trapezoidal rule moves ``n . e`` by
-        ``h (v0 + v1) / 2``, so the condition's end rate is ``2 (c + gap1 - n . e) / h - v0``
-        (``v0`` the start rate along ``n``), plus the ``bias`` that the rows' linearization
-        needs (:meth:`_refine`)."""
+        gap, the gap's rate) at the gap ``gap1 = gap + h (rate + v1) / 2`` of the end rate
+        ``v1`` of :meth:`_resting_rate`, acting along ``ahead``, the normal expected at the
+        step's end: there ``|e1| = n . e1``, so the step must move ``n . e`` by
+        ``c + gap1 - n . e``; the trapezoidal rule moves it by ``h (v0 + v1) / 2``, so the
+        condition's end rate is ``2 (c + gap1 - n . e) / h - v0`` (``v0`` the start rate along
+        ``n``), plus the ``bias`` that the rows' linearization needs (:meth:`_refine`).  (The
+        normal of the chord, the mean of the start's and the end's, let the zoo's pendulum
+        slide along its wall in a growing oscillation sooner.)"""
         e, gap, rate = start
         target = gap + 0.5 * h * (rate + self._resting_rate(gap))
-        _, along, _ = self._kinematics(mbs, normal)
-        self._held = (e, target, h, normal, bias, start)
-        self._hold(mbs, 2.0 * (self._joint.geometry.clearance + target - float(normal @ e)) / h - along + bias)
+        move = self._joint.geometry.clearance + target - float(ahead @ e)
+        _, along, _ = self._kinematics(mbs, ahead)
+        self._held = (e, target, h, ahead, bias, start, move)
+        self._hold(mbs, 2.0 * move / h - along + bias)
 
     def _refine(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, h: float) -> bool:
         """Whether a held step that ended at ``e`` missed its target gap by more than
@@ -355,15 +362,15 @@ class ImpulseJointHandle:
         again."""
         if self._held is None:
             return False
-        start, target, planned, normal, bias, begin = self._held
+        start, target, planned, normal, bias, begin, move = self._held
         if planned != h:  # Exudyn shortened the step: the condition for its length (the bias is a rate of the old)
             with _step_start(mbs):
                 self._aim(mbs, begin, normal, 0.0, h)
             return True
         if abs(gap - target) <= GAP_TOLERANCE * self._joint.geometry.clearance:
             return False
-        # the rows' linearization missed n . (e1 - e0) - h r along the normal the step was held in
-        miss = float(normal @ (e - start)) - (self._joint.geometry.clearance + target - float(normal @ start))
+        # the rows' linearization missed this much of the move along the normal the step was held in
+        miss = float(normal @ (e - start)) - move
         with _step_start(mbs):
             self._aim(mbs, begin, e / float(np.linalg.norm(e)), bias - 2.0 * miss / h, h)
         return True
@@ -520,8 +527,11 @@ class ImpulseJointHandle:
             # the solver's own effective mass at the contact (closed loops included): the impact
             # step's impulse over the velocity change; a resting contact's first step also
             # carries the load, so there the bodies' reduced mass (joint_mass) stands in
-            mass = abs(impulse) / (v * (1.0 + restitution)) if restitution > 0.0 and math.isfinite(impulse) else \
-                joint_mass(self._mbs(), self)
+            mbs = self._mbs()
+            if restitution > 0.0 and math.isfinite(impulse):
+                mass = abs(impulse) / (v * (1.0 + restitution))
+            else:
+                mass = joint_mass(mbs, self) if mbs is not None else math.nan
             peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 and v > 0.0 else (math.nan,) * 3
             out.append(ClosedFormImpact(t, v, peak, duration, depth, restitution, mass))
         return out
