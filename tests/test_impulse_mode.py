@@ -7,7 +7,14 @@ import warnings
 import exudyn as exu
 import numpy as np
 import pytest
-from exudyn.itemInterface import MarkerBodyRigid, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
+from exudyn.itemInterface import (
+    Force,
+    MarkerBodyRigid,
+    MarkerNodePosition,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectRigidBody2D,
+)
 from exudyn.utilities import InertiaCuboid
 from scipy.integrate import solve_ivp
 
@@ -284,3 +291,47 @@ def test_the_translational_and_pin_in_slot_joints_refuse_the_mode(monkeypatch):
     with pytest.warns(UserWarning, match="joint P: .*pin-slot joint.*compliant contact"):
         handle = exuclear.CreatePinSlotClearanceJoint(mbs, name="P", **slot)
     assert isinstance(handle, exuclear.ClearanceJointHandle)
+
+
+def test_a_swinging_pendulum_s_held_journal_slides_along_its_wall_with_the_ideal_joints_reaction():
+    # a 1 m steel bar of 1 kg on a frictionless pin with 50 um clearance, released horizontal:
+    # the journal drops onto the wall, comes to rest, and while the bar swings down its load
+    # turns, so that the held contact slides along the wall (by 23 degrees between 0.1 and
+    # 0.2 s, and 3 back by 0.25 s); reference: the ideal revolute joint's reaction at the run's own state,
+    # m a_cm - m g with a_cm from the bar's angle and spin and alpha = (r x m g) / (m L^2 / 3)
+    length, mass, clearance = 1.0, 1.0, 50e-6
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.5 * length, 0, 0]))
+    bar = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=mass * length**2 / 12))
+    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)), loadVector=[0, -mass * G, 0]))
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, bar], position=[0, 0, 0], bearing_radius=10e-3,
+                                          journal_radius=10e-3 - clearance, length=10e-3, cr=0.9,
+                                          contact_mode="impulse")
+    mbs.Assemble()
+    ideal = []
+
+    def reaction(mbs, t):
+        phi = mbs.GetNodeOutput(node, exu.OutputVariableType.Rotation)[2]
+        w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
+        r = 0.5 * length * np.array([np.cos(phi), np.sin(phi)])
+        alpha = -r[0] * mass * G / (mass * length**2 / 3)
+        force = mass * (-w * w * r + alpha * np.array([-r[1], r[0]])) + np.array([0.0, mass * G])
+        ideal.append((t, np.linalg.norm(force), math.atan2(-force[1], -force[0])))
+        return True
+
+    mbs.SetPostStepUserFunction(reaction)
+    assert solve(type("S", (), {"mbs": mbs}), 1e-4, 0.25)
+    out, ideal = joint.outputs(), np.array(ideal)
+    window = out["time"] >= 0.1
+    assert np.array_equal(out["time"][window], ideal[np.searchsorted(ideal[:, 0], out["time"][window]), 0])
+    reference = ideal[np.searchsorted(ideal[:, 0], out["time"][window])]
+    assert max(i.onset_time for i in joint.impacts()) < 0.1  # resting from then on: no impact while it slides
+    # the journal also oscillates along the wall about the load's direction (undamped without
+    # friction, in the compliant run too: it moves the compliant reaction by some tenths of a
+    # percent here); measured 0.66 % and 0.66 degrees, bounded at 1 % and 1 degree.  Later in
+    # the swing, under the growing load, that oscillation grows in the mode (a limit the
+    # guide states): 1.6 % and 2.1 degrees by 0.3 s
+    assert np.abs(out["normal_force"][window] / reference[:, 1] - 1.0).max() < 0.01
+    direction = np.arctan2(out["ecc_y"][window], out["ecc_x"][window])
+    assert np.degrees(np.abs(np.angle(np.exp(1j * (direction - reference[:, 2]))))).max() < 1.0
