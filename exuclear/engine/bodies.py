@@ -138,3 +138,30 @@ def joint_contact_period(mbs: exu.MainSystem, handle: ClearanceJointHandle, forc
     if force is None:
         force = mass * (_gravity(mbs) or STANDARD_GRAVITY)
     return contact_period(handle.joint.law, mass, force)
+
+
+def coordinate_owner(mbs: Any, marker: Any) -> tuple[str, int]:
+    """The body (object) or node whose coordinates move the marker."""
+    info = mbs.GetMarker(marker)
+    for key, kind in (("bodyNumber", "object"), ("objectNumber", "object"), ("nodeNumber", "node")):
+        if key in info:
+            return kind, int(info[key])
+    raise ValueError(f"contact_mode='impulse': marker {int(marker)} ({info.get('markerType')}) is on no body or node")
+
+
+def object_nodes(mbs: Any, number: int) -> list[int]:
+    """The nodes of object ``number``."""
+    info = mbs.GetObject(number)
+    if "nodeNumbers" in info:
+        return [int(n) for n in info["nodeNumbers"]]
+    return [int(info["nodeNumber"])] if "nodeNumber" in info else []
+
+
+def node_ode2_size(mbs: Any, number: int) -> int:
+    """The number of second-order coordinates of node ``number`` (0 for a ground node)."""
+    info = mbs.GetNode(number)
+    if "Ground" in info["nodeType"]:
+        return 0
+    if "numberOfODE2Coordinates" in info:
+        return int(info["numberOfODE2Coordinates"])
+    return len(info["referenceCoordinates"])

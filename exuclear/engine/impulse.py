@@ -18,12 +18,13 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   starts at ``v+`` whatever the length of its steps.
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
   the normal acceleration at the step's start, the journal stays on the wall: the condition
-  is held from step to step, aimed at an end gap that takes back a share of the
-  penetration, in the normal predicted for the step's end; a step that misses its gap by
-  more than :data:`GAP_TOLERANCE` is computed again in the normal it reached (the journal
-  slides along the wall), and one whose normal turns by more than :data:`MAX_TURN` is
-  computed again shorter where Exudyn's steps are adaptive.  The condition lets go where
-  its reaction pulls or the journal left the wall.
+  is held from step to step at an end rate that takes back a share of the penetration,
+  along the normal predicted for the step's end, with its rows at the step's middle; a
+  step held in a normal more than :data:`NORMAL_TOLERANCE` off the one it reached is
+  computed again in the normal reached (the journal slides along the wall), and one whose
+  normal turns by more than :data:`MAX_TURN` is computed again shorter where Exudyn's steps
+  are adaptive.  The condition lets go where its reaction pulls or the journal left the
+  wall.
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows
@@ -58,20 +59,20 @@ from exudyn.itemInterface import (
 
 from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
-from .bodies import joint_mass
+from .bodies import coordinate_owner, joint_mass, node_ode2_size, object_nodes
 from .steering import explicit_solver
 
 #: A held step aims its end rate at taking back this share of the gap per step.
 RATE_GAIN = 0.5
-#: A held step whose end gap misses its target by more than this share of the clearance is
-#: computed again (Exudyn's discontinuous iteration) in the normal of its end and with the
-#: miss taken off its rate: a journal that slides along the wall turns the normal within the
-#: step (on the zoo's double pendulum by up to 0.6 rad a step), and a condition in the normal
-#: of the step's start lets it into the wall by ``|e| (1 - cos turn)`` a step.
-GAP_TOLERANCE = 1e-3
+#: A held step whose condition's normal is more than this [rad] off the normal it reached is
+#: computed again (Exudyn's discontinuous iteration) in the normal reached: a journal that
+#: slides along the wall turns the normal within the step (on the zoo's double pendulum by up
+#: to 0.6 rad a step), and a condition in the normal of the step's start lets it into the
+#: wall by ``|e| (1 - cos turn)`` a step; at this tolerance, by 5e-7 ``|e|``.
+NORMAL_TOLERANCE = 1e-3
 #: A held step in which the normal turns by more than this [rad] is computed again shorter,
 #: where Exudyn's adaptive step allows (its error along the turning wall grows with the
-#: square of the turn, and :data:`GAP_TOLERANCE`'s iteration converges slowly beyond it),
+#: square of the turn, and :data:`NORMAL_TOLERANCE`'s iteration converges slowly beyond it),
 #: as is a step that ends more than :data:`LOST_CONTACT` clearances into the wall, or a free
 #: one that ends more than :data:`CROSSING` clearances into it ...
 MAX_TURN = 0.1
@@ -131,6 +132,8 @@ class ImpulseJointHandle:
     ----------
     objectNumber : int
         The velocity-level condition (``ObjectConnectorCoordinateVector``).
+    carrierNumber : int
+        The connector without force whose post-Newton function runs the mode.
     markerNumbers : list
         [bearing marker, journal marker].
     contact_mode : str
@@ -145,15 +148,15 @@ class ImpulseJointHandle:
         self._axis_local = np.asarray(axis, dtype=float)
         self.name, self._joint = name, joint
         self.markerNumbers = list(markers)
-        self._owners = [_coordinate_owner(mbs, m) for m in self.markerNumbers]
+        self._owners = [coordinate_owner(mbs, m) for m in self.markerNumbers]
         coordinate_markers, sizes = [], []
         for kind, number in self._owners:
             if kind == "node":
                 coordinate_markers.append(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=number)))
-                sizes.append(_node_ode2_size(mbs, number))
+                sizes.append(node_ode2_size(mbs, number))
             else:
                 coordinate_markers.append(mbs.AddMarker(MarkerObjectODE2Coordinates(objectNumber=number)))
-                sizes.append(sum(_node_ode2_size(mbs, n) for n in _object_nodes(mbs, number)))
+                sizes.append(sum(node_ode2_size(mbs, n) for n in object_nodes(mbs, number)))
         self.objectNumber = mbs.AddObject(ObjectConnectorCoordinateVector(
             name=name, markerNumbers=coordinate_markers, scalingMarker0=np.zeros((1, sizes[0])),
             scalingMarker1=np.zeros((1, sizes[1])), offset=[0.0], velocityLevel=True, activeConnector=False,
@@ -191,9 +194,7 @@ class ImpulseJointHandle:
         self._start: float | None = None  # the start [s] of the step the condition is set for
         self._saved: dict[str, Any] | None = None  # the state before the last accepted step
         self._free_accelerations = np.zeros(0)  # the end accelerations of an impact step computed free
-        # a held step: its start's eccentricity, the gap it aims at, its length, the normal and
-        # the bias (the part of the rate that the rows' linearization misses) it is held with
-        # (e0, gap aimed at, h, normal held in, bias, (e0, gap0, rate0), move along the normal)
+        # a held step: (e0, h, the normal it is held in, (e0, gap0, rate0))
         self._held: tuple | None = None
 
     def _post_newton(self, mbs: exu.MainSystem, t: float, item: int, data: Any, *frame: Any) -> list:
@@ -240,7 +241,7 @@ class ImpulseJointHandle:
             # the journal slides along the wall faster than the condition's normal can follow
             if turn > MAX_TURN and redo and self._shorten(mbs, h, MAX_TURN / turn):
                 return REDO_ERROR
-            if redo and self._refine(mbs, e, gap, h):
+            if redo and self._refine(mbs, e, h):
                 return REDO_ERROR
         clearance = self._joint.geometry.clearance
         if gap > LOST_CONTACT * clearance:
@@ -267,12 +268,6 @@ class ImpulseJointHandle:
             mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             self._release(mbs, FREE)
         elif self._state == REST:
-            # a held step's end accelerations alternate about the motion from step to step (the
-            # trapezoidal rule's undamped mode, which each aim at a gap excites): their mean
-            # with the start's, the step's own (v1 - v0) / h, stands in for them
-            data = mbs.systemData
-            start = data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep)
-            data.SetODE2Coordinates_tt(0.5 * (start + data.GetODE2Coordinates_tt()))
             self._resting += 1
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
                 self._release(mbs, FREE)
@@ -334,45 +329,33 @@ class ImpulseJointHandle:
         at the critically damped path of :meth:`_resting_rate` (the gap's own rate, in the
         normal of the start), ``gap1 = gap + h (v0 + v1) / 2`` for its end rate ``v1``."""
         _, rate, gap = self._kinematics(mbs)
-        bias = self._held[4] if self._held is not None and self._held[2] == h else 0.0
-        self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), bias, h)
+        self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), h)
 
-    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], ahead: np.ndarray, bias: float,
-             h: float) -> None:
-        """The condition that ends a step of length ``h`` started at ``start`` (eccentricity,
-        gap, the gap's rate) at the gap ``gap1 = gap + h (rate + v1) / 2`` of the end rate
-        ``v1`` of :meth:`_resting_rate`, acting along ``ahead``, the normal expected at the
-        step's end: there ``|e1| = n . e1``, so the step must move ``n . e`` by
-        ``c + gap1 - n . e``; the trapezoidal rule moves it by ``h (v0 + v1) / 2``, so the
-        condition's end rate is ``2 (c + gap1 - n . e) / h - v0`` (``v0`` the start rate along
-        ``n``), plus the ``bias`` that the rows' linearization needs (:meth:`_refine`).  (The
-        normal of the chord, the mean of the start's and the end's, let the zoo's pendulum
-        slide along its wall in a growing oscillation sooner.)"""
-        e, gap, rate = start
-        target = gap + 0.5 * h * (rate + self._resting_rate(gap))
-        move = self._joint.geometry.clearance + target - float(ahead @ e)
-        _, along, _ = self._kinematics(mbs, ahead)
-        self._held = (e, target, h, ahead, bias, start, move)
-        self._hold(mbs, 2.0 * move / h - along + bias)
+    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], ahead: np.ndarray, h: float) -> None:
+        """The condition of a held step started at ``start`` (eccentricity, gap, the gap's
+        rate), acting along ``ahead``, the normal expected at the step's end, that holds the
+        end rate of :meth:`_resting_rate` (from the gap alone: an end rate aimed at a gap,
+        ``2 (gap1 - gap) / h - v0``, alternates about the motion, undamped under the
+        trapezoidal rule, and so would the multipliers)."""
+        e, gap, _ = start
+        with _moved(mbs, 0.5 * h):  # the rows at the step's middle, where the trapezoidal rule's forces act
+            self._kinematics(mbs, ahead)
+        self._held = (e, h, ahead, start)
+        self._hold(mbs, self._resting_rate(gap))
 
-    def _refine(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, h: float) -> bool:
-        """Whether a held step that ended at ``e`` missed its target gap by more than
-        :data:`GAP_TOLERANCE`; where it did, the condition is set again in the normal of
-        ``e``, with the miss along it taken into the bias, for Exudyn to compute the step
-        again."""
+    def _refine(self, mbs: exu.MainSystem, e: np.ndarray, h: float) -> bool:
+        """Whether a held step that ended at ``e`` was held in a normal more than
+        :data:`NORMAL_TOLERANCE` off the one it reached (the journal slides along the wall);
+        where it was, the condition is set again in the normal of ``e``, for Exudyn to
+        compute the step again."""
         if self._held is None:
             return False
-        start, target, planned, normal, bias, begin, move = self._held
-        if planned != h:  # Exudyn shortened the step: the condition for its length (the bias is a rate of the old)
-            with _step_start(mbs):
-                self._aim(mbs, begin, normal, 0.0, h)
-            return True
-        if abs(gap - target) <= GAP_TOLERANCE * self._joint.geometry.clearance:
+        _, planned, normal, begin = self._held
+        reached = e / float(np.linalg.norm(e))
+        if planned == h and float(np.linalg.norm(np.cross(normal, reached))) <= NORMAL_TOLERANCE:
             return False
-        # the rows' linearization missed this much of the move along the normal the step was held in
-        miss = float(normal @ (e - start)) - move
         with _step_start(mbs):
-            self._aim(mbs, begin, e / float(np.linalg.norm(e)), bias - 2.0 * miss / h, h)
+            self._aim(mbs, begin, reached, h)
         return True
 
     def _check_solver(self, mbs: exu.MainSystem) -> None:
@@ -594,33 +577,23 @@ def _step_start(mbs: exu.MainSystem) -> Iterator[None]:
         data.SetODE2Coordinates_tt(end[2])
 
 
+@contextlib.contextmanager
+def _moved(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
+    """The coordinates moved on by ``dt`` [s] at their present velocities, for the ``with``
+    block (rows at a step's middle: a held contact's force taken with the lever arms of the
+    step's start does work on a turning body, about its force times the turn over the step);
+    the present ones back after it."""
+    data = mbs.systemData
+    q = data.GetODE2Coordinates()
+    data.SetODE2Coordinates(q + dt * data.GetODE2Coordinates_t())
+    try:
+        yield
+    finally:
+        data.SetODE2Coordinates(q)
+
+
 def _same_plan(a: tuple[bool, list[np.ndarray], float], b: tuple[bool, list[np.ndarray], float]) -> bool:
     """Whether two settings of the condition (on, rows, offset) are the same."""
     if a[0] != b[0]:
         return False
     return not a[0] or (a[2] == b[2] and all(np.array_equal(x, y) for x, y in zip(a[1], b[1])))
-
-
-def _coordinate_owner(mbs: Any, marker: Any) -> tuple[str, int]:
-    """The body (object) or node whose coordinates move the marker."""
-    info = mbs.GetMarker(marker)
-    for key, kind in (("bodyNumber", "object"), ("objectNumber", "object"), ("nodeNumber", "node")):
-        if key in info:
-            return kind, int(info[key])
-    raise ValueError(f"contact_mode='impulse': marker {int(marker)} ({info.get('markerType')}) is on no body or node")
-
-
-def _object_nodes(mbs: Any, number: int) -> list[int]:
-    info = mbs.GetObject(number)
-    if "nodeNumbers" in info:
-        return [int(n) for n in info["nodeNumbers"]]
-    return [int(info["nodeNumber"])] if "nodeNumber" in info else []
-
-
-def _node_ode2_size(mbs: Any, number: int) -> int:
-    info = mbs.GetNode(number)
-    if "Ground" in info["nodeType"]:
-        return 0
-    if "numberOfODE2Coordinates" in info:
-        return int(info["numberOfODE2Coordinates"])
-    return len(info["referenceCoordinates"])
