@@ -232,7 +232,7 @@ def target_rows() -> list[list[str]]:
         error = max(abs(r / expected - 1.0) for r in ratios)
         # where a step would fly across the clearance the mode has Exudyn shorten it
         taken = scene.mbs.sys["dynamicSolver"].it.currentStepIndex - 1
-        asked = scene.mbs.sys["simulationSettings"].timeIntegration.numberOfSteps
+        asked = int(scene.mbs.sys["simulationSettings"].timeIntegration.numberOfSteps)
         rows.append([f"restitution, step {periods} impact durations ({step:.3g} s)",
                      f"{len(impacts)} impacts, {taken} steps ({asked} asked)",
                      f"largest error {error:.2e} of e = {expected:.6f}", "within 2 %: " + ("yes" if error <= 0.02 else "no")])
