@@ -45,6 +45,15 @@ def scene(monkeypatch, **changes):
     return s, s.joints["journal-bearing"]
 
 
+def assert_the_laws_restitution(impacts, law):
+    """Each impact's onset velocity is the last one's times the law's restitution at that
+    velocity: exact up to Newton's tolerance on the velocity condition."""
+    assert len(impacts) >= 3
+    for before, after in zip(impacts, impacts[1:]):
+        assert after.onset_velocity / before.onset_velocity == pytest.approx(
+            impact_restitution(law, before.onset_velocity), rel=1e-9)
+
+
 @pytest.mark.parametrize("periods", [3.0, 10.0])
 def test_each_impact_has_the_laws_restitution_at_steps_far_beyond_the_contact(monkeypatch, periods):
     # no gravity: the journal crosses the bearing and hits the far wall, again and again;
@@ -78,9 +87,7 @@ def test_steps_longer_than_the_flight_across_the_clearance_are_shortened_or_refu
     assert solve(s, step, max(8.0 * crossing / 0.9**8, 4 * step))
     impacts = joint.impacts()
     assert len(impacts) >= 5
-    for before, after in zip(impacts, impacts[1:]):  # exact up to Newton's tolerance, as at short steps
-        assert after.onset_velocity / before.onset_velocity == pytest.approx(impact_restitution(joint.joint.law, 0.3),
-                                                                             rel=1e-9)
+    assert_the_laws_restitution(impacts, joint.joint.law)  # as at short steps
     s, joint = scene(monkeypatch)
     ss = exu.SimulationSettings()
     ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 4 * step, 4
@@ -210,10 +217,7 @@ def test_a_moving_bearing_rebounds_with_the_laws_restitution(monkeypatch):
     assert solve(type("S", (), {"mbs": mbs}), 1e-4, 0.01)
     impacts = handle.impacts()
     assert len(impacts) >= 3
-    for before, after in zip(impacts, impacts[1:]):
-        # exact up to Newton's tolerance, as for the moving journal
-        assert after.onset_velocity / before.onset_velocity == pytest.approx(impact_restitution(joint.law, 0.3),
-                                                                             rel=1e-9)
+    assert_the_laws_restitution(impacts, joint.law)  # as for the moving journal
     assert handle.outputs()["penetration"].max() < 0.3 * 1e-4  # Moreau-Jean's: below v h
 
 
@@ -237,10 +241,7 @@ def test_the_users_own_step_functions_set_after_the_joint_leave_the_mode_in_plac
     step = 10.0 * closed_form_impact(joint.joint.law, 0.04, 0.3)[1]
     assert solve(s, step, 200 * step)
     impacts = joint.impacts()
-    assert len(impacts) >= 3
-    for before, after in zip(impacts, impacts[1:]):  # exact up to Newton's tolerance, as without them
-        assert after.onset_velocity / before.onset_velocity == pytest.approx(impact_restitution(joint.joint.law, 0.3),
-                                                                             rel=1e-9)
+    assert_the_laws_restitution(impacts, joint.joint.law)  # as without them
     assert calls["pre"] >= 200  # one call per step at least (a step computed again calls it once)
     assert calls["post"] >= 200 + len(impacts)  # each impact step is computed twice
 
@@ -267,9 +268,7 @@ def test_two_joints_in_one_system_each_keep_the_laws_restitution(monkeypatch):
         impacts = handle.impacts()
         assert len(impacts) >= 5
         assert impacts[0].onset_velocity == pytest.approx(speed, rel=1e-9)  # no gravity: the speed it started with
-        for before, after in zip(impacts, impacts[1:]):  # exact up to Newton's tolerance
-            assert after.onset_velocity / before.onset_velocity == pytest.approx(
-                impact_restitution(joint.law, before.onset_velocity), rel=1e-9)
+        assert_the_laws_restitution(impacts, joint.law)
 
 
 def test_the_translational_and_pin_in_slot_joints_refuse_the_mode(monkeypatch):
