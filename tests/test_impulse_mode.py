@@ -163,6 +163,18 @@ def test_the_mode_refuses_a_damped_integrator_and_says_so(monkeypatch):
         solve(s, 1e-5, 1e-4, radius=0.9)
     with pytest.raises(ValueError, match="journal-bearing.*spectral radius is 0.9.*spectralRadius = 1"):
         joint.impacts()
+    # the mode computes an impact's step again in Exudyn's discontinuous iteration: a run
+    # that allows it no second iteration is refused the same way
+    s, joint = scene(monkeypatch)
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 1e-4, 10
+    ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
+    ss.timeIntegration.discontinuous.maxIterations = 1
+    ss.timeIntegration.verboseMode = 0
+    with pytest.raises(Exception):
+        s.mbs.SolveDynamic(ss)
+    with pytest.raises(ValueError, match="journal-bearing.*discontinuous.maxIterations of at least 2"):
+        joint.impacts()
 
 
 def test_the_mode_refuses_what_it_does_not_cover(monkeypatch):
