@@ -26,7 +26,7 @@ The issue's target rows:
 
 ::
 
-    python -m validation.cost modes [--models a,b] [--factor 8] [--repeats 3] [--no-zoo]
+    python -m validation.cost modes [--models a,b] [--factor 8] [--repeats 3] [--refine 4] [--no-zoo]
 
 (``--repeats 0``: steps, impacts and accuracy without timing, for a busy machine.)
 """
@@ -101,8 +101,10 @@ def _median_wall(name: str, clearance: bool, mode: str | None, repeats: int, rad
     return statistics.median(_run(_build(name, clearance, mode), radius)[0] for _ in range(repeats))
 
 
-def zoo_row(name: str, factor: float, repeats: int) -> list[str]:
-    """One zoo model's row (module docstring); ``repeats`` 0: no timing (the costs print "-")."""
+def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0) -> list[str]:
+    """One zoo model's row (module docstring); ``repeats`` 0: no timing (the costs print "-");
+    ``refine`` > 1: the impulse run's probe at that many times the steps too (its order in
+    the step), else "-"."""
     ideal = _median_wall(name, False, None, repeats, None) if repeats else math.nan
     compliant = _build(name, True, None)
     c = compliant.clearance
@@ -117,20 +119,26 @@ def zoo_row(name: str, factor: float, repeats: int) -> list[str]:
            f"{np.abs(probe_c - probe_ref).max() / c:.3g}" if ok_c else "failed"]
     impulse = _build(name, True, "impulse")
     if not isinstance(impulse.joint, ImpulseJointHandle):
-        return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1]]
+        return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1], "-"]
     ideal_1 = _median_wall(name, False, None, repeats, 1.0)
     wall_i, steps_i, ok_i, problem = _run(impulse, 1.0)
     if not ok_i:
         reason = impulse.joint._problem.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem
-        return row + ["-", steps_i, str(len(impulse.joint._impacts)), reason]
+        return row + ["-", steps_i, str(len(impulse.joint._impacts)), reason, "-"]
     probe_i = np.asarray(impulse.probe(impulse.mbs), dtype=float)
     try:
         impacts_i = len(impulse.joint.impacts())
     except RuntimeError as err:  # Exudyn did not call the mode (impulse.ImpulseJointHandle._check_ran)
-        return row + ["-", "-", "-", "stopped: " + str(err).split(": ", 1)[-1]]
+        return row + ["-", "-", "-", "stopped: " + str(err).split(": ", 1)[-1], "-"]
     wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse"), 1.0)[0] for _ in range(repeats - 1)])
+    refined = "-"
+    if refine > 1.0:
+        finer = _build(name, True, "impulse")
+        ok_f = _run(finer, 1.0, factor=refine)[2]
+        refined = f"{np.abs(np.asarray(finer.probe(finer.mbs), dtype=float) - probe_ref).max() / c:.3g}" if ok_f \
+            else "stopped"
     return row + [_ratio(wall_i, ideal_1), str(steps_i), str(impacts_i),
-                  f"{np.abs(probe_i - probe_ref).max() / c:.3g}"]
+                  f"{np.abs(probe_i - probe_ref).max() / c:.3g}", refined]
 
 
 def _ratio(wall: float, ideal: float) -> str:
@@ -261,6 +269,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeats", type=int, default=3, help="timed runs per model and mode (default %(default)s; 0: "
                                                                 "no timing, steps and accuracy only)")
     ap.add_argument("--no-zoo", action="store_true", help="the target rows only")
+    ap.add_argument("--refine", type=float, default=0.0, help="also run the impulse mode at this many times the "
+                                                                 "steps (its order in the step; default: not run)")
     args = ap.parse_args(argv)
     if not args.factor > 1.0:
         ap.error(f"--factor must exceed 1, got {args.factor}")
@@ -274,11 +284,12 @@ def main(argv: list[str] | None = None) -> int:
             ap.error(str(err))
         rows = []
         for name in names:
-            rows.append(zoo_row(name, args.factor, args.repeats))
+            rows.append(zoo_row(name, args.factor, args.repeats, args.refine))
             print(f"{name}: done", flush=True)
         print("\n" + markdown_table(
             ["model", "compliant / ideal", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]",
-             "impulse / ideal (radius 1)", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]"],
+             "impulse / ideal (radius 1)", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]",
+             f"at {args.refine:g}x the steps" if args.refine > 1.0 else "refined"],
             rows))
     print("\n" + markdown_table(["target", "count", "measured", "met"], target_rows() + slider_crank_rows(args.factor)))
     return 0
