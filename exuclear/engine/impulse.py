@@ -325,9 +325,7 @@ class ImpulseJointHandle:
 
     def _hold_resting(self, mbs: exu.MainSystem, e: np.ndarray, h: float, ahead: np.ndarray) -> None:
         """The condition of a held step that starts at the current state (eccentricity ``e``),
-        in the normal of ``ahead``, the eccentricity expected at its end.  It aims the end gap
-        at the critically damped path of :meth:`_resting_rate` (the gap's own rate, in the
-        normal of the start), ``gap1 = gap + h (v0 + v1) / 2`` for its end rate ``v1``."""
+        in the normal of ``ahead``, the eccentricity expected at its end (:meth:`_aim`)."""
         _, rate, gap = self._kinematics(mbs)
         self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), h)
 
