@@ -45,14 +45,14 @@ from .contact.pair import ContactGeometry
 from .geometry import SIZE_WARN_ABOVE
 from .spatial import V3, cross
 
-#: The slider's corners in its own frame, as signs of (L/2, H/2): rear-lower, front-lower,
-#: front-upper, rear-upper (counter-clockwise from the rear-lower corner).
+#: The slider's corners in its own frame as signs of (L/2, H/2), counter-clockwise from the
+#: rear-lower corner: rear-lower, front-lower, front-upper, rear-upper.
 CORNER_SIGNS = ((-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0))
-#: The guide's walls as the sign ``s`` of their normal along y: lower, upper.
+#: The guide's walls, lower and upper, as the sign ``s`` of their normal along y.
 WALL_SIDES = (-1.0, 1.0)
 CORNER_NAMES = ("rear-lower", "front-lower", "front-upper", "rear-upper")
 WALL_NAMES = ("lower", "upper")
-#: The pairs in the kernels' order: every corner with the lower wall, then with the upper one.
+#: The corner-wall pairs in the kernels' order (every corner with the lower wall, then with the upper one).
 PAIRS = tuple((k, w) for w in range(len(WALL_SIDES)) for k in range(len(CORNER_SIGNS)))
 #: The spatial joint's corners as signs of (L/2, H/2, B/2): the planar four at z = -B/2, then at z = +B/2.
 BOX_CORNER_SIGNS = tuple((sx, sy, sz) for sz in (-1.0, 1.0) for sx, sy in CORNER_SIGNS)
@@ -178,13 +178,14 @@ class GuideGeometry(ContactGeometry):
 
     @property
     def length(self) -> float | None:
-        """``corner_length``, the length of a rounded corner edge's line contact; None: a
-        corner touches a wall at a point."""
+        """The length of a rounded corner edge's line contact, ``corner_length`` [m]; None for
+        a sharp or ball-rounded corner, which touches a wall at a point."""
         return self.corner_length
 
     @property
     def relative_curvature(self) -> float:
-        """``1 / corner_radius`` [1/m]: a rounded corner on a flat wall."""
+        """``1 / corner_radius`` [1/m], a rounded corner on a flat wall; ``ValueError`` for a
+        sharp corner, which has no radius."""
         if self.corner_radius is None:
             raise ValueError("a sharp corner (corner_radius None) has no finite curvature: give `corner_radius`")
         return 1.0 / self.corner_radius

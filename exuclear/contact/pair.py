@@ -41,7 +41,7 @@ class ContactGeometry(ABC):
 
     @property
     def relative_curvature(self) -> float:
-        """``1/R_inner - 1/R_outer = c / (R_inner R_outer)`` [1/m]: how much more the convex
+        """``1/R_inner - 1/R_outer = c / (R_inner R_outer)`` [1/m], how much more the convex
         surface curves than the concave one (``1/R_inner`` against a flat)."""
         return self.clearance / (self.inner_radius * self.outer_radius)
 

@@ -137,7 +137,8 @@ class ClearanceJointHandle:
 
     @property
     def joint_type(self) -> str:
-        """``"revolute"`` or ``"spherical"``: the type of the joint's contact pair."""
+        """The type of the joint's contact pair (its geometry's ``joint_type``), one of
+        ``"revolute"``, ``"spherical"``, ``"prismatic"`` and ``"pin-slot"``."""
         return self._joint.geometry.joint_type
 
     @property
