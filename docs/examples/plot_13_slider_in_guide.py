@@ -9,7 +9,8 @@ with both walls, each pair with its own law (``K delta^1.5`` with Carvalho-Marti
 restitution 0.4) and friction (0.01). The scene is ``exuclear.models.guided_slider_crank``;
 this short run covers the first 30 ms (the benchmark runs 0.15 s, two crank turns). The
 figure shows the slider's centre in the guide (``y / c`` = 1: against the upper wall), the
-crank slowing at each strike, and the upper corners' contact forces.
+crank's speed (the undriven mechanism trades it with the slider's motion; each strike puts a
+kink in it), and the contact force of every corner-wall pair that touches.
 """
 
 import matplotlib.pyplot as plt
