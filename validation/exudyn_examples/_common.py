@@ -117,9 +117,9 @@ class Entry:
 
 #: The groups of models, each the package that holds its modules: "zoo", the default table
 #: (``python -m validation.exudyn_examples``, the tests' short runs of every model), and
-#: "beyond", more of Exudyn's examples (a kinematic tree closed by a joint, an ANCF cable on
-#: a driven hub, the spatial slider-crank), which run only when asked for (``--group
-#: beyond``, or their names), so that the default table keeps its cost.
+#: "beyond", more of Exudyn's examples (the subpackage's docstring lists them), which run
+#: only when asked for (``--group beyond``, or their names), so that the default table keeps
+#: its cost.
 GROUPS: dict[str, str] = {"zoo": __package__, "beyond": f"{__package__}.beyond"}
 #: The default group.
 DEFAULT_GROUP = "zoo"
