@@ -77,7 +77,8 @@ std::string fmt(double x) {
     return o.str();
 }
 
-// _python_kernel/step_control.py _same: x is y up to STEP_SLACK; an unset time (-INF) is the same as no finite one
+// _python_kernel/step_control.py _same: x is y up to STEP_SLACK; an unset time (-INF) matches itself only,
+// never a finite time
 bool same(double x, double y) {
     return x == y || (std::isfinite(y) && std::fabs(x - y) <= STEP_SLACK * std::fabs(y) + 1e-300);
 }

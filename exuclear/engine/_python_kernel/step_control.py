@@ -83,7 +83,7 @@ STEP_GROUP_KEY = "exuclear.step_group"
 
 
 def _same(x: float, y: float) -> bool:
-    """Whether ``x`` is ``y`` up to STEP_SLACK; an unset time (-inf) is the same as no finite one."""
+    """Whether ``x`` is ``y`` up to STEP_SLACK; an unset time (-inf) matches itself only, never a finite time."""
     return x == y or (math.isfinite(y) and abs(x - y) <= STEP_SLACK * abs(y) + 1e-300)
 
 
