@@ -41,11 +41,12 @@ def add_clearance_joint(
     bearing_rotates: bool | None = None,
     **joint_parameters: Any,
 ) -> ClearanceJointHandle:
-    """A planar clearance joint from body-frame points (the form of exuclear 0.1).
+    """A planar clearance joint from body-frame points, the journal body first.
 
-    .. deprecated::
-        Use :func:`CreateClearanceJoint` (bearing body first, ``maxPenetration``), or
-        :func:`AddClearanceJoint` with rigid markers; the warning names the call to write.
+    .. deprecated:: 0.1.0
+        Use :func:`~exuclear.engine.connector.CreateClearanceJoint` (bearing body first,
+        ``maxPenetration``), or :func:`~exuclear.engine.connector.AddClearanceJoint` with
+        rigid markers; the warning names the call to write.
 
     The journal's centre is ``journal_point`` (x, y) in ``journal_body``'s frame, the
     bearing's ``bearing_point`` in ``bearing_body``'s; an ``ObjectKinematicTree`` body
@@ -88,6 +89,8 @@ def _replacement(journal_body: Any, bearing_body: Any, journal_point: Any, beari
 
 
 def _point_marker(mbs: exu.MainSystem, body: Any, point: Sequence[float], link: int | None, role: str) -> Any:
+    """A rigid marker at ``point`` (local x, y) of ``body`` (its link ``link`` on a kinematic
+    tree); ``ValueError`` naming the ``role``'s argument for a bad point, body or link."""
     try:
         x, y = (float(v) for v in point)
     except (TypeError, ValueError):
