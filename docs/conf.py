@@ -11,6 +11,7 @@ import os
 import socket
 import sys
 import threading
+import typing
 import warnings
 from pathlib import Path
 
@@ -218,6 +219,13 @@ def _constant_doc(app, what, name, obj, options, lines):  # noqa: ARG001 - Sphin
             lines[:] = doc if doc is not None else []
 
 
+def _public_bases(app, name, obj, options, bases):  # noqa: ARG001 - Sphinx's signature
+    # a record that extends another's fields (exuclear.history.PairImpact, exuclear.slot.SlotKinematics)
+    # is built on a private NamedTuple of those fields: its page says NamedTuple, as for the others
+    bases[:] = [typing.NamedTuple if b.__name__.startswith("_") and hasattr(b, "_fields") else b for b in bases]
+
+
 def setup(app):
     app.connect("autodoc-skip-member", _skip_public)
     app.connect("autodoc-process-docstring", _constant_doc)
+    app.connect("autodoc-process-bases", _public_bases)
