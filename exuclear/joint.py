@@ -119,8 +119,10 @@ class ClearanceJoint:
 
     @property
     def geometry(self) -> ContactGeometry:
-        """The contact pair's geometry: a :class:`BearingGeometry` (the revolute joint) or a
-        :class:`~exuclear.spherical.SphereGeometry` (the spherical joint)."""
+        """The contact pair's geometry, which sets the joint type (a :class:`BearingGeometry`
+        for the revolute joint, :class:`~exuclear.spherical.SphereGeometry` the spherical,
+        :class:`~exuclear.prismatic.GuideGeometry` the translational,
+        :class:`~exuclear.slot.SlotGeometry` the pin in a slot)."""
         return self.law.geometry
 
     def response(self, kin: ContactKinematics, history: ContactState) -> JointResponse:

@@ -54,13 +54,13 @@ CORNER_NAMES = ("rear-lower", "front-lower", "front-upper", "rear-upper")
 WALL_NAMES = ("lower", "upper")
 #: The corner-wall pairs in the kernels' order (every corner with the lower wall, then with the upper one).
 PAIRS = tuple((k, w) for w in range(len(WALL_SIDES)) for k in range(len(CORNER_SIGNS)))
-#: The spatial joint's corners as signs of (L/2, H/2, B/2): the planar four at z = -B/2, then at z = +B/2.
+#: The spatial joint's corners as signs of (L/2, H/2, B/2), the planar four at z = -B/2, then at z = +B/2.
 BOX_CORNER_SIGNS = tuple((sx, sy, sz) for sz in (-1.0, 1.0) for sx, sy in CORNER_SIGNS)
 BOX_CORNER_NAMES = tuple(f"{name}-{side}" for side in ("far", "near") for name in CORNER_NAMES)
-#: The spatial joint's walls as (the axis across them: 1 y, 2 z; the sign ``s`` of their normal).
+#: The spatial joint's walls as (the axis across them, 1 for y and 2 for z; the sign ``s`` of their normal).
 BOX_WALLS = ((1, -1.0), (1, 1.0), (2, -1.0), (2, 1.0))
 BOX_WALL_NAMES = ("lower", "upper", "far", "near")
-#: The spatial joint's pairs in the kernels' order: every corner with the lower wall, then the upper, far, near one.
+#: The spatial joint's pairs in the kernels' order, every corner with the lower wall, then the upper, far, near one.
 BOX_PAIRS = tuple((k, w) for w in range(len(BOX_WALLS)) for k in range(len(BOX_CORNER_SIGNS)))
 #: Clearances above this fraction of the slider height are legal but unusual for a guide:
 #: a warning asks whether a unit slipped (as the revolute joint's ``CLEARANCE_WARN_FRACTION``).
@@ -147,12 +147,12 @@ class GuideGeometry(ContactGeometry):
 
     @property
     def pairs(self) -> tuple[tuple[int, int], ...]:
-        """The corner-wall pairs in the kernels' order: :data:`PAIRS` or :data:`BOX_PAIRS`."""
+        """The corner-wall pairs in the kernels' order, :data:`PAIRS` (planar) or :data:`BOX_PAIRS` (spatial)."""
         return BOX_PAIRS if self.spatial else PAIRS
 
     @property
     def half_guide(self) -> float:
-        """Half the guide's length [m]: ``inf`` for a guide without ends."""
+        """Half the guide's length [m], ``inf`` for a guide without ends."""
         return math.inf if self.guide_length is None else 0.5 * self.guide_length
 
     @property

@@ -62,7 +62,7 @@ class SphereGeometry(ContactGeometry):
 
     @property
     def length(self) -> None:
-        """None: the ball touches its socket at a point."""
+        """None, as the ball touches its socket at a point."""
         return None
 
 

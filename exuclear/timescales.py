@@ -20,21 +20,21 @@ from collections.abc import Iterable
 
 from .contact import ContactLaw, restitution_of_damping
 
-#: Steps per contact period below which a contact that opens is not resolved: with
+#: Steps per contact period below which a contact that opens is not resolved.  With
 #: generalized-alpha at 1e-3 s (2.3 contact periods) a resting pendulum leaves the wall
 #: 68 times in 2 s; at 1e-4 s (a quarter period) and below it stays in contact, as DOPRI5
 #: and physics say (issue 15).  Ten leaves a margin of 2.5 for the crude effective mass.
 STEPS_PER_CONTACT_PERIOD = 10
 
-#: Steps a run takes at least with an automatic step: the bound where no clearance joint
+#: Steps a run takes at least with an automatic step, the bound where no clearance joint
 #: sets a shorter one (a model without such joints).  It resolves a motion of a tenth of
 #: the run's duration with 100 steps, and is no statement about the model's own frequencies.
 MIN_STEPS_PER_RUN = 1000
 
-#: Relative tolerance of :func:`penetration_at`: far below the central difference's
+#: Relative tolerance of :func:`penetration_at`, far below the central difference's
 #: step (:data:`_STIFFNESS_EPS`), so that the stiffness is taken where the force is.
 PENETRATION_RTOL = 1e-12
-#: Iterations of that bisection at most: from c = 1 mm to 1e-12 of a 1e-15 m root takes 80.
+#: Iterations of that bisection at most; from c = 1 mm to 1e-12 of a 1e-15 m root takes 80.
 PENETRATION_MAX_ITER = 200
 
 #: Relative perturbation of the penetration for the tangent stiffness (central difference).

@@ -35,7 +35,7 @@ class DampingModel(ABC):
 
     cr: float = 1.0
     name: ClassVar[str] = ""
-    #: False for the elastic model: it dissipates nothing, so it takes only cr = 1.
+    #: False for the elastic model, which dissipates nothing and so takes only cr = 1.
     dissipative: ClassVar[bool] = True
     #: Smallest cr the source establishes the model for (warns below).
     cr_valid_from: ClassVar[float] = 0.0

@@ -189,7 +189,7 @@ class ClearanceJointHandle:
 
     @property
     def rate_limit(self) -> float:
-        """KAPPA of the joint's own step control (docs/guide/solver_path.md, "What the joint does to your steps"): a step
+        """KAPPA of the joint's own step control (docs/guide/solver_path.md, "What the joint does to your steps").  A step
         in contact may change the penetration rate by at most this fraction of
         ``max(|v0|, v_min)``; default :data:`exuclear.settings.RATE_LIMIT_DEFAULT` (0.1, about
         20 steps per velocity reversal); smaller is more accurate and costs steps; 0 turns the
@@ -328,7 +328,7 @@ class ClearanceJointHandle:
 
     @property
     def history(self) -> JointHistory:
-        """The contact history of the last run: the state after the last accepted step, the
+        """The contact history of the last run, with the state after the last accepted step, the
         records of the ended contacts, and every onset time."""
         state, impacts = self.state(), self.impacts()
         onset_times = [r.onset_time for r in impacts] + ([state.onset_time] if state.in_contact else [])
