@@ -28,7 +28,7 @@ import math
 import sys
 import time
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 
 import exudyn as exu
 import numpy as np
@@ -45,7 +45,11 @@ from exudyn.itemInterface import (
 
 import exuclear
 from exuclear import SolverSettings
+from exuclear.columns import Column
+from exuclear.joint import make_prismatic_joint
 
+from ._joint_fields import joint_field
+from ._params import check_fields, nonnegative, param, positive, real, study_columns
 from .scene import Scene
 
 #: The benchmark's span [s]: two crank turns and a little (the reference's BENCHMARK_END_TIME).
@@ -54,36 +58,36 @@ BENCHMARK_END_TIME = 0.15
 
 @dataclass(frozen=True)
 class GuidedSliderCrankParams:
-    """Parameters of the scene (SI units); :meth:`benchmark` gives the paper's values.  The
-    names and meanings are those of :class:`validation.reference.guided_slider_crank.GuidedSliderCrank`:
-    ``crank_length``, ``rod_length`` (centres of mass at the midpoints), ``slider_length``,
-    ``slider_height``, ``clearance`` (per side), the three masses and inertias (about the
-    centres of mass), ``gravity`` (along -y), the initial ``crank_speed`` and ``rod_speed``
-    [rad/s], a corner's ``stiffness`` K [N/m^n] and ``exponent`` n, the ``damping`` model and
-    its ``cr``, ``friction`` (as :func:`exuclear.friction_law` takes it), ``v_min`` [m/s];
-    and ``backend`` of the clearance joint."""
+    """Parameters of the scene (SI units; each field's meaning and unit in its help);
+    :meth:`benchmark` gives the paper's values.  The names and meanings are those of
+    :class:`validation.reference.guided_slider_crank.GuidedSliderCrank` (centres of mass at
+    the links' midpoints, inertias about them); ``friction`` as :func:`exuclear.friction_law`
+    takes it, ``backend`` that of the clearance joint.  The bodies' values are checked here,
+    the joint's by :meth:`joint`."""
 
-    crank_length: float
-    rod_length: float
-    slider_length: float
-    slider_height: float
-    clearance: float
-    crank_mass: float
-    rod_mass: float
-    slider_mass: float
-    crank_inertia: float
-    rod_inertia: float
-    slider_inertia: float
-    gravity: float
-    crank_speed: float
-    rod_speed: float
-    stiffness: float
-    exponent: float
-    damping: str
-    cr: float
-    friction: str
-    v_min: float
-    backend: str | None = None
+    crank_length: float = field(metadata=param("crank length l1 [m]", positive))
+    rod_length: float = field(metadata=param("rod length l2 [m]", positive))
+    # the joint's values (slider, clearance, corners' law) are checked by the joint (joint())
+    slider_length: float = field(metadata=param("slider length 2a [m]"))
+    slider_height: float = field(metadata=param("slider height 2b [m]"))
+    clearance: float = field(metadata=param("clearance c per side [m]"))
+    crank_mass: float = field(metadata=param("crank mass [kg]", positive))
+    rod_mass: float = field(metadata=param("rod mass [kg]", positive))
+    slider_mass: float = field(metadata=param("slider mass [kg]", positive))
+    crank_inertia: float = field(metadata=param("crank inertia about its centre of mass [kg m^2]", positive))
+    rod_inertia: float = field(metadata=param("rod inertia about its centre of mass [kg m^2]", positive))
+    slider_inertia: float = field(metadata=param("slider inertia about its centre [kg m^2]", positive))
+    gravity: float = field(metadata=param("gravity along -y [m/s^2]", nonnegative))
+    crank_speed: float = field(metadata=param("initial crank speed [rad/s]", real))
+    rod_speed: float = field(metadata=param("initial rod speed [rad/s]", real))
+    stiffness: float = field(metadata=param("corner stiffness K [N/m^n]"))
+    exponent: float = field(metadata=param("corner stiffness exponent n"))
+    damping: str = field(metadata=param("corners' damping model (none: elastic corners)"))
+    # the clearance joint's fields every scene shares, described once (models/_joint_fields.py)
+    cr: float = joint_field("cr")
+    friction: str = joint_field("friction", help="friction law along the walls: none | coulomb:MU")
+    v_min: float = joint_field("v_min")
+    backend: str = joint_field("backend")
 
     @classmethod
     def benchmark(cls, **changes: object) -> GuidedSliderCrankParams:
@@ -98,12 +102,24 @@ class GuidedSliderCrankParams:
                    exponent=1.5, damping="carvalho-martins", cr=0.4, friction="coulomb:0.01", v_min=1e-4)
         return replace(base, **changes)
 
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+    def joint(self) -> exuclear.ClearanceJoint:
+        """The slider-in-guide joint's physics (:func:`exuclear.joint.make_prismatic_joint`),
+        which refuses a bad slider, clearance or corner law naming the argument."""
+        return make_prismatic_joint(
+            slider_length=self.slider_length, slider_height=self.slider_height, clearance=self.clearance,
+            stiffness=self.stiffness, exponent=self.exponent, damping=self.damping,
+            cr=None if self.damping == "none" else self.cr, friction=self.friction, v_min=self.v_min)
+
 
 def build(params: GuidedSliderCrankParams) -> Scene:
     """Assemble the mechanism with all angles 0 (crank and rod along +x, the slider centred
     and aligned in its guide) at the given speeds; its clearance joint is ``"guide"``."""
     p = params
     start = time.perf_counter()
+    joint = p.joint()  # the joint's values are checked before anything is built
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     l1, l2 = p.crank_length, p.rod_length
@@ -130,9 +146,7 @@ def build(params: GuidedSliderCrankParams) -> Scene:
         mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[rigid(b0, x0), rigid(b1, x1)]))
     guide = exuclear.CreatePrismaticClearanceJoint(
         mbs, name="guide", itemNumbers=[ground, items["slider"]], position=[l1 + l2, 0.0, 0.0], axis=[1.0, 0.0, 0.0],
-        slider_length=p.slider_length, slider_height=p.slider_height, clearance=p.clearance, stiffness=p.stiffness,
-        exponent=p.exponent, damping=p.damping, cr=None if p.damping == "none" else p.cr, friction=p.friction,
-        v_min=p.v_min, backend=p.backend)
+        joint=joint, backend=p.backend)
     store = dict(storeInternal=True, writeToFile=False)
     sensors = {name: mbs.AddSensor(SensorNode(nodeNumber=nodes[body], outputVariableType=kind, **store))
                for name, body, kind in (("crank_t", "crank", exu.OutputVariableType.Coordinates_t),
@@ -154,7 +168,7 @@ class GuidedSliderCrankResult:
     ``slider`` (times, 3): the slider's x, y, angle; ``penetration``, ``normal_force`` (times,
     8): each corner-wall pair's (:data:`exuclear.prismatic.PAIRS`); ``impacts``:
     ``joint.impacts()``, each naming its corner and wall; ``success``, ``message``,
-    ``wall_time``."""
+    ``wall_time`` [s] and ``steps`` of the solver."""
 
     time: np.ndarray
     crank_speed: np.ndarray
@@ -165,11 +179,18 @@ class GuidedSliderCrankResult:
     success: bool
     message: str
     wall_time: float
+    steps: int
 
 
 def run(params: GuidedSliderCrankParams, settings: SolverSettings | None = None) -> GuidedSliderCrankResult:
     """Build and simulate the scene (default :func:`default_settings`)."""
-    scene = build(params)
+    return run_scene(build(params), settings)
+
+
+def run_scene(scene: Scene, settings: SolverSettings | None = None) -> GuidedSliderCrankResult:
+    """Simulate a built scene (default :func:`default_settings`) and read its outputs; the
+    scene keeps its end state (:func:`energy`)."""
+    params = scene.params
     settings = default_settings(params) if settings is None else settings
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", exuclear.AccuracyWarning)
@@ -182,7 +203,7 @@ def run(params: GuidedSliderCrankParams, settings: SolverSettings | None = None)
     slider_xy = slider[:n, 1:4] + np.array([params.crank_length + params.rod_length, 0.0, 0.0])  # displacement + reference
     return GuidedSliderCrankResult(out["time"][:n], crank[:n, 3], slider_xy, out["penetration"][:n],
                                    out["normal_force"][:n], joint.impacts(), result.success, result.message,
-                                   result.wall_time)
+                                   result.wall_time, result.steps)
 
 
 def energy(scene: Scene) -> float:
@@ -203,6 +224,85 @@ def energy(scene: Scene) -> float:
             total += p.stiffness * state.delta ** (p.exponent + 1.0) / (p.exponent + 1.0)
     return total
 
+
+# =======================================================================================
+# the scene as a parameter study (exuclear.study)
+# =======================================================================================
+
+#: The fields of :class:`GuidedSliderCrankParams` a study sweeps (defaults: the benchmark's).
+STUDY_FIELDS = ("clearance", "stiffness", "exponent", "damping", "cr", "friction", "crank_speed", "gravity", "backend")
+
+#: Parameters of :func:`study` and their defaults: the benchmark (:meth:`GuidedSliderCrankParams.benchmark`)
+#: and its span ``end_time`` [s].  The rod starts at the ideal mechanism's speed for the
+#: crank's, ``-crank_speed l1 / l2`` (the benchmark's -75 rad/s at 150), so that the slider
+#: starts moving along its guide, not across it.
+STUDY_PARAMETERS = {**{name: getattr(GuidedSliderCrankParams.benchmark(), name) for name in STUDY_FIELDS},
+                    "end_time": BENCHMARK_END_TIME}
+
+#: The metrics of :func:`study`: what each is, its unit (axis labels of study plots).
+STUDY_METRICS = {
+    "max_y_over_c": Column("largest |y| / c of the slider's centre"),
+    "crank_speed_end": Column("crank speed at the end", "rad/s"),
+    "impacts": Column("contacts, every corner against every wall"),
+    "peak_force": Column("peak corner force", "N"),
+    # energy() at the start minus at the end: what the corners' damping and friction took,
+    # and generalized-alpha's numerical damping
+    "energy_lost": Column("energy lost, start minus end", "J"),
+    "energy_lost_rel": Column("energy lost / energy at the start"),
+    "steps": Column("solver steps"),
+    "sim_wall_time": Column("solver wall time", "s"),
+}
+
+#: Parameters (from the :class:`GuidedSliderCrankParams` fields: help, unit) and metrics of
+#: the study, for ``python -m exuclear.study guided-slider-crank`` and its plots.
+STUDY_COLUMNS = {**study_columns(GuidedSliderCrankParams, STUDY_PARAMETERS),
+                 "end_time": Column("simulated time", "s"), **STUDY_METRICS}
+
+
+def study_params(values: dict) -> tuple[GuidedSliderCrankParams, float]:
+    """The :class:`GuidedSliderCrankParams` and the end time [s] of a study's parameter set
+    (defaults :data:`STUDY_PARAMETERS`); ``ValueError`` naming a value the scene refuses."""
+    v = {**STUDY_PARAMETERS, **values}
+    unknown = sorted(set(v) - set(STUDY_PARAMETERS))
+    if unknown:
+        raise ValueError(f"unknown study parameters {unknown}; known: {', '.join(STUDY_PARAMETERS)}")
+    end_time = positive("end_time", v["end_time"])
+    params = GuidedSliderCrankParams.benchmark(**{name: v[name] for name in STUDY_FIELDS})
+    params = replace(params, rod_speed=-params.crank_speed * (params.crank_length / params.rod_length))
+    params.joint()  # the slider, clearance and corner law
+    return params, end_time
+
+
+def check_study(values: dict) -> None:
+    """Raise ``ValueError`` for a study parameter set the scene refuses (before any run)."""
+    study_params(values)
+
+
+def study(values: dict) -> dict:
+    """One run of a guided slider-crank study (:mod:`exuclear.study`); parameters
+    :data:`STUDY_PARAMETERS`, the scene's :func:`default_settings` up to ``end_time``.
+
+    Returns
+    -------
+    dict
+        The metrics of :data:`STUDY_METRICS` (meaning and unit there); ``success`` and
+        ``message`` of the run.
+    """
+    params, end_time = study_params(values)
+    scene = build(params)
+    start = energy(scene)
+    r = run_scene(scene, default_settings(params, end_time))
+    lost = start - energy(scene)
+    return {
+        "max_y_over_c": float(np.abs(r.slider[:, 1]).max() / params.clearance),
+        "crank_speed_end": float(r.crank_speed[-1]),
+        "impacts": len(r.impacts),
+        "peak_force": max((i.peak_force for i in r.impacts), default=0.0),
+        # a mechanism started at rest has no energy to lose a share of
+        "energy_lost": float(lost), "energy_lost_rel": float(lost / start) if start > 0.0 else math.nan,
+        "steps": r.steps, "sim_wall_time": r.wall_time,
+        "success": r.success, "message": r.message,
+    }
 
 def figure(params: GuidedSliderCrankParams, r: GuidedSliderCrankResult, path: str) -> None:
     """The papers' panels: the slider's path in the guide (x/l1 against y/c), the crank's
@@ -235,10 +335,11 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m exuclear.models.guided_slider_crank",
                                      description=__doc__.splitlines()[0])
     parser.add_argument("--end-time", type=float, default=BENCHMARK_END_TIME, help="simulated time [s]")
-    parser.add_argument("--stiffness", type=float, default=None, help="a corner's K [N/m^n] (default the benchmark's)")
-    parser.add_argument("--damping", default=None, help="a damping model, or 'none' for elastic corners")
-    parser.add_argument("--friction", default=None, help="e.g. 'none', 'coulomb:0.01'")
-    parser.add_argument("--backend", choices=("compiled", "python"), default=None)
+    helps = {f.name: f.metadata["help"] + " (default the benchmark's)" for f in fields(GuidedSliderCrankParams)}
+    parser.add_argument("--stiffness", type=float, default=None, help=helps["stiffness"])
+    parser.add_argument("--damping", default=None, help=helps["damping"])
+    parser.add_argument("--friction", default=None, help=helps["friction"])
+    parser.add_argument("--backend", choices=("compiled", "python"), default=None, help=helps["backend"])
     parser.add_argument("--figure", default=None, help="write the papers' panels to this PNG file")
     args = parser.parse_args(argv)
     changes = {k: v for k, v in (("stiffness", args.stiffness), ("damping", args.damping),

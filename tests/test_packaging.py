@@ -94,11 +94,11 @@ def test_the_scenes_use_no_private_library_module_and_do_not_import_each_other_i
 
 
 def test_the_study_runner_finds_the_scenes_by_entry_point_and_by_module_path():
-    assert {"slider-crank": "exuclear.models.slider_crank",
-            "journal-bearing": "exuclear.models.journal_bearing"}.items() <= scene_names().items()
+    assert {"slider-crank": "exuclear.models.slider_crank", "journal-bearing": "exuclear.models.journal_bearing",
+            "guided-slider-crank": "exuclear.models.guided_slider_crank"}.items() <= scene_names().items()
     assert scene("slider-crank").function is slider_crank.study
     assert scene("exuclear.models.journal_bearing").function is journal_bearing.study
-    with pytest.raises(ValueError, match="unknown scene 'four-bar'; known: journal-bearing, slider-crank"):
+    with pytest.raises(ValueError, match="unknown scene 'four-bar'; known: guided-slider-crank, journal-bearing, slider-crank"):
         scene("four-bar")
 
 

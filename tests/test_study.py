@@ -401,6 +401,64 @@ def test_journal_bearing_study_energy_audit():
     assert abs(row["energy_residual_rel"]) < 1e-4
 
 
+
+def test_guided_slider_crank_study_rows_are_the_scene_s_own_runs(tmp_path: Path):
+    """The Flores-Leine-Glocker slider-crank through the runner: a row is the scene's direct
+    run with the same parameters, elastic corners keep the energy, damped ones lose some."""
+    from exuclear.models import guided_slider_crank as gsc
+
+    sc = st.scene("guided-slider-crank")
+    assert sc.function is gsc.study
+    # the study's defaults are the paper's benchmark, the rod at -75 rad/s (Flores, Leine,
+    # Glocker 2010, section 4) from the crank's 150 rad/s
+    params, end_time = gsc.study_params({})
+    assert params == gsc.GuidedSliderCrankParams.benchmark() and params.rod_speed == -75.0
+    assert end_time == gsc.BENCHMARK_END_TIME
+    # the first seven contacts (tests/test_guided_slider_crank_scene.py), at two stiffnesses,
+    # and elastic frictionless corners over two rattling contacts
+    short = 0.01
+    runs = [*st.grid(stiffness=[1e9, 1e10], end_time=[short]),
+            {"damping": "none", "friction": "none", "end_time": 0.02}]
+    table = st.run_study(sc, runs, tmp_path / "gsc.csv", workers=1, progress=False)
+    assert table["success"].all(), table["message"].tolist()
+    p = gsc.GuidedSliderCrankParams.benchmark()
+    direct = gsc.run(p, gsc.default_settings(p, short))
+    row = table.iloc[1]
+    assert row["stiffness"] == 1e10 and row["impacts"] == len(direct.impacts) >= 6
+    # the same deterministic run: equal to round-off (the floats' trip through the CSV's text)
+    assert row["crank_speed_end"] == pytest.approx(direct.crank_speed[-1], rel=1e-14)
+    assert row["max_y_over_c"] == pytest.approx(np.abs(direct.slider[:, 1]).max() / p.clearance, rel=1e-14)
+    assert row["peak_force"] == pytest.approx(max(i.peak_force for i in direct.impacts), rel=1e-14)
+    assert row["steps"] == direct.steps
+    # damping and friction only take energy: the damped runs lose some
+    assert (table["energy_lost"].iloc[:2] > 0.0).all()
+    elastic = table.iloc[2]
+    assert elastic["impacts"] >= 2
+    # elastic corners without friction conserve the energy; the bound of the scene's own
+    # energy test (tests/test_guided_slider_crank_scene.py, generalized-alpha at 1e-6 s)
+    assert abs(elastic["energy_lost_rel"]) < 1e-6
+
+
+@pytest.mark.parametrize(("values", "named"), [
+    ({"clearance": -1e-3}, "`clearance` must be positive"), ({"stiffness": 0.0}, "`stiffness` must be positive"),
+    ({"exponent": -1.0}, "`exponent` must be positive"), ({"cr": 1.5}, "`cr` must lie in"),
+    ({"damping": "soft"}, "unknown `damping`"), ({"end_time": 0.0}, "`end_time` must be positive"),
+    ({"crank_speed": "fast"}, "`crank_speed` must be a real number"), ({"gravity": -9.81}, "`gravity`"),
+    ({"backend": "gpu"}, "unknown `backend`"), ({"rpm": 100}, "unknown parameter 'rpm'")])
+def test_guided_slider_crank_study_refuses_bad_values_naming_them(tmp_path: Path, values, named):
+    out = tmp_path / "never.csv"
+    with pytest.raises(ValueError, match=named):
+        st.run_study(st.scene("guided-slider-crank"), [{"end_time": 1e-3}, values], out, workers=1, progress=False)
+    assert not out.exists()  # refused before any run
+
+
+def test_guided_slider_crank_study_command_line(tmp_path: Path, capsys):
+    out = tmp_path / "gsc.csv"
+    assert st.main(["guided-slider-crank", "--clearance", "-1e-3", "--no-progress", "--out", str(out)]) == 2
+    assert "`clearance` must be positive, got -0.001" in capsys.readouterr().err and not out.exists()
+    help_text = _scene_parser(st.scene("guided-slider-crank"), "study").format_help()
+    assert "corner stiffness K [N/m^n]" in help_text and "simulated time [s]" in help_text
+
 # -- command line -----------------------------------------------------------------------------
 
 

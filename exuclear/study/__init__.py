@@ -31,8 +31,9 @@ A *scene* is a module with a ``study`` function, its parameter defaults
 scene's own command line); :func:`scene` makes it a
 :class:`Study`, from a dotted module path or from a short name.  The library never imports
 its scenes: short names come from the entry-point group :data:`SCENE_ENTRY_POINTS`, which
-installed distributions fill (exuclear's own scenes declare ``slider-crank`` and
-``journal-bearing`` in its ``pyproject.toml``; a user's package can add its own).  The
+installed distributions fill (exuclear's own scenes declare ``slider-crank``,
+``journal-bearing`` and ``guided-slider-crank`` in its ``pyproject.toml``; a user's package
+can add its own).  The
 command line::
 
     python -m exuclear.study slider-crank --cr 0.3:0.9:0.2 --clearance 5e-5,1e-4,2e-4 \\
