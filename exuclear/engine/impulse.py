@@ -19,7 +19,7 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
   the normal acceleration at the step's start, the journal stays on the wall: the condition
   is held from step to step at an end rate that takes back a share of the penetration,
-  along the normal predicted for the step's end, with its rows at the step's middle; a
+  along the normal predicted for the step's end, with its rows at the step's end; a
   step held in a normal more than :data:`NORMAL_TOLERANCE` off the one it reached is
   computed again in the normal reached (the journal slides along the wall), and one whose
   normal turns by more than :data:`MAX_TURN` is computed again shorter where Exudyn's steps
@@ -336,7 +336,12 @@ class ImpulseJointHandle:
         ``2 (gap1 - gap) / h - v0``, alternates about the motion, undamped under the
         trapezoidal rule, and so would the multipliers)."""
         e, gap, _ = start
-        with _moved(mbs, 0.5 * h):  # the rows at the step's middle, where the trapezoidal rule's forces act
+        # the rows at the step's end: the trapezoidal rule's force there, J(q1)^T lambda1, is
+        # the one its end accelerations carry into the next step, whose condition holds
+        # J(q1) v1; with rows at the middle the force's lever arms lag the velocities it holds
+        # and the held contact does work, about its force times the turn of the rows over
+        # half a step, each step (a pendulum's energy then drifts at first order in the step)
+        with _moved(mbs, h):
             self._kinematics(mbs, ahead)
         self._held = (e, h, ahead, start)
         self._hold(mbs, self._resting_rate(gap))
@@ -578,9 +583,8 @@ def _step_start(mbs: exu.MainSystem) -> Iterator[None]:
 @contextlib.contextmanager
 def _moved(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
     """The coordinates moved on by ``dt`` [s] at their present velocities, for the ``with``
-    block (rows at a step's middle: a held contact's force taken with the lever arms of the
-    step's start does work on a turning body, about its force times the turn over the step);
-    the present ones back after it."""
+    block (a held step's rows at its predicted end, :meth:`ImpulseJointHandle._aim`); the
+    present ones back after it."""
     data = mbs.systemData
     q = data.GetODE2Coordinates()
     data.SetODE2Coordinates(q + dt * data.GetODE2Coordinates_t())
