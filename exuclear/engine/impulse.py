@@ -18,7 +18,9 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   starts at ``v+`` whatever the length of its steps.
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
   the normal acceleration at the step's start, the journal stays on the wall: the condition
-  is held from step to step at an end rate that takes back a share of the penetration,
+  is held from step to step (its onset step's end accelerations, which carry the approach's
+  impulse, replaced by the free computation's, as at an impact) at an end rate that takes
+  back a share of the penetration,
   along the normal predicted for the step's end, with its rows at the step's end; a
   step held in a normal more than :data:`NORMAL_TOLERANCE` off the one it reached is
   computed again in the normal reached (the journal slides along the wall), and one whose
@@ -268,6 +270,13 @@ class ImpulseJointHandle:
             mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             self._release(mbs, FREE)
         elif self._state == REST:
+            if self._resting == 0 and len(self._free_accelerations):
+                # the onset's end accelerations carry the approach's impulse (about 2 m v / h);
+                # carried into the held steps, it alternates from step to step undamped under
+                # the trapezoidal rule, a multiplier hundreds of times the reaction whose
+                # two-step mean scatters about it: the free computation's stand in for them,
+                # as at an impact
+                mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             self._resting += 1
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
                 self._release(mbs, FREE)
