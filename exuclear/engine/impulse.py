@@ -38,10 +38,9 @@ post-Newton functions stay the user's, set before or after the joint.
 """
 from __future__ import annotations
 
-import contextlib
 import math
 import weakref
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from typing import Any, NamedTuple
 
 import exudyn as exu
@@ -62,6 +61,7 @@ from exudyn.itemInterface import (
 from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
 from .bodies import coordinate_owner, joint_mass, node_ode2_size, object_nodes
+from .state import moved_on, start_of_step
 from .steering import explicit_solver
 
 #: A held step aims its end rate at taking back this share of the gap per step.
@@ -309,7 +309,7 @@ class ImpulseJointHandle:
                 return True
             self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
                           "steps are longer than the journal's flight across the clearance; take shorter steps")
-        with _step_start(mbs):
+        with start_of_step(mbs):
             # the rows at the step's start, in the normal where it met the wall (the start's
             # points elsewhere where the journal crossed the bearing's centre)
             start, rate, gap = self._kinematics(mbs, end / float(np.linalg.norm(end)))
@@ -350,7 +350,7 @@ class ImpulseJointHandle:
         # J(q1) v1; with rows at the middle the force's lever arms lag the velocities it holds
         # and the held contact does work, about its force times the turn of the rows over
         # half a step, each step (a pendulum's energy then drifts at first order in the step)
-        with _moved(mbs, h):
+        with moved_on(mbs, h):
             self._kinematics(mbs, ahead)
         self._held = (e, h, ahead, start)
         self._hold(mbs, self._resting_rate(gap))
@@ -366,7 +366,7 @@ class ImpulseJointHandle:
         reached = e / float(np.linalg.norm(e))
         if planned == h and float(np.linalg.norm(np.cross(normal, reached))) <= NORMAL_TOLERANCE:
             return False
-        with _step_start(mbs):
+        with start_of_step(mbs):
             self._aim(mbs, begin, reached, h)
         return True
 
@@ -570,37 +570,6 @@ def _request_jacobian(mbs: exu.MainSystem) -> None:
     the step before, without the condition's row or with its old normal, does not converge
     (on the paper's slider-crank it failed at the first resting contact)."""
     mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
-
-
-@contextlib.contextmanager
-def _step_start(mbs: exu.MainSystem) -> Iterator[None]:
-    """The state at the start of the step in the current configuration, where marker outputs
-    are read, for the ``with`` block; the step's end state back after it."""
-    data, start = mbs.systemData, exu.ConfigurationType.StartOfStep
-    end = (data.GetODE2Coordinates(), data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt())
-    data.SetODE2Coordinates(data.GetODE2Coordinates(configuration=start))
-    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(configuration=start))
-    data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=start))
-    try:
-        yield
-    finally:
-        data.SetODE2Coordinates(end[0])
-        data.SetODE2Coordinates_t(end[1])
-        data.SetODE2Coordinates_tt(end[2])
-
-
-@contextlib.contextmanager
-def _moved(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
-    """The coordinates moved on by ``dt`` [s] at their present velocities, for the ``with``
-    block (a held step's rows at its predicted end, :meth:`ImpulseJointHandle._aim`); the
-    present ones back after it."""
-    data = mbs.systemData
-    q = data.GetODE2Coordinates()
-    data.SetODE2Coordinates(q + dt * data.GetODE2Coordinates_t())
-    try:
-        yield
-    finally:
-        data.SetODE2Coordinates(q)
 
 
 def _same_plan(a: tuple[bool, list[np.ndarray], float], b: tuple[bool, list[np.ndarray], float]) -> bool:

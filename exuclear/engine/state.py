@@ -1,13 +1,15 @@
 """A system's state as arrays, for tools that run copies of a model side by side or
 carry a state from one run to the next (:mod:`exuclear.nonlinear`): which coordinates a
-group of items owns, the coordinates, velocities and accelerations now, and setting them.
+group of items owns, the coordinates, velocities and accelerations now, and setting them;
+and, for a ``with`` block, the state at the step's start or moved on at its velocities.
 
 Only the ODE2 coordinates (second-order: positions and velocities) are read and set; the
 clearance joints' data coordinates (their contact history) stay with their joints.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+import contextlib
+from collections.abc import Iterator, Sequence
 
 import exudyn as exu
 import numpy as np
@@ -94,3 +96,34 @@ def eccentricity(mbs: exu.MainSystem, handle: ClearanceJointHandle) -> tuple[np.
 def names(joints: Sequence[ClearanceJointHandle]) -> list[str]:
     """How the joints' observables are named: their names, else ``joint<object number>``."""
     return [h.name or f"joint{h.objectNumber}" for h in joints]
+
+
+@contextlib.contextmanager
+def start_of_step(mbs: exu.MainSystem) -> Iterator[None]:
+    """The state at the start of the step in the current configuration, where marker outputs
+    are read, for the ``with`` block; the step's end state back after it."""
+    data, start = mbs.systemData, exu.ConfigurationType.StartOfStep
+    end = (data.GetODE2Coordinates(), data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt())
+    data.SetODE2Coordinates(data.GetODE2Coordinates(configuration=start))
+    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(configuration=start))
+    data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=start))
+    try:
+        yield
+    finally:
+        data.SetODE2Coordinates(end[0])
+        data.SetODE2Coordinates_t(end[1])
+        data.SetODE2Coordinates_tt(end[2])
+
+
+@contextlib.contextmanager
+def moved_on(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
+    """The coordinates moved on by ``dt`` [s] at their present velocities, for the ``with``
+    block (the impulse mode's held step reads its condition's rows there,
+    :mod:`~exuclear.engine.impulse`); the present ones back after it."""
+    data = mbs.systemData
+    q = data.GetODE2Coordinates()
+    data.SetODE2Coordinates(q + dt * data.GetODE2Coordinates_t())
+    try:
+        yield
+    finally:
+        data.SetODE2Coordinates(q)
