@@ -47,20 +47,17 @@ import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import (
     MarkerBodyRigid,
-    MarkerNodeCoordinates,
-    MarkerObjectODE2Coordinates,
     NodeGenericData,
-    ObjectConnectorCoordinateVector,
     ObjectConnectorRigidBodySpringDamper,
     ObjectGround,
-    VObjectConnectorCoordinateVector,
     VObjectConnectorRigidBodySpringDamper,
     VObjectGround,
 )
 
 from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
-from .bodies import coordinate_owner, joint_mass, node_ode2_size, object_nodes
+from .bodies import joint_mass
+from .condition import Plan, VelocityCondition
 from .state import moved_on, start_of_step
 from .steering import explicit_solver
 
@@ -150,19 +147,8 @@ class ImpulseJointHandle:
         self._axis_local = np.asarray(axis, dtype=float)
         self.name, self._joint = name, joint
         self.markerNumbers = list(markers)
-        self._owners = [coordinate_owner(mbs, m) for m in self.markerNumbers]
-        coordinate_markers, sizes = [], []
-        for kind, number in self._owners:
-            if kind == "node":
-                coordinate_markers.append(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=number)))
-                sizes.append(node_ode2_size(mbs, number))
-            else:
-                coordinate_markers.append(mbs.AddMarker(MarkerObjectODE2Coordinates(objectNumber=number)))
-                sizes.append(sum(node_ode2_size(mbs, n) for n in object_nodes(mbs, number)))
-        self.objectNumber = mbs.AddObject(ObjectConnectorCoordinateVector(
-            name=name, markerNumbers=coordinate_markers, scalingMarker0=np.zeros((1, sizes[0])),
-            scalingMarker1=np.zeros((1, sizes[1])), offset=[0.0], velocityLevel=True, activeConnector=False,
-            visualization=VObjectConnectorCoordinateVector()))
+        self._condition = VelocityCondition(mbs, self.markerNumbers, name)
+        self.objectNumber = self._condition.objectNumber
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -173,7 +159,6 @@ class ImpulseJointHandle:
             nodeNumber=mbs.AddNode(NodeGenericData(initialCoordinates=[0.0], numberOfDataCoordinates=1)),
             postNewtonStepUserFunction=self._post_newton,
             visualization=VObjectConnectorRigidBodySpringDamper(show=False)))
-        self._ltg: list[np.ndarray] | None = None
         self._iterations = 2  # Exudyn's discontinuous iterations per step (read at each run's start)
         self._nominal = 1.0  # the run's own step [s] (read at each run's start)
         self._reset()
@@ -186,8 +171,6 @@ class ImpulseJointHandle:
     def _reset(self) -> None:
         self._state = FREE
         self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
-        self._rows: list[np.ndarray] = []
-        self._plan: tuple[bool, list[np.ndarray], float] = (False, [], 0.0)  # the condition: on, rows, offset
         self._records: list[tuple[float, float, float, float, float]] = []  # t, ecc_x, ecc_y, gap, force
         self._step = self._force = 0.0
         self._resting = 0
@@ -217,22 +200,22 @@ class ImpulseJointHandle:
                 # Exudyn computes again a step the mode had accepted (another item asked for it):
                 # the state before that step; computed once more where the condition it had
                 # is not the one this computation had
-                applied = self._plan
-                self._restore()
-                if not _same_plan(applied, self._plan):
-                    self._apply(mbs)
+                applied = self._condition.plan
+                plan = self._restore()
+                if not plan.same(applied):
+                    self._condition.set(mbs, plan)
                     return REDO_ERROR
             else:
-                active = self._plan[0]
+                active = self._condition.plan.active
                 self._reset()  # a new run
                 self._check_solver(mbs)
                 self._start = t
                 if active:  # the last run's condition acted in this step
-                    self._apply(mbs)
+                    self._condition.release(mbs)
                     return REDO_ERROR
         elif t > self._start + tol:
             self._stop(t, "Exudyn took a step the mode did not see")
-        force = self._multiplier(mbs) if self._plan[0] else 0.0
+        force = self._condition.multiplier(mbs)
         e, gap = self._gap(mbs)
         redo = int(mbs.sys["dynamicSolver"].it.discontinuousIteration) + 1 < self._iterations
         if self._state == FREE and gap > 0.0 and redo and self._contact(mbs, t, h, e, gap):
@@ -409,37 +392,13 @@ class ImpulseJointHandle:
         e, gap = self._gap(mbs)
         norm = float(np.linalg.norm(e))
         n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
-        data = mbs.systemData
-        if self._ltg is None:
-            self._ltg = [np.asarray(data.GetNodeLTGODE2(k) if kind == "node" else data.GetObjectLTGODE2(k), dtype=int)
-                         for kind, k in self._owners]
-        v = np.asarray(data.GetODE2Coordinates_t(), dtype=float)
-        unit = np.zeros_like(v)
-        rows = []
-        for marker, indices in zip(self.markerNumbers, self._ltg):
-            row = np.zeros((1, len(indices)))
-            for j, g in enumerate(indices):
-                unit[g] = 1.0
-                data.SetODE2Coordinates_t(unit)
-                row[0, j] = n @ np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Velocity), dtype=float)
-                unit[g] = 0.0
-            rows.append(row)
-        data.SetODE2Coordinates_t(v)
-        self._rows = rows
-        return e, self._normal(v), gap
-
-    def _normal(self, x: np.ndarray) -> float:
-        """``n . (x_journal - x_bearing)`` for the coordinates' rates ``x`` (velocities or
-        accelerations) through the rows: the condition's own measure, ``S1 q1_t - S0 q0_t``
-        (Exudyn's ``ObjectConnectorCoordinateVector`` subtracts marker 0's term)."""
-        (bearing, journal), (i_b, i_j) = self._rows, self._ltg
-        return float(journal[0] @ x[i_j]) - float(bearing[0] @ x[i_b])
+        return e, self._condition.measure(mbs, n), gap
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
         """The normal acceleration towards the wall at the current state, ``n^T dv/dq_t q_tt``
         (the rows' part; the centripetal part ``d(n^T dv/dq_t)/dt q_t`` is left out: it
         only sets whether a rebound counts as resting)."""
-        return self._normal(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
+        return self._condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
     def _resting_rate(self, gap: float) -> float:
         """The end rate [m/s] a held step aims at: ``-RATE_GAIN gap / h`` at the run's own step
@@ -450,42 +409,29 @@ class ImpulseJointHandle:
         trapezoidal rule, and so do the multipliers)."""
         return -RATE_GAIN * gap / self._nominal
 
-    def _multiplier(self, mbs: exu.MainSystem) -> float:
-        force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
-        return force if isinstance(force, float) else float(np.ravel(force)[0])
-
     def _hold(self, mbs: exu.MainSystem, end_rate: float) -> None:
         """The condition on for the coming step, in the rows of :meth:`_kinematics`' last
         call, holding its end rate at ``end_rate``."""
-        self._plan = (True, list(self._rows), float(end_rate))
-        self._apply(mbs)
+        self._condition.hold(mbs, end_rate)
 
     def _release(self, mbs: exu.MainSystem, state: str) -> None:
-        self._plan = (False, [], 0.0)
-        self._apply(mbs)
+        self._condition.release(mbs)
         self._state = state
-
-    def _apply(self, mbs: exu.MainSystem) -> None:
-        """The condition as :attr:`_plan` says, with a fresh Jacobian (:func:`_request_jacobian`)."""
-        active, rows, offset = self._plan
-        if active:
-            mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", rows[0])
-            mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", rows[1])
-            mbs.SetObjectParameter(self.objectNumber, "offset", [offset])
-        mbs.SetObjectParameter(self.objectNumber, "activeConnector", active)
-        _request_jacobian(mbs)
 
     def _snapshot(self) -> dict[str, Any]:
         """What an accepted step changes, to be taken back where Exudyn computes it again."""
-        return {"_state": self._state, "_plan": self._plan, "_step": self._step, "_force": self._force,
+        return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
                 "_resting": self._resting, "_left_pen": self._left_pen, "_start": self._start,
                 "records": len(self._records), "impacts": list(self._impacts)}
 
-    def _restore(self) -> None:
+    def _restore(self) -> Plan:
+        """The state before the last accepted step back; returns the condition's setting then."""
         saved, self._saved = dict(self._saved or {}), None
         del self._records[saved.pop("records"):]
         self._impacts = saved.pop("impacts")
+        plan = saved.pop("plan")
         self.__dict__.update(saved)
+        return plan
 
     def _too_long(self) -> str:
         return (f"more than {LOST_CONTACT:g} times the clearance ({self._joint.geometry.clearance:.3g} m): the steps "
@@ -563,17 +509,3 @@ def add_impulse_joint(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, mar
     journal] whose bearing axis is ``axis`` in the bearing marker's frame: the condition and
     the pre-step function."""
     return ImpulseJointHandle(mbs, joint, name, markers, axis)
-
-
-def _request_jacobian(mbs: exu.MainSystem) -> None:
-    """A new Jacobian for the coming step: a modified Newton iteration on the Jacobian of
-    the step before, without the condition's row or with its old normal, does not converge
-    (on the paper's slider-crank it failed at the first resting contact)."""
-    mbs.sys["dynamicSolver"].conv.jacobianUpdateRequested = True
-
-
-def _same_plan(a: tuple[bool, list[np.ndarray], float], b: tuple[bool, list[np.ndarray], float]) -> bool:
-    """Whether two settings of the condition (on, rows, offset) are the same."""
-    if a[0] != b[0]:
-        return False
-    return not a[0] or (a[2] == b[2] and all(np.array_equal(x, y) for x, y in zip(a[1], b[1])))
