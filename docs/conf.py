@@ -212,6 +212,11 @@ def _comment_doc(name: str) -> list[str] | None:
 
 
 def _constant_doc(app, what, name, obj, options, lines):  # noqa: ARG001 - Sphinx's signature
+    if what in ("attribute", "property") and lines and lines[0].startswith("Alias for field number"):
+        # a NamedTuple field's generated docstring says nothing a reader needs: the record's
+        # own docstring describes its fields
+        lines[:] = []
+        return
     if what in ("data", "attribute") and name.startswith("exuclear.") and name.count(".") == 1:
         short = name.split(".", 1)[1]
         if short in exuclear.__all__ and not callable(obj):

@@ -19,7 +19,7 @@ step^2 * acceleration otherwise.  The onset and end times are interpolated the s
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, get_type_hints
 
 NO_STATE = float("-inf")  # ``delta`` before the first accepted state
 
@@ -39,7 +39,7 @@ class ImpactRecord(NamedTuple):
     max_penetration: float
 
 
-class PairImpact(NamedTuple("_PairImpactFields", [*((f, float) for f in ImpactRecord._fields), ("pair", str)])):
+class PairImpact(NamedTuple("_PairImpactFields", [*get_type_hints(ImpactRecord).items(), ("pair", str)])):
     """One contact of a joint with several contact pairs (the translational joint's corners
     against its walls): the :class:`ImpactRecord` fields, then ``pair``, the pair's name
     (``"corner front-lower / lower wall"``, :func:`exuclear.prismatic.pair_name`).  Read by

@@ -21,7 +21,7 @@ revolute clearance joint, to the last bit.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar, NamedTuple
+from typing import ClassVar, NamedTuple, get_type_hints
 
 from .checks import check_nonnegative
 from .geometry import BearingGeometry, ContactKinematics, contact_kinematics
@@ -41,7 +41,7 @@ class SlotGeometry(BearingGeometry):
         check_nonnegative("slot_length", self.slot_length)
 
 
-class SlotKinematics(NamedTuple("_SlotFields", [*((f, float) for f in ContactKinematics._fields), ("segment", float)])):
+class SlotKinematics(NamedTuple("_SlotFields", [*get_type_hints(ContactKinematics).items(), ("segment", float)])):
     """The revolute joint's :class:`~exuclear.geometry.ContactKinematics` of the pin against
     the segment's nearest point (its fields, read by the same names), then that point's
     position ``segment`` along x [m] (``ecc_x``, ``ecc_y`` are ``p - S``)."""
