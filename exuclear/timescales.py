@@ -87,8 +87,8 @@ def contact_period(law: ContactLaw, mass: float, force: float) -> float:
     return 2.0 * math.pi * math.sqrt(mass / k)
 
 
-#: Gauss-Legendre nodes and weights on [0, 1] (4 points) for the stored energy of
-#: :func:`impact_duration`, in the variable ``w`` with ``delta = delta_max w^2``: a power law
+#: Gauss-Legendre nodes and weights on [0, 1] (4 points) for :func:`stored_energy` (which
+#: :func:`impact_duration` integrates), in the variable ``w`` with ``delta = delta_max w^2``: a power law
 #: ``K delta^n`` then integrates as ``2 K delta_max^(n+1) w^(2n+1)``, a polynomial of degree
 #: 3 (n = 1) or 4 (n = 1.5) that four points integrate exactly.
 _GAUSS_NODES = (0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263)

@@ -182,7 +182,7 @@ def test_resting_slider_sinks_as_dubowsky_freudenstein_says_on_rounded_edges():
     r, length, e_star = 1e-3, 0.02, 1e9
     mbs, joint, _ = val.slider_in_guide(stiffness="dubowsky-freudenstein", exponent=None, corner_radius=r,
                                         corner_length=length, E_star=e_star)
-    val._run(mbs, 0.3)
+    val.run(mbs, 0.3)
     out = joint.outputs()
     f = val.MASS * val.GRAVITY / 2.0
     sink = f / (math.pi * length * e_star) * (math.log(math.pi * length**3 * e_star / (f * r)) + 1.0)

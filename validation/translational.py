@@ -74,7 +74,8 @@ def slider_in_guide(backend: str | None = None, velocity=(0.0, 0.0, 0.0), gravit
     return mbs, joint, node
 
 
-def _run(mbs, end_time: float) -> None:
+def run(mbs, end_time: float) -> None:
+    """Simulates ``mbs`` to ``end_time`` [s] with the checks' settings (``SETTINGS``)."""
     _run_settings(mbs, exuclear.SolverSettings(end_time=end_time, **SETTINGS))
 
 
@@ -90,7 +91,7 @@ def resting() -> dict[str, float]:
     """The slider dropped from the guide's centre, at rest after 0.3 s: the lower corners'
     forces against ``m g / 2`` and their penetration against ``(m g / (2 K))^(1/n)``."""
     mbs, joint, _ = slider_in_guide()
-    _run(mbs, 0.3)
+    run(mbs, 0.3)
     out = joint.outputs()
     return {"force": out["normal_force"][-1, :2].tolist(), "half_weight": MASS * GRAVITY / 2.0,
             "sink": out["penetration"][-1, :2].tolist(),
@@ -107,7 +108,7 @@ def sliding() -> dict[str, float]:
     mbs.SetNodeParameter(node, "referenceCoordinates", [0.0, -(CLEARANCE + sink), 0.0])
     mbs.Assemble()
     end = 0.05
-    _run(mbs, end)
+    run(mbs, end)
     out = joint.outputs()
     v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]
     sliding_rows = out["normal_force"][:, 0] > 0.0
@@ -121,7 +122,7 @@ def elastic_rattle(end_time: float = 0.05) -> dict[str, float]:
     friction: its kinetic energy at the end against its start, and the contacts it made."""
     omega, vy = 2.0, 0.2
     mbs, joint, node = slider_in_guide(velocity=(0.3, vy, omega), gravity=0.0, damping="none", cr=None)
-    _run(mbs, end_time)
+    run(mbs, end_time)
     v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
     w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
     start = 0.5 * MASS * (0.3**2 + vy**2) + 0.5 * INERTIA * omega**2
@@ -180,7 +181,7 @@ def pin_against_revolute(axis=(0.0, -1.0, 0.0), end_time: float = 0.05) -> dict[
     for slot_length in (0.0, None):
         mbs, joint, node = pin_in_slot(slot_length, axis=axis, velocity=(0.3, 0.2, 40.0), slot_spin=20.0,
                                        friction="coulomb:0.15")
-        _run(mbs, end_time)
+        run(mbs, end_time)
         runs.append((np.asarray(mbs.systemData.GetODE2Coordinates()), len(joint.impacts())))
     (q_slot, n_slot), (q_rev, n_rev) = runs
     return {"difference": float(np.abs(q_slot - q_rev).max()), "impacts": n_slot, "revolute_impacts": n_rev}
@@ -197,7 +198,7 @@ def pin_sliding(end_time: float = 0.04) -> dict[str, float]:
     c = 0.5 * SLOT_WIDTH - PIN_RADIUS
     mbs, joint, node = pin_in_slot(0.2, velocity=(SLIDE_SPEED, 0.0, 0.0), start=(0.0, -(c + sink)),
                                    friction=f"coulomb:{SLIDE_MU}")
-    _run(mbs, end_time)
+    run(mbs, end_time)
     out = joint.outputs()
     v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)[0]
     w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]

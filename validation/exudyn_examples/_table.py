@@ -29,9 +29,9 @@ def run_zoo(names: list[str] | None = None, quick: bool = False, convergence: bo
     import pandas as pd
 
     names_given = bool(names)
+    errors: dict = {}  # a group's models that failed to import and are not among its names
     if names_given:
         load_models(None)
-        errors = {n: IMPORT_ERRORS[n] for n in names if n in IMPORT_ERRORS}
     else:
         names = group_names(group)
         errors = group_import_errors(group)
