@@ -49,11 +49,17 @@ class SlotKinematics(NamedTuple("_SlotFields", [*get_type_hints(ContactKinematic
     __slots__ = ()
 
 
+def segment_point(px: float, half_length: float) -> float:
+    """The position along x [m] of the centre segment's point nearest to a pin centre at
+    ``px`` [m]: ``S_x = clamp(p_x, -a, a)``, ``a = half_length`` (module docstring)."""
+    return min(max(px, -half_length), half_length)
+
+
 def slot_kinematics(geometry: BearingGeometry, half_length: float, px: float, py: float, dvx: float, dvy: float,
                     omega_i: float, omega_j: float) -> SlotKinematics:
     """The pin at ``(px, py)`` with relative velocity ``(dvx, dvy)`` in the slot of half-length
     ``half_length`` (module docstring); ``omega_i``, ``omega_j`` the pin's and the slot's spin."""
-    sx = min(max(px, -half_length), half_length)               # the segment's nearest point
+    sx = segment_point(px, half_length)                        # the segment's nearest point
     # the slot's point S moves at w_j x S = (0, w_j sx) relative to its centre
     kin = contact_kinematics(geometry, px, py, dvx, dvy, omega_i, sx, 0.0, 0.0, omega_j * sx, omega_j)
     return SlotKinematics(*kin, sx)

@@ -77,9 +77,10 @@ class VelocityCondition:
         self.rows: tuple[np.ndarray, ...] = ()
         self.plan = OFF
 
-    def measure(self, mbs: exu.MainSystem, normal: np.ndarray) -> float:
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, arms: Sequence[Any] = (None, None)) -> float:
         """Sets the rows along ``normal`` (global) at the current state and returns the rate
-        ``normal . (v_1 - v_0)`` there."""
+        ``normal . (v_1 - v_0)`` there; ``arms`` (global, None: 0) move a marker's point to
+        the point of its body ``r`` away, whose velocity is ``v + omega x r``."""
         data = mbs.systemData
         if self._ltg is None:
             self._ltg = [np.asarray(data.GetNodeLTGODE2(k) if kind == "node" else data.GetObjectLTGODE2(k), dtype=int)
@@ -87,13 +88,16 @@ class VelocityCondition:
         v = np.asarray(data.GetODE2Coordinates_t(), dtype=float)
         unit = np.zeros_like(v)
         rows = []
-        for marker, indices in zip(self.markers, self._ltg):
+        ov = exu.OutputVariableType
+        for marker, indices, arm in zip(self.markers, self._ltg, arms):
             row = np.zeros((1, len(indices)))
             for j, g in enumerate(indices):
                 unit[g] = 1.0
                 data.SetODE2Coordinates_t(unit)
-                row[0, j] = normal @ np.asarray(mbs.GetMarkerOutput(marker, exu.OutputVariableType.Velocity),
-                                                dtype=float)
+                row[0, j] = normal @ np.asarray(mbs.GetMarkerOutput(marker, ov.Velocity), dtype=float)
+                if arm is not None:  # n . (omega x r) = omega . (r x n)
+                    row[0, j] += np.cross(arm, normal) @ np.asarray(mbs.GetMarkerOutput(marker, ov.AngularVelocity),
+                                                                    dtype=float)
                 unit[g] = 0.0
             rows.append(row)
         data.SetODE2Coordinates_t(v)

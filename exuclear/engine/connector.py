@@ -219,7 +219,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
                                 _turned_marker(mbs, m_journal, a_journal.T @ a_bearing @ frame))
         a_bearing, a_journal, frame = _marker_rotation(mbs, m_bearing), _marker_rotation(mbs, m_journal), np.eye(3)
     if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes)
-        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame[:, 2])
+        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
     rotation0 = frame.tolist()
     relative = a_journal.T @ a_bearing @ frame  # the same joint frame, seen from marker 1
     if np.abs(relative - np.eye(3)).max() <= SAME_FRAME_ROUNDOFF:

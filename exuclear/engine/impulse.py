@@ -1,4 +1,7 @@
-"""The impulse contact mode of a planar revolute clearance joint (:mod:`~exuclear.engine.modes`).
+"""The impulse contact mode of a clearance joint with one contact (:mod:`~exuclear.engine.modes`):
+the planar revolute, the spherical and the pin-in-slot joint, each its contact pair
+(:mod:`~exuclear.engine.impulse_pairs`: the eccentricity ``e`` of the journal's, ball's or
+pin's centre, whose direction is the normal, and the gap ``|e| - c``).
 
 Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user's step:
 
@@ -58,6 +61,7 @@ from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
 from .bodies import joint_mass
 from .condition import Plan, VelocityCondition
+from .impulse_pairs import ContactPair, contact_pair
 from .state import moved_on, start_of_step
 from .steering import explicit_solver
 
@@ -124,8 +128,9 @@ class ClosedFormImpact(NamedTuple):
 
 
 class ImpulseJointHandle:
-    """A planar revolute clearance joint in the impulse mode; returned by
-    :func:`exuclear.CreateClearanceJoint` with ``contact_mode="impulse"``.
+    """A clearance joint in the impulse mode; returned by :func:`exuclear.CreateClearanceJoint`,
+    :func:`exuclear.CreateSphericalClearanceJoint` and :func:`exuclear.CreatePinSlotClearanceJoint`
+    with ``contact_mode="impulse"``.
 
     Attributes
     ----------
@@ -134,7 +139,7 @@ class ImpulseJointHandle:
     carrierNumber : int
         The connector without force whose post-Newton function runs the mode.
     markerNumbers : list
-        [bearing marker, journal marker].
+        [bearing (socket, slot) marker, journal (ball, pin) marker].
     contact_mode : str
         ``"impulse"``.
     """
@@ -142,9 +147,9 @@ class ImpulseJointHandle:
     contact_mode = "impulse"
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                 axis: np.ndarray) -> None:
+                 pair: ContactPair) -> None:
         self._mbs = weakref.ref(mbs)
-        self._axis_local = np.asarray(axis, dtype=float)
+        self._pair = pair
         self.name, self._joint = name, joint
         self.markerNumbers = list(markers)
         self._condition = VelocityCondition(mbs, self.markerNumbers, name)
@@ -171,7 +176,7 @@ class ImpulseJointHandle:
     def _reset(self) -> None:
         self._state = FREE
         self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
-        self._records: list[tuple[float, float, float, float, float]] = []  # t, ecc_x, ecc_y, gap, force
+        self._records: list[tuple[float, ...]] = []  # t, ecc_x, ecc_y, ecc_z, gap, force
         self._step = self._force = 0.0
         self._resting = 0
         self._problem = ""
@@ -243,7 +248,7 @@ class ImpulseJointHandle:
         # two-step mean is the reaction
         reaction = 0.5 * (force + self._force) if self._state == REST and self._resting > 1 else force
         self._force = force
-        self._records.append((t_end, float(e[0]), float(e[1]), gap, reaction if self._state == REST else 0.0))
+        self._records.append((t_end, *(float(x) for x in e), gap, reaction if self._state == REST else 0.0))
         if self._state == IMPACT:
             # the impact step ends at v+; its end accelerations carry the impulse over the step
             # (about 2 (v+ - v-) / h), which the trapezoidal rule would add to the next step's
@@ -376,23 +381,20 @@ class ImpulseJointHandle:
             raise ValueError(self._problem)
 
     def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:
-        """The eccentricity ``e`` (global, in the bearing's plane) and the gap ``|e| - c`` at
-        the current state."""
-        ov = exu.OutputVariableType
-        rotation = np.asarray(mbs.GetMarkerOutput(self.markerNumbers[0], ov.RotationMatrix), dtype=float)
-        axis = rotation.reshape(3, 3) @ self._axis_local
-        p = [np.asarray(mbs.GetMarkerOutput(m, ov.Position), dtype=float) for m in self.markerNumbers]
-        e = p[1] - p[0]
-        e = e - (e @ axis) * axis
+        """The eccentricity ``e`` (global, the joint type's: :mod:`~exuclear.engine.impulse_pairs`)
+        and the gap ``|e| - c`` at the current state."""
+        e = self._pair.eccentricity(mbs, self.markerNumbers).e
         return e, float(np.linalg.norm(e)) - self._joint.geometry.clearance
 
     def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray | None = None) -> tuple[np.ndarray, float, float]:
         """The eccentricity, the normal rate and the gap at the current state; sets the rows
-        in ``normal`` (default: the present one, ``e / |e|``)."""
-        e, gap = self._gap(mbs)
+        in ``normal`` (default: the present one, ``e / |e|``), at the outer body's point
+        where ``e`` starts."""
+        e, arm = self._pair.eccentricity(mbs, self.markerNumbers)
         norm = float(np.linalg.norm(e))
+        gap = norm - self._joint.geometry.clearance
         n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
-        return e, self._condition.measure(mbs, n), gap
+        return e, self._condition.measure(mbs, n, arms=(arm, None)), gap
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
         """The normal acceleration towards the wall at the current state, ``n^T dv/dq_t q_tt``
@@ -478,13 +480,16 @@ class ImpulseJointHandle:
         return out
 
     def outputs(self) -> dict[str, np.ndarray]:
-        """At the end of each step of the last run: ``time``, ``ecc_x``, ``ecc_y`` (the
-        eccentricity, global), ``penetration`` (``|e| - c``, negative in free flight) and
-        ``normal_force`` (the resting condition's multiplier over the step, as a two-step
-        mean; 0 in free flight and at impacts: an impact's impulse is not a force)."""
+        """At the end of each step of the last run: ``time``, ``ecc_x``, ``ecc_y``, ``ecc_z``
+        (the eccentricity, global: the journal's or ball's centre relative to the bearing's
+        or socket's, the pin's relative to the slot's nearest centre-segment point),
+        ``penetration`` (``|e| - c``, negative in free flight) and ``normal_force`` (the
+        resting condition's multiplier over the step, as a two-step mean; 0 in free flight
+        and at impacts: an impact's impulse is not a force)."""
         self._check_ran()
-        data = np.array(self._records, dtype=float).reshape(-1, 5)
-        return {key: data[:, k] for k, key in enumerate(("time", "ecc_x", "ecc_y", "penetration", "normal_force"))}
+        keys = ("time", "ecc_x", "ecc_y", "ecc_z", "penetration", "normal_force")
+        data = np.array(self._records, dtype=float).reshape(-1, len(keys))
+        return {key: data[:, k] for k, key in enumerate(keys)}
 
     @property
     def notes(self) -> list[str]:
@@ -504,8 +509,9 @@ class ImpulseJointHandle:
 
 
 def add_impulse_joint(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                      axis: np.ndarray) -> ImpulseJointHandle:
-    """The impulse mode's items for a planar revolute joint between ``markers`` [bearing,
-    journal] whose bearing axis is ``axis`` in the bearing marker's frame: the condition and
-    the pre-step function."""
-    return ImpulseJointHandle(mbs, joint, name, markers, axis)
+                      frame: np.ndarray) -> ImpulseJointHandle:
+    """The impulse mode's items for a joint between ``markers`` [bearing, journal] (socket and
+    ball, slot and pin) whose joint frame is ``frame`` in the bearing marker's frame: the
+    condition and the carrier, for the joint type's contact pair
+    (:func:`~exuclear.engine.impulse_pairs.contact_pair`)."""
+    return ImpulseJointHandle(mbs, joint, name, markers, contact_pair(joint.geometry, frame))

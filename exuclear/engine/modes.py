@@ -20,6 +20,7 @@ import warnings
 from typing import Any
 
 from ..joint import ClearanceJoint
+from .impulse_pairs import PAIRS
 
 COMPLIANT = "compliant"
 IMPULSE = "impulse"
@@ -48,12 +49,18 @@ def resolve_contact_mode(contact_mode: Any) -> str:
 
 
 def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str) -> str:
-    """Why the impulse mode cannot take a joint ('' where it can): it covers the dry,
-    frictionless planar revolute joint without wear."""
-    if joint_type != "revolute":
-        return f"it covers the planar revolute joint, not the {joint_type} joint"
+    """Why the impulse mode cannot take a joint ('' where it can): it holds one contact, and
+    covers the dry, frictionless joints without wear whose contact is one centre against its
+    clearance (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the
+    spherical and the pin-in-slot joint)."""
+    if joint_type == "prismatic":
+        return ("a slider touches its guide at several corners at once, and the mode holds one contact; it covers "
+                "the planar revolute, spherical and pin-in-slot joints")
+    if joint_type not in PAIRS:
+        return f"it covers the planar revolute, spherical and pin-in-slot joints, not the {joint_type} joint"
     if slices:
-        return "it covers the planar revolute joint, not the spatial one (`slices`)"
+        return ("the spatial revolute joint (`slices`) touches its bearing at several slices at once, and the mode "
+                "holds one contact; it covers the planar revolute joint")
     if joint.film is not None:
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:

@@ -18,6 +18,7 @@ from ..slot import SlotGeometry
 from .arguments import check_system
 from .connector import AddClearanceJoint
 from .handle import ClearanceJointHandle
+from .impulse import ImpulseJointHandle
 from .placement import PLACED_BY_POSITION
 from .prismatic import plane_markers
 
@@ -39,7 +40,7 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
     record: bool = True,
     contact_mode: str | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle:
     """Create a planar pin-in-slot clearance joint: the slot on ``itemNumbers[0]``, centred at
     ``position`` and running along ``axis``; the pin on ``itemNumbers[1]``, its centre at
     ``position`` in the reference configuration.
@@ -59,13 +60,15 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
         ``friction``, ``v_min``, ``E_star``, ``pin_material``, ``slot_material``).
     backend, maxPenetration, bearingRotates, record, contact_mode
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the slot can turn;
-        ``contact_mode="impulse"`` is refused: it covers the revolute joint).
+        ``contact_mode="impulse"``: the pin against the slot's centre segment, its normal
+        turning around the end caps; the mode refuses a joint with friction).
 
     Returns
     -------
-    ClearanceJointHandle
+    ClearanceJointHandle or ImpulseJointHandle
         The planar revolute joint's outputs; ``ecc_x``, ``ecc_y`` are the pin's centre
-        relative to the slot's nearest centre-segment point, in the slot's frame.  At
+        relative to the slot's nearest centre-segment point, in the slot's frame (global
+        in the impulse mode, with ``ecc_z``).  At
         ``slot_length = 0`` the joint is :func:`exuclear.CreateClearanceJoint` with
         ``journal_radius = pin_radius`` and ``bearing_radius = slot_width / 2``.
     """

@@ -24,7 +24,8 @@ from .drawing import ball_drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
 from .layout import BALL_DATA_COLUMNS
-from .modes import choose_mode
+from .impulse import ImpulseJointHandle, add_impulse_joint
+from .modes import IMPULSE, choose_mode
 from .placement import PLACED_BY_POSITION
 
 
@@ -46,7 +47,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     record: bool = True,
     contact_mode: str | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle:
     """Create a spherical clearance joint, as ``mbs.CreateSphericalJoint`` creates an ideal
     one: the socket on ``itemNumbers[0]``, the ball on ``itemNumbers[1]``, both centred at
     ``position`` in the reference configuration.
@@ -88,13 +89,15 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the socket
         body can turn; its spin enters the slip).
     contact_mode : str, optional
-        ``"compliant"`` (the default): the one mode of this joint type.  ``"impulse"`` raises
-        ``ValueError`` (the mode covers the planar revolute joint); where the environment
-        variable ``EXUCLEAR_CONTACT_MODE`` asks for it, the joint warns and stays compliant.
+        ``"compliant"`` (the default) or ``"impulse"`` (docs/guide/contact_modes.md: velocity
+        jumps with the point-contact law's restitution, resting contact as a condition;
+        returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`, whose ``outputs()``
+        has ``ecc_x``, ``ecc_y``, ``ecc_z``, global), as in
+        :func:`exuclear.CreateClearanceJoint`; the mode refuses a joint with friction.
 
     Returns
     -------
-    ClearanceJointHandle
+    ClearanceJointHandle or ImpulseJointHandle
         ``objectNumber`` is the connector; ``outputs()`` has ``ecc_x``, ``ecc_y``, ``ecc_z``
         (the ball's centre relative to the socket's, in the global frame of the reference
         configuration), ``penetration``, ``normal_force``, ``tangential_force``,
@@ -106,7 +109,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     joint = _physics(joint, joint_parameters)
     draw = drawing_sizes(jointRadius, None, color, radius_name="jointRadius")
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
-    choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
+    mode = choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
 
     items = joint_items(mbs, itemNumbers, bodyNumbers, ("socket", "ball"), position, useGlobalFrame,
                         "CreateSphericalJoint")
@@ -123,6 +126,8 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
             raise ValueError(f"the marker in `itemNumbers` ({int(item)}) has no localHT to turn into the joint frame: "
                              "give a MarkerBodyRigid or MarkerNodeRigid with localHT, or the body")
         markers.append(marker)
+    if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes)
+        return add_impulse_joint(mbs, joint, name, markers, np.eye(3))
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, maxPenetration)
     if "marker" not in kinds:

@@ -1,0 +1,112 @@
+"""A joint type's contact as the impulse contact mode sees it (:mod:`~exuclear.engine.impulse`).
+
+The mode holds one contact: the centre of the inner body (the journal's, the ball's, the
+pin's) at an eccentricity ``e`` from the nearest point of the outer body's centre locus
+(the bearing's axis, the socket's centre, the slot's centre segment), touching where
+``|e|`` reaches the clearance ``c``.  Its normal is ``e / |e|``, its gap (penetration)
+``|e| - c``, and the rate of the gap ``n . (v_1 - v_0(S))``, the inner centre's velocity
+against that of the outer body's point ``S`` at the locus (a point of the slot's segment
+slides along the segment, across the normal, so the gap's rate is that of the body's
+material point there).  A joint type is what gives ``e`` and ``S``; the mode's decisions
+(impacts, resting, the normal's turn along the wall) do not know the type:
+
+- ``"revolute"`` (planar): ``e`` the journal's centre minus the bearing's, in the bearing's
+  plane (its part along the axis taken out); ``S`` the bearing's centre;
+- ``"spherical"``: ``e`` the ball's centre minus the socket's, in 3D (docs/physics.md
+  section 13); ``S`` the socket's centre;
+- ``"pin-slot"``: ``e`` the pin's centre minus the slot's centre-segment point nearest to it
+  (:func:`exuclear.slot.segment_point`), in the plane; ``S`` that point, which is fixed at
+  an end centre while the pin rolls around the end cap and the normal turns.
+
+The markers' state is read through Exudyn's marker outputs (position and rotation of the
+two rigid markers), so any body with a rigid marker takes the mode.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, NamedTuple, Protocol
+
+import exudyn as exu
+import numpy as np
+
+from ..contact.pair import ContactGeometry
+from ..slot import segment_point
+
+
+class Eccentricity(NamedTuple):
+    """The contact's eccentricity ``e`` [m] (global, 3 components) and the arm [m] (global)
+    from marker 0's point to the outer body's point ``S`` that ``e`` starts from (None where
+    ``S`` is marker 0's point)."""
+
+    e: np.ndarray
+    arm: np.ndarray | None
+
+
+class ContactPair(Protocol):
+    """What the mode reads of a joint type (module docstring)."""
+
+    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
+        """At the system's current state, for ``markers`` [outer, inner]."""
+
+
+def _poses(mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Marker 0's rotation matrix (global), and both markers' positions (global)."""
+    ov = exu.OutputVariableType
+    rotation = np.asarray(mbs.GetMarkerOutput(markers[0], ov.RotationMatrix), dtype=float).reshape(3, 3)
+    p0, p1 = (np.asarray(mbs.GetMarkerOutput(m, ov.Position), dtype=float) for m in markers)
+    return rotation, p0, p1
+
+
+@dataclass(frozen=True)
+class PlanarPair:
+    """A journal in its bearing: ``axis`` the bearing axis (unit) in marker 0's frame."""
+
+    axis: np.ndarray
+
+    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
+        rotation, p0, p1 = _poses(mbs, markers)
+        axis = rotation @ self.axis
+        e = p1 - p0
+        return Eccentricity(e - (e @ axis) * axis, None)
+
+
+@dataclass(frozen=True)
+class BallPair:
+    """A ball in its socket: no projection."""
+
+    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
+        _, p0, p1 = _poses(mbs, markers)
+        return Eccentricity(p1 - p0, None)
+
+
+@dataclass(frozen=True)
+class SlotPair:
+    """A pin in its slot: ``frame`` the joint frame in marker 0's frame (columns: x along
+    the slot, z the plane's normal), ``half_length`` [m] half the distance of the slot's end
+    centres."""
+
+    frame: np.ndarray
+    half_length: float
+
+    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
+        rotation, p0, p1 = _poses(mbs, markers)
+        frame = rotation @ self.frame  # the slot's frame, global
+        px, py, _ = frame.T @ (p1 - p0)  # the pin's centre in the slot's frame (its part along z out)
+        sx = segment_point(float(px), self.half_length)
+        return Eccentricity(frame @ np.array([px - sx, py, 0.0]), sx * frame[:, 0])
+
+
+#: The pair of each joint type the mode holds, from the type's geometry and the joint frame
+#: (columns: the joint's axes) in marker 0's frame.
+PAIRS: dict[str, Callable[[Any, np.ndarray], ContactPair]] = {
+    "revolute": lambda geometry, frame: PlanarPair(frame[:, 2].copy()),
+    "spherical": lambda geometry, frame: BallPair(),
+    "pin-slot": lambda geometry, frame: SlotPair(frame.copy(), 0.5 * geometry.slot_length),
+}
+
+
+def contact_pair(geometry: ContactGeometry, frame: np.ndarray) -> ContactPair:
+    """The pair (:data:`PAIRS`) of a joint of ``geometry``'s type whose joint frame is
+    ``frame`` in marker 0's frame."""
+    return PAIRS[geometry.joint_type](geometry, np.asarray(frame, dtype=float))
