@@ -1,77 +1,37 @@
 """The impulse contact mode (exuclear.engine.impulse) on the spherical and the pin-in-slot
 joint: each joint type is its contact pair (exuclear.engine.impulse_pairs), the eccentricity
 whose direction is the normal and the gap |e| - c; the mode's decisions are the revolute
-joint's (tests/test_impulse_mode.py)."""
+joint's (tests/test_impulse_mode.py).  The scenes are those of ``python -m validation.cost
+modes`` (validation/cost/_joint_type_scenes.py)."""
 import math
 
 import exudyn as exu
 import numpy as np
 import pytest
-from exudyn.itemInterface import Force, MarkerNodePosition, NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
-from exudyn.utilities import InertiaSphere
+from exudyn.itemInterface import NodeRigidBody2D, ObjectRigidBody2D
 
 import exuclear
-from exuclear.engine.impulse import ImpulseJointHandle
-from exuclear.timescales import closed_form_impact, impact_restitution
-
-G = 9.81
-#: A steel ball of 9.9 mm in a socket of 10 mm (c = 0.1 mm), the zoo's spherical joint.
-BALL, SOCKET = 9.9e-3, 10e-3
-BALL_MASS = 7850.0 * 4.0 / 3.0 * math.pi * BALL**3  # kg, steel
-#: A pin of 4.9 mm in a slot 10 mm wide (c = 0.1 mm) whose end centres lie 20 mm apart.
-PIN, WIDTH, SLOT_LENGTH = 4.9e-3, 10e-3, 20e-3
-PIN_MASS = 0.04  # kg
-LAW = {"law": "hertz+lankarani-nikravesh", "cr": 0.9}
-
-
-def solve(mbs, step, end_time, adaptive=True):
-    ss = exu.SimulationSettings()
-    ss.timeIntegration.endTime = end_time
-    ss.timeIntegration.numberOfSteps = int(round(end_time / step))
-    ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0  # the mode's (trapezoidal rule)
-    ss.timeIntegration.adaptiveStep = adaptive
-    ss.timeIntegration.verboseMode = 0
-    return mbs.SolveDynamic(ss)
-
-
-def recorder(mbs, node, out):
-    """A post-step function appending (t, position (3), velocity (3)) of ``node``."""
-    ov = exu.OutputVariableType
-
-    def post_step(mbs, t):
-        out.append((t, *mbs.GetNodeOutput(node, ov.Position), *mbs.GetNodeOutput(node, ov.Velocity)))
-        return True
-    mbs.SetPostStepUserFunction(post_step)
-
-
-def ball_in_socket(start, velocity, gravity=0.0, **law):
-    """A steel ball (its centre of mass at its centre) in a socket held by the ground, centred
-    at the origin; the ball's centre at ``start`` [m] moving at ``velocity`` [m/s]; returns
-    mbs, the joint and the ball's node."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    ball = mbs.CreateRigidBody(inertia=InertiaSphere(BALL_MASS, BALL), referencePosition=[0, 0, 0],
-                               initialDisplacement=list(start), initialVelocity=list(velocity),
-                               gravity=[0, -gravity, 0])
-    joint = exuclear.CreateSphericalClearanceJoint(mbs, name="ball", itemNumbers=[ground, ball], position=[0, 0, 0],
-                                                   ball_radius=BALL, socket_radius=SOCKET, contact_mode="impulse",
-                                                   **{**LAW, **law})
-    assert isinstance(joint, ImpulseJointHandle)
-    mbs.Assemble()
-    return mbs, joint, mbs.GetObject(ball)["nodeNumber"]
-
-
-def jumps(joint, states, initial):
-    """Each impact's velocities before and after its step (rows of ``states`` at the step's
-    start and end; ``initial`` where it starts the run)."""
-    times = states[:, 0]
-    out = []
-    for impact in joint.impacts():
-        k = int(np.argmin(np.abs(times - impact.onset_time)))
-        before = states[k, 4:7] if abs(times[k] - impact.onset_time) < 1e-12 else initial
-        after = states[int(np.searchsorted(times, impact.onset_time * (1 + 1e-12) + 1e-15)), 4:7]
-        out.append((impact, before, after))
-    return out
+from exuclear.timescales import impact_restitution
+from validation.cost._joint_type_scenes import (
+    BALL,
+    BALL_MASS,
+    G,
+    LAW,
+    PIN,
+    PIN_MASS,
+    SLOT_LENGTH,
+    SOCKET,
+    WIDTH,
+    bouncing_pin,
+    dropped_ball,
+    elastic_ball,
+    jump_restitution,
+    resting_ball,
+    sliding_pin,
+    solve,
+    steps_taken,
+    thrown_ball,
+)
 
 
 @pytest.mark.parametrize("durations", [10.0, 1000.0])
@@ -82,23 +42,16 @@ def test_a_ball_thrown_in_3d_rebounds_with_the_laws_restitution_along_its_normal
     # velocity v, to Newton's tolerance on the velocity condition) and keeps the tangential
     # velocity (frictionless).  At 1000 contact durations the steps are longer than the flight
     # across the clearance: the mode has Exudyn shorten those (as for the journal)
-    c = SOCKET - BALL
-    speed = 0.3
-    direction = np.array([0.48, 0.6, 0.64])  # unit, off every coordinate plane
-    mbs, joint, node = ball_in_socket([0.5 * c, -0.3 * c, 0.2 * c], speed * direction)
-    law = joint.joint.law
-    step = durations * closed_form_impact(law, BALL_MASS, speed)[1]
-    states = []
-    recorder(mbs, node, states)
-    assert solve(mbs, step, max(30 * 2 * c / speed, 4 * step))
-    records = jumps(joint, np.array(states), speed * direction)
+    mbs, joint, records, step = thrown_ball(durations)
     assert len(records) >= 8
+    if durations > 100:  # the run's end is 4 steps: the mode had Exudyn shorten those that flew across
+        assert steps_taken(mbs) > 4
     tilted = 0
-    for impact, before, after in records:
-        n = (before - after) / np.linalg.norm(before - after)
-        assert impact.onset_velocity == pytest.approx(n @ before, rel=1e-9)
-        assert impact.restitution == impact_restitution(law, impact.onset_velocity)
-        assert -(n @ after) / (n @ before) == pytest.approx(impact.restitution, rel=1e-9)
+    for jump in records:
+        n, restitution = jump_restitution(jump)
+        assert jump.impact.onset_velocity == pytest.approx(n @ jump.before, rel=1e-9)
+        assert jump.impact.restitution == impact_restitution(joint.joint.law, jump.impact.onset_velocity)
+        assert restitution == pytest.approx(jump.impact.restitution, rel=1e-9)
         tilted += bool(np.abs(n).min() > 0.1)
     assert tilted >= len(records) // 2  # the normals lie off the coordinate planes
 
@@ -109,23 +62,18 @@ def test_a_ball_dropped_in_its_socket_rebounds_with_the_laws_restitution_then_re
     # rebound would land within two steps: then it rests, held by the condition, with the
     # ideal joint's reaction m g
     c = SOCKET - BALL
-    mbs, joint, node = ball_in_socket([0, 0, 0], [0, 0, 0], gravity=G)
-    law = joint.joint.law
-    step = 10.0 * closed_form_impact(law, BALL_MASS, math.sqrt(2 * G * c))[1]
-    states = []
-    recorder(mbs, node, states)
-    assert solve(mbs, step, 0.3)
-    records = jumps(joint, np.array(states), np.zeros(3))
-    bounces = [r for r in records if r[0].restitution > 0.0]
+    joint, records, step = dropped_ball()
+    bounces = [r for r in records if r.impact.restitution > 0.0]
     assert len(bounces) >= 10
     # Moreau-Jean's impact velocity is the rate at the start of the step in which the ball
     # reached the wall: the fall's sqrt(2 g c) less up to a step's g h
-    assert math.sqrt(2 * G * c) - G * step <= records[0][0].onset_velocity <= math.sqrt(2 * G * c)
+    assert math.sqrt(2 * G * c) - G * step <= records[0].impact.onset_velocity <= math.sqrt(2 * G * c)
     for impact, before, after in bounces:
-        assert after[1] / -before[1] == pytest.approx(impact_restitution(law, impact.onset_velocity), rel=1e-9)
-    assert records[-1][0].restitution == 0.0  # the last is the rest's onset
+        assert after[1] / -before[1] == pytest.approx(impact_restitution(joint.joint.law, impact.onset_velocity),
+                                                      rel=1e-9)
+    assert records[-1].impact.restitution == 0.0  # the last is the rest's onset
     out = joint.outputs()
-    rest = out["time"] > records[-1][0].onset_time + 100 * step
+    rest = out["time"] > records[-1].impact.onset_time + 100 * step
     assert rest.sum() > 100
     # the condition holds the ideal joint's reaction once it has taken back the onset's
     # penetration (RATE_GAIN: a factor 0.5 a step, 1e-30 of it after 100 steps)
@@ -135,24 +83,16 @@ def test_a_ball_dropped_in_its_socket_rebounds_with_the_laws_restitution_then_re
 
 
 def test_an_elastic_ball_keeps_its_energy():
-    # cr = 1: no damping, restitution 1; the ball falls off-centre from the socket's centre
-    # with a sideways velocity and bounces around the socket's bottom
-    c = SOCKET - BALL
-    mbs, joint, node = ball_in_socket([0, 0, 0], [0.01, 0, 0.005], gravity=G, cr=1.0)
-    states = []
-    recorder(mbs, node, states)
-    assert solve(mbs, 1e-5, 0.1)
+    # cr = 1: no damping, restitution 1; the ball falls from the socket's centre with a
+    # sideways velocity and bounces about the socket's bottom
+    joint, drift = elastic_ball()
     assert len(joint.impacts()) >= 10
-    states = np.array(states)
-    energy = 0.5 * (states[:, 4:7] ** 2).sum(axis=1) + G * states[:, 2]  # per kg
-    assert np.abs(energy - 0.5 * (0.01**2 + 0.005**2)).max() <= 0.01 * G * c  # the issue's target: within 1 %
+    assert np.abs(drift).max() <= 0.01 * G * (SOCKET - BALL)  # the issue's target: within 1 %
 
 
 def test_a_resting_ball_has_one_impact_and_the_ideal_joints_reaction():
     # gravity -y presses the ball, touching at t = 0, on the socket's bottom
-    c = SOCKET - BALL
-    mbs, joint, _ = ball_in_socket([0, -c, 0], [0, 0, 0], gravity=G)
-    assert solve(mbs, 1e-4, 0.05)
+    joint = resting_ball()
     assert len(joint.impacts()) == 1  # the onset of the rest, nothing after it
     out = joint.outputs()
     held = out["time"] > 100 * 1e-4
@@ -160,27 +100,6 @@ def test_a_resting_ball_has_one_impact_and_the_ideal_joints_reaction():
     # taken back the first steps' penetration
     assert np.allclose(out["normal_force"][held], BALL_MASS * G, rtol=1e-9)
     assert np.abs(out["penetration"]).max() < 2.0 * G * 1e-4**2  # Moreau-Jean's: below 2 g h^2
-
-
-def pin_in_slot(start, velocity, gravity=(0.0, 0.0), slot_angle=0.0, **law):
-    """A pin (a 2D rigid body, its centre of mass at its centre) in a slot held by the ground,
-    centred at the origin along ``slot_angle`` [rad]; the pin's centre at ``start`` [m] (x, y)
-    moving at ``velocity`` [m/s], under ``gravity`` [m/s^2] (x, y); returns mbs, the joint
-    and the pin's node."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[*start, 0],
-                                       initialVelocities=[*velocity, 0]))
-    pin = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=PIN_MASS, inertia=0.5 * PIN_MASS * PIN**2))
-    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)),
-                      loadVector=[PIN_MASS * gravity[0], PIN_MASS * gravity[1], 0]))
-    joint = exuclear.CreatePinSlotClearanceJoint(
-        mbs, name="slot", itemNumbers=[ground, pin], position=[0, 0, 0],
-        axis=[math.cos(slot_angle), math.sin(slot_angle), 0], pin_radius=PIN, slot_width=WIDTH,
-        slot_length=SLOT_LENGTH, length=10e-3, contact_mode="impulse", **{**LAW, **law})
-    assert isinstance(joint, ImpulseJointHandle)
-    mbs.Assemble()
-    return mbs, joint, node
 
 
 @pytest.mark.parametrize("where, bounces", [("flat side", 8), ("end cap", 4)])
@@ -192,25 +111,15 @@ def test_a_pin_rebounds_with_the_laws_restitution_at_a_flat_side_and_at_an_end_c
     # is unstable: each end cap (radius c) focuses like a mirror of radius c, 2 c << the
     # caps' distance L, so a deviation from the axis grows by about 2 L / c = 400 a bounce,
     # from round-off to 1e-4 rad by the fifth impact: the end caps' run stops after four
-    angle = math.radians(30.0)
-    axis, normal = np.array([math.cos(angle), math.sin(angle)]), np.array([-math.sin(angle), math.cos(angle)])
-    speed, c = 0.3, 0.5 * WIDTH - PIN
-    direction = normal if where == "flat side" else axis
-    across = 2 * c if where == "flat side" else SLOT_LENGTH + 2 * c  # the flight between two impacts
-    first = c if where == "flat side" else 0.3 * SLOT_LENGTH + c  # from 0.2 L along the axis
-    mbs, joint, _ = pin_in_slot(0.2 * SLOT_LENGTH * axis, speed * direction, slot_angle=angle)
+    joint, direction = bouncing_pin(where, bounces)
     law = joint.joint.law
-    e = impact_restitution(law, speed)  # velocity independent (Lankarani-Nikravesh, above v_min)
-    step = 10.0 * closed_form_impact(law, PIN_MASS, speed)[1]
-    flights = [first] + [across / e**k for k in range(1, bounces)] + [0.5 * across / e**bounces]
-    assert solve(mbs, step, sum(flights) / speed)
     impacts = joint.impacts()
     assert len(impacts) == bounces
     for before, after in zip(impacts, impacts[1:]):
         assert after.onset_velocity / before.onset_velocity == pytest.approx(
             impact_restitution(law, before.onset_velocity), rel=1e-9)
     out = joint.outputs()
-    near = out["penetration"] > -0.5 * c  # the steps' ends near a wall
+    near = out["penetration"] > -0.5 * (0.5 * WIDTH - PIN)  # the steps' ends near a wall
     ecc = np.column_stack([out["ecc_x"], out["ecc_y"]])[near]
     assert near.sum() >= bounces // 2  # the steps are about half the flight across the slot
     # there the eccentricity lies along the expected normal: to round-off on the flat side
@@ -218,24 +127,6 @@ def test_a_pin_rebounds_with_the_laws_restitution_at_a_flat_side_and_at_an_end_c
     # from the axis (above: below 1e-9 rad before the fifth impact)
     assert np.abs(np.abs(ecc @ direction) / np.linalg.norm(ecc, axis=1) - 1.0).max() < 1e-9
     assert np.abs(out["ecc_z"]).max() == 0.0  # the plane's
-
-
-def sliding_pin(step):
-    """The pin of the test below, run for 0.15 s at ``step``: the joint, the pin's states
-    (t, position, velocity) and the swing's parameters (c, a, gravity, x0, v0)."""
-    c, a = 0.5 * WIDTH - PIN, 0.5 * SLOT_LENGTH
-    gravity = (0.5, -G)
-    x0, v0 = a - 1e-3, 0.01
-    mbs, joint, node = pin_in_slot([x0, -c], [v0, 0.0], gravity=gravity)
-    states = []
-    recorder(mbs, node, states)
-    assert solve(mbs, step, 0.15)
-    return joint, np.array(states), (c, a, gravity, x0, v0)
-
-
-def energy(states, gravity):
-    """Per kg: kinetic plus the potential of ``gravity`` (x, y)."""
-    return 0.5 * (states[:, 4] ** 2 + states[:, 5] ** 2) - gravity[0] * states[:, 1] - gravity[1] * states[:, 2]
 
 
 def test_a_pin_slides_along_the_flat_side_then_swings_in_the_end_cap():
@@ -247,38 +138,34 @@ def test_a_pin_slides_along_the_flat_side_then_swings_in_the_end_cap():
     # the normal reached): the pin, at v_a = sqrt(v0^2 + 2 g_x (a - x0)) = 0.033 m/s, swings
     # up the cap, held, to the angle where its energy is spent, and back onto the flat side
     step = 1e-4
-    joint, states, (c, a, gravity, x0, v0) = sliding_pin(step)
+    swing = sliding_pin(step)
+    joint, states = swing.joint, swing.states
     out = joint.outputs()
     assert len(joint.impacts()) == 1 and joint.impacts()[0].restitution == 0.0  # resting from its first step
-    t = states[:, 0]
-    t_a = (-v0 + math.sqrt(v0**2 + 2 * gravity[0] * (a - x0))) / gravity[0]  # x = a
-    flat = t < t_a
+    flat = swing.flat()
+    t = states[flat, 0]
     assert flat.sum() > 100
-    assert np.abs(states[flat, 1] - (x0 + v0 * t[flat] + 0.5 * gravity[0] * t[flat] ** 2)).max() < 1e-12
-    assert np.abs(states[flat, 2] + c).max() < 1e-12  # on the wall, y = -c
-    # in the cap, energy conservation: the pin turns to theta from the cap's lowest point
-    # (the load's direction, phi from -y), cos theta = 1 - (v_a^2 / 2 + |g| c (1 - cos phi)) / (|g| c),
-    # 67 degrees from -y: below 90 from the lowest point, so the normal force stays compressive.
-    # The largest sampled angle is within 0.2 degrees (a step turns the normal by up to
+    assert np.abs(states[flat, 1] - (swing.x0 + swing.v0 * t + 0.5 * swing.gravity[0] * t**2)).max() < 1e-12
+    assert np.abs(states[flat, 2] + swing.c).max() < 1e-12  # on the wall, y = -c
+    # in the cap, energy conservation sets the swing's top (Swing.top_angle), 67 degrees from
+    # -y: below 90 from the cap's lowest point, so the normal force stays compressive.  The
+    # largest sampled angle is within 0.2 degrees of it (a step turns the normal by up to
     # v_a h / c = 1.9 degrees, but the angle is flat at the swing's top)
-    g, phi = math.hypot(*gravity), math.atan2(gravity[0], -gravity[1])
-    v_a2 = v0**2 + 2 * gravity[0] * (a - x0)
-    top = phi + math.acos(1.0 - (0.5 * v_a2 + g * c * (1.0 - math.cos(phi))) / (g * c))
     turned = np.arctan2(out["ecc_x"], -out["ecc_y"])
-    assert np.degrees(turned.max()) == pytest.approx(math.degrees(top), abs=0.2)
+    assert np.degrees(turned.max()) == pytest.approx(math.degrees(swing.top_angle()), abs=0.2)
     assert (turned[int(np.argmax(turned)):] == 0.0).any()  # and back onto the flat side (its foot inside the segment)
     held = out["time"] > 100 * step
     assert (out["normal_force"][held] > 0.0).all()
     # while the normal turns, a held step ends off the arc by about the sagitta of the arc it
     # covers, (v_a h)^2 / (8 c) (the rate gain takes it back over the next steps)
-    assert np.abs(out["penetration"][held]).max() < v_a2 * step**2 / (8.0 * c)
+    assert np.abs(out["penetration"][held]).max() < swing.arrival_speed2() * step**2 / (8.0 * swing.c)
     # frictionless, the held contact does no work: the energy is kept up to the steps' error,
     # second order in the step (halving the step divides it by about 4); below 1 % of the
     # swing's |g| c
-    drift = np.abs(energy(states, gravity) - energy(states, gravity)[0]).max()
-    finer = sliding_pin(0.5 * step)[1]
-    assert drift < 0.01 * g * c
-    assert drift / np.abs(energy(finer, gravity) - energy(finer, gravity)[0]).max() > 3.0
+    drift = np.abs(swing.energy() - swing.energy()[0]).max()
+    finer = sliding_pin(0.5 * step)
+    assert drift < 0.01 * math.hypot(*swing.gravity) * swing.c
+    assert drift / np.abs(finer.energy() - finer.energy()[0]).max() > 3.0
 
 
 def test_a_spinning_slot_s_wall_strikes_a_free_pin_with_the_laws_restitution():

@@ -1,8 +1,8 @@
 """The compliant and the impulse contact mode side by side (issue 52): cost over the ideal
 model, impacts, and distance from the converged compliant run.
 
-Source problems: the zoo's models (``validation/exudyn_examples``), each with one revolute
-joint replaced and its own settings through a plain ``mbs.SolveDynamic``; and the paper's
+Source problems: the zoo's models (``validation/exudyn_examples``), each with one joint
+replaced by a clearance joint (revolute, spherical, pin-in-slot) and its own settings through a plain ``mbs.SolveDynamic``; and the paper's
 journal impact (``exuclear.models.journal_bearing``, docs/physics.md section 6.1).
 
 Per zoo model: the wall time of each mode over the ideal model's (median of ``--repeats``;
@@ -22,13 +22,20 @@ The issue's target rows:
 - ``elastic``: a journal of cr 1 dropped from the bearing's centre under gravity: its energy
   at the run's end against the start, in shares of the fall's ``m g c``;
 - ``resting``: a journal on its wall under gravity: the impacts after the first, and the
-  reaction against the ideal joint's ``m g``.
+  reaction against the ideal joint's ``m g``;
+- the spherical and the pin-in-slot joint's rows (``_joint_type_scenes``): a ball thrown
+  in 3D at steps of 10 and 1000 contact durations, dropped, elastic and resting; a pin onto
+  a slot's flat sides and end caps, and held on the flat side under tilted gravity into the
+  end cap.
 
 ::
 
     python -m validation.cost modes [--models a,b] [--factor 8] [--repeats 3] [--refine 4] [--no-zoo]
+                                    [--no-targets] [--adaptive-step]
 
-(``--repeats 0``: steps, impacts and accuracy without timing, for a busy machine.)
+(``--repeats 0``: steps, impacts and accuracy without timing, for a busy machine;
+``--adaptive-step``: every zoo run with Exudyn's adaptive step, the one change an example
+whose fixed step stops at its first contact needs.)
 """
 from __future__ import annotations
 
@@ -51,15 +58,17 @@ from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from validation._tables import markdown_table
+from validation.cost._joint_type_scenes import joint_type_rows
 from validation.exudyn_examples._common import REGISTRY, load_models, model_names
 
 #: Standard gravity of the target rows' scenes [m/s^2].
 G = 9.81
 
 
-def _build(name: str, clearance: bool, mode: str | None) -> Any:
+def _build(name: str, clearance: bool, mode: str | None, adaptive: bool = False) -> Any:
     """A zoo model, its joint in ``mode`` (through the environment variable, as a user's
-    unedited script would get it; None: the default)."""
+    unedited script would get it; None: the default); ``adaptive``: with Exudyn's adaptive
+    step (``timeIntegration.adaptiveStep``) whatever the example sets."""
     previous = os.environ.pop(ENVIRONMENT_VARIABLE, None)
     try:
         if mode is not None:
@@ -68,6 +77,8 @@ def _build(name: str, clearance: bool, mode: str | None) -> Any:
             warnings.simplefilter("always")
             model = REGISTRY[name](clearance, None)
         model.fallback = next((str(w.message) for w in caught if "contact_mode='impulse'" in str(w.message)), "")
+        if adaptive:
+            model.simulation_settings.timeIntegration.adaptiveStep = True
         return model
     finally:
         os.environ.pop(ENVIRONMENT_VARIABLE, None)
@@ -95,32 +106,33 @@ def _run(model: Any, radius: float | None = None, factor: float = 1.0) -> tuple[
     return wall, f"{it.currentStepIndex - 1} / {it.newtonStepsCount}", ok, problem
 
 
-def _median_wall(name: str, clearance: bool, mode: str | None, repeats: int, radius: float | None) -> float:
+def _median_wall(name: str, clearance: bool, mode: str | None, repeats: int, radius: float | None,
+                 adaptive: bool = False) -> float:
     if not repeats:
         return math.nan
-    return statistics.median(_run(_build(name, clearance, mode), radius)[0] for _ in range(repeats))
+    return statistics.median(_run(_build(name, clearance, mode, adaptive), radius)[0] for _ in range(repeats))
 
 
-def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0) -> list[str]:
+def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptive: bool = False) -> list[str]:
     """One zoo model's row (module docstring); ``repeats`` 0: no timing (the costs print "-");
     ``refine`` > 1: the impulse run's probe at that many times the steps too (its order in
-    the step), else "-"."""
-    ideal = _median_wall(name, False, None, repeats, None) if repeats else math.nan
-    compliant = _build(name, True, None)
+    the step), else "-"; ``adaptive``: every run with Exudyn's adaptive step."""
+    ideal = _median_wall(name, False, None, repeats, None, adaptive) if repeats else math.nan
+    compliant = _build(name, True, None, adaptive)
     c = compliant.clearance
     wall_c, steps_c, ok_c, _ = _run(compliant)
     probe_c = np.asarray(compliant.probe(compliant.mbs), dtype=float)
     impacts_c = len(compliant.joint.impacts())
-    reference = _build(name, True, None)
+    reference = _build(name, True, None, adaptive)
     _run(reference, factor=factor)
     probe_ref = np.asarray(reference.probe(reference.mbs), dtype=float)
-    wall_c = statistics.median([wall_c] + [_run(_build(name, True, None))[0] for _ in range(repeats - 1)])
+    wall_c = statistics.median([wall_c] + [_run(_build(name, True, None, adaptive))[0] for _ in range(repeats - 1)])
     row = [name, _ratio(wall_c, ideal), str(steps_c), str(impacts_c),
            f"{np.abs(probe_c - probe_ref).max() / c:.3g}" if ok_c else "failed"]
-    impulse = _build(name, True, "impulse")
+    impulse = _build(name, True, "impulse", adaptive)
     if not isinstance(impulse.joint, ImpulseJointHandle):
         return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1], "-"]
-    ideal_1 = _median_wall(name, False, None, repeats, 1.0)
+    ideal_1 = _median_wall(name, False, None, repeats, 1.0, adaptive)
     wall_i, steps_i, ok_i, problem = _run(impulse, 1.0)
     if not ok_i:
         reason = impulse.joint._problem.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem
@@ -130,10 +142,11 @@ def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0) -> list
         impacts_i = len(impulse.joint.impacts())
     except RuntimeError as err:  # Exudyn did not call the mode (impulse.ImpulseJointHandle._check_ran)
         return row + ["-", "-", "-", "stopped: " + str(err).split(": ", 1)[-1], "-"]
-    wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse"), 1.0)[0] for _ in range(repeats - 1)])
+    wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse", adaptive), 1.0)[0]
+                                           for _ in range(repeats - 1)])
     refined = "-"
     if refine > 1.0:
-        finer = _build(name, True, "impulse")
+        finer = _build(name, True, "impulse", adaptive)
         ok_f = _run(finer, 1.0, factor=refine)[2]
         refined = f"{np.abs(np.asarray(finer.probe(finer.mbs), dtype=float) - probe_ref).max() / c:.3g}" if ok_f \
             else "stopped"
@@ -269,6 +282,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeats", type=int, default=3, help="timed runs per model and mode (default %(default)s; 0: "
                                                                 "no timing, steps and accuracy only)")
     ap.add_argument("--no-zoo", action="store_true", help="the target rows only")
+    ap.add_argument("--no-targets", action="store_true", help="the zoo's rows only")
+    ap.add_argument("--adaptive-step", action="store_true",
+                    help="every zoo run with Exudyn's adaptive step, for examples whose own fixed step stops where a "
+                         "contact begins (scissor_pin_slot)")
     ap.add_argument("--refine", type=float, default=0.0, help="also run the impulse mode at this many times the "
                                                                  "steps (its order in the step; default: not run)")
     args = ap.parse_args(argv)
@@ -284,12 +301,14 @@ def main(argv: list[str] | None = None) -> int:
             ap.error(str(err))
         rows = []
         for name in names:
-            rows.append(zoo_row(name, args.factor, args.repeats, args.refine))
+            rows.append(zoo_row(name, args.factor, args.repeats, args.refine, args.adaptive_step))
             print(f"{name}: done", flush=True)
         print("\n" + markdown_table(
             ["model", "compliant / ideal", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]",
              "impulse / ideal (radius 1)", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]",
              f"at {args.refine:g}x the steps" if args.refine > 1.0 else "refined"],
             rows))
-    print("\n" + markdown_table(["target", "count", "measured", "met"], target_rows() + slider_crank_rows(args.factor)))
+    if not args.no_targets:
+        print("\n" + markdown_table(["target", "count", "measured", "met"],
+                                    target_rows() + joint_type_rows() + slider_crank_rows(args.factor)))
     return 0
