@@ -183,19 +183,23 @@ def test_the_mode_refuses_what_it_does_not_cover(monkeypatch):
     body = mbs.CreateRigidBody(inertia=InertiaCuboid(1000, [0.1, 0.1, 0.1]), referencePosition=[0, 0, 0])
     common = dict(itemNumbers=[ground, body], position=[0, 0, 0], journal_radius=9.9e-3, bearing_radius=10e-3, cr=0.9,
                   length=15e-3)
-    with pytest.raises(ValueError, match="friction impulse.*use contact_mode='compliant'"):
-        exuclear.CreateClearanceJoint(mbs, name="J", contact_mode="impulse", friction="paper", **common)
+    with pytest.raises(ValueError, match="joint J: .*wear integrates.*use contact_mode='compliant'"):
+        exuclear.CreateClearanceJoint(mbs, name="J", contact_mode="impulse", wear=exuclear.Wear(coefficient=1e-10),
+                                      **common)
+    # friction it has on the revolute joint (tests/test_impulse_friction.py)
+    assert isinstance(exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", friction="paper", **common),
+                      ImpulseJointHandle)
     with pytest.raises(ValueError, match="spatial revolute joint .*several slices at once.*holds one contact"):
         exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, **common)
-    with pytest.raises(ValueError, match="friction impulse"):
+    with pytest.raises(ValueError, match="friction covers the planar revolute joint, not the spherical"):
         exuclear.CreateSphericalClearanceJoint(mbs, itemNumbers=[ground, body], contact_mode="impulse",
                                                ball_radius=9.9e-3, socket_radius=10e-3, cr=0.9, friction="paper")
     with pytest.raises(ValueError, match="must be one of .*'rigid'"):
         exuclear.CreateClearanceJoint(mbs, contact_mode="rigid", **common)
     # the environment's mode falls back where it does not fit, and warns naming the joint
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
-    with pytest.warns(UserWarning, match="joint F: .*friction impulse.*compliant contact"):
-        handle = exuclear.CreateClearanceJoint(mbs, name="F", friction="paper", **common)
+    with pytest.warns(UserWarning, match="joint F: .*wear integrates.*compliant contact"):
+        handle = exuclear.CreateClearanceJoint(mbs, name="F", wear=exuclear.Wear(coefficient=1e-10), **common)
     assert isinstance(handle, exuclear.ClearanceJointHandle)
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "sticky")
     with pytest.raises(ValueError, match=f"{ENVIRONMENT_VARIABLE} must be one of"):

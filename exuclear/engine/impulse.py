@@ -61,6 +61,7 @@ from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
 from .bodies import joint_mass
 from .condition import Plan, VelocityCondition
+from .impulse_friction import contact_friction
 from .impulse_pairs import ContactPair, contact_pair
 from .state import moved_on, start_of_step
 from .steering import explicit_solver
@@ -154,6 +155,9 @@ class ImpulseJointHandle:
         self.markerNumbers = list(markers)
         self._condition = VelocityCondition(mbs, self.markerNumbers, name)
         self.objectNumber = self._condition.objectNumber
+        # the contact's Coulomb friction (exuclear.engine.impulse_friction), hooked in where the
+        # normal condition is measured, held, released, checked and accepted
+        self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair)
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -207,15 +211,16 @@ class ImpulseJointHandle:
                 # is not the one this computation had
                 applied = self._condition.plan
                 plan = self._restore()
-                if not plan.same(applied):
+                if not plan.same(applied) or self._friction.acting:
                     self._condition.set(mbs, plan)
                     return REDO_ERROR
             else:
                 active = self._condition.plan.active
                 self._reset()  # a new run
+                active = self._friction.reset(mbs) or active
                 self._check_solver(mbs)
                 self._start = t
-                if active:  # the last run's condition acted in this step
+                if active:  # the last run's condition or friction acted in this step
                     self._condition.release(mbs)
                     return REDO_ERROR
         elif t > self._start + tol:
@@ -233,6 +238,8 @@ class ImpulseJointHandle:
                 return REDO_ERROR
             if redo and self._refine(mbs, e, h):
                 return REDO_ERROR
+        if self._state != FREE and self._friction.check(mbs, force, redo):  # Coulomb's law not met yet
+            return REDO_ERROR
         clearance = self._joint.geometry.clearance
         if gap > LOST_CONTACT * clearance:
             if redo and self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
@@ -249,6 +256,7 @@ class ImpulseJointHandle:
         reaction = 0.5 * (force + self._force) if self._state == REST and self._resting > 1 else force
         self._force = force
         self._records.append((t_end, *(float(x) for x in e), gap, reaction if self._state == REST else 0.0))
+        self._friction.accept(mbs, t_end, self._state == REST)
         if self._state == IMPACT:
             # the impact step ends at v+; its end accelerations carry the impulse over the step
             # (about 2 (v+ - v-) / h), which the trapezoidal rule would add to the next step's
@@ -265,6 +273,7 @@ class ImpulseJointHandle:
                 # two-step mean scatters about it: the free computation's stand in for them,
                 # as at an impact
                 mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
+                self._friction.forget()
             self._resting += 1
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
                 self._release(mbs, FREE)
@@ -394,6 +403,8 @@ class ImpulseJointHandle:
         norm = float(np.linalg.norm(e))
         gap = norm - self._joint.geometry.clearance
         n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
+        if normal is not None:  # the friction's tangential rows, at the same state
+            self._friction.measure(mbs, n)
         return e, self._condition.measure(mbs, n, arms=(arm, None)), gap
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
@@ -415,16 +426,18 @@ class ImpulseJointHandle:
         """The condition on for the coming step, in the rows of :meth:`_kinematics`' last
         call, holding its end rate at ``end_rate``."""
         self._condition.hold(mbs, end_rate)
+        self._friction.hold(mbs)
 
     def _release(self, mbs: exu.MainSystem, state: str) -> None:
         self._condition.release(mbs)
+        self._friction.release(mbs)
         self._state = state
 
     def _snapshot(self) -> dict[str, Any]:
         """What an accepted step changes, to be taken back where Exudyn computes it again."""
         return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
                 "_resting": self._resting, "_left_pen": self._left_pen, "_start": self._start,
-                "records": len(self._records), "impacts": list(self._impacts)}
+                "records": len(self._records), "impacts": list(self._impacts), "friction": self._friction.snapshot()}
 
     def _restore(self) -> Plan:
         """The state before the last accepted step back; returns the condition's setting then."""
@@ -432,6 +445,7 @@ class ImpulseJointHandle:
         del self._records[saved.pop("records"):]
         self._impacts = saved.pop("impacts")
         plan = saved.pop("plan")
+        self._friction.restore(self._mbs(), saved.pop("friction"))
         self.__dict__.update(saved)
         return plan
 
@@ -489,7 +503,8 @@ class ImpulseJointHandle:
         self._check_ran()
         keys = ("time", "ecc_x", "ecc_y", "ecc_z", "penetration", "normal_force")
         data = np.array(self._records, dtype=float).reshape(-1, len(keys))
-        return {key: data[:, k] for k, key in enumerate(keys)}
+        out = {key: data[:, k] for k, key in enumerate(keys)}
+        return out | self._friction.outputs()  # with friction: slip_velocity, friction_force, sticking
 
     @property
     def notes(self) -> list[str]:
@@ -505,7 +520,7 @@ class ImpulseJointHandle:
         if self._left_pen > 0.0:
             notes.append(f"the steps left a penetration of up to {self._left_pen:.3g} m (Moreau-Jean's, about the "
                          "impact velocity times the step); the law's own is in impacts()")
-        return notes
+        return notes + self._friction.notes
 
 
 def add_impulse_joint(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],

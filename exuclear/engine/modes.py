@@ -50,9 +50,10 @@ def resolve_contact_mode(contact_mode: Any) -> str:
 
 def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str) -> str:
     """Why the impulse mode cannot take a joint ('' where it can): it holds one contact, and
-    covers the dry, frictionless joints without wear whose contact is one centre against its
-    clearance (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the
-    spherical and the pin-in-slot joint)."""
+    covers the dry joints without wear whose contact is one centre against its clearance
+    (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
+    pin-in-slot joint), with friction the planar revolute joint
+    (:mod:`~exuclear.engine.impulse_friction`)."""
     if joint_type == "prismatic":
         return ("a slider touches its guide at several corners at once, and the mode holds one contact; it covers "
                 "the planar revolute, spherical and pin-in-slot joints")
@@ -65,8 +66,9 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:
         return "wear integrates the contact's force and slip over each impact, which the mode does not compute"
-    if joint.friction.active:
-        return "it has no friction impulse: give a frictionless joint"
+    if joint.friction.active and joint_type != "revolute":
+        return (f"its friction covers the planar revolute joint, not the {joint_type} joint's slip (a ball's in "
+                "its tangent plane, a pin's along its slot): give a frictionless joint")
     return ""
 
 

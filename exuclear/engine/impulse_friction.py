@@ -1,0 +1,335 @@
+"""Coulomb friction of the impulse contact mode's held and hit contacts
+(:mod:`~exuclear.engine.impulse`).
+
+Wherever the mode holds the normal condition for a step (an impact or a resting contact),
+the contact's friction acts in the same step, at the slip of docs/physics.md eq. (8),
+``v_T = t . (v_J - v_B) - R_J w_J + R_B w_B`` with ``t = n x a`` (``a`` the bearing's axis):
+
+- **Sliding**: a force ``F_T = mu(v_T) F_N sign(v_T)`` at the contact points, eqs. (24)-(26):
+  Exudyn loads at the joint's two markers (``-F_T t`` and the moment ``R_J F_T a`` on the
+  journal, ``F_T t`` and ``-R_B F_T a`` on the bearing), fixed over the step, along the
+  tangent of the rows the step's normal condition has.  ``F_N`` is that condition's
+  multiplier in the same step, which the loads change (closed loops): after Exudyn's Newton
+  iteration the mode compares the load with ``mu`` times the multiplier it produced and, more
+  than :data:`LOAD_TOLERANCE` apart, has Exudyn compute the step again with the load set anew
+  (inside Exudyn's discontinuous iteration: at first to the multiplier's ``mu`` times, then by
+  the secant through the last two computations, since in a closed loop the load moves the
+  multiplier by as much as it moves itself, where the plain iteration would not converge).
+- **Sticking**: where the step's end slip has the other sign than the slip the load opposed
+  (the slip would reverse within the step), or the contact stuck in the step before, a second
+  velocity-level condition holds the end slip at 0 (its rows carry the spin terms of eq. (8));
+  its multiplier is the friction force, kept where it is within ``mu_s F_N``, else the
+  contact slides in the multiplier's direction (Coulomb's friction cone).
+- **Impacts**: the same two cases at the impact step, whose impulses are the step's end
+  forces times ``h / 2`` (the trapezoidal rule from the free flight's zero): the tangential
+  impulse is ``mu`` times the normal one while the contact slides through the impact, or what
+  stops the slip where that is within ``mu`` times the normal one.  This is Newton's
+  restitution with Coulomb's bound on the tangential impulse, the algebraic impact law of
+  R. M. Brach, "Rigid body collisions", J. Appl. Mech. 56 (1989) 133-138, and the impulse law
+  of Moreau-Jean time stepping (Acary and Brogliato, *Numerical Methods for Nonsmooth
+  Dynamical Systems*, 2008, section 10.1).
+
+The friction coefficient is the joint's law's: ``mu(v_T)`` at the step's end slip while
+sliding (at least at the law's smoothing speed, below which the law's regularisation would
+take it to zero), and the law's value at its smoothing speed as the sticking bound
+(``mu`` of :class:`~exuclear.friction.Coulomb`, ``mu_s`` of the paper's law).
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import LoadForceVector, LoadTorqueVector
+
+from ..friction import FrictionLaw
+from ..joint import ClearanceJoint
+from .condition import VelocityCondition
+from .impulse_pairs import ContactPair, PlanarPair
+
+#: A sliding load more than this share of ``mu F_N`` off the step's own ``mu F_N`` has Exudyn
+#: compute the step again with the load set anew.  The load of a steady slide comes from the
+#: step before and is kept where it is this close; a journal whose normal force does not
+#: depend on the friction (a single body on its wall) agrees after one computation.
+LOAD_TOLERANCE = 1e-4
+#: A sticking multiplier beyond ``mu_s F_N`` by more than this share of it slides: the
+#: multiplier of a contact on its friction cone's edge carries Newton's round-off.
+CONE_TOLERANCE = 1e-9
+#: Changes between sliding and sticking within one step after which the contact keeps the
+#: last: each change is a computation of the step, and one slide, one stick and one slide
+#: in the sticking multiplier's direction is Coulomb's law's whole decision.
+MAX_SWITCHES = 3
+
+OFF, SLIDE, STICK = "off", "slide", "stick"
+
+
+class ContactFriction:
+    """The friction of one impulse-mode joint: the sticking condition and the sliding loads
+    (module docstring).  The mode calls :meth:`measure` where it sets its normal rows,
+    :meth:`hold` and :meth:`release` with its normal condition, :meth:`check` after each
+    Newton iteration of a held step and :meth:`accept` at each accepted step."""
+
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
+                 axis: np.ndarray) -> None:
+        self._law: FrictionLaw = joint.friction
+        geometry = joint.geometry
+        self._radii = (geometry.bearing_radius, geometry.journal_radius)  # marker 0: bearing, 1: journal
+        self._markers = list(markers)
+        self._axis_local = np.asarray(axis, dtype=float)
+        self.condition = VelocityCondition(mbs, self._markers, f"{name}:stick" if name else "")
+        self._forces = [mbs.AddLoad(LoadForceVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
+                        for m in self._markers]
+        self._torques = [mbs.AddLoad(LoadTorqueVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
+                         for m in self._markers]
+        self._tangent = self._axis = np.zeros(3)
+        self._stick_mu = abs(self._law.coefficient(self._law.smoothing_speed))
+        self._reset()
+
+    def _reset(self) -> None:
+        self._state, self._force, self._sign = OFF, 0.0, 0.0
+        self._fresh = True  # the next hold starts a new step (its state decided from the slip)
+        self._slip = 0.0  # the slip at the state of the last measure (the step's start velocities)
+        # the normal and the friction force at the step's start as the accelerations carry them
+        # into the step (the last accepted step's end forces; 0 after flight, an impact, or the
+        # onset of a rest, whose end accelerations the mode replaces by the free computation's)
+        self._normal0 = self._friction0 = 0.0
+        self._normal_sum = 0.0  # start plus end normal force of the last computed step
+        self._switches = 0
+        self._secant: tuple[float, float] | None = None  # the last (load, its miss) of this step
+        self._off_by = 0.0  # the largest mismatch of an accepted sliding load, in shares of mu F_N
+        self._records: list[tuple[float, float, float, float]] = []  # t, slip, friction force, sticking
+
+    # -- the mode's hooks ---------------------------------------------------------------
+    @property
+    def acting(self) -> bool:
+        """Whether the friction acts in the coming step."""
+        return self._state != OFF
+
+    def reset(self, mbs: exu.MainSystem) -> bool:
+        """A new run: off; returns whether the last run's friction acted in this step."""
+        acted = self._state != OFF
+        self._reset()
+        self._apply(mbs, OFF)
+        return acted
+
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray) -> None:
+        """The sticking condition's rows at the current state, along ``t = n x a`` for the
+        mode's ``normal``, and the slip eq. (8) at the current velocities."""
+        rotation = np.asarray(mbs.GetMarkerOutput(self._markers[0], exu.OutputVariableType.RotationMatrix), dtype=float)
+        axis = rotation.reshape(3, 3) @ self._axis_local
+        self._tangent, self._axis = np.cross(normal, axis), axis
+        r_b, r_j = self._radii
+        # the rows of the contact points R n off the centres: t . (w x R n) = -R w . a
+        self._slip = self.condition.measure(mbs, self._tangent, arms=(r_b * normal, r_j * normal))
+
+    def hold(self, mbs: exu.MainSystem) -> None:
+        """The friction of the coming step, in the rows of the last :meth:`measure`: at a new
+        step, sticking where it stuck before or the slip is within the law's smoothing speed,
+        else sliding against the slip at ``mu`` times the last normal multiplier; where the
+        mode computes the same step again, the setting it had, in the new rows."""
+        state = self._state
+        if self._fresh or state == OFF:
+            self._fresh, self._switches, self._secant = False, 0, None
+            state = STICK if state == STICK or abs(self._slip) <= self._law.smoothing_speed else SLIDE
+            if state == SLIDE:
+                self._sign = math.copysign(1.0, self._slip)
+                self._force = self._sliding_force(self._sliding_mu(self._slip), self._normal_sum)
+        self._apply(mbs, state)
+
+    def release(self, mbs: exu.MainSystem) -> None:
+        """No friction in the coming step (the normal condition lets go)."""
+        self._apply(mbs, OFF)
+        self._fresh = True
+        self.forget()
+        self._normal_sum = 0.0  # the next contact's first guess: no friction
+
+    def forget(self) -> None:
+        """The last step's end forces are not in the accelerations the next step starts from
+        (the mode replaced them by the free computation's)."""
+        self._normal0 = self._friction0 = 0.0
+
+    def check(self, mbs: exu.MainSystem, normal_force: float, redo: bool) -> bool:
+        """After Exudyn's Newton iteration of a step the normal condition held at the end
+        multiplier ``normal_force``: whether Exudyn must compute it again (``redo``: it
+        still can) with the friction set anew, Coulomb's law not met by the step's impulses.
+
+        Under the trapezoidal rule a step's impulses are ``h / 2`` times its start and end
+        forces, and a held condition's end multipliers alternate about the load from step to
+        step (:mod:`~exuclear.engine.impulse`): Coulomb's law holds for the sums of start
+        and end forces (``mu`` times the normal one while sliding, within it while sticking),
+        not for each end force."""
+        self._normal_sum = self._normal0 + normal_force
+        bound = max(self._normal_sum, 0.0)
+        if self._state == STICK:
+            stick = self._friction0 + self.condition.multiplier(mbs)
+            if abs(stick) <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(redo):
+                return False
+            # the contact slides the way the friction impulse it needed points (F_T opposes v_T)
+            self._sign = math.copysign(1.0, stick)
+            self._force = self._sliding_force(self._sliding_mu(0.0), bound)
+            self._apply(mbs, SLIDE)
+            return True
+        if self._state != SLIDE:
+            return False
+        end_slip = self.condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
+        if end_slip * self._sign < 0.0 and self._switch(redo):  # the slip reversed within the step
+            self._apply(mbs, STICK)
+            return True
+        target = self._sliding_force(self._sliding_mu(end_slip), bound)
+        # the size of the step's friction forces (a normal force sum of 0 still has its start's)
+        scale = max(self._sliding_mu(end_slip) * bound, abs(self._friction0), abs(self._force))
+        off = abs(target - self._force)
+        if off <= LOAD_TOLERANCE * scale:
+            return False
+        if not redo:
+            self._off_by = max(self._off_by, off / scale)
+            return False
+        miss = target - self._force
+        load = target
+        if self._secant is not None and miss != self._secant[1]:
+            last, last_miss = self._secant
+            load = self._force - miss * (self._force - last) / (miss - last_miss)
+        self._secant = (self._force, miss)
+        self._force = load
+        self._apply(mbs, SLIDE)
+        return True
+
+    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool) -> None:
+        """An accepted step that ended at ``t_end``: its record (``held``: a resting step; an
+        impact's friction is an impulse, recorded as 0 as its normal force is), its end
+        forces as the next step's start, and the next hold starts a new step."""
+        self._fresh = True
+        if self._state == OFF:
+            self._records.append((t_end, 0.0, 0.0, 0.0))
+            return
+        slip = self.condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
+        force = self.condition.multiplier(mbs) if self._state == STICK else self._force
+        # the step's friction impulse over h: the mean of its start and end forces
+        self._records.append((t_end, slip, 0.5 * (self._friction0 + force) if held else 0.0,
+                              float(self._state == STICK)))
+        self._normal0, self._friction0 = self._normal_sum - self._normal0, force
+
+    def snapshot(self) -> dict[str, Any]:
+        """The setting the step was computed with, to be taken back where Exudyn computes it
+        again (:meth:`restore`)."""
+        return {"_state": self._state, "_force": self._force, "_sign": self._sign, "_tangent": self._tangent,
+                "_axis": self._axis, "rows": self.condition.rows, "_normal0": self._normal0,
+                "_friction0": self._friction0, "records": len(self._records)}
+
+    def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
+        """The setting of :meth:`snapshot` back, applied for Exudyn's computation of the step."""
+        saved = dict(saved)
+        del self._records[saved.pop("records"):]
+        self.condition.rows = saved.pop("rows")
+        state = saved.pop("_state")
+        self.__dict__.update(saved)
+        self._fresh, self._switches, self._secant = False, 0, None
+        if mbs is not None:
+            self._apply(mbs, state)
+
+    def outputs(self) -> dict[str, np.ndarray]:
+        """At the end of each step: ``slip_velocity`` (eq. (8), the held or hit contact's; 0
+        in flight), ``friction_force`` (``F_T`` of eqs. (24)-(26): the sliding load or the
+        sticking multiplier, as a two-step mean while held; 0 in flight and at impacts) and
+        ``sticking`` (1 where the contact stuck).  The friction force is the step's friction
+        impulse over the step (the mean of its start and end forces), as the mode's normal
+        force is."""
+        data = np.array(self._records, dtype=float).reshape(-1, 4)
+        return {"slip_velocity": data[:, 1], "friction_force": data[:, 2], "sticking": data[:, 3]}
+
+    @property
+    def notes(self) -> list[str]:
+        """A sliding load Exudyn's discontinuous iterations left short of Coulomb's ``mu F_N``."""
+        if self._off_by <= 0.0:
+            return []
+        return [f"the sliding friction of some steps was up to {self._off_by:.3g} of mu F_N off Coulomb's (Exudyn's "
+                "discontinuous iterations ran out); raise timeIntegration.discontinuous.maxIterations"]
+
+    # -- inside -------------------------------------------------------------------------
+    def _sliding_mu(self, slip: float) -> float:
+        """``|mu(v_T)|`` of the law, at no less than its smoothing speed."""
+        return abs(self._law.coefficient(max(abs(slip), self._law.smoothing_speed)))
+
+    def _sliding_force(self, mu: float, normal_sum: float) -> float:
+        """The end load whose step impulse is ``mu`` times the normal one, against the slip:
+        ``F_1 = sign mu (N_0 + N_1) - F_0``."""
+        return self._sign * mu * max(normal_sum, 0.0) - self._friction0
+
+    def _switch(self, redo: bool) -> bool:
+        """Whether the contact may change between sliding and sticking in this computation."""
+        if not redo or self._switches >= MAX_SWITCHES:
+            return False
+        self._switches += 1
+        self._secant = None
+        return True
+
+    def _apply(self, mbs: exu.MainSystem, state: str) -> None:
+        """The items as ``state`` says: the sticking condition on or off, the sliding loads
+        (``F_T`` along the tangent) or none."""
+        if state == STICK and not (self._state == STICK and self.condition.plan.active
+                                   and self.condition.plan.rows is self.condition.rows):
+            self.condition.hold(mbs, 0.0)
+        elif state != STICK and self.condition.plan.active:
+            self.condition.release(mbs)
+        force = self._force if state == SLIDE else 0.0
+        r_b, r_j = self._radii
+        t, a = self._tangent, self._axis
+        for load, vector in zip(self._forces, (force * t, -force * t)):
+            mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
+        for load, vector in zip(self._torques, (-r_b * force * a, r_j * force * a)):
+            mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
+        self._state = state
+
+
+class Frictionless:
+    """The hooks of :class:`ContactFriction` for a frictionless joint: nothing to do."""
+
+    notes: list[str] = []
+    acting = False
+
+    def reset(self, mbs: exu.MainSystem) -> bool:
+        return False
+
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray) -> None:
+        pass
+
+    def hold(self, mbs: exu.MainSystem) -> None:
+        pass
+
+    def release(self, mbs: exu.MainSystem) -> None:
+        pass
+
+    def forget(self) -> None:
+        pass
+
+    def check(self, mbs: exu.MainSystem, normal_force: float, redo: bool) -> bool:
+        return False
+
+    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool) -> None:
+        pass
+
+    def snapshot(self) -> dict[str, Any]:
+        return {}
+
+    def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
+        pass
+
+    def outputs(self) -> dict[str, np.ndarray]:
+        return {}
+
+
+def contact_friction(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
+                     pair: ContactPair) -> ContactFriction | Frictionless:
+    """The friction of an impulse-mode joint between ``markers`` [bearing, journal] whose
+    contact is ``pair``: its items where the joint's law has friction (a planar revolute
+    joint's pair, :class:`~exuclear.engine.impulse_pairs.PlanarPair`, whose bearing axis it
+    reads; :func:`~exuclear.engine.modes.impulse_refusal` refuses the other types' friction),
+    else hooks that do nothing."""
+    if not joint.friction.active:
+        return Frictionless()
+    if not isinstance(pair, PlanarPair):
+        raise ValueError(f"joint {name or '(unnamed)'}: the impulse mode's friction covers the planar revolute "
+                         f"joint, not a {type(pair).__name__}")
+    return ContactFriction(mbs, joint, name, markers, pair.axis)
