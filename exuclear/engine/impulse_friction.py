@@ -50,10 +50,12 @@ from .condition import VelocityCondition
 from .impulse_pairs import ContactPair, PlanarPair
 
 #: A sliding load more than this share of ``mu F_N`` off the step's own ``mu F_N`` has Exudyn
-#: compute the step again with the load set anew.  The load of a steady slide comes from the
-#: step before and is kept where it is this close; a journal whose normal force does not
-#: depend on the friction (a single body on its wall) agrees after one computation.
-LOAD_TOLERANCE = 1e-4
+#: compute the step again with the load set anew.  A steady slide's first load comes from the
+#: steps before and is kept where it is this close: friction coefficients are known to a few
+#: percent at best, and a tighter tolerance has Exudyn compute most sliding steps twice.
+#: A journal whose normal force does not depend on the friction (a single body on its wall)
+#: agrees after one computation.
+LOAD_TOLERANCE = 1e-3
 #: A sticking multiplier beyond ``mu_s F_N`` by more than this share of it slides: the
 #: multiplier of a contact on its friction cone's edge carries Newton's round-off.
 CONE_TOLERANCE = 1e-9
@@ -96,6 +98,8 @@ class ContactFriction:
         # onset of a rest, whose end accelerations the mode replaces by the free computation's)
         self._normal0 = self._friction0 = 0.0
         self._normal_sum = 0.0  # start plus end normal force of the last computed step
+        self._sums: tuple[float, ...] = ()  # those of the last three accepted held steps
+        self._slope = 0.0  # d(target load) / d(load) of the last step the secant measured
         self._switches = 0
         self._secant: tuple[float, float] | None = None  # the last (load, its miss) of this step
         self._off_by = 0.0  # the largest mismatch of an accepted sliding load, in shares of mu F_N
@@ -135,7 +139,12 @@ class ContactFriction:
             state = STICK if state == STICK or abs(self._slip) <= self._law.smoothing_speed else SLIDE
             if state == SLIDE:
                 self._sign = math.copysign(1.0, self._slip)
-                self._force = self._sliding_force(self._sliding_mu(self._slip), self._normal_sum)
+                # the normal force sum of the coming step, extrapolated from the held steps
+                # before: the sums zigzag from step to step as the end multipliers alternate,
+                # so from the step two back along the trend of the steps of the other parity
+                s = self._sums
+                guess = s[1] + s[2] - s[0] if len(s) == 3 else self._normal_sum
+                self._force = self._sliding_force(self._sliding_mu(self._slip), guess - self._normal0)
         self._apply(mbs, state)
 
     def release(self, mbs: exu.MainSystem) -> None:
@@ -143,7 +152,7 @@ class ContactFriction:
         self._apply(mbs, OFF)
         self._fresh = True
         self.forget()
-        self._normal_sum = 0.0  # the next contact's first guess: no friction
+        self._normal_sum, self._sums, self._slope = 0.0, (), 0.0  # the next contact's first guess: no friction
 
     def forget(self) -> None:
         """The last step's end forces are not in the accelerations the next step starts from
@@ -157,9 +166,12 @@ class ContactFriction:
 
         Under the trapezoidal rule a step's impulses are ``h / 2`` times its start and end
         forces, and a held condition's end multipliers alternate about the load from step to
-        step (:mod:`~exuclear.engine.impulse`): Coulomb's law holds for the sums of start
-        and end forces (``mu`` times the normal one while sliding, within it while sticking),
-        not for each end force."""
+        step (:mod:`~exuclear.engine.impulse`), through 0 and below: the friction cone holds
+        for the sums of start and end forces, not for each end force.  A sliding load is
+        ``mu`` times the end normal force, signed, so that over steps that slide alike the
+        step's friction impulse is ``mu`` times its normal one and the loads alternate with
+        the normal force (a load set to make up the step before's miss, ``mu (N_0 + N_1) -
+        F_0``, keeps that miss alternating, and the two alternations can grow into each other)."""
         self._normal_sum = self._normal0 + normal_force
         bound = max(self._normal_sum, 0.0)
         if self._state == STICK:
@@ -168,7 +180,7 @@ class ContactFriction:
                 return False
             # the contact slides the way the friction impulse it needed points (F_T opposes v_T)
             self._sign = math.copysign(1.0, stick)
-            self._force = self._sliding_force(self._sliding_mu(0.0), bound)
+            self._force = self._sliding_force(self._sliding_mu(0.0), normal_force)
             self._apply(mbs, SLIDE)
             return True
         if self._state != SLIDE:
@@ -177,20 +189,24 @@ class ContactFriction:
         if end_slip * self._sign < 0.0 and self._switch(redo):  # the slip reversed within the step
             self._apply(mbs, STICK)
             return True
-        target = self._sliding_force(self._sliding_mu(end_slip), bound)
-        # the size of the step's friction forces (a normal force sum of 0 still has its start's)
-        scale = max(self._sliding_mu(end_slip) * bound, abs(self._friction0), abs(self._force))
+        target = self._sliding_force(self._sliding_mu(end_slip), normal_force)
+        # the size of the step's friction forces (its end normal force may alternate through 0)
+        scale = max(self._sliding_mu(end_slip) * max(abs(normal_force), 0.5 * bound), abs(self._force))
         off = abs(target - self._force)
         if off <= LOAD_TOLERANCE * scale:
             return False
         if not redo:
             self._off_by = max(self._off_by, off / scale)
             return False
+        # the load whose miss is 0: on the secant through the last two computations, or, at
+        # the step's first, along the slope the step before measured (in a closed loop the
+        # load moves the normal multiplier, and with it its own target)
         miss = target - self._force
-        load = target
-        if self._secant is not None and miss != self._secant[1]:
-            last, last_miss = self._secant
-            load = self._force - miss * (self._force - last) / (miss - last_miss)
+        slope = self._slope
+        if self._secant is not None and self._force != self._secant[0]:
+            slope = 1.0 - (miss - self._secant[1]) / (self._force - self._secant[0])
+            self._slope = slope
+        load = self._force + miss / (1.0 - slope) if slope < 1.0 else target
         self._secant = (self._force, miss)
         self._force = load
         self._apply(mbs, SLIDE)
@@ -210,6 +226,7 @@ class ContactFriction:
         self._records.append((t_end, slip, 0.5 * (self._friction0 + force) if held else 0.0,
                               float(self._state == STICK)))
         self._normal0, self._friction0 = self._normal_sum - self._normal0, force
+        self._sums = (self._sums + (self._normal_sum,))[-3:] if held else ()
 
     def snapshot(self) -> dict[str, Any]:
         """The setting the step was computed with, to be taken back where Exudyn computes it
@@ -252,10 +269,12 @@ class ContactFriction:
         """``|mu(v_T)|`` of the law, at no less than its smoothing speed."""
         return abs(self._law.coefficient(max(abs(slip), self._law.smoothing_speed)))
 
-    def _sliding_force(self, mu: float, normal_sum: float) -> float:
-        """The end load whose step impulse is ``mu`` times the normal one, against the slip:
-        ``F_1 = sign mu (N_0 + N_1) - F_0``."""
-        return self._sign * mu * max(normal_sum, 0.0) - self._friction0
+    def _sliding_force(self, mu: float, normal_end: float) -> float:
+        """The end load against the slip, ``sign mu N_1``; where the step's normal forces
+        sum to a pull (the mode lets go after it), the one whose step impulse is 0."""
+        if self._normal0 + normal_end <= 0.0:
+            return -self._friction0
+        return self._sign * mu * normal_end
 
     def _switch(self, redo: bool) -> bool:
         """Whether the contact may change between sliding and sticking in this computation."""
