@@ -21,6 +21,7 @@ from exudyn.itemInterface import (
 import exuclear
 from exuclear.engine.impulse import ImpulseJointHandle
 from exuclear.engine.impulse_friction import LOAD_TOLERANCE
+from validation.cost.modes_friction import bar_energy, swinging_bar
 
 G = 9.81
 MU = 0.3
@@ -95,7 +96,7 @@ def test_a_spinning_journal_slides_at_coulombs_deceleration_then_rolls():
     mbs, node, joint, _ = journal(spin=-slip0 / RADIUS)
     step = 1e-5
     t_stick = slip0 / (3.0 * MU * G)  # 1.13 ms
-    solve(mbs, step, 2.0 * t_stick)
+    solve(mbs, step, 1.5 * t_stick)
     assert len(joint.impacts()) == 1  # the onset of the rest
     out = joint.outputs()
     t, slip = out["time"], out["slip_velocity"]
@@ -114,7 +115,9 @@ def test_a_spinning_journal_slides_at_coulombs_deceleration_then_rolls():
     assert np.all(~sliding[t > first])
     assert np.abs(slip[t > first]).max() < 1e-12  # Newton's tolerance on the held slip
     vx, _, w = velocities(mbs, node)
-    assert vx == pytest.approx(slip0 / 3.0, rel=0.01)  # as the slide's rate
+    # bound 1 %: as the slide's rate; the rolling journal then climbs the wall's curvature
+    # (2e-3 rad by the run's end), which slows it by about 0.3 %
+    assert vx == pytest.approx(slip0 / 3.0, rel=0.01)
     # rolling, v_T = 0 along the wall's tangent there, turned from the bottom's by the
     # journal's travel (below 2e-3 rad)
     assert w == pytest.approx(-vx / RADIUS, rel=2e-3)
@@ -260,34 +263,22 @@ def test_a_swinging_bar_loses_the_friction_work_at_its_pin():
     # off), within 1 %; a step's energy increase within 1e-8 J, the trapezoidal rule's own
     # energy error on the bar (the frictionless run's steps: up to 5e-7 J while impacts last,
     # the held sliding contact's 3e-9 J)
-    length, mass = 1.0, 1.0
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.5 * length, 0, 0]))
-    bar = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=mass * length**2 / 12))
-    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)), loadVector=[0, -mass * G, 0]))
-    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, bar], position=[0, 0, 0], bearing_radius=10e-3,
-                                          journal_radius=10e-3 - 50e-6, length=10e-3, cr=0.9,
-                                          friction=f"coulomb:{MU}", contact_mode="impulse")
-    mbs.Assemble()
+    mbs, node, joint = swinging_bar(f"coulomb:{MU}", "impulse")
     energy = []
 
     def record(mbs, t):
-        v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
-        w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
-        height = mbs.GetNodeOutput(node, exu.OutputVariableType.Position)[1]
-        energy.append((t, mass * G * height + 0.5 * mass * (v @ v) + 0.5 * mass * length**2 / 12 * w * w))
+        energy.append((t, bar_energy(mbs, node)))
         return True
 
     mbs.SetPostStepUserFunction(record)
     step = 1e-4
     solve(mbs, step, 1.0)  # the bar swings back: its journal sticks at the turn
     out = joint.outputs()
-    energy = np.array(energy)
     rest = out["time"] >= 0.1  # the impacts of the journal's fall are over (onsets below 0.1 s)
     assert max(i.onset_time for i in joint.impacts()) < 0.1
     assert out["sticking"][rest].any() and (out["sticking"][rest] == 0.0).any()
     work = np.sum((out["friction_force"] * out["slip_velocity"] * step)[rest][1:])
+    energy = np.array(energy)
     energy = energy[energy[:, 0] >= 0.1, 1]
     lost = energy[0] - energy[-1]
     assert lost > 0.05  # J: the friction takes a share of the swing's m g L / 2 = 4.9 J
