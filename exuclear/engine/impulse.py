@@ -227,7 +227,8 @@ class ImpulseJointHandle:
             self._stop(t, "Exudyn took a step the mode did not see")
         force = self._condition.multiplier(mbs)
         e, gap = self._gap(mbs)
-        redo = int(mbs.sys["dynamicSolver"].it.discontinuousIteration) + 1 < self._iterations
+        left = self._iterations - int(mbs.sys["dynamicSolver"].it.discontinuousIteration) - 1  # computations left
+        redo = left > 0
         if self._state == FREE and gap > 0.0 and redo and self._contact(mbs, t, h, e, gap):
             return REDO_ERROR
         if self._state == REST and self._held is not None:
@@ -238,7 +239,7 @@ class ImpulseJointHandle:
                 return REDO_ERROR
             if redo and self._refine(mbs, e, h):
                 return REDO_ERROR
-        if self._state != FREE and self._friction.check(mbs, force, redo):  # Coulomb's law not met yet
+        if self._state != FREE and self._friction.check(mbs, force, left):  # Coulomb's law not met yet
             return REDO_ERROR
         clearance = self._joint.geometry.clearance
         if gap > LOST_CONTACT * clearance:

@@ -103,6 +103,7 @@ class ContactFriction:
         self._switches = 0
         self._secant: tuple[float, float] | None = None  # the last (load, its miss) of this step
         self._off_by = 0.0  # the largest mismatch of an accepted sliding load, in shares of mu F_N
+        self._reversed = 0  # accepted sliding steps whose slip reversed, with no computation left to stick
         self._records: list[tuple[float, float, float, float]] = []  # t, slip, friction force, sticking
 
     # -- the mode's hooks ---------------------------------------------------------------
@@ -159,10 +160,12 @@ class ContactFriction:
         (the mode replaced them by the free computation's)."""
         self._normal0 = self._friction0 = 0.0
 
-    def check(self, mbs: exu.MainSystem, normal_force: float, redo: bool) -> bool:
+    def check(self, mbs: exu.MainSystem, normal_force: float, left: int) -> bool:
         """After Exudyn's Newton iteration of a step the normal condition held at the end
-        multiplier ``normal_force``: whether Exudyn must compute it again (``redo``: it
-        still can) with the friction set anew, Coulomb's law not met by the step's impulses.
+        multiplier ``normal_force``: whether Exudyn must compute it again (it can ``left``
+        more times) with the friction set anew, Coulomb's law not met by the step's impulses.
+        A change between sliding and sticking may take the last computation, a sliding
+        load's refinement not: a slip that reverses under a refined load must still stick.
 
         Under the trapezoidal rule a step's impulses are ``h / 2`` times its start and end
         forces, and a held condition's end multipliers alternate about the load from step to
@@ -176,7 +179,7 @@ class ContactFriction:
         bound = max(self._normal_sum, 0.0)
         if self._state == STICK:
             stick = self._friction0 + self.condition.multiplier(mbs)
-            if abs(stick) <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(redo):
+            if abs(stick) <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(left):
                 return False
             # the contact slides the way the friction impulse it needed points (F_T opposes v_T)
             self._sign = math.copysign(1.0, stick)
@@ -186,16 +189,19 @@ class ContactFriction:
         if self._state != SLIDE:
             return False
         end_slip = self.condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
-        if end_slip * self._sign < 0.0 and self._switch(redo):  # the slip reversed within the step
-            self._apply(mbs, STICK)
-            return True
+        if end_slip * self._sign < 0.0:  # the slip reversed within the step
+            if self._switch(left):
+                self._apply(mbs, STICK)
+                return True
+            self._reversed += 1  # accepted: the load pushed the slip across 0 within this step
+            return False
         target = self._sliding_force(self._sliding_mu(end_slip), normal_force)
         # the size of the step's friction forces (its end normal force may alternate through 0)
         scale = max(self._sliding_mu(end_slip) * max(abs(normal_force), 0.5 * bound), abs(self._force))
         off = abs(target - self._force)
         if off <= LOAD_TOLERANCE * scale:
             return False
-        if not redo:
+        if left < 2:
             self._off_by = max(self._off_by, off / scale)
             return False
         # the load whose miss is 0: on the secant through the last two computations, or, at
@@ -207,6 +213,8 @@ class ContactFriction:
             slope = 1.0 - (miss - self._secant[1]) / (self._force - self._secant[0])
             self._slope = slope
         load = self._force + miss / (1.0 - slope) if slope < 1.0 else target
+        if not 0.0 <= load / (self._sign * self._stick_mu * normal_force or math.inf) <= 1.0:
+            load = target  # beyond what Coulomb's law can ask (a slip-dependent mu bends the secant)
         self._secant = (self._force, miss)
         self._force = load
         self._apply(mbs, SLIDE)
@@ -258,11 +266,18 @@ class ContactFriction:
 
     @property
     def notes(self) -> list[str]:
-        """A sliding load Exudyn's discontinuous iterations left short of Coulomb's ``mu F_N``."""
-        if self._off_by <= 0.0:
-            return []
-        return [f"the sliding friction of some steps was up to {self._off_by:.3g} of mu F_N off Coulomb's (Exudyn's "
-                "discontinuous iterations ran out); raise timeIntegration.discontinuous.maxIterations"]
+        """Where Exudyn's discontinuous iterations ran out before Coulomb's law was met: a
+        sliding load off ``mu F_N``, or a slip that reversed under its load."""
+        notes = []
+        if self._off_by > 0.0:
+            notes.append(f"the sliding friction of some steps was up to {self._off_by:.3g} of mu F_N off Coulomb's")
+        if self._reversed:
+            notes.append(f"the slip of {self._reversed} steps reversed under the sliding friction, where the contact "
+                         "would have stuck")
+        if notes:
+            notes[-1] += ("; Exudyn's discontinuous iterations ran out first: raise "
+                          "timeIntegration.discontinuous.maxIterations")
+        return notes
 
     # -- inside -------------------------------------------------------------------------
     def _sliding_mu(self, slip: float) -> float:
@@ -276,9 +291,9 @@ class ContactFriction:
             return -self._friction0
         return self._sign * mu * normal_end
 
-    def _switch(self, redo: bool) -> bool:
+    def _switch(self, left: int) -> bool:
         """Whether the contact may change between sliding and sticking in this computation."""
-        if not redo or self._switches >= MAX_SWITCHES:
+        if left < 1 or self._switches >= MAX_SWITCHES:
             return False
         self._switches += 1
         self._secant = None
@@ -323,7 +338,7 @@ class Frictionless:
     def forget(self) -> None:
         pass
 
-    def check(self, mbs: exu.MainSystem, normal_force: float, redo: bool) -> bool:
+    def check(self, mbs: exu.MainSystem, normal_force: float, left: int) -> bool:
         return False
 
     def accept(self, mbs: exu.MainSystem, t_end: float, held: bool) -> None:
