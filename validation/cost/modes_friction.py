@@ -78,7 +78,7 @@ def run(friction: str, mode: str, step: float, end_time: float) -> dict[str, flo
 def rows(step: float, factor: float, end_time: float) -> list[list[str]]:
     """Per friction law: the reference, the compliant and the impulse run (module docstring)."""
     out = []
-    for friction in ("coulomb:0.3", "paper"):
+    for friction in ("none", "coulomb:0.3", "paper"):
         reference = run(friction, "compliant", step / factor, end_time)
         for mode, result in (("compliant", run(friction, "compliant", step, end_time)),
                              ("impulse", run(friction, "impulse", step, end_time))):
