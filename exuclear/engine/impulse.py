@@ -30,6 +30,9 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   normal turns by more than :data:`MAX_TURN` is computed again shorter where Exudyn's steps
   are adaptive.  The condition lets go where its reaction pulls or the journal left the
   wall.
+- **Friction** of a planar revolute joint that has it: Coulomb's, sliding loads and a
+  sticking condition in the steps the condition holds (:mod:`~exuclear.engine.impulse_friction`,
+  called where the condition is measured, held, released, checked and accepted).
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows

@@ -8,18 +8,20 @@ the contact's friction acts in the same step, at the slip of docs/physics.md eq.
 - **Sliding**: a force ``F_T = mu(v_T) F_N sign(v_T)`` at the contact points, eqs. (24)-(26):
   Exudyn loads at the joint's two markers (``-F_T t`` and the moment ``R_J F_T a`` on the
   journal, ``F_T t`` and ``-R_B F_T a`` on the bearing), fixed over the step, along the
-  tangent of the rows the step's normal condition has.  ``F_N`` is that condition's
-  multiplier in the same step, which the loads change (closed loops): after Exudyn's Newton
-  iteration the mode compares the load with ``mu`` times the multiplier it produced and, more
-  than :data:`LOAD_TOLERANCE` apart, has Exudyn compute the step again with the load set anew
-  (inside Exudyn's discontinuous iteration: at first to the multiplier's ``mu`` times, then by
-  the secant through the last two computations, since in a closed loop the load moves the
-  multiplier by as much as it moves itself, where the plain iteration would not converge).
+  tangent of the rows the step's normal condition has.  ``F_N`` is that condition's end
+  multiplier in the same step (:meth:`ContactFriction.check` says why the end's), which the
+  loads change in a closed loop: after Exudyn's Newton iteration the mode compares the load
+  with ``mu`` times the multiplier it produced and, more than :data:`LOAD_TOLERANCE` apart,
+  has Exudyn compute the step again with the load set anew (inside Exudyn's discontinuous
+  iteration: along the slope of load against its target that the step before measured, then
+  along the secant through the step's last two computations; the plain iteration, load =
+  target, converges slowly where the load moves the multiplier about as much as itself).
 - **Sticking**: where the step's end slip has the other sign than the slip the load opposed
   (the slip would reverse within the step), or the contact stuck in the step before, a second
-  velocity-level condition holds the end slip at 0 (its rows carry the spin terms of eq. (8));
-  its multiplier is the friction force, kept where it is within ``mu_s F_N``, else the
-  contact slides in the multiplier's direction (Coulomb's friction cone).
+  velocity-level condition holds the end slip at 0 (its rows those of the contact points,
+  ``R n`` off the centres, which give eq. (8)'s spin terms); its multiplier is the friction
+  force, kept while the step's friction impulse is within ``mu_s`` times its normal one, else
+  the contact slides the way the multiplier points (Coulomb's friction cone).
 - **Impacts**: the same two cases at the impact step, whose impulses are the step's end
   forces times ``h / 2`` (the trapezoidal rule from the free flight's zero): the tangential
   impulse is ``mu`` times the normal one while the contact slides through the impact, or what
@@ -132,8 +134,9 @@ class ContactFriction:
     def hold(self, mbs: exu.MainSystem) -> None:
         """The friction of the coming step, in the rows of the last :meth:`measure`: at a new
         step, sticking where it stuck before or the slip is within the law's smoothing speed,
-        else sliding against the slip at ``mu`` times the last normal multiplier; where the
-        mode computes the same step again, the setting it had, in the new rows."""
+        else sliding against the slip at ``mu`` times the end normal force the held steps
+        before foretell (0 at a contact's first step); where the mode computes the same step
+        again, the setting it had, in the new rows."""
         state = self._state
         if self._fresh or state == OFF:
             self._fresh, self._switches, self._secant = False, 0, None
