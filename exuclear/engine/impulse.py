@@ -184,7 +184,7 @@ class ImpulseJointHandle:
         self._state = FREE
         self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
         self._records: list[tuple[float, ...]] = []  # t, ecc_x, ecc_y, ecc_z, gap, force
-        self._step = self._force = 0.0
+        self._step = self._force = self._force_before = 0.0
         self._resting = 0
         self._problem = ""
         self._left_pen = 0.0
@@ -255,10 +255,18 @@ class ImpulseJointHandle:
             tk, vk, ek, _ = self._impacts[-1]
             self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
         # the resting multiplier alternates from step to step about the load under the
-        # trapezoidal rule (an undamped mode of the held velocity's acceleration): its
-        # two-step mean is the reaction
-        reaction = 0.5 * (force + self._force) if self._state == REST and self._resting > 1 else force
-        self._force = force
+        # trapezoidal rule, undamped, and the amplitude of the alternation drifts as the rows
+        # turn (by orders of magnitude over a long held contact): a two-step mean keeps half
+        # the change of one step, which lets the contact go where the reaction is still
+        # positive; the three-step mean with weights
+        # 1/4, 1/2, 1/4 also cancels an amplitude that changes linearly from step to step
+        if self._state == REST and self._resting > 2:
+            reaction = 0.25 * (force + 2.0 * self._force + self._force_before)
+        elif self._state == REST and self._resting > 1:
+            reaction = 0.5 * (force + self._force)
+        else:
+            reaction = force
+        self._force, self._force_before = force, self._force
         self._records.append((t_end, *(float(x) for x in e), gap, reaction if self._state == REST else 0.0))
         self._friction.accept(mbs, t_end, self._state == REST)
         if self._state == IMPACT:
@@ -440,8 +448,9 @@ class ImpulseJointHandle:
     def _snapshot(self) -> dict[str, Any]:
         """What an accepted step changes, to be taken back where Exudyn computes it again."""
         return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
-                "_resting": self._resting, "_left_pen": self._left_pen, "_start": self._start,
-                "records": len(self._records), "impacts": list(self._impacts), "friction": self._friction.snapshot()}
+                "_force_before": self._force_before, "_resting": self._resting, "_left_pen": self._left_pen,
+                "_start": self._start, "records": len(self._records), "impacts": list(self._impacts),
+                "friction": self._friction.snapshot()}
 
     def _restore(self) -> Plan:
         """The state before the last accepted step back; returns the condition's setting then."""
@@ -502,8 +511,9 @@ class ImpulseJointHandle:
         (the eccentricity, global: the journal's or ball's centre relative to the bearing's
         or socket's, the pin's relative to the slot's nearest centre-segment point),
         ``penetration`` (``|e| - c``, negative in free flight) and ``normal_force`` (the
-        resting condition's multiplier over the step, as a two-step mean; 0 in free flight
-        and at impacts: an impact's impulse is not a force)."""
+        resting condition's multiplier, as a mean over its last three steps weighted 1/4,
+        1/2, 1/4, two on the first held steps; 0 in free flight and at impacts: an impact's
+        impulse is not a force)."""
         self._check_ran()
         keys = ("time", "ecc_x", "ecc_y", "ecc_z", "penetration", "normal_force")
         data = np.array(self._records, dtype=float).reshape(-1, len(keys))
