@@ -255,11 +255,12 @@ class ImpulseJointHandle:
             tk, vk, ek, _ = self._impacts[-1]
             self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
         # the resting multiplier alternates from step to step about the load under the
-        # trapezoidal rule, undamped, and the amplitude of the alternation drifts as the rows
-        # turn (by orders of magnitude over a long held contact): a two-step mean keeps half
-        # the change of one step, which lets the contact go where the reaction is still
-        # positive; the three-step mean with weights
-        # 1/4, 1/2, 1/4 also cancels an amplitude that changes linearly from step to step
+        # trapezoidal rule, undamped, and the amplitude of the alternation drifts (with
+        # Newton's residual left in each step and the mechanism's configuration, by orders of
+        # magnitude over a long held contact): a two-step mean keeps half the change of one
+        # step, which lets the contact go where the reaction is still positive; the
+        # three-step mean with weights 1/4, 1/2, 1/4 also cancels an amplitude that changes
+        # linearly from step to step
         if self._state == REST and self._resting > 2:
             reaction = 0.25 * (force + 2.0 * self._force + self._force_before)
         elif self._state == REST and self._resting > 1:
