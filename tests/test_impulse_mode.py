@@ -287,24 +287,6 @@ def test_two_joints_in_one_system_each_keep_the_laws_restitution(monkeypatch):
         assert_the_laws_restitution(impacts, joint.law)
 
 
-def test_the_translational_joint_refuses_the_mode(monkeypatch):
-    # the mode holds one contact, a centre against its clearance: a slider touches its guide
-    # at several corners at once, refused by name (and, from the environment, kept compliant
-    # with a warning)
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=0.1, inertia=1e-4))
-    guide = dict(itemNumbers=[ground, body], slider_length=0.04, slider_height=0.02, clearance=1e-4, stiffness=1e9,
-                 cr=0.9)
-    with pytest.raises(ValueError, match="joint G: .*several corners at once.*use contact_mode='compliant'"):
-        exuclear.CreatePrismaticClearanceJoint(mbs, name="G", contact_mode="impulse", **guide)
-    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
-    with pytest.warns(UserWarning, match="joint P: .*several corners at once.*compliant contact"):
-        handle = exuclear.CreatePrismaticClearanceJoint(mbs, name="P", **guide)
-    assert isinstance(handle, exuclear.ClearanceJointHandle)
-
-
 def swinging_pendulum(step, end_time):
     """A 1 m steel bar of 1 kg on a frictionless pin with 50 um clearance, released horizontal
     in the impulse mode: the journal drops onto the wall, comes to rest, and while the bar

@@ -156,7 +156,7 @@ class ImpulseJointHandle:
         self._pair = pair
         self.name, self._joint = name, joint
         self.markerNumbers = list(markers)
-        self._condition = VelocityCondition(mbs, self.markerNumbers, name)
+        self._condition = self._new_condition(mbs, name)
         self.objectNumber = self._condition.objectNumber
         # the contact's Coulomb friction (exuclear.engine.impulse_friction), hooked in where the
         # normal condition is measured, held, released, checked and accepted
@@ -178,6 +178,10 @@ class ImpulseJointHandle:
     @property
     def joint(self) -> ClearanceJoint:
         return self._joint
+
+    def _new_condition(self, mbs: exu.MainSystem, name: str) -> VelocityCondition:
+        """The contact's condition (a joint with several contacts gives its own, which knows the others)."""
+        return VelocityCondition(mbs, self.markerNumbers, name)
 
     # -- the run ------------------------------------------------------------------------
     def _reset(self) -> None:
@@ -244,7 +248,7 @@ class ImpulseJointHandle:
                 return REDO_ERROR
         if self._state != FREE and self._friction.check(mbs, force, left):  # Coulomb's law not met yet
             return REDO_ERROR
-        clearance = self._joint.geometry.clearance
+        clearance = self._pair.clearance
         if gap > LOST_CONTACT * clearance:
             if redo and self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
                 return REDO_ERROR
@@ -314,8 +318,8 @@ class ImpulseJointHandle:
         where it is, the condition is set from the state at the step's start, for Exudyn to
         compute the step again with it."""
         self._free_accelerations = np.array(mbs.systemData.GetODE2Coordinates_tt())
-        if end_gap > CROSSING * self._joint.geometry.clearance:
-            if self._shorten(mbs, h, self._joint.geometry.clearance / end_gap):
+        if end_gap > CROSSING * self._pair.clearance:
+            if self._shorten(mbs, h, self._pair.clearance / end_gap):
                 return True
             self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
                           "steps are longer than the journal's flight across the clearance; take shorter steps")
@@ -330,7 +334,7 @@ class ImpulseJointHandle:
             # reached the wall only under its load, not approaching at the start, rests)
             restitution = impact_restitution(self._joint.law, rate) if rate > 0.0 else 0.0
             rebound = restitution * rate
-            if rate <= 0.0 or gap > OPEN_GAP * self._joint.geometry.clearance or \
+            if rate <= 0.0 or gap > OPEN_GAP * self._pair.clearance or \
                     (accel > 0.0 and 2.0 * rebound / accel <= REST_STEPS * h):
                 # (a journal in the wall at the step's start is held, which takes its penetration back)
                 self._state, self._resting, restitution = REST, 0, 0.0
@@ -406,19 +410,19 @@ class ImpulseJointHandle:
         """The eccentricity ``e`` (global, the joint type's: :mod:`~exuclear.engine.impulse_pairs`)
         and the gap ``|e| - c`` at the current state."""
         e = self._pair.eccentricity(mbs, self.markerNumbers).e
-        return e, float(np.linalg.norm(e)) - self._joint.geometry.clearance
+        return e, float(np.linalg.norm(e)) - self._pair.reach
 
     def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray | None = None) -> tuple[np.ndarray, float, float]:
         """The eccentricity, the normal rate and the gap at the current state; sets the rows
         in ``normal`` (default: the present one, ``e / |e|``), at the outer body's point
         where ``e`` starts."""
-        e, arm = self._pair.eccentricity(mbs, self.markerNumbers)
+        e, arm, inner = self._pair.eccentricity(mbs, self.markerNumbers)
         norm = float(np.linalg.norm(e))
-        gap = norm - self._joint.geometry.clearance
+        gap = norm - self._pair.reach
         n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
         if normal is not None:  # the friction's tangential rows, at the same state
             self._friction.measure(mbs, n)
-        return e, self._condition.measure(mbs, n, arms=(arm, None)), gap
+        return e, self._condition.measure(mbs, n, arms=(arm, inner)), gap
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
         """The normal acceleration towards the wall at the current state, ``n^T dv/dq_t q_tt``
@@ -464,7 +468,7 @@ class ImpulseJointHandle:
         return plan
 
     def _too_long(self) -> str:
-        return (f"more than {LOST_CONTACT:g} times the clearance ({self._joint.geometry.clearance:.3g} m): the steps "
+        return (f"more than {LOST_CONTACT:g} times the clearance ({self._pair.clearance:.3g} m): the steps "
                 "are too long for the motion across the clearance, or the condition could not follow the contact; "
                 "take shorter steps")
 

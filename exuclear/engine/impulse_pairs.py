@@ -37,14 +37,22 @@ from ..slot import segment_point
 class Eccentricity(NamedTuple):
     """The contact's eccentricity ``e`` [m] (global, 3 components) and the arm [m] (global)
     from marker 0's point to the outer body's point ``S`` that ``e`` starts from (None where
-    ``S`` is marker 0's point)."""
+    ``S`` is marker 0's point); ``inner_arm`` the arm from marker 1's point to the inner
+    body's point that touches (None: marker 1's point, the centre of a journal, ball or pin)."""
 
     e: np.ndarray
     arm: np.ndarray | None
+    inner_arm: np.ndarray | None = None
 
 
 class ContactPair(Protocol):
-    """What the mode reads of a joint type (module docstring)."""
+    """What the mode reads of a joint type (module docstring): ``reach`` [m], the ``|e|`` at
+    which the bodies touch, and ``clearance`` [m], the play, the length the mode's
+    tolerances on the gap are shares of (both the joint's clearance ``c`` for a centre in
+    its clearance)."""
+
+    reach: float
+    clearance: float
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         """At the system's current state, for ``markers`` [outer, inner]."""
@@ -59,7 +67,18 @@ def _poses(mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, n
 
 
 @dataclass(frozen=True)
-class PlanarPair:
+class _CentrePair:
+    """A centre in its clearance ``clearance`` [m], touching at ``|e| = clearance``."""
+
+    clearance: float
+
+    @property
+    def reach(self) -> float:
+        return self.clearance
+
+
+@dataclass(frozen=True)
+class PlanarPair(_CentrePair):
     """A journal in its bearing: ``axis`` the bearing axis (unit) in marker 0's frame."""
 
     axis: np.ndarray
@@ -72,7 +91,7 @@ class PlanarPair:
 
 
 @dataclass(frozen=True)
-class BallPair:
+class BallPair(_CentrePair):
     """A ball in its socket: no projection."""
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
@@ -81,7 +100,7 @@ class BallPair:
 
 
 @dataclass(frozen=True)
-class SlotPair:
+class SlotPair(_CentrePair):
     """A pin in its slot: ``frame`` the joint frame in marker 0's frame (columns: x along
     the slot, z the plane's normal), ``half_length`` [m] half the distance of the slot's end
     centres."""
@@ -100,9 +119,9 @@ class SlotPair:
 #: The pair of each joint type the mode holds, from the type's geometry and the joint frame
 #: (columns: the joint's axes) in marker 0's frame.
 PAIRS: dict[str, Callable[[Any, np.ndarray], ContactPair]] = {
-    "revolute": lambda geometry, frame: PlanarPair(frame[:, 2].copy()),
-    "spherical": lambda geometry, frame: BallPair(),
-    "pin-slot": lambda geometry, frame: SlotPair(frame.copy(), 0.5 * geometry.slot_length),
+    "revolute": lambda geometry, frame: PlanarPair(geometry.clearance, frame[:, 2].copy()),
+    "spherical": lambda geometry, frame: BallPair(geometry.clearance),
+    "pin-slot": lambda geometry, frame: SlotPair(geometry.clearance, frame.copy(), 0.5 * geometry.slot_length),
 }
 
 

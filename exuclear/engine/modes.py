@@ -49,16 +49,21 @@ def resolve_contact_mode(contact_mode: Any) -> str:
 
 
 def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str) -> str:
-    """Why the impulse mode cannot take a joint ('' where it can): it holds one contact, and
-    covers the dry joints without wear whose contact is one centre against its clearance
+    """Why the impulse mode cannot take a joint ('' where it can): it covers the dry joints
+    without wear whose contacts are each one point against its clearance
     (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
-    pin-in-slot joint), with friction the planar revolute joint
+    pin-in-slot joint; the translational joints' corners, each a pair of its own,
+    :mod:`~exuclear.engine.impulse_guide`), with friction the planar revolute joint
     (:mod:`~exuclear.engine.impulse_friction`)."""
     if joint_type == "prismatic":
-        return ("a slider touches its guide at several corners at once, and the mode holds one contact; it covers "
-                "the planar revolute, spherical and pin-in-slot joints")
-    if joint_type not in PAIRS:
-        return f"it covers the planar revolute, spherical and pin-in-slot joints, not the {joint_type} joint"
+        if joint.friction.active:
+            return ("the translational joint's corners have no friction impulse in the mode (its friction is the "
+                    "revolute journal's): give a frictionless joint")
+        if joint.geometry.guide_length is not None:
+            return "a corner beyond a finite guide's end (`guide_length`) is not in the mode: leave `guide_length` out"
+    elif joint_type not in PAIRS:
+        return (f"it covers the planar revolute, spherical, pin-in-slot and translational joints, not the {joint_type} "
+                "joint")
     if slices:
         return ("the spatial revolute joint (`slices`) touches its bearing at several slices at once, and the mode "
                 "holds one contact; it covers the planar revolute joint")

@@ -27,7 +27,8 @@ from .drawing import slider_drawing_function
 from .handle import ClearanceJointHandle
 from .items import add_connectors, finish_items
 from .layout import pair_data_columns
-from .modes import choose_mode
+from .impulse_guide import ImpulseGuideHandle, add_impulse_guide
+from .modes import IMPULSE, choose_mode
 from .placement import PLACED_BY_POSITION
 
 #: Largest z component of a unit ``axis``: the planar joint slides in the global x-y plane.
@@ -52,7 +53,7 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     contact_mode: str | None = None,
     height_axis: Sequence[float] | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle:
+) -> ClearanceJointHandle | ImpulseGuideHandle:
     """Create a translational clearance joint, as ``mbs.CreatePrismaticJoint`` creates an
     ideal one: the guide on ``itemNumbers[0]``, the slider on ``itemNumbers[1]``, the
     slider's centre at ``position`` (a point of the guide's centre line) in the reference
@@ -98,12 +99,15 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         end).
     backend, maxPenetration, bearingRotates, record, contact_mode
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the guide
-        can turn; its spin moves the walls under the corners; ``contact_mode="impulse"``
-        is refused: it covers the revolute joint).
+        can turn; its spin moves the walls under the corners; ``contact_mode="impulse"``:
+        each corner against the two walls across y, and the box's across z too, a contact
+        of its own, :mod:`~exuclear.engine.impulse_guide`; the mode refuses a joint with
+        friction or ``guide_length``).
 
     Returns
     -------
-    ClearanceJointHandle
+    ClearanceJointHandle or ImpulseGuideHandle
+        (The latter in the impulse mode: :class:`~exuclear.engine.impulse_guide.ImpulseGuideHandle`.)
         ``objectNumber`` is the connector; ``outputs()`` has :data:`OUTPUT_COLUMNS` per
         corner-wall pair (shape (times, 8), :data:`exuclear.prismatic.PAIRS`' order) and
         ``force``, ``moment`` (the load on the guide); the spatial joint has 32 pairs
@@ -115,9 +119,11 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
     check_flags(name, bearingRotates, record=record, show=show)
     joint = _physics(joint, joint_parameters)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
-    choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
+    mode = choose_mode(contact_mode, joint, None, backend, name, joint_type=joint.geometry.joint_type)
     markers = plane_markers(mbs, itemNumbers, bodyNumbers, ("guide", "slider"), position, axis, useGlobalFrame,
                             "CreatePrismaticJoint", spatial=joint.geometry.spatial, height_axis=height_axis)
+    if mode == IMPULSE:  # the mode's own items, a pair per corner and axis (exuclear.engine.impulse_guide)
+        return add_impulse_guide(mbs, joint, name, markers)
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, maxPenetration)
     handle.placed_by = PLACED_BY_POSITION
