@@ -170,63 +170,72 @@ class _Corners:
         else:
             self._accepted.append(handle)
 
-    def dependent(self, condition: _CornerCondition, rows: tuple[np.ndarray, ...]) -> bool:
-        """Whether ``rows`` is a combination of the rows of the other conditions acting now."""
-        others = [c.global_row(c.plan.rows) for c in self.conditions if c is not condition and c.acting]
+    def dependent(self, mbs: exu.MainSystem, condition: _CornerCondition) -> bool:
+        """Whether ``condition``'s corner's wrench is a combination of the wrenches of the
+        other corners acting now (:meth:`_CornerCondition.wrench`, all at the present state)."""
+        others = [c.wrench(mbs) for c in self.conditions if c is not condition and c.acting]
         if not others:
             return False
-        row = condition.global_row(rows)
+        wrench = condition.wrench(mbs)
         basis = np.array(others)
-        share = np.linalg.lstsq(basis.T, row, rcond=None)[0]
-        return float(np.linalg.norm(basis.T @ share - row)) <= DEPENDENT_ROWS * float(np.linalg.norm(row))
+        share = np.linalg.lstsq(basis.T, wrench, rcond=None)[0]
+        return float(np.linalg.norm(basis.T @ share - wrench)) <= DEPENDENT_WRENCHES * float(np.linalg.norm(wrench))
 
     def settle(self, mbs: exu.MainSystem) -> None:
         """A held corner whose condition was off because others held it acts again where
         they no longer do."""
         for condition in self.conditions:
-            if condition.plan.active and not condition.acting and not self.dependent(condition, condition.plan.rows):
+            if condition.plan.active and not condition.acting and not self.dependent(mbs, condition):
                 condition.act(mbs, True)
 
     def reaction(self, mbs: exu.MainSystem, condition: _CornerCondition) -> float:
         """``condition``'s share [N] of the held corners' load in the Newton solve just done:
         the least-squares (minimum norm) multipliers ``lambda`` of all corners held in it
-        with ``G^T lambda = G_a^T lambda_a``, the generalized force the acting ones'
-        multipliers ``lambda_a`` apply (``G`` their rows); the acting multipliers themselves
-        where none is held by others.  Computed at the first corner's call after the solve,
-        before any corner sets its condition for the next computation."""
+        with ``W^T lambda = W_a^T lambda_a``, the wrench the acting ones' multipliers
+        ``lambda_a`` apply (``W`` the corners' unit wrenches); the acting multipliers
+        themselves where none is held by others.  Computed at the first corner's call after
+        the solve, before any corner sets its condition for the next computation."""
         solve = self.solve_of(mbs)
         if self._shares[0] != solve:
             held = [c for c in self.conditions if c.plan.active]
             forces = np.array([c.own_multiplier(mbs) for c in held])
             if held and not all(c.acting for c in held):
-                rows = np.array([c.global_row(c.plan.rows) for c in held])
-                load = rows.T @ forces  # the off conditions' multipliers are 0
-                forces = np.linalg.lstsq(rows.T, load, rcond=None)[0]
+                wrenches = np.array([c.wrench(mbs) for c in held])
+                load = wrenches.T @ forces  # the off conditions' multipliers are 0
+                forces = np.linalg.lstsq(wrenches.T, load, rcond=None)[0]
             self._shares = (solve, {id(c): float(f) for c, f in zip(held, forces)})
         return self._shares[1].get(id(condition), 0.0)
 
 
-#: A corner's rows whose distance from the span of the acting corners' rows is below this
-#: share of their length are a combination of them (the corners of a rigid face are affine in
-#: its motion, so a dependent row's distance is round-off; an independent one's is of the
-#: order of the rows' own terms, the corners' lever arms over the slider's size).
-DEPENDENT_ROWS = 1e-9
+#: A corner's wrench whose distance from the span of the acting corners' wrenches is below
+#: this share of its length is a combination of them: the wrenches at one state of a rigid
+#: slider's corners on a face are exactly dependent (round-off), and an independent one's
+#: distance is of the order of its own terms over the slider's size.  (The conditions' rows
+#: are not compared: each is measured where its step is predicted to end, and rows a step
+#: apart are independent to about the turn of a step, a near-singular matrix for Newton.)
+DEPENDENT_WRENCHES = 1e-9
 
 
 class _CornerCondition(VelocityCondition):
     """A corner's condition, on in Exudyn only where the acting corners do not hold it
     (:class:`_Corners`)."""
 
-    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, corners: _Corners) -> None:
+    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, corners: _Corners,
+                 pair: CornerPair) -> None:
         super().__init__(mbs, markers, name)
-        self.corners, self.acting = corners, False
+        self.corners, self.pair, self.acting = corners, pair, False
         corners.conditions.append(self)
 
-    @staticmethod
-    def global_row(rows: tuple[np.ndarray, ...]) -> np.ndarray:
-        """The condition's rows as one row over the two bodies' coordinates (the same two
-        bodies for every corner), ``[-S0, S1]``."""
-        return np.concatenate((-rows[0][0], rows[1][0]))
+    def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
+        """The unit wrench of the corner's contact in the guide's frame at the present state,
+        ``(n, d x n)``: the normal ``n`` into the wall it is nearest at the corner's offset
+        ``d``.  A condition's rows are this wrench mapped onto the two bodies' coordinates by
+        one map for all corners (the corner and its foot on the guide lie along ``n``), so
+        the corners' conditions are dependent where their wrenches are."""
+        d = self.pair.offset(mbs, self.markers)[0]
+        n = np.zeros(3)
+        n[self.pair.axis] = 1.0 if d[self.pair.axis] >= 0.0 else -1.0
+        return np.concatenate((n, np.cross(d, n)))
 
     def set(self, mbs: exu.MainSystem, plan: Plan) -> None:
         self.plan = plan
@@ -234,7 +243,7 @@ class _CornerCondition(VelocityCondition):
             mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", plan.rows[0])
             mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", plan.rows[1])
             mbs.SetObjectParameter(self.objectNumber, "offset", [plan.rate])
-        self.act(mbs, plan.active and not self.corners.dependent(self, plan.rows))
+        self.act(mbs, plan.active and not self.corners.dependent(mbs, self))
         if not plan.active:
             self.corners.settle(mbs)
 
@@ -260,7 +269,7 @@ class _CornerHandle(ImpulseJointHandle):
         super().__init__(*args)
 
     def _new_condition(self, mbs: exu.MainSystem, name: str) -> VelocityCondition:
-        return _CornerCondition(mbs, self.markerNumbers, name, self._corners)
+        return _CornerCondition(mbs, self.markerNumbers, name, self._corners, self._pair)
 
     def _reset(self) -> None:
         super()._reset()

@@ -2,8 +2,8 @@
 model, impacts, and distance from the converged compliant run.
 
 Source problems: the zoo's models (``validation/exudyn_examples``), each with one joint
-replaced by a clearance joint (revolute, spherical, pin-in-slot) and its own settings through a plain ``mbs.SolveDynamic``; and the paper's
-journal impact (``exuclear.models.journal_bearing``, docs/physics.md section 6.1).
+replaced by a clearance joint (revolute, spherical, pin-in-slot, translational) and its own
+settings through a plain ``mbs.SolveDynamic``; and the paper's journal impact (``exuclear.models.journal_bearing``, docs/physics.md section 6.1).
 
 Per zoo model: the wall time of each mode over the ideal model's (median of ``--repeats``;
 take timings on a quiet machine), the accepted steps and Newton iterations, the impacts, and the probe's distance
@@ -26,7 +26,10 @@ The issue's target rows:
 - the spherical and the pin-in-slot joint's rows (``_joint_type_scenes``): a ball thrown
   in 3D at steps of 10 and 1000 contact durations, dropped, elastic and resting; a pin onto
   a slot's flat sides and end caps, and held on the flat side under tilted gravity into the
-  end cap.
+  end cap;
+- the translational joints' rows (``_translational_scenes``): a slider thrown flat and
+  turned, a box thrown flat onto two walls, slider and box resting flat, sliding held, and
+  an elastic spinning slider.
 
 ::
 
@@ -53,12 +56,14 @@ import numpy as np
 
 import exuclear
 from exuclear.engine.impulse import ImpulseJointHandle
+from exuclear.engine.impulse_guide import ImpulseGuideHandle
 from exuclear.timescales import closed_form_impact, impact_restitution
 from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from validation._tables import markdown_table
 from validation.cost._joint_type_scenes import joint_type_rows
+from validation.cost._translational_scenes import translational_rows
 from validation.exudyn_examples._common import REGISTRY, load_models, model_names
 
 #: Standard gravity of the target rows' scenes [m/s^2].
@@ -130,13 +135,17 @@ def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptiv
     row = [name, _ratio(wall_c, ideal), str(steps_c), str(impacts_c),
            f"{np.abs(probe_c - probe_ref).max() / c:.3g}" if ok_c else "failed"]
     impulse = _build(name, True, "impulse", adaptive)
-    if not isinstance(impulse.joint, ImpulseJointHandle):
+    if not isinstance(impulse.joint, (ImpulseJointHandle, ImpulseGuideHandle)):
         return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1], "-"]
     ideal_1 = _median_wall(name, False, None, repeats, 1.0, adaptive)
     wall_i, steps_i, ok_i, problem = _run(impulse, 1.0)
     if not ok_i:
-        reason = impulse.joint._problem.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem
-        return row + ["-", steps_i, str(len(impulse.joint._impacts)), reason, "-"]
+        # a translational joint's contacts are its corners' (exuclear.engine.impulse_guide)
+        contacts = list(impulse.joint.pairs.values()) if isinstance(impulse.joint, ImpulseGuideHandle) \
+            else [impulse.joint]
+        stopped = next((c._problem for c in contacts if c._problem), "")
+        reason = stopped.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem
+        return row + ["-", steps_i, str(sum(len(c._impacts) for c in contacts)), reason, "-"]
     probe_i = np.asarray(impulse.probe(impulse.mbs), dtype=float)
     try:
         impacts_i = len(impulse.joint.impacts())
@@ -314,5 +323,6 @@ def main(argv: list[str] | None = None) -> int:
             rows))
     if not args.no_targets:
         print("\n" + markdown_table(["target", "count", "measured", "met"],
-                                    target_rows() + joint_type_rows() + slider_crank_rows(args.factor)))
+                                    target_rows() + joint_type_rows() + translational_rows()
+                                    + slider_crank_rows(args.factor)))
     return 0
