@@ -135,7 +135,11 @@ class VelocityCondition:
             mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", plan.rows[0])
             mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", plan.rows[1])
             mbs.SetObjectParameter(self.objectNumber, "offset", [plan.rate])
-        mbs.SetObjectParameter(self.objectNumber, "activeConnector", plan.active)
+        self.switch(mbs, plan.active)
+
+    def switch(self, mbs: exu.MainSystem, on: bool) -> None:
+        """The condition on or off in Exudyn, with a fresh Jacobian."""
+        mbs.SetObjectParameter(self.objectNumber, "activeConnector", on)
         request_jacobian(mbs)
 
 

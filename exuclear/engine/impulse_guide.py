@@ -44,7 +44,7 @@ from ..prismatic import (
     GuideGeometry,
 )
 from .impulse import ClosedFormImpact, ImpulseJointHandle
-from .condition import Plan, VelocityCondition, request_jacobian
+from .condition import VelocityCondition
 from .impulse_pairs import Eccentricity
 
 #: The guide's axes a pair acts across, as the joint frame's column, with their walls' names.
@@ -237,20 +237,16 @@ class _CornerCondition(VelocityCondition):
         n[self.pair.axis] = 1.0 if d[self.pair.axis] >= 0.0 else -1.0
         return np.concatenate((n, np.cross(d, n)))
 
-    def set(self, mbs: exu.MainSystem, plan: Plan) -> None:
-        self.plan = plan
-        if plan.active:
-            mbs.SetObjectParameter(self.objectNumber, "scalingMarker0", plan.rows[0])
-            mbs.SetObjectParameter(self.objectNumber, "scalingMarker1", plan.rows[1])
-            mbs.SetObjectParameter(self.objectNumber, "offset", [plan.rate])
-        self.act(mbs, plan.active and not self.corners.dependent(mbs, self))
-        if not plan.active:
+    def switch(self, mbs: exu.MainSystem, on: bool) -> None:
+        """On where the plan holds the corner and the acting corners do not; off, letting
+        a corner they held act again where they no longer hold it."""
+        self.act(mbs, on and not self.corners.dependent(mbs, self))
+        if not on:
             self.corners.settle(mbs)
 
     def act(self, mbs: exu.MainSystem, on: bool) -> None:
         self.acting = on
-        mbs.SetObjectParameter(self.objectNumber, "activeConnector", on)
-        request_jacobian(mbs)
+        super().switch(mbs, on)
 
     def own_multiplier(self, mbs: exu.MainSystem) -> float:
         """The multiplier of the condition in Exudyn [N] (0 where it is off)."""
