@@ -56,7 +56,7 @@ import numpy as np
 
 import exuclear
 from exuclear.engine.impulse import ImpulseJointHandle
-from exuclear.engine.impulse_guide import ImpulseGuideHandle
+from exuclear.engine.impulse_group import ImpulsePairsHandle
 from exuclear.timescales import closed_form_impact, impact_restitution
 from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
@@ -135,13 +135,13 @@ def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptiv
     row = [name, _ratio(wall_c, ideal), str(steps_c), str(impacts_c),
            f"{np.abs(probe_c - probe_ref).max() / c:.3g}" if ok_c else "failed"]
     impulse = _build(name, True, "impulse", adaptive)
-    if not isinstance(impulse.joint, (ImpulseJointHandle, ImpulseGuideHandle)):
+    if not isinstance(impulse.joint, (ImpulseJointHandle, ImpulsePairsHandle)):
         return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1], "-"]
     ideal_1 = _median_wall(name, False, None, repeats, 1.0, adaptive)
     wall_i, steps_i, ok_i, problem = _run(impulse, 1.0)
     if not ok_i:
-        # a translational joint's contacts are its corners' (exuclear.engine.impulse_guide)
-        contacts = list(impulse.joint.pairs.values()) if isinstance(impulse.joint, ImpulseGuideHandle) \
+        # a joint with several contacts (exuclear.engine.impulse_group)
+        contacts = list(impulse.joint.pairs.values()) if isinstance(impulse.joint, ImpulsePairsHandle) \
             else [impulse.joint]
         stopped = next((c._problem for c in contacts if c._problem), "")
         reason = stopped.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem

@@ -1,0 +1,286 @@
+"""A joint with several contacts in the impulse contact mode (:mod:`~exuclear.engine.impulse`):
+the translational joints' corners (:mod:`~exuclear.engine.impulse_guide`) and the spatial
+revolute joint's slices (:class:`~exuclear.engine.impulse_pairs.SlicePair`).
+
+Each contact is a one-contact pair of the mode (:mod:`~exuclear.engine.impulse_pairs`) with
+its own :class:`~exuclear.engine.impulse.ImpulseJointHandle`: its own condition and its own
+carrier, whose post-Newton function runs the mode's decisions for that contact.  Exudyn's
+discontinuous iteration calls every carrier's function after each Newton solve and computes
+the step again while one asks for it; conditions held in the same step are solved together
+by Newton with the whole system, which is Moreau-Jean's joint solve of simultaneous
+contacts (two corners of a slider thrown flat at a wall hit in one step; a slider resting
+flat holds two corners, a box four; a journal resting flat, all its slices).
+:class:`_Contacts` keeps the conditions of one joint apart where they would be solved
+wrongly one by one; :class:`ImpulsePairsHandle` is the joint: the pairs, their impacts named
+by contact, their outputs and notes.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any, NamedTuple, get_type_hints
+
+import exudyn as exu
+import numpy as np
+
+from ..joint import ClearanceJoint
+from .condition import VelocityCondition
+from .impulse import ClosedFormImpact, ImpulseJointHandle
+from .impulse_pairs import ContactPair
+
+#: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
+#: this share of its length is a combination of them: the wrenches at one state of a rigid
+#: body's contacts on a face (a box's corners on a wall, a journal's slices on its bearing
+#: along a line) are exactly dependent (round-off), and an independent one's distance is of
+#: the order of its own terms over the body's size.  (The conditions' rows are not compared:
+#: each is measured where its step is predicted to end, and rows a step apart are
+#: independent to about the turn of a step, a near-singular matrix for Newton.)
+DEPENDENT_WRENCHES = 1e-9
+
+
+class ClosedFormPairImpact(NamedTuple("_ClosedFormPairImpactFields",
+                                      [*get_type_hints(ClosedFormImpact).items(), ("pair", str)])):
+    """One impact of a joint with several contacts in the impulse mode: the
+    :class:`~exuclear.engine.impulse.ClosedFormImpact` fields, then ``pair``, the contact
+    (``"corner front-lower / lower wall"``, as the compliant joint's
+    :class:`exuclear.history.PairImpact`; ``"slice 1 at z = -0.005 m"``)."""
+
+    __slots__ = ()
+
+
+class _Contacts:
+    """The conditions of one joint's contacts, held together: which of them acts in Exudyn,
+    and the reactions they share.
+
+    Contacts held at once can be more than the joint's relative motion has directions: a
+    box flat on a wall touches it at four corners, whose rows span three (the velocity
+    across the wall and the two turns about the wall's axes), three held corners of a
+    planar slider span its two, and a journal resting flat touches at every slice, which
+    span two.  Exudyn's Newton iteration cannot solve dependent conditions (a singular
+    matrix).  A contact whose wrench is a combination of the acting contacts' is held by
+    them (its rate is then theirs combined: the contacts of a rigid face or line are affine
+    in its motion, and so are their rates and gaps) and its condition stays off in Exudyn.
+    The reactions of such a set are statically indeterminate; the mode reports the
+    least-squares split (:meth:`reaction`), the one that equally compliant contacts take
+    (the analytic split of a box flat on its wall: ``m g / 4`` each)."""
+
+    def __init__(self) -> None:
+        self.conditions: list[_GroupCondition] = []
+        self._sweep: tuple[float, float, int] | None = None  # the Newton solve the contacts last decided after
+        self._redo = False  # whether a contact asked for it to be computed again
+        self._accepted: list[_GroupPair] = []  # the contacts that accepted it
+        self._shares: tuple[Any, dict[int, float]] = (None, {})  # the reactions of a Newton solve, by condition
+
+    def forget(self) -> None:
+        """A new run: nothing of the last one's solves."""
+        self._sweep, self._shares = None, (None, {})
+
+    @staticmethod
+    def solve_of(mbs: exu.MainSystem) -> tuple[float, float, int]:
+        """The Newton solve just done: the step's end [s], its length [s] and Exudyn's
+        discontinuous iteration."""
+        it = mbs.sys["dynamicSolver"].it
+        return float(mbs.systemData.GetTime()), float(it.currentStepSize), int(it.discontinuousIteration)
+
+    def decided(self, mbs: exu.MainSystem, handle: _GroupPair, error: float) -> None:
+        """After ``handle`` decided on a Newton solve (``error`` > 0: compute the step again).
+        A contact that accepts a step sets its condition for the next one; where another
+        contact has Exudyn compute the step again, the computation must hold the accepting
+        contacts' conditions of this step, or each would ask for it again in turn (two
+        corners hitting in one step, the second only after the first's jump): their
+        conditions go back to this step's."""
+        sweep = self.solve_of(mbs)
+        if sweep != self._sweep:
+            self._sweep, self._redo, self._accepted = sweep, False, []
+        if error > 0.0:
+            if not self._redo:
+                for accepted in self._accepted:
+                    accepted.take_back(mbs)
+            self._redo = True
+        elif self._redo:
+            handle.take_back(mbs)
+        else:
+            self._accepted.append(handle)
+
+    def dependent(self, mbs: exu.MainSystem, condition: _GroupCondition) -> bool:
+        """Whether ``condition``'s contact's wrench is a combination of the wrenches of the
+        other contacts acting now (:meth:`_GroupCondition.wrench`, all at the present state)."""
+        others = [c.wrench(mbs) for c in self.conditions if c is not condition and c.acting]
+        if not others:
+            return False
+        wrench = condition.wrench(mbs)
+        basis = np.array(others)
+        share = np.linalg.lstsq(basis.T, wrench, rcond=None)[0]
+        return float(np.linalg.norm(basis.T @ share - wrench)) <= DEPENDENT_WRENCHES * float(np.linalg.norm(wrench))
+
+    def settle(self, mbs: exu.MainSystem) -> None:
+        """A held contact whose condition was off because others held it acts again where
+        they no longer do."""
+        for condition in self.conditions:
+            if condition.plan.active and not condition.acting and not self.dependent(mbs, condition):
+                condition.act(mbs, True)
+
+    def reaction(self, mbs: exu.MainSystem, condition: _GroupCondition) -> float:
+        """``condition``'s share [N] of the held contacts' load in the Newton solve just done:
+        the least-squares (minimum norm) multipliers ``lambda`` of all contacts held in it
+        with ``W^T lambda = W_a^T lambda_a``, the wrench the acting ones' multipliers
+        ``lambda_a`` apply (``W`` the contacts' unit wrenches); the acting multipliers
+        themselves where none is held by others.  Computed at the first contact's call after
+        the solve, before any contact sets its condition for the next computation."""
+        solve = self.solve_of(mbs)
+        if self._shares[0] != solve:
+            held = [c for c in self.conditions if c.plan.active]
+            forces = np.array([c.own_multiplier(mbs) for c in held])
+            if held and not all(c.acting for c in held):
+                wrenches = np.array([c.wrench(mbs) for c in held])
+                load = wrenches.T @ forces  # the off conditions' multipliers are 0
+                forces = np.linalg.lstsq(wrenches.T, load, rcond=None)[0]
+            self._shares = (solve, {id(c): float(f) for c, f in zip(held, forces)})
+        return self._shares[1].get(id(condition), 0.0)
+
+
+class _GroupCondition(VelocityCondition):
+    """A contact's condition, on in Exudyn only where the acting contacts do not hold it
+    (:class:`_Contacts`)."""
+
+    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, contacts: _Contacts,
+                 pair: ContactPair) -> None:
+        super().__init__(mbs, markers, name)
+        self.contacts, self.pair, self.acting = contacts, pair, False
+        contacts.conditions.append(self)
+
+    def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
+        """The unit wrench of the contact at the present state, ``(n, r x n)`` (global): the
+        normal ``n = e / |e|`` at the contact's point ``r = S + e`` from marker 0's point.  A
+        condition's rows are this wrench mapped onto the two bodies' coordinates by one map
+        for all of a joint's contacts (the inner body's point and ``S`` lie along ``n``), so
+        the contacts' conditions are dependent where their wrenches are."""
+        e, arm, _ = self.pair.eccentricity(mbs, self.markers)
+        norm = float(np.linalg.norm(e))
+        n = e / norm if norm > 0.0 else np.zeros(3)
+        return np.concatenate((n, np.cross(e if arm is None else arm + e, n)))
+
+    def switch(self, mbs: exu.MainSystem, on: bool) -> None:
+        """On where the plan holds the contact and the acting contacts do not; off, letting
+        a contact they held act again where they no longer hold it."""
+        self.act(mbs, on and not self.contacts.dependent(mbs, self))
+        if not on:
+            self.contacts.settle(mbs)
+
+    def act(self, mbs: exu.MainSystem, on: bool) -> None:
+        self.acting = on
+        super().switch(mbs, on)
+
+    def own_multiplier(self, mbs: exu.MainSystem) -> float:
+        """The multiplier of the condition in Exudyn [N] (0 where it is off)."""
+        return super().multiplier(mbs) if self.acting else 0.0
+
+    def multiplier(self, mbs: exu.MainSystem) -> float:
+        return self.contacts.reaction(mbs, self) if self.plan.active else 0.0
+
+
+class _GroupPair(ImpulseJointHandle):
+    """One contact of a joint with several in the mode; remembers the name of each of its
+    contacts' onsets (``pair.contact_name``: a corner's wall)."""
+
+    def __init__(self, *args: Any, contacts: _Contacts) -> None:
+        self._contacts = contacts
+        self._names: dict[float, str] = {}  # onset time [s] -> the contact's name
+        super().__init__(*args)
+
+    def _new_condition(self, mbs: exu.MainSystem, name: str) -> VelocityCondition:
+        return _GroupCondition(mbs, self.markerNumbers, name, self._contacts, self._pair)
+
+    def _reset(self) -> None:
+        super()._reset()
+        self._contacts.forget()
+
+    def _post_newton(self, mbs: exu.MainSystem, t: float, item: int, data: Any, *frame: Any) -> list:
+        out = super()._post_newton(mbs, t, item, data, *frame)
+        self._contacts.decided(mbs, self, out[0])
+        return out
+
+    def take_back(self, mbs: exu.MainSystem) -> None:
+        """The condition of the step just accepted back (:meth:`_Contacts.decided`): Exudyn
+        computes it again."""
+        if self._saved is not None:
+            self._condition.set(mbs, self._saved["plan"])
+
+    def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
+        name = self._pair.contact_name(mbs, self.markerNumbers)  # at the step's end, in the wall
+        began = super()._contact(mbs, t, h, end, end_gap)
+        if began:
+            self._names[t] = name
+        return began
+
+    def contact_name(self, onset_time: float) -> str:
+        return self._names.get(onset_time, "")
+
+
+class ImpulsePairsHandle:
+    """A clearance joint with several contacts in the impulse mode: returned by
+    :func:`exuclear.CreatePrismaticClearanceJoint` (as its
+    :class:`~exuclear.engine.impulse_guide.ImpulseGuideHandle`) and by
+    :func:`exuclear.CreateClearanceJoint` with ``slices`` and ``contact_mode="impulse"``.
+
+    Attributes
+    ----------
+    pairs : dict
+        The contacts by name (``"corner front-lower / lower and upper walls"``,
+        ``"slice 1 at z = -0.005 m"``), each an
+        :class:`~exuclear.engine.impulse.ImpulseJointHandle` with its condition
+        (``objectNumber``) and carrier (``carrierNumber``).
+    objectNumbers, carrierNumbers : list
+        The pairs' conditions and carriers, in the order of :attr:`pairs`.
+    markerNumbers : list
+        [outer body's marker (guide, bearing), inner body's marker (slider, journal)].
+    constraintNumber : int or None
+        The ``ObjectJointGeneric`` of ``constrainAxial=True`` (the spatial revolute joint).
+    contact_mode : str
+        ``"impulse"``.
+    """
+
+    contact_mode = "impulse"
+
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
+                 pairs: Sequence[tuple[str, ContactPair]]) -> None:
+        self.name, self._joint = name, joint
+        self.markerNumbers = list(markers)
+        self.constraintNumber: int | None = None
+        self.pairs: dict[str, _GroupPair] = {}
+        contacts = _Contacts()
+        for pair_name, pair in pairs:
+            self.pairs[pair_name] = _GroupPair(mbs, joint, f"{name or '(unnamed)'}: {pair_name}", self.markerNumbers,
+                                               pair, contacts=contacts)
+        self.objectNumbers = [p.objectNumber for p in self.pairs.values()]
+        self.carrierNumbers = [p.carrierNumber for p in self.pairs.values()]
+
+    @property
+    def joint(self) -> ClearanceJoint:
+        return self._joint
+
+    @property
+    def problem(self) -> str:
+        """Why the mode refused or stopped the last run ('' where it did not)."""
+        return next((p._problem for p in self.pairs.values() if p._problem), "")
+
+    def impacts(self) -> list[ClosedFormPairImpact]:
+        """The impacts of the last run of every contact, in time (resting contacts' onsets
+        included, restitution 0), each naming its contact (:class:`ClosedFormPairImpact`;
+        the closed form as :meth:`~exuclear.engine.impulse.ImpulseJointHandle.impacts`, with
+        the contact's share of the impulse)."""
+        out = [ClosedFormPairImpact(*impact, pair.contact_name(impact.onset_time))
+               for pair in self.pairs.values() for impact in pair.impacts()]
+        return sorted(out, key=lambda impact: impact.onset_time)
+
+    def outputs(self) -> dict[str, dict[str, np.ndarray]]:
+        """Each pair's outputs by its name
+        (:meth:`~exuclear.engine.impulse.ImpulseJointHandle.outputs`: ``ecc_x``, ``ecc_y``,
+        ``ecc_z`` the pair's eccentricity, global; ``penetration``; ``normal_force`` its
+        share of the held load)."""
+        return {name: pair.outputs() for name, pair in self.pairs.items()}
+
+    @property
+    def notes(self) -> list[str]:
+        """The pairs' notes (:attr:`~exuclear.engine.impulse.ImpulseJointHandle.notes`), each
+        headed by its pair's name."""
+        return [f"{name}: {note}" for name, pair in self.pairs.items() for note in pair.notes]
