@@ -189,8 +189,11 @@ def test_the_mode_refuses_what_it_does_not_cover(monkeypatch):
     # friction it has on the revolute joint (tests/test_impulse_friction.py)
     assert isinstance(exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", friction="paper", **common),
                       ImpulseJointHandle)
-    with pytest.raises(ValueError, match="spatial revolute joint .*several slices at once.*holds one contact"):
-        exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, **common)
+    with pytest.raises(ValueError, match="end faces .*not in the mode.*use contact_mode='compliant'"):
+        exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, axial_clearance=1e-4,
+                                      shoulder_radius=12e-3, **common)
+    with pytest.raises(ValueError, match="friction covers the planar revolute joint, not the spatial joint's slices"):
+        exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, friction="paper", **common)
     with pytest.raises(ValueError, match="friction covers the planar revolute joint, not the spherical"):
         exuclear.CreateSphericalClearanceJoint(mbs, itemNumbers=[ground, body], contact_mode="impulse",
                                                ball_radius=9.9e-3, socket_radius=10e-3, cr=0.9, friction="paper")

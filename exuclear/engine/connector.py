@@ -67,6 +67,7 @@ from .arguments import (
 from .drawing import drawing_function, drawing_sizes
 from .handle import ClearanceJointHandle, JointHistory
 from .impulse import ImpulseJointHandle, add_impulse_joint
+from .impulse_group import ImpulsePairsHandle, add_impulse_slices
 from .items import add_connectors, finish_items
 from .layout import MAIN, data_columns, parameters, spatial_data_columns
 from .modes import IMPULSE, choose_mode
@@ -183,7 +184,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     _frame: np.ndarray | None = None,
     _drawing: dict | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle | ImpulseJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle | ImpulsePairsHandle:
     """Add a clearance joint between two rigid markers: the bearing hole's centre on
     ``markerNumbers[0]``, the journal's centre on ``markerNumbers[1]``.
 
@@ -206,7 +207,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     check_wear(joint, slices, backend)
-    mode = choose_mode(contact_mode, joint, slices, backend, name, joint_type=joint.geometry.joint_type)
+    mode = choose_mode(contact_mode, joint, slices, backend, name, joint_type=joint.geometry.joint_type,
+                       faces=shoulders is not None)
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)
@@ -218,8 +220,6 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         m_bearing, m_journal = (_turned_marker(mbs, m_bearing, frame),
                                 _turned_marker(mbs, m_journal, a_journal.T @ a_bearing @ frame))
         a_bearing, a_journal, frame = _marker_rotation(mbs, m_bearing), _marker_rotation(mbs, m_journal), np.eye(3)
-    if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes)
-        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
     rotation0 = frame.tolist()
     relative = a_journal.T @ a_bearing @ frame  # the same joint frame, seen from marker 1
     if np.abs(relative - np.eye(3)).max() <= SAME_FRAME_ROUNDOFF:
@@ -227,6 +227,13 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     rotation1 = relative.tolist()
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
     axis_journal = tuple(float(v) for v in relative[:, 2])
+    if mode == IMPULSE and slices:  # the mode's own items (exuclear.engine.modes), a pair per slice
+        handle = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices)
+        if constrainAxial:
+            handle.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0, rotation1)
+        return handle
+    if mode == IMPULSE:
+        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal, shoulders)
     handle.markerNumbers = [m_bearing, m_journal]
@@ -240,12 +247,19 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     add_connectors(mbs, handle, [m_bearing, m_journal], rotation0, bearingRotates, n_data, show,
                    2.0 * joint.geometry.bearing_radius)
     if constrainAxial:
-        handle.constraintNumber = mbs.AddObject(ObjectJointGeneric(
-            name=f"{name}:axial" if name else "", markerNumbers=[m_bearing, m_journal],
-            constrainedAxes=[0, 0, 1, 0, 0, 0] if slices else [0, 0, 1, 1, 1, 0], rotationMarker0=rotation0, rotationMarker1=rotation1,
-            visualization=VObjectJointGeneric(show=False)))
+        handle.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0, rotation1)
     finish_items(mbs, handle, drawing_function if show else None, record, load_sensors=bool(slices))
     return handle
+
+
+def _axial_constraint(mbs: exu.MainSystem, name: str, markers: list, slices: int, rotation0: list,
+                      rotation1: list) -> int:
+    """The ``ObjectJointGeneric`` of ``constrainAxial=True``: the axial translation held (and,
+    for the planar joint, the two tilts)."""
+    return mbs.AddObject(ObjectJointGeneric(
+        name=f"{name}:axial" if name else "", markerNumbers=markers,
+        constrainedAxes=[0, 0, 1, 0, 0, 0] if slices else [0, 0, 1, 1, 1, 0], rotationMarker0=rotation0,
+        rotationMarker1=rotation1, visualization=VObjectJointGeneric(show=False)))
 
 
 def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
@@ -270,7 +284,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     slices: int | None = None,
     contact_mode: str | None = None,
     **joint_parameters: Any,
-) -> ClearanceJointHandle | ImpulseJointHandle:
+) -> ClearanceJointHandle | ImpulseJointHandle | ImpulsePairsHandle:
     """Create a revolute clearance joint between two bodies, as ``mbs.CreateRevoluteJoint`` does
     for an ideal one: the bearing (hole) on ``itemNumbers[0]``, the journal (pin) on
     ``itemNumbers[1]``, both centred at ``position`` in the reference configuration.

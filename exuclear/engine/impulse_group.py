@@ -23,9 +23,11 @@ import exudyn as exu
 import numpy as np
 
 from ..joint import ClearanceJoint
+from ..spatial import slice_centres
+from ..timescales import closed_form_impact
 from .condition import VelocityCondition
 from .impulse import ClosedFormImpact, ImpulseJointHandle
-from .impulse_pairs import ContactPair
+from .impulse_pairs import ContactPair, SlicePair
 
 #: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
 #: this share of its length is a combination of them: the wrenches at one state of a rigid
@@ -35,6 +37,11 @@ from .impulse_pairs import ContactPair
 #: each is measured where its step is predicted to end, and rows a step apart are
 #: independent to about the turn of a step, a near-singular matrix for Newton.)
 DEPENDENT_WRENCHES = 1e-9
+
+
+#: A contact whose gap is within this share of the play takes its normal from the present
+#: state (:meth:`_GroupCondition.wrench`): at the wall, ``e`` points along the normal.
+NEAR = 0.5
 
 
 class ClosedFormPairImpact(NamedTuple("_ClosedFormPairImpactFields",
@@ -146,18 +153,26 @@ class _GroupCondition(VelocityCondition):
                  pair: ContactPair) -> None:
         super().__init__(mbs, markers, name)
         self.contacts, self.pair, self.acting = contacts, pair, False
+        self.normal = np.zeros(3)
         contacts.conditions.append(self)
 
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, arms: Sequence[Any] = (None, None)) -> float:
+        self.normal = np.asarray(normal, dtype=float)  # the normal of the rows, which a plan holds
+        return super().measure(mbs, normal, arms)
+
     def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
-        """The unit wrench of the contact at the present state, ``(n, r x n)`` (global): the
-        normal ``n = e / |e|`` at the contact's point ``r = S + e`` from marker 0's point.  A
-        condition's rows are this wrench mapped onto the two bodies' coordinates by one map
-        for all of a joint's contacts (the inner body's point and ``S`` lie along ``n``), so
-        the contacts' conditions are dependent where their wrenches are."""
+        """The unit wrench of the contact at the present state, ``(n, S x n)`` (global): the
+        normal ``n = e / |e|`` at the outer body's point ``S`` (from marker 0's point), or,
+        where the inner body is less than :data:`NEAR` of the play from its wall (an impact
+        set at its step's start, a journal's slice in flight), the normal the condition's
+        rows hold.  A condition's rows are this wrench mapped onto the two bodies'
+        coordinates by one map for all of a joint's contacts (the inner body's point and
+        ``S`` lie along ``n``), so the contacts' conditions are dependent where their
+        wrenches are."""
         e, arm, _ = self.pair.eccentricity(mbs, self.markers)
         norm = float(np.linalg.norm(e))
-        n = e / norm if norm > 0.0 else np.zeros(3)
-        return np.concatenate((n, np.cross(e if arm is None else arm + e, n)))
+        n = e / norm if norm > self.pair.reach - NEAR * self.pair.clearance else self.normal
+        return np.concatenate((n, np.cross(np.zeros(3) if arm is None else arm, n)))
 
     def switch(self, mbs: exu.MainSystem, on: bool) -> None:
         """On where the plan holds the contact and the acting contacts do not; off, letting
@@ -214,6 +229,24 @@ class _GroupPair(ImpulseJointHandle):
 
     def contact_name(self, onset_time: float) -> str:
         return self._names.get(onset_time, "")
+
+    def impacts(self) -> list[ClosedFormImpact]:
+        """As :meth:`~exuclear.engine.impulse.ImpulseJointHandle.impacts`, for a contact with
+        the share ``f`` of the law (a slice's ``w / L``): its force ``f F(delta)`` on its
+        share ``m`` of the mass is the whole law's on ``m / f`` times ``f``, the same duration
+        and penetration."""
+        share = self._pair.share
+        out = super().impacts()
+        if share == 1.0:
+            return out
+        scaled = []
+        for impact in out:
+            if impact.effective_mass > 0.0 and impact.onset_velocity > 0.0:
+                peak, duration, depth = closed_form_impact(self._joint.law, impact.effective_mass / share,
+                                                           impact.onset_velocity)
+                impact = impact._replace(peak_force=share * peak, duration=duration, max_penetration=depth)
+            scaled.append(impact)
+        return scaled
 
 
 class ImpulsePairsHandle:
@@ -284,3 +317,17 @@ class ImpulsePairsHandle:
         """The pairs' notes (:attr:`~exuclear.engine.impulse.ImpulseJointHandle.notes`), each
         headed by its pair's name."""
         return [f"{name}: {note}" for name, pair in self.pairs.items() for note in pair.notes]
+
+
+def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
+                       frame: np.ndarray, journal_axis: np.ndarray, slices: int) -> ImpulsePairsHandle:
+    """The impulse mode's items for a spatial revolute joint of ``slices`` slices between
+    ``markers`` [bearing, journal]: a condition and a carrier per slice
+    (:class:`~exuclear.engine.impulse_pairs.SlicePair`), ``frame`` the joint frame in
+    marker 0's frame, ``journal_axis`` the journal's axis in marker 1's frame."""
+    pairs = []
+    for k, z in enumerate(slice_centres(joint.geometry.length, slices)):
+        label = f"slice {k + 1} at z = {z:.4g} m"
+        pairs.append((label, SlicePair(joint.geometry.clearance, np.asarray(frame, dtype=float),
+                                       np.asarray(journal_axis, dtype=float), z, label, 1.0 / slices)))
+    return ImpulsePairsHandle(mbs, joint, name, markers, pairs)

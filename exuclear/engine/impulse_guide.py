@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import exudyn as exu
 import numpy as np
@@ -59,6 +59,8 @@ class CornerPair:
     clearance: float
     name: str
     walls: tuple[str, str]
+    #: the corner's share of the law: its own (each corner carries the whole law)
+    share: ClassVar[float] = 1.0
 
     def offset(self, mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The corner's offset ``d`` from the guide's centre point in the guide's frame, the

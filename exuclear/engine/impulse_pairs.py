@@ -116,6 +116,36 @@ class SlotPair(_CentrePair):
         return Eccentricity(frame @ np.array([px - sx, py, 0.0]), sx * frame[:, 0])
 
 
+@dataclass(frozen=True)
+class SlicePair(_CentrePair):
+    """A slice of a spatial journal in its bearing (docs/physics.md section 9): the journal's
+    axis where it crosses the slice's plane ``z`` [m] along the bearing axis, against the
+    bearing axis's point there.  ``frame`` the joint frame in marker 0's frame (z the bearing
+    axis), ``journal_axis`` the journal's axis in marker 1's frame, ``name`` the slice's,
+    ``share`` its share ``w / L`` of the law (eq. (41));
+    ``S`` the bearing axis's point at ``z``, the inner body's point the crossing, at ``s u``
+    from marker 1's point (eq. (35): ``s = (z - p . a) / (u . a)``)."""
+
+    frame: np.ndarray
+    journal_axis: np.ndarray
+    z: float
+    name: str
+    share: float
+
+    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
+        rotation, p0, p1 = _poses(mbs, markers)
+        axis = rotation @ self.frame[:, 2]
+        u = np.asarray(mbs.GetMarkerOutput(markers[1], exu.OutputVariableType.RotationMatrix),
+                       dtype=float).reshape(3, 3) @ self.journal_axis
+        p = p1 - p0
+        s = (self.z - p @ axis) / (u @ axis)
+        crossing = p + s * u
+        return Eccentricity(crossing - self.z * axis, self.z * axis, s * u)
+
+    def contact_name(self, mbs: exu.MainSystem, markers: Any) -> str:
+        return self.name
+
+
 #: The pair of each joint type the mode holds, from the type's geometry and the joint frame
 #: (columns: the joint's axes) in marker 0's frame.
 PAIRS: dict[str, Callable[[Any, np.ndarray], ContactPair]] = {

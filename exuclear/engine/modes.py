@@ -48,13 +48,15 @@ def resolve_contact_mode(contact_mode: Any) -> str:
     return str(contact_mode)
 
 
-def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str) -> str:
+def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str,
+                    faces: bool = False) -> str:
     """Why the impulse mode cannot take a joint ('' where it can): it covers the dry joints
     without wear whose contacts are each one point against its clearance
     (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
-    pin-in-slot joint; the translational joints' corners, each a pair of its own,
-    :mod:`~exuclear.engine.impulse_guide`), with friction the planar revolute joint
-    (:mod:`~exuclear.engine.impulse_friction`)."""
+    pin-in-slot joint; the translational joints' corners and the spatial revolute joint's
+    slices, each a pair of its own, :mod:`~exuclear.engine.impulse_group`), with friction
+    the planar revolute joint (:mod:`~exuclear.engine.impulse_friction`); ``faces``: the
+    spatial joint has end faces (``axial_clearance``)."""
     if joint_type == "prismatic":
         if joint.friction.active:
             return ("the translational joint's corners have no friction impulse in the mode (its friction is the "
@@ -64,13 +66,16 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
     elif joint_type not in PAIRS:
         return (f"it covers the planar revolute, spherical, pin-in-slot and translational joints, not the {joint_type} "
                 "joint")
-    if slices:
-        return ("the spatial revolute joint (`slices`) touches its bearing at several slices at once, and the mode "
-                "holds one contact; it covers the planar revolute joint")
+    if faces:
+        return ("the spatial joint's end faces (`axial_clearance`) are not in the mode: leave `axial_clearance` out "
+                "(hold the journal axially with constrainAxial=True)")
     if joint.film is not None:
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:
         return "wear integrates the contact's force and slip over each impact, which the mode does not compute"
+    if joint.friction.active and slices:
+        return ("its friction covers the planar revolute joint, not the spatial joint's slices: give a frictionless "
+                "joint")
     if joint.friction.active and joint_type != "revolute":
         return (f"its friction covers the planar revolute joint, not the {joint_type} joint's slip (a ball's in "
                 "its tangent plane, a pin's along its slot): give a frictionless joint")
@@ -78,13 +83,13 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
 
 
 def choose_mode(contact_mode: Any, joint: ClearanceJoint, slices: int | None, backend: str, name: str,
-                joint_type: str = "revolute") -> str:
+                joint_type: str = "revolute", faces: bool = False) -> str:
     """The mode a joint gets: :func:`resolve_contact_mode`'s.  Where the impulse mode cannot
     take the joint (:func:`impulse_refusal`), a ``contact_mode="impulse"`` the builder was
     given raises ``ValueError`` naming the joint, the cause and what to use; one that
     :data:`ENVIRONMENT_VARIABLE` asked for falls back to the compliant contact and warns so."""
     mode = resolve_contact_mode(contact_mode)
-    reason = impulse_refusal(joint, slices, backend, joint_type) if mode == IMPULSE else ""
+    reason = impulse_refusal(joint, slices, backend, joint_type, faces) if mode == IMPULSE else ""
     if not reason:
         return mode
     where = f"joint {name or '(unnamed)'}: contact_mode='impulse' cannot take this joint: {reason}"

@@ -29,7 +29,8 @@ The issue's target rows:
   end cap;
 - the translational joints' rows (``_translational_scenes``): a slider thrown flat and
   turned, a box thrown flat onto two walls, slider and box resting flat, sliding held, and
-  an elastic spinning slider.
+  an elastic spinning slider; the spatial revolute joint's (``_spatial_scenes``): a journal
+  of four slices thrown flat, resting, and elastic and tilting at two steps.
 
 ::
 
@@ -63,6 +64,7 @@ from exuclear.models import journal_bearing as jb
 from exuclear.models import slider_crank as sc
 from validation._tables import markdown_table
 from validation.cost._joint_type_scenes import joint_type_rows
+from validation.cost._spatial_scenes import spatial_rows
 from validation.cost._translational_scenes import translational_rows
 from validation.exudyn_examples._common import REGISTRY, load_models, model_names
 
@@ -324,5 +326,5 @@ def main(argv: list[str] | None = None) -> int:
     if not args.no_targets:
         print("\n" + markdown_table(["target", "count", "measured", "met"],
                                     target_rows() + joint_type_rows() + translational_rows()
-                                    + slider_crank_rows(args.factor)))
+                                    + spatial_rows() + slider_crank_rows(args.factor)))
     return 0
