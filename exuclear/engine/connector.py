@@ -387,7 +387,9 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     contact_mode : str, optional
         ``"compliant"`` (the default; None: ``EXUCLEAR_CONTACT_MODE`` where set) or
         ``"impulse"`` (docs/guide/contact_modes.md: velocity jumps, resting contact as a
-        condition; returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`).
+        condition; returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`, with
+        ``slices`` an :class:`~exuclear.engine.impulse_group.ImpulsePairsHandle`, a contact
+        per slice; the end faces of ``axial_clearance`` are refused).
 
     Returns
     -------
