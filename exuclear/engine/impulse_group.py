@@ -37,10 +37,12 @@ from .impulse_pairs import ContactPair, SlicePair
 #: each is measured where its step is predicted to end, and rows a step apart are
 #: independent to about the turn of a step, a near-singular matrix for Newton.)
 DEPENDENT_WRENCHES = 1e-9
-
-
-#: A contact whose gap is within this share of the play takes its normal from the present
-#: state (:meth:`_GroupCondition.wrench`): at the wall, ``e`` points along the normal.
+#: A contact whose eccentricity is longer than this share of the play takes its normal
+#: from the present state (:meth:`_GroupCondition.wrench`): near the wall ``e`` points along
+#: the normal, and so does a corner's always (its ``e`` is half the slider's height); a
+#: journal's slice near the bearing's centre (an impact set at its step's start) takes the
+#: normal its rows hold.  (Normals held since different steps differ by the bodies' turn over
+#: a step, and contacts that are dependent at one state would pass as independent.)
 NEAR = 0.5
 
 
@@ -163,15 +165,14 @@ class _GroupCondition(VelocityCondition):
     def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
         """The unit wrench of the contact at the present state, ``(n, S x n)`` (global): the
         normal ``n = e / |e|`` at the outer body's point ``S`` (from marker 0's point), or,
-        where the inner body is less than :data:`NEAR` of the play from its wall (an impact
-        set at its step's start, a journal's slice in flight), the normal the condition's
-        rows hold.  A condition's rows are this wrench mapped onto the two bodies'
+        where ``|e|`` is below :data:`NEAR` of the play (a journal's slice near the bearing's
+        centre), the normal the condition's rows hold.  A condition's rows are this wrench mapped onto the two bodies'
         coordinates by one map for all of a joint's contacts (the inner body's point and
         ``S`` lie along ``n``), so the contacts' conditions are dependent where their
         wrenches are."""
         e, arm, _ = self.pair.eccentricity(mbs, self.markers)
         norm = float(np.linalg.norm(e))
-        n = e / norm if norm > self.pair.reach - NEAR * self.pair.clearance else self.normal
+        n = e / norm if norm > NEAR * self.pair.clearance else self.normal
         return np.concatenate((n, np.cross(np.zeros(3) if arm is None else arm, n)))
 
     def switch(self, mbs: exu.MainSystem, on: bool) -> None:

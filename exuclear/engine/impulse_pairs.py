@@ -16,7 +16,10 @@ material point there).  A joint type is what gives ``e`` and ``S``; the mode's d
   section 13); ``S`` the socket's centre;
 - ``"pin-slot"``: ``e`` the pin's centre minus the slot's centre-segment point nearest to it
   (:func:`exuclear.slot.segment_point`), in the plane; ``S`` that point, which is fixed at
-  an end centre while the pin rolls around the end cap and the normal turns.
+  an end centre while the pin rolls around the end cap and the normal turns;
+- a slice of the spatial revolute joint (:class:`SlicePair`, one of the joint's several
+  contacts, :mod:`~exuclear.engine.impulse_group`): ``e`` the journal axis's crossing of the
+  slice's plane minus the bearing axis's point there, ``S``.
 
 The markers' state is read through Exudyn's marker outputs (position and rotation of the
 two rigid markers), so any body with a rigid marker takes the mode.
