@@ -79,7 +79,7 @@ def thrown_flat(durations: float = 10.0) -> Run:
     across the clearance and back twice."""
     mbs, joint, states = journal(velocity=(0.0, -THROW_SPEED, 0.0))
     step = durations * closed_form_impact(joint.joint.law, MASS, THROW_SPEED)[1]
-    solve(mbs, step, 4.5 * 2 * CLEARANCE / THROW_SPEED)
+    solve(mbs, step, max(4.5 * 2 * CLEARANCE / THROW_SPEED, 4 * step))
     return Run(joint, np.array(states), step)
 
 
