@@ -22,6 +22,7 @@ import exuclear
 from exuclear.engine.impulse_group import ImpulsePairsHandle
 from exuclear.timescales import closed_form_impact, impact_restitution
 from validation.cost._joint_type_scenes import G, solve
+from validation.cost._translational_scenes import first_jump
 
 #: The journal's and the bearing's radii and the bearing's length [m]; the slices.
 JOURNAL, BEARING, LENGTH, SLICES = 9.9e-3, 10e-3, 30e-3, 4
@@ -108,9 +109,7 @@ def spatial_rows() -> list[list[str]]:
     count, measured, met (the law's restitution within 2 %, the static split, the issue's 1 %)."""
     run = thrown_flat()
     impacts = run.joint.impacts()
-    k = int(np.argmin(np.abs(run.states[:, 0] - impacts[0].onset_time)))
-    v = run.states[:, 5]
-    error = abs(-v[k + 1] / v[k] / impact_restitution(run.joint.joint.law, THROW_SPEED) - 1.0)
+    error = abs(first_jump(run, 1) / impact_restitution(run.joint.joint.law, THROW_SPEED) - 1.0)
     first = sum(i.onset_time == impacts[0].onset_time for i in impacts)
     rows = [[f"journal of {SLICES} slices thrown flat across its bearing, no gravity, 10 contact durations",
              f"{first} slices in the first impact step", f"restitution error {error:.1e}",

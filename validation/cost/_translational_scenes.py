@@ -130,6 +130,14 @@ def corner_rate(state: np.ndarray, corner: int, angle: float) -> float:
     return -(state[5] + state[6] * arm_x)
 
 
+def first_jump(run: Run, axis: int) -> float:
+    """``-v+ / v-`` of the body's velocity along the global ``axis`` over the first impact's
+    step (the restitution of a body thrown flat; ``run.states`` with the velocity in
+    columns 4 to 6)."""
+    k = int(np.argmin(np.abs(run.states[:, 0] - run.joint.impacts()[0].onset_time)))
+    return -float(run.states[k + 1, 4 + axis]) / float(run.states[k, 4 + axis])
+
+
 def thrown(angle: float, durations: float = 1.0) -> Run:
     """No gravity: the slider thrown from the guide's centre onto its lower wall at
     :data:`THROW_SPEED`, turned by ``angle`` (0: flat, both lower corners hit at once), at
@@ -202,10 +210,8 @@ def translational_rows() -> list[list[str]]:
     for direction, wall in (((0, -1, 0), "lower"), ((0, 0, -1), "far")):
         run = thrown_box(direction)
         impacts = run.joint.impacts()
-        axis = int(np.argmax(np.abs(direction)))
-        k = int(np.argmin(np.abs(run.states[:, 0] - impacts[0].onset_time)))
-        v = run.states[:, 4 + axis]
-        error = abs(-v[k + 1] / v[k] / impact_restitution(run.joint.joint.law, THROW_SPEED) - 1.0)
+        jump = first_jump(run, int(np.argmax(np.abs(direction))))
+        error = abs(jump / impact_restitution(run.joint.joint.law, THROW_SPEED) - 1.0)
         first = sum(i.onset_time == impacts[0].onset_time for i in impacts)
         rows.append([f"box thrown flat onto its {wall} wall, no gravity, 1 contact duration",
                      f"{first} corners in the first impact step", f"restitution error {error:.1e}",
