@@ -2,11 +2,29 @@
 is a contact pair of its own (exuclear.engine.impulse_pairs.SlicePair), the slices held in a
 step solved together (exuclear.engine.impulse_group).  The scenes are those of ``python -m
 validation.cost modes`` (validation/cost/_spatial_scenes.py)."""
+import exudyn as exu
 import numpy as np
 import pytest
+from exudyn.itemInterface import LoadForceVector, LoadTorqueVector, MarkerBodyRigid, ObjectGround
 
+import exuclear
 from exuclear.timescales import closed_form_impact, impact_restitution
-from validation.cost._spatial_scenes import G, MASS, SLICES, THROW_SPEED, elastic, resting, thrown_flat
+from validation.cost._joint_type_scenes import solve
+from validation.cost._spatial_scenes import (
+    BEARING,
+    CLEARANCE,
+    G,
+    INERTIA,
+    JOURNAL,
+    LAW,
+    LENGTH,
+    MASS,
+    SLICES,
+    THROW_SPEED,
+    elastic,
+    resting,
+    thrown_flat,
+)
 from validation.cost._translational_scenes import first_jump
 
 #: Newton's tolerance on the velocity condition bounds a jump's error: the other joint
@@ -61,3 +79,29 @@ def test_an_elastic_tilting_journal_keeps_its_energy_to_second_order_in_the_step
     assert drift < 0.01
     _, finer = elastic(step=2.5e-6)
     assert drift / np.abs(finer - 1.0).max() > 8.0
+
+
+@pytest.mark.parametrize("slices", [None, SLICES])
+def test_constrain_axial_holds_the_journal_along_its_axis_in_the_mode(slices):
+    # a 3D journal resting on its bearing under gravity -y, pushed along the axis by 1 N and
+    # turned about x by 0.01 N m: constrainAxial's joint holds the axial translation (and,
+    # for the planar joint, the two tilts), as in the compliant joint; without it the push
+    # would move the journal 0.5 F t^2 / m = 0.34 m in 0.05 s
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    body = mbs.CreateRigidBody(inertia=INERTIA, referencePosition=[0, 0, 0], initialDisplacement=[0, -CLEARANCE, 0],
+                               gravity=[0, -G, 0])
+    marker = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body))
+    mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=[0, 0, 1.0]))
+    mbs.AddLoad(LoadTorqueVector(markerNumber=marker, loadVector=[0.01, 0, 0]))
+    joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0], axis=[0, 0, 1],
+                                          journal_radius=JOURNAL, bearing_radius=BEARING, length=LENGTH,
+                                          slices=slices, constrainAxial=True, contact_mode="impulse", **LAW)
+    assert joint.constraintNumber is not None
+    mbs.Assemble()
+    solve(mbs, 1e-4, 0.05)
+    position = mbs.GetObjectOutputBody(body, exu.OutputVariableType.Position, localPosition=[0, 0, 0])
+    assert abs(position[2]) < 1e-12  # the constraint holds the axis to Newton's tolerance
+    if slices is None:  # the planar joint's constraint holds the tilts too
+        assert np.abs(mbs.GetObjectOutputBody(body, exu.OutputVariableType.AngularVelocity,
+                                              localPosition=[0, 0, 0])[:2]).max() < 1e-12

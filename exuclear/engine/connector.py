@@ -227,13 +227,13 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     rotation1 = relative.tolist()
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
     axis_journal = tuple(float(v) for v in relative[:, 2])
-    if mode == IMPULSE and slices:  # the mode's own items (exuclear.engine.modes), a pair per slice
-        handle = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices)
+    if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes); the spatial joint's a pair per slice
+        impulse = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices) \
+            if slices else add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
         if constrainAxial:
-            handle.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0, rotation1)
-        return handle
-    if mode == IMPULSE:
-        return add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
+            impulse.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0,
+                                                         rotation1)
+        return impulse
 
     handle = ClearanceJointHandle(mbs, joint, name, backend, float(maxPenetration), slices, axis_journal, shoulders)
     handle.markerNumbers = [m_bearing, m_journal]

@@ -146,9 +146,12 @@ class ImpulseJointHandle:
         [bearing (socket, slot) marker, journal (ball, pin) marker].
     contact_mode : str
         ``"impulse"``.
+    constraintNumber : int or None
+        The ``ObjectJointGeneric`` of ``constrainAxial=True`` (the revolute joint), else None.
     """
 
     contact_mode = "impulse"
+    constraintNumber: int | None = None
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
                  pair: ContactPair) -> None:
