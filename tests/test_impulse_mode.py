@@ -175,6 +175,16 @@ def test_the_mode_refuses_a_damped_integrator_and_says_so(monkeypatch):
         s.mbs.SolveDynamic(ss)
     with pytest.raises(ValueError, match="journal-bearing.*discontinuous.maxIterations of at least 2"):
         joint.impacts()
+    # an explicit solver aborts at its start on the condition (a constraint), with a message
+    # that names an object: the joint names itself and the cause when asked for its results
+    s, joint = scene(monkeypatch)
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 1e-4, 10
+    ss.timeIntegration.verboseMode = 0
+    with pytest.raises(Exception):
+        s.mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.RK44)
+    with pytest.raises(ValueError, match="journal-bearing.*explicit solver"):
+        joint.impacts()
 
 
 def test_the_mode_refuses_what_it_does_not_cover(monkeypatch):

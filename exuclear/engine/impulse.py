@@ -487,6 +487,13 @@ class ImpulseJointHandle:
         mbs = self._mbs()
         if mbs is None:
             return
+        solver = getattr(mbs, "sys", {}).get("dynamicSolver")
+        if not self._records and solver is not None and explicit_solver(solver):
+            # Exudyn's explicit solvers abort at their start on the mode's condition (a
+            # constraint), before any step: its message names an object, not the joint
+            raise ValueError(f"joint {self.name or '(unnamed)'}: contact_mode='impulse' cannot run under an explicit "
+                             "solver: its condition is a constraint, which explicit solvers refuse; use "
+                             "generalized-alpha (spectral radius 1), or contact_mode='compliant'")
         end = float(mbs.systemData.GetTime())
         last = self._records[-1][0] if self._records else 0.0
         if end > last + 1e-12 * max(1.0, end):
