@@ -11,10 +11,12 @@ import pytest
 from exudyn.itemInterface import NodeRigidBody2D, ObjectRigidBody2D
 
 import exuclear
-from exuclear.timescales import impact_restitution
+from exuclear.timescales import closed_form_impact, impact_restitution
 from validation.cost._joint_type_scenes import (
     BALL,
     BALL_MASS,
+    THROW,
+    THROW_SPEED,
     G,
     LAW,
     PIN,
@@ -22,6 +24,7 @@ from validation.cost._joint_type_scenes import (
     SLOT_LENGTH,
     SOCKET,
     WIDTH,
+    ball_in_socket,
     bouncing_pin,
     dropped_ball,
     elastic_ball,
@@ -211,3 +214,22 @@ def test_a_spinning_slot_s_wall_strikes_a_free_pin_with_the_laws_restitution():
         assert abs(rate(before)) == pytest.approx(impact.onset_velocity, rel=1e-9)
         assert -rate(after) / rate(before) == pytest.approx(impact_restitution(joint.joint.law, impact.onset_velocity),
                                                             rel=1e-9)
+
+
+def test_a_ball_stopped_by_fixed_steps_too_long_for_its_flight_is_named_as_the_ball():
+    # at fixed steps of 1000 contact durations a free step carries the thrown ball across the
+    # whole clearance (its diameter) into the far wall: the run stops, and the message names
+    # the joint and the ball (not a journal) and what to do
+    c = SOCKET - BALL
+    mbs, joint, _ = ball_in_socket([0.5 * c, -0.3 * c, 0.2 * c], THROW_SPEED * THROW)
+    step = 1000.0 * closed_form_impact(joint.joint.law, BALL_MASS, THROW_SPEED)[1]
+    assert step * THROW_SPEED > 2.0 * c  # the step is longer than the flight across the socket
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 4 * step, 4
+    ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
+    ss.timeIntegration.adaptiveStep = False
+    ss.timeIntegration.verboseMode = 0
+    with pytest.raises(Exception):
+        mbs.SolveDynamic(ss)
+    with pytest.raises(ValueError, match="joint ball: .*the ball's flight across the clearance; take shorter steps"):
+        joint.impacts()

@@ -255,7 +255,7 @@ class ImpulseJointHandle:
         if gap > LOST_CONTACT * clearance:
             if redo and self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
                 return REDO_ERROR
-            self._stop(t_end, f"the journal is {gap:.3g} m into the wall, {self._too_long()}")
+            self._stop(t_end, f"the {self._pair.body} is {gap:.3g} m into the wall, {self._too_long()}")
         self._saved = self._snapshot()
         self._left_pen = max(self._left_pen, gap)
         if self._state == IMPACT:  # the impact step's impulse (the trapezoid of 0 and its multiplier): the effective mass
@@ -325,7 +325,7 @@ class ImpulseJointHandle:
             if self._shorten(mbs, h, self._pair.clearance / end_gap):
                 return True
             self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
-                          "steps are longer than the journal's flight across the clearance; take shorter steps")
+                          f"steps are longer than the {self._pair.body}'s flight across the clearance; take shorter steps")
         with start_of_step(mbs):
             # the rows at the step's start, in the normal where it met the wall (the start's
             # points elsewhere where the journal crossed the bearing's centre)

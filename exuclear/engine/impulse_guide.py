@@ -62,6 +62,10 @@ class CornerPair:
     #: the corner's share of the law: its own (each corner carries the whole law)
     share: ClassVar[float] = 1.0
 
+    @property
+    def body(self) -> str:
+        return f"corner {self.name}"
+
     def offset(self, mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The corner's offset ``d`` from the guide's centre point in the guide's frame, the
         guide's frame (global columns) and the corner's arm from marker 1's point (global)."""

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, NamedTuple, Protocol
+from typing import Any, ClassVar, NamedTuple, Protocol
 
 import exudyn as exu
 import numpy as np
@@ -84,6 +84,8 @@ class _CentrePair:
 class PlanarPair(_CentrePair):
     """A journal in its bearing: ``axis`` the bearing axis (unit) in marker 0's frame."""
 
+    body: ClassVar[str] = "journal"
+
     axis: np.ndarray
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
@@ -97,6 +99,8 @@ class PlanarPair(_CentrePair):
 class BallPair(_CentrePair):
     """A ball in its socket: no projection."""
 
+    body: ClassVar[str] = "ball"
+
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         _, p0, p1 = _poses(mbs, markers)
         return Eccentricity(p1 - p0, None)
@@ -107,6 +111,8 @@ class SlotPair(_CentrePair):
     """A pin in its slot: ``frame`` the joint frame in marker 0's frame (columns: x along
     the slot, z the plane's normal), ``half_length`` [m] half the distance of the slot's end
     centres."""
+
+    body: ClassVar[str] = "pin"
 
     frame: np.ndarray
     half_length: float
@@ -147,6 +153,10 @@ class SlicePair(_CentrePair):
 
     def contact_name(self, mbs: exu.MainSystem, markers: Any) -> str:
         return self.name
+
+    @property
+    def body(self) -> str:
+        return f"journal's {self.name}"
 
 
 #: The pair of each joint type the mode holds, from the type's geometry and the joint frame
