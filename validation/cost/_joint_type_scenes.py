@@ -39,12 +39,14 @@ LAW = {"law": "hertz+lankarani-nikravesh", "cr": 0.9}
 THROW_SPEED, THROW = 0.3, np.array([0.48, 0.6, 0.64])
 
 
-def solve(mbs: exu.MainSystem, step: float, end_time: float) -> bool:
-    """Generalized-alpha at spectral radius 1 (the mode's), Exudyn's adaptive step."""
+def solve(mbs: exu.MainSystem, step: float, end_time: float, adaptive: bool = True) -> bool:
+    """Generalized-alpha at spectral radius 1 (the mode's), Exudyn's adaptive step (or,
+    ``adaptive`` False, fixed steps)."""
     ss = exu.SimulationSettings()
     ss.timeIntegration.endTime = end_time
     ss.timeIntegration.numberOfSteps = int(round(end_time / step))
     ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
+    ss.timeIntegration.adaptiveStep = adaptive
     ss.timeIntegration.verboseMode = 0
     return bool(mbs.SolveDynamic(ss))
 
