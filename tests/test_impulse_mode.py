@@ -20,6 +20,7 @@ from scipy.integrate import solve_ivp
 
 import exuclear
 from exuclear.engine.impulse import ImpulseJointHandle
+from exuclear.engine.impulse_group import ImpulsePairsHandle
 from exuclear.timescales import closed_form_impact, impact_restitution
 from exuclear.engine.modes import ENVIRONMENT_VARIABLE
 from exuclear.models import journal_bearing as jb
@@ -202,9 +203,11 @@ def test_the_mode_refuses_what_it_does_not_cover(monkeypatch):
     with pytest.raises(ValueError, match="end faces .*not in the mode.*use contact_mode='compliant'"):
         exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, axial_clearance=1e-4,
                                       shoulder_radius=12e-3, **common)
-    with pytest.raises(ValueError, match="friction covers the planar revolute joint, not the spatial joint's slices"):
-        exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, friction="paper", **common)
-    with pytest.raises(ValueError, match="friction covers the planar revolute joint, not the spherical"):
+    # and on the spatial joint's slices (tests/test_impulse_friction_types.py)
+    assert isinstance(exuclear.CreateClearanceJoint(mbs, contact_mode="impulse", slices=4, friction="paper", **common),
+                      ImpulsePairsHandle)
+    with pytest.raises(ValueError, match="a ball slides in its tangent plane, and the mode's friction covers slip along "
+                                         "one tangent"):
         exuclear.CreateSphericalClearanceJoint(mbs, itemNumbers=[ground, body], contact_mode="impulse",
                                                ball_radius=9.9e-3, socket_radius=10e-3, cr=0.9, friction="paper")
     with pytest.raises(ValueError, match="must be one of .*'rigid'"):

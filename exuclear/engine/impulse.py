@@ -30,9 +30,10 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   normal turns by more than :data:`MAX_TURN` is computed again shorter where Exudyn's steps
   are adaptive.  The condition lets go where its reaction pulls or the journal left the
   wall.
-- **Friction** of a planar revolute joint that has it: Coulomb's, sliding loads and a
-  sticking condition in the steps the condition holds (:mod:`~exuclear.engine.impulse_friction`,
-  called where the condition is measured, held, released, checked and accepted).
+- **Friction** of a joint that has it, along the tangent its pair gives: Coulomb's, sliding
+  loads and a sticking condition in the steps the condition holds
+  (:mod:`~exuclear.engine.impulse_friction`, called where the condition is measured, held,
+  released, checked and accepted).
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows
@@ -163,7 +164,8 @@ class ImpulseJointHandle:
         self.objectNumber = self._condition.objectNumber
         # the contact's Coulomb friction (exuclear.engine.impulse_friction), hooked in where the
         # normal condition is measured, held, released, checked and accepted
-        self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair)
+        self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair,
+                                          lambda label: self._new_condition(mbs, label, tangential=True))
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -182,8 +184,9 @@ class ImpulseJointHandle:
     def joint(self) -> ClearanceJoint:
         return self._joint
 
-    def _new_condition(self, mbs: exu.MainSystem, name: str) -> VelocityCondition:
-        """The contact's condition (a joint with several contacts gives its own, which knows the others)."""
+    def _new_condition(self, mbs: exu.MainSystem, name: str, tangential: bool = False) -> VelocityCondition:
+        """The contact's condition, or with ``tangential`` its friction's sticking condition (a
+        joint with several contacts gives its own, which knows the others)."""
         return VelocityCondition(mbs, self.markerNumbers, name)
 
     # -- the run ------------------------------------------------------------------------
@@ -419,12 +422,13 @@ class ImpulseJointHandle:
         """The eccentricity, the normal rate and the gap at the current state; sets the rows
         in ``normal`` (default: the present one, ``e / |e|``), at the outer body's point
         where ``e`` starts."""
-        e, arm, inner = self._pair.eccentricity(mbs, self.markerNumbers)
+        ecc = self._pair.eccentricity(mbs, self.markerNumbers)
+        e, arm, inner = ecc
         norm = float(np.linalg.norm(e))
         gap = norm - self._pair.reach
         n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
         if normal is not None:  # the friction's tangential rows, at the same state
-            self._friction.measure(mbs, n)
+            self._friction.measure(mbs, n, ecc)
         return e, self._condition.measure(mbs, n, arms=(arm, inner)), gap
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:

@@ -1,14 +1,23 @@
 """Coulomb friction of the impulse contact mode's held and hit contacts
-(:mod:`~exuclear.engine.impulse`).
+(:mod:`~exuclear.engine.impulse`), for every contact pair that slides along one tangent
+(:mod:`~exuclear.engine.impulse_pairs`: the planar revolute joint's journal, the pin in its
+slot, a planar slider's corners, the spatial revolute joint's slices).
 
 Wherever the mode holds the normal condition for a step (an impact or a resting contact),
-the contact's friction acts in the same step, at the slip of docs/physics.md eq. (8),
-``v_T = t . (v_J - v_B) - R_J w_J + R_B w_B`` with ``t = n x a`` (``a`` the bearing's axis):
+the contact's friction acts in the same step, at the slip of the contact points
+(:func:`~exuclear.engine.impulse_pairs.contact_arms`), ``v_T = t . (v_1(P_1) - v_0(P_0))``
+with ``t = n x a`` (``a`` the pair's ``plane``): for a journal docs/physics.md eq. (8),
+``v_T = t . (v_J - v_B) - R_J w_J + R_B w_B``; for a pin the same in the slot's frame at the
+slot's wall point (docs/physics.md section 14); for a corner its velocity along the guide's
+axis over the wall's point under it (a point: no spin term); for a slice the journal's
+circumferential slip at the slice (its axial slip, eq. (42)'s second part, is not resisted
+in this mode).
 
 - **Sliding**: a force ``F_T = mu(v_T) F_N sign(v_T)`` at the contact points, eqs. (24)-(26):
-  Exudyn loads at the joint's two markers (``-F_T t`` and the moment ``R_J F_T a`` on the
-  journal, ``F_T t`` and ``-R_B F_T a`` on the bearing), fixed over the step, along the
-  tangent of the rows the step's normal condition has.  ``F_N`` is that condition's end
+  Exudyn loads at the joint's two markers, ``-F_T t`` with the moment ``r_1 x (-F_T t)`` on
+  the inner body and ``F_T t`` with ``r_0 x F_T t`` on the outer one (``r`` the arms to the
+  contact points; a journal's moments ``R_J F_T a`` and ``-R_B F_T a``), fixed over the step,
+  along the tangent of the rows the step's normal condition has.  ``F_N`` is that condition's end
   multiplier in the same step (:meth:`ContactFriction.check` says why the end's), which the
   loads change in a closed loop: after Exudyn's Newton iteration the mode compares the load
   with ``mu`` times the multiplier it produced and, more than :data:`LOAD_TOLERANCE` apart,
@@ -19,7 +28,7 @@ the contact's friction acts in the same step, at the slip of docs/physics.md eq.
 - **Sticking**: where the step's end slip has the other sign than the slip the load opposed
   (the slip would reverse within the step), or the contact stuck in the step before, a second
   velocity-level condition holds the end slip at 0 (its rows those of the contact points,
-  ``R n`` off the centres, which give eq. (8)'s spin terms); its multiplier is the friction
+  which give eq. (8)'s spin terms); its multiplier is the friction
   force, kept while the step's friction impulse is within ``mu_s`` times its normal one, else
   the contact slides the way the multiplier points (Coulomb's friction cone).
 - **Impacts**: the same two cases at the impact step, whose impulses are the step's end
@@ -39,7 +48,7 @@ take it to zero), and the law's value at its smoothing speed as the sticking bou
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import exudyn as exu
@@ -49,7 +58,7 @@ from exudyn.itemInterface import LoadForceVector, LoadTorqueVector
 from ..friction import FrictionLaw
 from ..joint import ClearanceJoint
 from .condition import VelocityCondition
-from .impulse_pairs import ContactPair, PlanarPair
+from .impulse_pairs import ContactPair, Eccentricity, contact_arms
 
 #: A sliding load more than this share of ``mu F_N`` off the step's own ``mu F_N`` has Exudyn
 #: compute the step again with the load set anew.  A steady slide's first load comes from the
@@ -75,19 +84,19 @@ class ContactFriction:
     :meth:`hold` and :meth:`release` with its normal condition, :meth:`check` after each
     Newton iteration of a held step and :meth:`accept` at each accepted step."""
 
-    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                 axis: np.ndarray) -> None:
+    def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, markers: Sequence[Any], pair: ContactPair,
+                 condition: VelocityCondition) -> None:
         self._law: FrictionLaw = joint.friction
-        geometry = joint.geometry
-        self._radii = (geometry.bearing_radius, geometry.journal_radius)  # marker 0: bearing, 1: journal
+        self._pair = pair
         self._markers = list(markers)
-        self._axis_local = np.asarray(axis, dtype=float)
-        self.condition = VelocityCondition(mbs, self._markers, f"{name}:stick" if name else "")
+        self._plane = np.asarray(pair.plane, dtype=float)
+        self.condition = condition  # the sticking condition, between the same markers
         self._forces = [mbs.AddLoad(LoadForceVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
                         for m in self._markers]
         self._torques = [mbs.AddLoad(LoadTorqueVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
                          for m in self._markers]
-        self._tangent = self._axis = np.zeros(3)
+        self._tangent = np.zeros(3)
+        self._arms = (np.zeros(3), np.zeros(3))  # marker 0's and marker 1's to the contact points (global)
         self._stick_mu = abs(self._law.coefficient(self._law.smoothing_speed))
         self._reset()
 
@@ -121,15 +130,15 @@ class ContactFriction:
         self._apply(mbs, OFF)
         return acted
 
-    def measure(self, mbs: exu.MainSystem, normal: np.ndarray) -> None:
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, ecc: Eccentricity) -> None:
         """The sticking condition's rows at the current state, along ``t = n x a`` for the
-        mode's ``normal``, and the slip eq. (8) at the current velocities."""
+        mode's ``normal`` and the pair's eccentricity ``ecc`` there, and the slip at the
+        current velocities (module docstring)."""
         rotation = np.asarray(mbs.GetMarkerOutput(self._markers[0], exu.OutputVariableType.RotationMatrix), dtype=float)
-        axis = rotation.reshape(3, 3) @ self._axis_local
-        self._tangent, self._axis = np.cross(normal, axis), axis
-        r_b, r_j = self._radii
-        # the rows of the contact points R n off the centres: t . (w x R n) = -R w . a
-        self._slip = self.condition.measure(mbs, self._tangent, arms=(r_b * normal, r_j * normal))
+        self._tangent = np.cross(normal, rotation.reshape(3, 3) @ self._plane)
+        # the rows of the contact points: for a journal t . (w x R n) = -R w . a, eq. (8)
+        self._arms = contact_arms(self._pair, normal, ecc)
+        self._slip = self.condition.measure(mbs, self._tangent, arms=self._arms)
 
     def hold(self, mbs: exu.MainSystem) -> None:
         """The friction of the coming step, in the rows of the last :meth:`measure`: at a new
@@ -243,7 +252,7 @@ class ContactFriction:
         """The setting the step was computed with, to be taken back where Exudyn computes it
         again (:meth:`restore`)."""
         return {"_state": self._state, "_force": self._force, "_sign": self._sign, "_tangent": self._tangent,
-                "_axis": self._axis, "rows": self.condition.rows, "_normal0": self._normal0,
+                "_arms": self._arms, "rows": self.condition.rows, "_normal0": self._normal0,
                 "_friction0": self._friction0, "records": len(self._records)}
 
     def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
@@ -311,12 +320,11 @@ class ContactFriction:
         elif state != STICK and self.condition.plan.active:
             self.condition.release(mbs)
         force = self._force if state == SLIDE else 0.0
-        r_b, r_j = self._radii
-        t, a = self._tangent, self._axis
-        for load, vector in zip(self._forces, (force * t, -force * t)):
+        # F_T t on the outer body, -F_T t on the inner one, each at its contact point
+        for load, torque, arm, vector in zip(self._forces, self._torques, self._arms, (force * self._tangent,
+                                                                                      -force * self._tangent)):
             mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
-        for load, vector in zip(self._torques, (-r_b * force * a, r_j * force * a)):
-            mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
+            mbs.SetLoadParameter(torque, "loadVector", [float(x) for x in np.cross(arm, vector)])
         self._state = state
 
 
@@ -329,7 +337,7 @@ class Frictionless:
     def reset(self, mbs: exu.MainSystem) -> bool:
         return False
 
-    def measure(self, mbs: exu.MainSystem, normal: np.ndarray) -> None:
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, ecc: Eccentricity) -> None:
         pass
 
     def hold(self, mbs: exu.MainSystem) -> None:
@@ -358,15 +366,16 @@ class Frictionless:
 
 
 def contact_friction(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                     pair: ContactPair) -> ContactFriction | Frictionless:
-    """The friction of an impulse-mode joint between ``markers`` [bearing, journal] whose
-    contact is ``pair``: its items where the joint's law has friction (a planar revolute
-    joint's pair, :class:`~exuclear.engine.impulse_pairs.PlanarPair`, whose bearing axis it
-    reads; :func:`~exuclear.engine.modes.impulse_refusal` refuses the other types' friction),
-    else hooks that do nothing."""
+                     pair: ContactPair, condition: Callable[[str], VelocityCondition]) -> ContactFriction | Frictionless:
+    """The friction of an impulse-mode joint between ``markers`` [outer, inner] whose contact
+    is ``pair``: its items where the joint's law has friction, the sticking condition made by
+    ``condition`` (given its name; a joint with several contacts holds it with the others'),
+    else hooks that do nothing.  A pair that slides in a tangent plane (``plane`` None: a
+    ball, a box's corner) has none in the mode
+    (:func:`~exuclear.engine.modes.impulse_refusal` refuses it by name)."""
     if not joint.friction.active:
         return Frictionless()
-    if not isinstance(pair, PlanarPair):
-        raise ValueError(f"joint {name or '(unnamed)'}: the impulse mode's friction covers the planar revolute "
-                         f"joint, not a {type(pair).__name__}")
-    return ContactFriction(mbs, joint, name, markers, pair.axis)
+    if pair.plane is None:
+        raise ValueError(f"joint {name or '(unnamed)'}: the impulse mode's friction covers contacts that slide along "
+                         f"one tangent, not a {type(pair).__name__}'s tangent plane")
+    return ContactFriction(mbs, joint, markers, pair, condition(f"{name}:stick" if name else ""))

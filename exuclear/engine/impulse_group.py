@@ -194,6 +194,26 @@ class _GroupCondition(VelocityCondition):
         return self.contacts.reaction(mbs, self) if self.plan.active else 0.0
 
 
+class _GroupStick(_GroupCondition):
+    """A contact's sticking condition (:mod:`~exuclear.engine.impulse_friction`), held with
+    the joint's other conditions: a slider sticking flat on its wall holds its two corners
+    along the guide's axis in one direction, one condition on in Exudyn, the other held by
+    it, the friction split as the reactions are (:meth:`_Contacts.reaction`)."""
+
+    def __init__(self, *args: Any) -> None:
+        super().__init__(*args)
+        self.arm = np.zeros(3)  # marker 0's arm to the contact point of the rows
+
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, arms: Sequence[Any] = (None, None)) -> float:
+        self.arm = np.zeros(3) if arms[0] is None else np.asarray(arms[0], dtype=float)
+        return super().measure(mbs, normal, arms)
+
+    def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
+        """The unit wrench ``(t, P x t)`` of the friction at the contact point ``P`` (from
+        marker 0's point) along the tangent ``t`` its rows hold."""
+        return np.concatenate((self.normal, np.cross(self.arm, self.normal)))
+
+
 class _GroupPair(ImpulseJointHandle):
     """One contact of a joint with several in the mode; remembers the name of each of its
     contacts' onsets (``pair.contact_name``: a corner's wall)."""
@@ -203,8 +223,9 @@ class _GroupPair(ImpulseJointHandle):
         self._names: dict[float, str] = {}  # onset time [s] -> the contact's name
         super().__init__(*args)
 
-    def _new_condition(self, mbs: exu.MainSystem, name: str) -> VelocityCondition:
-        return _GroupCondition(mbs, self.markerNumbers, name, self._contacts, self._pair)
+    def _new_condition(self, mbs: exu.MainSystem, name: str, tangential: bool = False) -> VelocityCondition:
+        kind = _GroupStick if tangential else _GroupCondition
+        return kind(mbs, self.markerNumbers, name, self._contacts, self._pair)
 
     def _reset(self) -> None:
         super()._reset()
@@ -329,6 +350,7 @@ def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, ma
     pairs = []
     for k, z in enumerate(slice_centres(joint.geometry.length, slices)):
         label = f"slice {k + 1} at z = {z:.4g} m"
-        pairs.append((label, SlicePair(joint.geometry.clearance, np.asarray(frame, dtype=float),
-                                       np.asarray(journal_axis, dtype=float), z, label, 1.0 / slices)))
+        pairs.append((label, SlicePair(joint.geometry.clearance, joint.geometry.journal_radius,
+                                       np.asarray(frame, dtype=float), np.asarray(journal_axis, dtype=float), z, label,
+                                       1.0 / slices)))
     return ImpulsePairsHandle(mbs, joint, name, markers, pairs)

@@ -51,7 +51,9 @@ class CornerPair:
     ``axis`` (:data:`Y` or :data:`Z`): ``corner`` [m] the corner in the slider's joint frame
     (marker 1's), ``reach`` [m] the walls' distance from the guide's mid-plane, ``clearance``
     [m] the play across ``axis`` (module docstring); ``name`` the corner's, ``walls`` the
-    names of the walls at ``-reach`` and ``+reach``."""
+    names of the walls at ``-reach`` and ``+reach``; ``plane`` the guide's plane normal
+    (marker 0's frame) of a planar slider, whose corners slide along ``n x plane`` (the
+    guide's axis), None for the box, whose corners slide in the wall's plane."""
 
     corner: np.ndarray
     axis: int
@@ -59,8 +61,11 @@ class CornerPair:
     clearance: float
     name: str
     walls: tuple[str, str]
+    plane: np.ndarray | None
     #: the corner's share of the law: its own (each corner carries the whole law)
     share: ClassVar[float] = 1.0
+    #: a corner is a point: its contact point is itself, with no spin term in its slip
+    radius: ClassVar[float] = 0.0
 
     @property
     def body(self) -> str:
@@ -91,6 +96,7 @@ def corner_pairs(geometry: GuideGeometry) -> list[tuple[str, CornerPair]]:
     """The pairs of a slider in its guide, with their names: the planar slider's four
     corners across y, the box's eight across y, then across z."""
     half = np.array([0.5 * geometry.slider_length, geometry.inner_radius, geometry.half_width])
+    plane = None if geometry.spatial else np.array([0.0, 0.0, 1.0])  # the joint frame's z
     if not geometry.spatial:
         corners = [(name, np.array([sx, sy, 0.0]) * half) for name, (sx, sy) in zip(CORNER_NAMES, CORNER_SIGNS)]
         axes = [(Y, geometry.outer_radius, geometry.guide_clearance)]
@@ -99,7 +105,7 @@ def corner_pairs(geometry: GuideGeometry) -> list[tuple[str, CornerPair]]:
         axes = [(Y, geometry.outer_radius, geometry.guide_clearance),
                 (Z, geometry.channel_half_width, float(geometry.clearance_width))]
     return [(f"corner {name} / {' and '.join(_walls(geometry, axis))} walls",
-             CornerPair(corner, axis, reach, play, name, _walls(geometry, axis)))
+             CornerPair(corner, axis, reach, play, name, _walls(geometry, axis), plane))
             for axis, reach, play in axes for name, corner in corners]
 
 

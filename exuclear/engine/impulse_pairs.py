@@ -21,6 +21,12 @@ material point there).  A joint type is what gives ``e`` and ``S``; the mode's d
   contacts, :mod:`~exuclear.engine.impulse_group`): ``e`` the journal axis's crossing of the
   slice's plane minus the bearing axis's point there, ``S``.
 
+A pair also says where its friction acts (:mod:`~exuclear.engine.impulse_friction`):
+``plane``, the normal (in marker 0's frame) of the plane a planar contact slides in, whose
+tangent is ``t = n x plane`` (None: a ball's, whose slip has a tangent plane), and
+``radius``, the inner body's radius at the contact (the journal's, the pin's; 0 for a
+corner), which puts the contact point ``radius n`` beyond the inner centre.
+
 The markers' state is read through Exudyn's marker outputs (position and rotation of the
 two rigid markers), so any body with a rigid marker takes the mode.
 """
@@ -52,13 +58,29 @@ class ContactPair(Protocol):
     """What the mode reads of a joint type (module docstring): ``reach`` [m], the ``|e|`` at
     which the bodies touch, and ``clearance`` [m], the play, the length the mode's
     tolerances on the gap are shares of (both the joint's clearance ``c`` for a centre in
-    its clearance)."""
+    its clearance); for its friction ``plane`` (unit, marker 0's frame, or None) and
+    ``radius`` [m]."""
 
     reach: float
     clearance: float
+    radius: float
+
+    @property
+    def plane(self) -> np.ndarray | None:
+        """The normal of the plane the contact slides in, in marker 0's frame (None: a tangent plane)."""
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         """At the system's current state, for ``markers`` [outer, inner]."""
+
+
+def contact_arms(pair: ContactPair, normal: np.ndarray, ecc: Eccentricity) -> tuple[np.ndarray, np.ndarray]:
+    """The arms (global) from the two markers' points to the contact points, where friction
+    acts and slip is measured: on the outer body ``S + (reach + radius) n`` (the wall's point,
+    the bearing's at ``R_B n`` from its centre), on the inner body ``radius n`` from its
+    centre (the journal's or pin's surface; a corner itself), eq. (8)'s points."""
+    outer = (pair.reach + pair.radius) * normal
+    inner = pair.radius * normal
+    return (outer if ecc.arm is None else ecc.arm + outer), (inner if ecc.inner_arm is None else ecc.inner_arm + inner)
 
 
 def _poses(mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -71,9 +93,11 @@ def _poses(mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, n
 
 @dataclass(frozen=True)
 class _CentrePair:
-    """A centre in its clearance ``clearance`` [m], touching at ``|e| = clearance``."""
+    """A centre in its clearance ``clearance`` [m], touching at ``|e| = clearance``; the
+    inner body's radius ``radius`` [m]."""
 
     clearance: float
+    radius: float
 
     @property
     def reach(self) -> float:
@@ -88,6 +112,10 @@ class PlanarPair(_CentrePair):
 
     axis: np.ndarray
 
+    @property
+    def plane(self) -> np.ndarray:
+        return self.axis
+
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         rotation, p0, p1 = _poses(mbs, markers)
         axis = rotation @ self.axis
@@ -100,6 +128,7 @@ class BallPair(_CentrePair):
     """A ball in its socket: no projection."""
 
     body: ClassVar[str] = "ball"
+    plane: ClassVar[None] = None  # a ball slides in its tangent plane
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         _, p0, p1 = _poses(mbs, markers)
@@ -116,6 +145,10 @@ class SlotPair(_CentrePair):
 
     frame: np.ndarray
     half_length: float
+
+    @property
+    def plane(self) -> np.ndarray:
+        return self.frame[:, 2]
 
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         rotation, p0, p1 = _poses(mbs, markers)
@@ -141,6 +174,11 @@ class SlicePair(_CentrePair):
     name: str
     share: float
 
+    @property
+    def plane(self) -> np.ndarray:
+        """The bearing's axis: the slice's friction is circumferential, ``t = n x a``."""
+        return self.frame[:, 2]
+
     def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
         rotation, p0, p1 = _poses(mbs, markers)
         axis = rotation @ self.frame[:, 2]
@@ -162,9 +200,10 @@ class SlicePair(_CentrePair):
 #: The pair of each joint type the mode holds, from the type's geometry and the joint frame
 #: (columns: the joint's axes) in marker 0's frame.
 PAIRS: dict[str, Callable[[Any, np.ndarray], ContactPair]] = {
-    "revolute": lambda geometry, frame: PlanarPair(geometry.clearance, frame[:, 2].copy()),
-    "spherical": lambda geometry, frame: BallPair(geometry.clearance),
-    "pin-slot": lambda geometry, frame: SlotPair(geometry.clearance, frame.copy(), 0.5 * geometry.slot_length),
+    "revolute": lambda geometry, frame: PlanarPair(geometry.clearance, geometry.journal_radius, frame[:, 2].copy()),
+    "spherical": lambda geometry, frame: BallPair(geometry.clearance, geometry.ball_radius),
+    "pin-slot": lambda geometry, frame: SlotPair(geometry.clearance, geometry.journal_radius, frame.copy(),
+                                                    0.5 * geometry.slot_length),
 }
 
 

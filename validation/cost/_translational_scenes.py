@@ -62,16 +62,18 @@ def _impulse(joint: Any) -> ImpulseGuideHandle:
 
 
 def slider(y0: float = 0.0, angle: float = 0.0, velocity: Any = (0.0, 0.0, 0.0), gravity: float = 0.0,
-           **law: Any) -> tuple[exu.MainSystem, ImpulseGuideHandle, list]:
+           slope: float = 0.0, **law: Any) -> tuple[exu.MainSystem, ImpulseGuideHandle, list]:
     """The planar slider in a ground guide along x (its centre at the origin), its centre at
     ``(0, y0)`` turned by ``angle`` [rad], moving at ``velocity`` (vx, vy, omega); gravity
-    ``-gravity`` along y.  Returns mbs, the joint and the list its states are recorded in."""
+    ``gravity`` down a guide tilted by ``slope`` [rad] (``-gravity (sin slope, cos slope)``
+    in the guide's x, y: the guide's x rises by ``slope``).  Returns mbs, the joint and the
+    list its states are recorded in."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, y0, angle],
                                        initialVelocities=list(velocity)))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=MASS, inertia=MASS * SIDE**2 / 6.0))
-    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)), loadVector=[0, -MASS * gravity, 0]))
+    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)), loadVector=[-MASS * gravity * math.sin(slope), -MASS * gravity * math.cos(slope), 0]))
     joint = exuclear.CreatePrismaticClearanceJoint(mbs, name="guide", itemNumbers=[ground, body], position=[0, 0, 0],
                                                    slider_length=SIDE, slider_height=SIDE, clearance=CLEARANCE,
                                                    contact_mode="impulse", **{**LAW, **law})

@@ -1,0 +1,212 @@
+"""Coulomb friction in the impulse contact mode on the joint types whose contact slides along
+one tangent (exuclear.engine.impulse_friction): a planar slider's corners, a pin in its slot,
+the spatial revolute joint's slices; each against Newton's laws (sliding at mu F_N against the
+slip, sticking within the friction cone, Brach's impact law)."""
+import math
+
+import exudyn as exu
+import numpy as np
+import pytest
+
+from exuclear.engine.impulse_friction import LOAD_TOLERANCE
+from exuclear.timescales import impact_restitution
+from validation.cost import _joint_type_scenes as pins
+from validation.cost import _spatial_scenes as journals
+from validation.cost._translational_scenes import CLEARANCE, MASS, SIDE, slider
+
+G = 9.81
+MU = 0.2
+
+
+def slider_run(step, end, **scene):
+    """The planar slider of the translational scenes (0.98 kg, 50 mm square, c = 0.1 mm) with
+    Coulomb friction MU, at fixed steps; returns the joint and its states (t, x, y, angle,
+    their rates)."""
+    mbs, joint, states = slider(friction=f"coulomb:{MU}", **scene)
+    pins.solve(mbs, step, end, adaptive=False)
+    return joint, np.array(states)
+
+
+def lower_corners(joint):
+    pairs = joint.outputs()
+    return pairs["corner rear-lower / lower and upper walls"], pairs["corner front-lower / lower and upper walls"]
+
+
+def test_a_slider_flat_on_its_wall_slides_at_mu_g_then_sticks():
+    # a rigid block sliding on a flat wall: m dv/dt = -mu m g until it stops at t_s = v0 / (mu g),
+    # x(t) = v0 t - mu g t^2 / 2, then it stays.  Its two lower corners carry the weight, and the
+    # friction mu N at the wall, H/2 below the centre, tilts the split: the moment balance about
+    # the centre gives N_front - N_rear = mu m g H / L; at rest each carries m g / 2
+    v0, step = 0.05, 1e-4
+    t_stop = v0 / (MU * G)  # 25.5 ms
+    joint, states = slider_run(step, 1.6 * t_stop, y0=-CLEARANCE, velocity=(v0, 0.0, 0.0), gravity=G)
+    t, x, y, angle = states[:, 0], states[:, 1], states[:, 2], states[:, 3]
+    reference = np.where(t < t_stop, v0 * t - 0.5 * MU * G * t**2, 0.5 * v0 * t_stop)
+    # bound mu g h^2 (2e-9 m, 2e-5 clearances): the trapezoidal rule integrates the constant
+    # friction exactly; the stop falls within one step, which slides and sticks as a whole
+    assert np.abs(x - reference).max() <= MU * G * step**2
+    assert np.abs(y + CLEARANCE).max() < 1e-12 and np.abs(angle).max() < 1e-12  # flat on the wall, held
+    rear, front = lower_corners(joint)
+    sliding = (rear["time"] > 3 * step) & (rear["time"] < t_stop - 3 * step)  # the three-step means settled
+    for corner in (rear, front):
+        # each corner's friction is mu times its own normal force (signed along t = n x z, the
+            # guide's -x on the lower wall), to the mode's load tolerance
+        assert np.all(np.abs(np.abs(corner["friction_force"][sliding]) / (MU * corner["normal_force"][sliding]) - 1.0)
+                      <= LOAD_TOLERANCE)
+    # bound: the load tolerance on each corner's friction, whose moment sets the split
+    split = front["normal_force"][sliding] - rear["normal_force"][sliding]
+    assert np.abs(split / (MU * MASS * G * SIDE / SIDE) - 1.0).max() <= 2 * LOAD_TOLERANCE
+    stuck = rear["time"] > t_stop + step
+    for corner in (rear, front):
+        assert np.all(corner["sticking"][stuck] == 1.0)
+        assert np.abs(corner["slip_velocity"][stuck]).max() < 1e-12  # Newton's tolerance on the held slip
+        assert np.abs(corner["friction_force"][stuck][3:]).max() < 1e-9 * MASS * G  # no load along the wall
+        # bound 1e-12: Newton's tolerance on the held conditions
+        assert corner["normal_force"][-1] == pytest.approx(0.5 * MASS * G, rel=1e-12)
+    assert len(joint.impacts()) == 2  # the two corners' rest onsets, nothing after
+
+
+@pytest.mark.parametrize("tilt", [0.5, 2.0])
+def test_a_slider_on_a_tilted_guide_sticks_below_the_friction_angle_and_slides_above(tilt):
+    # a block at rest on a slope of angle a: it stays while tan a <= mu_s (Coulomb's law of
+    # static friction, the friction m g sin a within mu m g cos a), else it slides down at
+    # g (sin a - mu cos a).  ``tilt``: tan a over mu
+    slope = math.atan(tilt * MU)
+    step, end = 1e-4, 0.02
+    joint, states = slider_run(step, end, y0=-CLEARANCE, gravity=G, slope=slope)
+    t, x = states[:, 0], states[:, 1]
+    rear, front = lower_corners(joint)
+    assert not joint.notes  # Coulomb's law met in every step
+    if tilt < 1.0:
+        assert np.abs(x).max() < 1e-12  # it does not move (Newton's tolerance on the held slip)
+        assert np.all(rear["sticking"][1:] == 1.0) and np.all(front["sticking"][1:] == 1.0)
+        # the two corners hold the slope's pull, m g sin a (bound: Newton's tolerance)
+        held = rear["friction_force"][-1] + front["friction_force"][-1]
+        assert abs(held) == pytest.approx(MASS * G * math.sin(slope), rel=1e-9)
+    else:
+        a = G * (math.sin(slope) - MU * math.cos(slope))
+        # bound 1e-9 of the travel: the trapezoidal rule integrates the constant acceleration
+        # exactly (the first step, which starts sticking, slides within its computations)
+        assert np.abs(x + 0.5 * a * t**2).max() <= 1e-9 * 0.5 * a * end**2
+        after = rear["time"] > 3 * step
+        assert np.all(rear["sticking"][after] == 0.0) and np.all(front["sticking"][after] == 0.0)
+
+
+@pytest.mark.parametrize("tangential", [0.05, 0.005])
+def test_a_slider_thrown_flat_at_its_wall_follows_brachs_law(tangential):
+    # both lower corners hit in one step (no gravity, the slider flat): the normal impulse is
+    # P_n = m (1 + e) v_n, the rebound e v_n, and the corners' friction impulses mu times
+    # their normal ones while the slider slides through (dv_x = -mu (1 + e) v_n), else what
+    # stops the slip (v_x = 0); the corners' conditions keep it flat (no turn), the moment of
+    # the friction impulse taken by the split of the normal ones
+    v_n, step = 0.05, 1e-4
+    joint, states = slider_run(step, 6 * step, y0=-CLEARANCE + 2.5 * step * v_n, velocity=(tangential, -v_n, 0.0))
+    impacts = joint.impacts()
+    assert len(impacts) == 2 and impacts[0].onset_time == impacts[1].onset_time
+    e = impact_restitution(joint.joint.law, v_n)
+    vx, vy, w = states[-1, 4:7]
+    # bound 1e-9: the jump is the step's end velocities, to Newton's tolerance
+    assert vy == pytest.approx(e * v_n, rel=1e-9)
+    assert abs(w) < 1e-9 * v_n / SIDE
+    slide = MU * (1.0 + e) * v_n
+    expected = tangential - slide if slide < tangential else 0.0
+    assert vx == pytest.approx(expected, abs=1e-9 * v_n)
+
+
+def pin_run(v, end, step=1e-5, start_gap=0.0, gravity=G):
+    """The pin of the joint-type scenes (a 40 g solid disc, R 4.9 mm, in a 10 mm slot) on the
+    slot's lower flat side (or ``start_gap`` above it) moving at ``v`` (x, y), MU; returns
+    the joint and the states (t, x, y, angle, their rates)."""
+    c = 0.5 * pins.WIDTH - pins.PIN
+    mbs, joint, node = pins.pin_in_slot((0.0, -c + start_gap), v, gravity=(0.0, -gravity), friction=f"coulomb:{MU}")
+    states = []
+
+    def record(mbs, t):
+        ov = exu.OutputVariableType
+        states.append((t, *mbs.GetNodeOutput(node, ov.Coordinates), *mbs.GetNodeOutput(node, ov.Coordinates_t)))
+        return True
+
+    mbs.SetPostStepUserFunction(record)
+    pins.solve(mbs, step, end, adaptive=False)
+    return joint, np.array(states)
+
+
+def test_a_pin_on_its_slots_flat_side_slides_at_mu_g_then_rolls():
+    # a solid disc (I = m R^2 / 2) sliding without spin on a flat wall: dv/dt = -mu g,
+    # R dw/dt = -2 mu g (its spin at its radius turns it towards rolling), the slip falls at
+    # 3 mu g until it rolls at t_s = v0 / (3 mu g) with v = 2 v0 / 3 (its angular momentum
+    # about the contact point is kept: the bowling-ball problem); the slot's side is flat
+    v0, step = 0.01, 1e-5
+    t_roll = v0 / (3.0 * MU * G)
+    joint, states = pin_run((v0, 0.0), 1.5 * t_roll, step)
+    t, vx, w = states[:, 0], states[:, 4], states[:, 6]
+    sliding = (t > 2 * step) & (t < t_roll - 2 * step)
+    # bound 1e-9: the trapezoidal rule integrates the constant friction exactly
+    assert -np.polyfit(t[sliding], vx[sliding], 1)[0] == pytest.approx(MU * G, rel=1e-9)
+    assert vx[-1] == pytest.approx(2.0 * v0 / 3.0, rel=1e-9)  # the kept angular momentum, to round-off
+    assert abs(vx[-1] + pins.PIN * w[-1]) < 1e-12  # rolls: no slip
+    out = joint.outputs()
+    assert np.all(out["sticking"][out["time"] > t_roll + step] == 1.0)
+    assert out["normal_force"][-1] == pytest.approx(pins.PIN_MASS * G, rel=1e-12)  # m g, Newton's tolerance
+
+
+@pytest.mark.parametrize("tangential", [0.3, 0.05])
+def test_a_pin_thrown_at_its_slots_side_follows_brachs_law(tangential):
+    # no gravity: the disc hits the flat side at v_n; the normal impulse m (1 + e) v_n, the
+    # slip v_x stopped where that needs m v_x / 3 (the disc's 1/m + R^2/I = 3/m) within mu
+    # times it, else the disc slides through: dv_x = -mu (1 + e) v_n, R dw = -2 mu (1 + e) v_n
+    v_n, step = 0.1, 1e-5
+    joint, states = pin_run((tangential, -v_n), 6 * step, step, start_gap=2.5 * step * v_n, gravity=0.0)
+    impacts = joint.impacts()
+    assert len(impacts) == 1
+    e = impacts[0].restitution
+    vx, vy, w = states[-1, 4:7]
+    slide = MU * (1.0 + e) * v_n
+    # bound 1e-9: the jump is the step's end velocities, to Newton's tolerance (the side is flat)
+    assert vy == pytest.approx(e * v_n, rel=1e-9)
+    if 3.0 * slide < tangential:  # slides through
+        assert vx == pytest.approx(tangential - slide, rel=1e-9)
+        assert pins.PIN * w == pytest.approx(-2.0 * slide, rel=1e-9)
+    else:  # sticks: rolls off
+        assert vx == pytest.approx(2.0 * tangential / 3.0, rel=1e-9)
+        assert abs(vx + pins.PIN * w) < 1e-9 * v_n
+
+
+def test_a_spinning_spatial_journal_slides_on_its_slices_then_rolls():
+    # the spatial journal (four slices, a solid steel cylinder, I = m R^2 / 2 about its axis)
+    # resting flat on its bearing's bottom and spinning at -v_T0 / R: each slice's friction
+    # mu times its share of the weight; Newton's laws as for the planar journal
+    # (tests/test_impulse_friction.py): the slip falls at 3 mu g until it rolls
+    slip0, step = 0.01, 1e-5
+    mbs, joint, states = journals.journal(offset=(0.0, -journals.CLEARANCE, 0.0), spin=(0.0, 0.0, -slip0 / journals.JOURNAL),
+                                          gravity=G, friction=f"coulomb:{MU}")
+    t_roll = slip0 / (3.0 * MU * G)
+    pins.solve(mbs, step, 1.5 * t_roll, adaptive=False)
+    outputs = joint.outputs()
+    assert len(outputs) == 4
+    first = outputs["slice 1 at z = -0.01125 m"]
+    t, slip = first["time"], first["slip_velocity"]
+    early = (t > 3 * step) & (t < 0.3 * t_roll)
+    # bound 0.5 %: the rolling journal's centre moves on a circle of radius c in the
+    # bearing (the wall's curvature is 1/c for the centre), whose slope pulls it back at
+    # g x / c, about 1.5 % of mu g by 0.3 t_s (the journal's travel 1.5 um against c = 100 um)
+    assert -np.polyfit(t[early], slip[early], 1)[0] == pytest.approx(3.0 * MU * G, rel=5e-3)
+    for name, out in outputs.items():
+        sliding = (out["time"] > 3 * step) & (out["sticking"] == 0.0)
+        # each slice's friction is mu times its own normal force, to the mode's load tolerance
+        assert np.all(np.abs(np.abs(out["friction_force"][sliding]) / (MU * out["normal_force"][sliding]) - 1.0)
+                      <= LOAD_TOLERANCE), name
+        assert out["sticking"][-1] == 1.0 and abs(out["slip_velocity"][-1]) < 1e-12, name
+        # the slices share the load equally (the journal flat, the least-squares split)
+        assert out["normal_force"][-1] == pytest.approx(first["normal_force"][-1], rel=1e-12), name
+    # the change to rolling within 3 % of t_s: the wall's curvature above slows the slip's fall
+    assert t[first["sticking"] == 1.0][0] == pytest.approx(t_roll, rel=0.03)
+
+
+def test_the_box_sliders_friction_is_refused_by_name():
+    # the box's corners slide in their wall's plane (a 2D slip), which the mode's friction
+    # does not cover; the planar slider's friction it takes (the tests above)
+    from validation.cost._translational_scenes import box
+    with pytest.raises(ValueError, match="joint box: .*box slider's corners slide in their wall's plane.*"
+                                         "use contact_mode='compliant'"):
+        box(friction=f"coulomb:{MU}")
