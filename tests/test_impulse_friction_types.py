@@ -202,11 +202,3 @@ def test_a_spinning_spatial_journal_slides_on_its_slices_then_rolls():
     # the change to rolling within 3 % of t_s: the wall's curvature above slows the slip's fall
     assert t[first["sticking"] == 1.0][0] == pytest.approx(t_roll, rel=0.03)
 
-
-def test_the_box_sliders_friction_is_refused_by_name():
-    # the box's corners slide in their wall's plane (a 2D slip), which the mode's friction
-    # does not cover; the planar slider's friction it takes (the tests above)
-    from validation.cost._translational_scenes import box
-    with pytest.raises(ValueError, match="joint box: .*box slider's corners slide in their wall's plane.*"
-                                         "use contact_mode='compliant'"):
-        box(friction=f"coulomb:{MU}")

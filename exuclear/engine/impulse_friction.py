@@ -1,23 +1,27 @@
 """Coulomb friction of the impulse contact mode's held and hit contacts
-(:mod:`~exuclear.engine.impulse`), for every contact pair that slides along one tangent
-(:mod:`~exuclear.engine.impulse_pairs`: the planar revolute joint's journal, the pin in its
-slot, a planar slider's corners, the spatial revolute joint's slices).
+(:mod:`~exuclear.engine.impulse`), for every contact pair (:mod:`~exuclear.engine.impulse_pairs`):
+along one tangent where the contact slides in a plane (the planar revolute joint's journal,
+the pin in its slot, a planar slider's corners, the spatial revolute joint's slices), in the
+tangent plane for a ball in its socket and a box's corner on its wall.
 
 Wherever the mode holds the normal condition for a step (an impact or a resting contact),
 the contact's friction acts in the same step, at the slip of the contact points
 (:func:`~exuclear.engine.impulse_pairs.contact_arms`), ``v_T = t . (v_1(P_1) - v_0(P_0))``
-with ``t = n x a`` (``a`` the pair's ``plane``): for a journal docs/physics.md eq. (8),
+with ``t = n x a`` (``a`` the pair's ``plane``), or the slip vector ``v_T`` in the plane normal
+to ``n`` (two tangents; a ball's docs/physics.md eqs. (96)-(97), a box's corner's slip over its
+wall): for a journal docs/physics.md eq. (8),
 ``v_T = t . (v_J - v_B) - R_J w_J + R_B w_B``; for a pin the same in the slot's frame at the
 slot's wall point (docs/physics.md section 14); for a corner its velocity along the guide's
 axis over the wall's point under it (a point: no spin term); for a slice the journal's
 circumferential slip at the slice (its axial slip, eq. (42)'s second part, is not resisted
 in this mode).
 
-- **Sliding**: a force ``F_T = mu(v_T) F_N sign(v_T)`` at the contact points, eqs. (24)-(26):
-  Exudyn loads at the joint's two markers, ``-F_T t`` with the moment ``r_1 x (-F_T t)`` on
-  the inner body and ``F_T t`` with ``r_0 x F_T t`` on the outer one (``r`` the arms to the
+- **Sliding**: a force ``F_T = mu(|v_T|) F_N`` along the slip's direction ``d`` at the step's
+  start (``sign(v_T) t`` along one tangent) at the contact points, eqs. (24)-(26):
+  Exudyn loads at the joint's two markers, ``-F_T d`` with the moment ``r_1 x (-F_T d)`` on
+  the inner body and ``F_T d`` with ``r_0 x F_T d`` on the outer one (``r`` the arms to the
   contact points; a journal's moments ``R_J F_T a`` and ``-R_B F_T a``), fixed over the step,
-  along the tangent of the rows the step's normal condition has.  ``F_N`` is that condition's end
+  in the tangent plane of the rows the step's normal condition has.  ``F_N`` is that condition's end
   multiplier in the same step (:meth:`ContactFriction.check` says why the end's), which the
   loads change in a closed loop: after Exudyn's Newton iteration the mode compares the load
   with ``mu`` times the multiplier it produced and, more than :data:`LOAD_TOLERANCE` apart,
@@ -25,12 +29,13 @@ in this mode).
   iteration: along the slope of load against its target that the step before measured, then
   along the secant through the step's last two computations; the plain iteration, load =
   target, converges slowly where the load moves the multiplier about as much as itself).
-- **Sticking**: where the step's end slip has the other sign than the slip the load opposed
-  (the slip would reverse within the step), or the contact stuck in the step before, a second
-  velocity-level condition holds the end slip at 0 (its rows those of the contact points,
-  which give eq. (8)'s spin terms); its multiplier is the friction
-  force, kept while the step's friction impulse is within ``mu_s`` times its normal one, else
-  the contact slides the way the multiplier points (Coulomb's friction cone).
+- **Sticking**: where the step's end slip points against the slip the load opposed (the slip
+  would reverse within the step), or the contact stuck in the step before, velocity-level
+  conditions hold the end slip at 0, one per tangent (their rows those of the contact points,
+  which give eq. (8)'s spin terms); their multipliers are the friction force, kept while the
+  step's friction impulse is within ``mu_s`` times its normal one (the cone
+  ``|F_T| <= mu_s F_N``), else the contact slides the way the multipliers point (Coulomb's
+  friction cone).
 - **Impacts**: the same two cases at the impact step, whose impulses are the step's end
   forces times ``h / 2`` (the trapezoidal rule from the free flight's zero): the tangential
   impulse is ``mu`` times the normal one while the contact slides through the impact, or what
@@ -79,35 +84,38 @@ OFF, SLIDE, STICK = "off", "slide", "stick"
 
 
 class ContactFriction:
-    """The friction of one impulse-mode joint: the sticking condition and the sliding loads
-    (module docstring).  The mode calls :meth:`measure` where it sets its normal rows,
-    :meth:`hold` and :meth:`release` with its normal condition, :meth:`check` after each
-    Newton iteration of a held step and :meth:`accept` at each accepted step."""
+    """The friction of one impulse-mode contact: the sticking conditions (one per tangent) and
+    the sliding loads (module docstring).  The mode calls :meth:`measure` where it sets its
+    normal rows, :meth:`hold` and :meth:`release` with its normal condition, :meth:`check`
+    after each Newton iteration of a held step and :meth:`accept` at each accepted step.
+    Forces are global vectors on the outer body (the bearing, socket, slot, guide), so that a
+    step's start force carries over to the next step's tangents."""
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, markers: Sequence[Any], pair: ContactPair,
-                 condition: VelocityCondition) -> None:
+                 conditions: Sequence[VelocityCondition]) -> None:
         self._law: FrictionLaw = joint.friction
         self._pair = pair
         self._markers = list(markers)
-        self._plane = np.asarray(pair.plane, dtype=float)
-        self.condition = condition  # the sticking condition, between the same markers
+        self._plane = None if pair.plane is None else np.asarray(pair.plane, dtype=float)
+        self.conditions = list(conditions)  # the sticking conditions, one per tangent, between the same markers
         self._forces = [mbs.AddLoad(LoadForceVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
                         for m in self._markers]
         self._torques = [mbs.AddLoad(LoadTorqueVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
                          for m in self._markers]
-        self._tangent = np.zeros(3)
+        self._tangents = np.zeros((len(self.conditions), 3))  # the rows' tangents (global, unit)
         self._arms = (np.zeros(3), np.zeros(3))  # marker 0's and marker 1's to the contact points (global)
         self._stick_mu = abs(self._law.coefficient(self._law.smoothing_speed))
         self._reset()
 
     def _reset(self) -> None:
-        self._state, self._force, self._sign = OFF, 0.0, 0.0
+        self._state, self._force = OFF, 0.0  # the sliding load [N] along _direction
+        self._direction = np.zeros(3)  # the slip's direction (global, unit) the sliding load opposes
         self._fresh = True  # the next hold starts a new step (its state decided from the slip)
-        self._slip = 0.0  # the slip at the state of the last measure (the step's start velocities)
+        self._slip = np.zeros(3)  # the slip at the state of the last measure (the step's start velocities)
         # the normal and the friction force at the step's start as the accelerations carry them
         # into the step (the last accepted step's end forces; 0 after flight, an impact, or the
         # onset of a rest, whose end accelerations the mode replaces by the free computation's)
-        self._normal0 = self._friction0 = 0.0
+        self._normal0, self._friction0 = 0.0, np.zeros(3)
         self._normal_sum = 0.0  # start plus end normal force of the last computed step
         self._sums: tuple[float, ...] = ()  # those of the last three accepted held steps
         self._slope = 0.0  # d(target load) / d(load) of the last step the secant measured
@@ -131,14 +139,18 @@ class ContactFriction:
         return acted
 
     def measure(self, mbs: exu.MainSystem, normal: np.ndarray, ecc: Eccentricity) -> None:
-        """The sticking condition's rows at the current state, along ``t = n x a`` for the
-        mode's ``normal`` and the pair's eccentricity ``ecc`` there, and the slip at the
-        current velocities (module docstring)."""
-        rotation = np.asarray(mbs.GetMarkerOutput(self._markers[0], exu.OutputVariableType.RotationMatrix), dtype=float)
-        self._tangent = np.cross(normal, rotation.reshape(3, 3) @ self._plane)
+        """The sticking conditions' rows at the current state, along the tangents of the
+        mode's ``normal`` (``t = n x a``, or two normal to ``n``) at the pair's contact points
+        for its eccentricity ``ecc`` there, and the slip at the current velocities."""
+        if self._plane is not None:
+            rotation = np.asarray(mbs.GetMarkerOutput(self._markers[0], exu.OutputVariableType.RotationMatrix),
+                                  dtype=float)
+            self._tangents = np.cross(normal, rotation.reshape(3, 3) @ self._plane)[None, :]
+        else:
+            self._tangents = tangent_plane(normal)
         # the rows of the contact points: for a journal t . (w x R n) = -R w . a, eq. (8)
         self._arms = contact_arms(self._pair, normal, ecc)
-        self._slip = self.condition.measure(mbs, self._tangent, arms=self._arms)
+        self._slip = sum(c.measure(mbs, t, arms=self._arms) * t for c, t in zip(self.conditions, self._tangents))
 
     def hold(self, mbs: exu.MainSystem) -> None:
         """The friction of the coming step, in the rows of the last :meth:`measure`: at a new
@@ -149,15 +161,16 @@ class ContactFriction:
         state = self._state
         if self._fresh or state == OFF:
             self._fresh, self._switches, self._secant = False, 0, None
-            state = STICK if state == STICK or abs(self._slip) <= self._law.smoothing_speed else SLIDE
+            speed = float(np.linalg.norm(self._slip))
+            state = STICK if state == STICK or speed <= self._law.smoothing_speed else SLIDE
             if state == SLIDE:
-                self._sign = math.copysign(1.0, self._slip)
+                self._direction = self._slip / speed
                 # the normal force sum of the coming step, extrapolated from the held steps
                 # before: the sums zigzag from step to step as the end multipliers alternate,
                 # so from the step two back along the trend of the steps of the other parity
                 s = self._sums
                 guess = s[1] + s[2] - s[0] if len(s) == 3 else self._normal_sum
-                self._force = self._sliding_force(self._sliding_mu(self._slip), guess - self._normal0)
+                self._force = self._sliding_force(self._sliding_mu(speed), guess - self._normal0)
         self._apply(mbs, state)
 
     def release(self, mbs: exu.MainSystem) -> None:
@@ -170,7 +183,7 @@ class ContactFriction:
     def forget(self) -> None:
         """The last step's end forces are not in the accelerations the next step starts from
         (the mode replaced them by the free computation's)."""
-        self._normal0 = self._friction0 = 0.0
+        self._normal0, self._friction0 = 0.0, np.zeros(3)
 
     def check(self, mbs: exu.MainSystem, normal_force: float, left: int) -> bool:
         """After Exudyn's Newton iteration of a step the normal condition held at the end
@@ -183,33 +196,36 @@ class ContactFriction:
         forces, and a held condition's end multipliers alternate about the load from step to
         step (:mod:`~exuclear.engine.impulse`), through 0 and below: the friction cone holds
         for the sums of start and end forces, not for each end force.  A sliding load is
-        ``mu`` times the end normal force, signed, so that over steps that slide alike the
-        step's friction impulse is ``mu`` times its normal one and the loads alternate with
-        the normal force (a load set to make up the step before's miss, ``mu (N_0 + N_1) -
-        F_0``, keeps that miss alternating, and the two alternations can grow into each other)."""
+        ``mu`` times the end normal force, so that over steps that slide alike the step's
+        friction impulse is ``mu`` times its normal one and the loads alternate with the
+        normal force (a load set to make up the step before's miss, ``mu (N_0 + N_1) - F_0``,
+        keeps that miss alternating, and the two alternations can grow into each other)."""
         self._normal_sum = self._normal0 + normal_force
         bound = max(self._normal_sum, 0.0)
         if self._state == STICK:
-            stick = self._friction0 + self.condition.multiplier(mbs)
-            if abs(stick) <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(left):
+            # the step's friction force sum in the present tangents (the start's, carried over)
+            stick = self._tangents.T @ (self._tangents @ self._friction0) + self._sticking_force(mbs)
+            size = float(np.linalg.norm(stick))
+            if size <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(left):
                 return False
             # the contact slides the way the friction impulse it needed points (F_T opposes v_T)
-            self._sign = math.copysign(1.0, stick)
+            self._direction = stick / size
             self._force = self._sliding_force(self._sliding_mu(0.0), normal_force)
             self._apply(mbs, SLIDE)
             return True
         if self._state != SLIDE:
             return False
-        end_slip = self.condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
-        if end_slip * self._sign < 0.0:  # the slip reversed within the step
+        end_slip = self._rates(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
+        if end_slip @ self._direction < 0.0:  # the slip reversed within the step
             if self._switch(left):
                 self._apply(mbs, STICK)
                 return True
             self._reversed += 1  # accepted: the load pushed the slip across 0 within this step
             return False
-        target = self._sliding_force(self._sliding_mu(end_slip), normal_force)
+        speed = float(np.linalg.norm(end_slip))
+        target = self._sliding_force(self._sliding_mu(speed), normal_force)
         # the size of the step's friction forces (its end normal force may alternate through 0)
-        scale = max(self._sliding_mu(end_slip) * max(abs(normal_force), 0.5 * bound), abs(self._force))
+        scale = max(self._sliding_mu(speed) * max(abs(normal_force), 0.5 * bound), abs(self._force))
         off = abs(target - self._force)
         if off <= LOAD_TOLERANCE * scale:
             return False
@@ -225,7 +241,7 @@ class ContactFriction:
             slope = 1.0 - (miss - self._secant[1]) / (self._force - self._secant[0])
             self._slope = slope
         load = self._force + miss / (1.0 - slope) if slope < 1.0 else target
-        if not 0.0 <= load / (self._sign * self._stick_mu * normal_force or math.inf) <= 1.0:
+        if not 0.0 <= load / (self._stick_mu * normal_force or math.inf) <= 1.0:
             load = target  # beyond what Coulomb's law can ask (a slip-dependent mu bends the secant)
         self._secant = (self._force, miss)
         self._force = load
@@ -240,10 +256,11 @@ class ContactFriction:
         if self._state == OFF:
             self._records.append((t_end, 0.0, 0.0, 0.0))
             return
-        slip = self.condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
-        force = self.condition.multiplier(mbs) if self._state == STICK else self._force
+        slip = self._rates(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
+        force = self._sticking_force(mbs) if self._state == STICK else self._force * self._direction
         # the step's friction impulse over h: the mean of its start and end forces
-        self._records.append((t_end, slip, 0.5 * (self._friction0 + force) if held else 0.0,
+        self._records.append((t_end, self._component(slip),
+                              self._component(0.5 * (self._friction0 + force)) if held else 0.0,
                               float(self._state == STICK)))
         self._normal0, self._friction0 = self._normal_sum - self._normal0, force
         self._sums = (self._sums + (self._normal_sum,))[-3:] if held else ()
@@ -251,15 +268,16 @@ class ContactFriction:
     def snapshot(self) -> dict[str, Any]:
         """The setting the step was computed with, to be taken back where Exudyn computes it
         again (:meth:`restore`)."""
-        return {"_state": self._state, "_force": self._force, "_sign": self._sign, "_tangent": self._tangent,
-                "_arms": self._arms, "rows": self.condition.rows, "_normal0": self._normal0,
-                "_friction0": self._friction0, "records": len(self._records)}
+        return {"_state": self._state, "_force": self._force, "_direction": self._direction,
+                "_tangents": self._tangents, "_arms": self._arms, "rows": [c.rows for c in self.conditions],
+                "_normal0": self._normal0, "_friction0": self._friction0, "records": len(self._records)}
 
     def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
         """The setting of :meth:`snapshot` back, applied for Exudyn's computation of the step."""
         saved = dict(saved)
         del self._records[saved.pop("records"):]
-        self.condition.rows = saved.pop("rows")
+        for condition, rows in zip(self.conditions, saved.pop("rows")):
+            condition.rows = rows
         state = saved.pop("_state")
         self.__dict__.update(saved)
         self._fresh, self._switches, self._secant = False, 0, None
@@ -270,9 +288,10 @@ class ContactFriction:
         """At the end of each step: ``slip_velocity`` (eq. (8), the held or hit contact's; 0
         in flight), ``friction_force`` (``F_T`` of eqs. (24)-(26): the sliding load or the
         sticking multiplier, as a two-step mean while held; 0 in flight and at impacts) and
-        ``sticking`` (1 where the contact stuck).  The friction force is the step's friction
-        impulse over the step (the mean of its start and end forces), as the mode's normal
-        force is."""
+        ``sticking`` (1 where the contact stuck).  Along one tangent both are signed along
+        ``t = n x a``; in a tangent plane they are the slip's speed ``|v_T|`` and the
+        friction's size ``|F_T|``.  The friction force is the step's friction impulse over
+        the step (the mean of its start and end forces), as the mode's normal force is."""
         data = np.array(self._records, dtype=float).reshape(-1, 4)
         return {"slip_velocity": data[:, 1], "friction_force": data[:, 2], "sticking": data[:, 3]}
 
@@ -292,16 +311,31 @@ class ContactFriction:
         return notes
 
     # -- inside -------------------------------------------------------------------------
-    def _sliding_mu(self, slip: float) -> float:
+    def _rates(self, x: np.ndarray) -> np.ndarray:
+        """The slip (global) for the system's coordinate rates ``x``, through the rows."""
+        return sum(c.rate(x) * t for c, t in zip(self.conditions, self._tangents))
+
+    def _sticking_force(self, mbs: exu.MainSystem) -> np.ndarray:
+        """The sticking conditions' end force (global, on the outer body)."""
+        return sum(c.multiplier(mbs) * t for c, t in zip(self.conditions, self._tangents))
+
+    def _component(self, vector: np.ndarray) -> float:
+        """What the outputs record of a tangential vector: along one tangent its component
+        (signed), in a tangent plane its length."""
+        if len(self._tangents) == 1:
+            return float(self._tangents[0] @ vector)
+        return float(np.linalg.norm(vector))
+
+    def _sliding_mu(self, speed: float) -> float:
         """``|mu(v_T)|`` of the law, at no less than its smoothing speed."""
-        return abs(self._law.coefficient(max(abs(slip), self._law.smoothing_speed)))
+        return abs(self._law.coefficient(max(abs(speed), self._law.smoothing_speed)))
 
     def _sliding_force(self, mu: float, normal_end: float) -> float:
-        """The end load against the slip, ``sign mu N_1``; where the step's normal forces
+        """The end load along the slip's direction, ``mu N_1``; where the step's normal forces
         sum to a pull (the mode lets go after it), the one whose step impulse is 0."""
         if self._normal0 + normal_end <= 0.0:
-            return -self._friction0
-        return self._sign * mu * normal_end
+            return -float(self._friction0 @ self._direction)
+        return mu * normal_end
 
     def _switch(self, left: int) -> bool:
         """Whether the contact may change between sliding and sticking in this computation."""
@@ -312,20 +346,29 @@ class ContactFriction:
         return True
 
     def _apply(self, mbs: exu.MainSystem, state: str) -> None:
-        """The items as ``state`` says: the sticking condition on or off, the sliding loads
-        (``F_T`` along the tangent) or none."""
-        if state == STICK and not (self._state == STICK and self.condition.plan.active
-                                   and self.condition.plan.rows is self.condition.rows):
-            self.condition.hold(mbs, 0.0)
-        elif state != STICK and self.condition.plan.active:
-            self.condition.release(mbs)
-        force = self._force if state == SLIDE else 0.0
-        # F_T t on the outer body, -F_T t on the inner one, each at its contact point
-        for load, torque, arm, vector in zip(self._forces, self._torques, self._arms, (force * self._tangent,
-                                                                                      -force * self._tangent)):
+        """The items as ``state`` says: the sticking conditions on or off, the sliding loads
+        (``F_T`` along the slip's direction) or none."""
+        for condition in self.conditions:
+            if state == STICK and not (self._state == STICK and condition.plan.active
+                                       and condition.plan.rows is condition.rows):
+                condition.hold(mbs, 0.0)
+            elif state != STICK and condition.plan.active:
+                condition.release(mbs)
+        force = self._force * self._direction if state == SLIDE else np.zeros(3)
+        # F_T d on the outer body, -F_T d on the inner one, each at its contact point
+        for load, torque, arm, vector in zip(self._forces, self._torques, self._arms, (force, -force)):
             mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
             mbs.SetLoadParameter(torque, "loadVector", [float(x) for x in np.cross(arm, vector)])
         self._state = state
+
+
+def tangent_plane(normal: np.ndarray) -> np.ndarray:
+    """Two unit tangents (rows, global) normal to ``normal`` and to each other."""
+    helper = np.zeros(3)
+    helper[int(np.argmin(np.abs(normal)))] = 1.0  # the axis farthest from the normal
+    first = np.cross(normal, helper)
+    first /= float(np.linalg.norm(first))
+    return np.array([first, np.cross(normal, first)])
 
 
 class Frictionless:
@@ -368,14 +411,12 @@ class Frictionless:
 def contact_friction(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
                      pair: ContactPair, condition: Callable[[str], VelocityCondition]) -> ContactFriction | Frictionless:
     """The friction of an impulse-mode joint between ``markers`` [outer, inner] whose contact
-    is ``pair``: its items where the joint's law has friction, the sticking condition made by
-    ``condition`` (given its name; a joint with several contacts holds it with the others'),
-    else hooks that do nothing.  A pair that slides in a tangent plane (``plane`` None: a
-    ball, a box's corner) has none in the mode
-    (:func:`~exuclear.engine.modes.impulse_refusal` refuses it by name)."""
+    is ``pair``: its items where the joint's law has friction, the sticking conditions made by
+    ``condition`` (given a name; a joint with several contacts holds them with the others'),
+    one for a pair that slides along one tangent, two for one that slides in a tangent plane
+    (``plane`` None: a ball, a box's corner); else hooks that do nothing."""
     if not joint.friction.active:
         return Frictionless()
-    if pair.plane is None:
-        raise ValueError(f"joint {name or '(unnamed)'}: the impulse mode's friction covers contacts that slide along "
-                         f"one tangent, not a {type(pair).__name__}'s tangent plane")
-    return ContactFriction(mbs, joint, markers, pair, condition(f"{name}:stick" if name else ""))
+    label = f"{name}:stick" if name else ""
+    names = [label] if pair.plane is not None else [f"{label} 1" if name else "", f"{label} 2" if name else ""]
+    return ContactFriction(mbs, joint, markers, pair, [condition(n) for n in names])

@@ -54,14 +54,10 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
     without wear whose contacts are each one point against its clearance
     (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
     pin-in-slot joint; the translational joints' corners and the spatial revolute joint's
-    slices, each a pair of its own, :mod:`~exuclear.engine.impulse_group`), with friction
-    where the contact slides along one tangent (:mod:`~exuclear.engine.impulse_friction`:
-    all of them but the ball and the box's corners, whose slip has a tangent plane);
-    ``faces``: the spatial joint has end faces (``axial_clearance``)."""
+    slices, each a pair of its own, :mod:`~exuclear.engine.impulse_group`), with their
+    friction (:mod:`~exuclear.engine.impulse_friction`); ``faces``: the spatial joint has end
+    faces (``axial_clearance``)."""
     if joint_type == "prismatic":
-        if joint.friction.active and joint.geometry.spatial:
-            return ("the box slider's corners slide in their wall's plane, and the mode's friction covers slip along "
-                    "one tangent (the planar slider's): give a frictionless joint")
         if joint.geometry.guide_length is not None:
             return "a corner beyond a finite guide's end (`guide_length`) is not in the mode: leave `guide_length` out"
     elif joint_type not in PAIRS:
@@ -74,9 +70,6 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:
         return "wear integrates the contact's force and slip over each impact, which the mode does not compute"
-    if joint.friction.active and joint_type == "spherical":
-        return ("a ball slides in its tangent plane, and the mode's friction covers slip along one tangent (the "
-                "journal's, the pin's, the planar slider's corners', the slices'): give a frictionless joint")
     return ""
 
 

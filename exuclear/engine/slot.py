@@ -61,7 +61,7 @@ def CreatePinSlotClearanceJoint(  # noqa: N802 - Exudyn's naming of item factori
     backend, maxPenetration, bearingRotates, record, contact_mode
         As in :func:`exuclear.CreateClearanceJoint` (``bearingRotates``: whether the slot can turn;
         ``contact_mode="impulse"``: the pin against the slot's centre segment, its normal
-        turning around the end caps; the mode refuses a joint with friction).
+        turning around the end caps, its friction along the slot's wall).
 
     Returns
     -------

@@ -93,7 +93,7 @@ def CreateSphericalClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         jumps with the point-contact law's restitution, resting contact as a condition;
         returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`, whose ``outputs()``
         has ``ecc_x``, ``ecc_y``, ``ecc_z``, global), as in
-        :func:`exuclear.CreateClearanceJoint`; the mode refuses a joint with friction.
+        :func:`exuclear.CreateClearanceJoint`; the mode's friction acts in the ball's tangent plane.
 
     Returns
     -------
