@@ -165,7 +165,7 @@ class ImpulseJointHandle:
         # the contact's Coulomb friction (exuclear.engine.impulse_friction), hooked in where the
         # normal condition is measured, held, released, checked and accepted
         self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair,
-                                          lambda label: self._new_condition(mbs, label, tangential=True))
+                                          lambda label, k: self._new_condition(mbs, label, tangent=k))
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -184,9 +184,10 @@ class ImpulseJointHandle:
     def joint(self) -> ClearanceJoint:
         return self._joint
 
-    def _new_condition(self, mbs: exu.MainSystem, name: str, tangential: bool = False) -> VelocityCondition:
-        """The contact's condition, or with ``tangential`` its friction's sticking condition (a
-        joint with several contacts gives its own, which knows the others)."""
+    def _new_condition(self, mbs: exu.MainSystem, name: str, tangent: int | None = None) -> VelocityCondition:
+        """The contact's condition, or its friction's sticking condition along its ``tangent``
+        (the index of :func:`~exuclear.engine.impulse_friction.tangents`; a joint with several
+        contacts gives its own, which knows the others)."""
         return VelocityCondition(mbs, self.markerNumbers, name)
 
     # -- the run ------------------------------------------------------------------------
@@ -220,11 +221,11 @@ class ImpulseJointHandle:
         if self._start is None or t < self._start - tol:
             if self._saved is not None and abs(t - self._saved["_start"]) <= tol:
                 # Exudyn computes again a step the mode had accepted (another item asked for it):
-                # the state before that step; computed once more where the condition it had
-                # is not the one this computation had
-                applied = self._condition.plan
+                # the state before that step; computed once more where the condition or the
+                # friction it had is not the one this computation had
+                applied, rubbing = self._condition.plan, self._friction.setting()
                 plan = self._restore()
-                if not plan.same(applied) or self._friction.acting:
+                if not plan.same(applied) or not self._friction.matches(rubbing):
                     self._condition.set(mbs, plan)
                     return REDO_ERROR
             else:

@@ -96,7 +96,6 @@ class ContactFriction:
         self._law: FrictionLaw = joint.friction
         self._pair = pair
         self._markers = list(markers)
-        self._plane = None if pair.plane is None else np.asarray(pair.plane, dtype=float)
         self.conditions = list(conditions)  # the sticking conditions, one per tangent, between the same markers
         self._forces = [mbs.AddLoad(LoadForceVector(markerNumber=m, loadVector=[0.0, 0.0, 0.0]))
                         for m in self._markers]
@@ -142,12 +141,7 @@ class ContactFriction:
         """The sticking conditions' rows at the current state, along the tangents of the
         mode's ``normal`` (``t = n x a``, or two normal to ``n``) at the pair's contact points
         for its eccentricity ``ecc`` there, and the slip at the current velocities."""
-        if self._plane is not None:
-            rotation = np.asarray(mbs.GetMarkerOutput(self._markers[0], exu.OutputVariableType.RotationMatrix),
-                                  dtype=float)
-            self._tangents = np.cross(normal, rotation.reshape(3, 3) @ self._plane)[None, :]
-        else:
-            self._tangents = tangent_plane(normal)
+        self._tangents = tangents(mbs, self._pair, self._markers, normal)
         # the rows of the contact points: for a journal t . (w x R n) = -R w . a, eq. (8)
         self._arms = contact_arms(self._pair, normal, ecc)
         self._slip = sum(c.measure(mbs, t, arms=self._arms) * t for c, t in zip(self.conditions, self._tangents))
@@ -284,6 +278,19 @@ class ContactFriction:
         if mbs is not None:
             self._apply(mbs, state)
 
+    def setting(self) -> tuple:
+        """How the friction's items are set now (:meth:`matches`)."""
+        return self._state, self._force, self._direction, self._arms, [c.plan for c in self.conditions]
+
+    def matches(self, setting: tuple) -> bool:
+        """Whether the items are set as ``setting`` (of :meth:`setting`) says: the same
+        sticking conditions, or the same sliding loads, or none."""
+        state, force, direction, arms, plans = setting
+        if state != self._state or not all(p.same(c.plan) for p, c in zip(plans, self.conditions)):
+            return False
+        return state != SLIDE or (force == self._force and np.array_equal(direction, self._direction)
+                                  and all(np.array_equal(a, b) for a, b in zip(arms, self._arms)))
+
     def outputs(self) -> dict[str, np.ndarray]:
         """At the end of each step: ``slip_velocity`` (eq. (8), the held or hit contact's; 0
         in flight), ``friction_force`` (``F_T`` of eqs. (24)-(26): the sliding load or the
@@ -362,6 +369,16 @@ class ContactFriction:
         self._state = state
 
 
+def tangents(mbs: exu.MainSystem, pair: ContactPair, markers: Sequence[Any], normal: np.ndarray) -> np.ndarray:
+    """The tangents (rows, global, unit) along which the contact of ``pair`` between
+    ``markers`` slides at the current state for the normal ``normal``: ``n x a`` for a pair
+    with a ``plane`` ``a`` (marker 0's frame), else :func:`tangent_plane`."""
+    if pair.plane is None:
+        return tangent_plane(normal)
+    rotation = np.asarray(mbs.GetMarkerOutput(markers[0], exu.OutputVariableType.RotationMatrix), dtype=float)
+    return np.cross(normal, rotation.reshape(3, 3) @ np.asarray(pair.plane, dtype=float))[None, :]
+
+
 def tangent_plane(normal: np.ndarray) -> np.ndarray:
     """Two unit tangents (rows, global) normal to ``normal`` and to each other."""
     helper = np.zeros(3)
@@ -401,6 +418,12 @@ class Frictionless:
     def snapshot(self) -> dict[str, Any]:
         return {}
 
+    def setting(self) -> tuple:
+        return ()
+
+    def matches(self, setting: tuple) -> bool:
+        return True
+
     def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
         pass
 
@@ -409,14 +432,15 @@ class Frictionless:
 
 
 def contact_friction(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                     pair: ContactPair, condition: Callable[[str], VelocityCondition]) -> ContactFriction | Frictionless:
+                     pair: ContactPair, condition: Callable[[str, int], VelocityCondition]) -> ContactFriction | Frictionless:
     """The friction of an impulse-mode joint between ``markers`` [outer, inner] whose contact
     is ``pair``: its items where the joint's law has friction, the sticking conditions made by
-    ``condition`` (given a name; a joint with several contacts holds them with the others'),
+    ``condition`` (given a name and the index of its tangent in :func:`tangents`; a joint with
+    several contacts holds them with the others'),
     one for a pair that slides along one tangent, two for one that slides in a tangent plane
     (``plane`` None: a ball, a box's corner); else hooks that do nothing."""
     if not joint.friction.active:
         return Frictionless()
     label = f"{name}:stick" if name else ""
     names = [label] if pair.plane is not None else [f"{label} 1" if name else "", f"{label} 2" if name else ""]
-    return ContactFriction(mbs, joint, markers, pair, [condition(n) for n in names])
+    return ContactFriction(mbs, joint, markers, pair, [condition(n, k) for k, n in enumerate(names)])

@@ -27,7 +27,8 @@ from ..spatial import slice_centres
 from ..timescales import closed_form_impact
 from .condition import VelocityCondition
 from .impulse import ClosedFormImpact, ImpulseJointHandle
-from .impulse_pairs import ContactPair, SlicePair
+from .impulse_friction import tangents
+from .impulse_pairs import ContactPair, Eccentricity, SlicePair, contact_arms
 
 #: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
 #: this share of its length is a combination of them: the wrenches at one state of a rigid
@@ -170,10 +171,14 @@ class _GroupCondition(VelocityCondition):
         coordinates by one map for all of a joint's contacts (the inner body's point and
         ``S`` lie along ``n``), so the contacts' conditions are dependent where their
         wrenches are."""
-        e, arm, _ = self.pair.eccentricity(mbs, self.markers)
-        norm = float(np.linalg.norm(e))
-        n = e / norm if norm > NEAR * self.pair.clearance else self.normal
-        return np.concatenate((n, np.cross(np.zeros(3) if arm is None else arm, n)))
+        ecc = self.pair.eccentricity(mbs, self.markers)
+        n = self.present_normal(ecc)
+        return np.concatenate((n, np.cross(np.zeros(3) if ecc.arm is None else ecc.arm, n)))
+
+    def present_normal(self, ecc: Eccentricity) -> np.ndarray:
+        """The contact's normal for its eccentricity at the present state (:meth:`wrench`)."""
+        norm = float(np.linalg.norm(ecc.e))
+        return ecc.e / norm if norm > NEAR * self.pair.clearance else self.normal
 
     def switch(self, mbs: exu.MainSystem, on: bool) -> None:
         """On where the plan holds the contact and the acting contacts do not; off, letting
@@ -195,23 +200,26 @@ class _GroupCondition(VelocityCondition):
 
 
 class _GroupStick(_GroupCondition):
-    """A contact's sticking condition (:mod:`~exuclear.engine.impulse_friction`), held with
-    the joint's other conditions: a slider sticking flat on its wall holds its two corners
-    along the guide's axis in one direction, one condition on in Exudyn, the other held by
-    it, the friction split as the reactions are (:meth:`_Contacts.reaction`)."""
+    """A contact's sticking condition along its ``tangent`` (the index of
+    :func:`~exuclear.engine.impulse_friction.tangents`), held with the joint's other
+    conditions: a slider sticking flat on its wall holds its two corners along the guide's
+    axis in one direction, one condition on in Exudyn, the other held by it, the friction
+    split as the reactions are (:meth:`_Contacts.reaction`)."""
 
-    def __init__(self, *args: Any) -> None:
-        super().__init__(*args)
-        self.arm = np.zeros(3)  # marker 0's arm to the contact point of the rows
-
-    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, arms: Sequence[Any] = (None, None)) -> float:
-        self.arm = np.zeros(3) if arms[0] is None else np.asarray(arms[0], dtype=float)
-        return super().measure(mbs, normal, arms)
+    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, contacts: _Contacts,
+                 pair: ContactPair, tangent: int, normal: _GroupCondition) -> None:
+        super().__init__(mbs, markers, name, contacts, pair)
+        self.tangent, self.normal_condition = tangent, normal
 
     def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
-        """The unit wrench ``(t, P x t)`` of the friction at the contact point ``P`` (from
-        marker 0's point) along the tangent ``t`` its rows hold."""
-        return np.concatenate((self.normal, np.cross(self.arm, self.normal)))
+        """The unit wrench ``(t, P x t)`` of the friction along the tangent at the contact
+        point ``P`` (from marker 0's point), at the present state as the normal conditions'
+        (a sticking condition's rows are measured where its step starts or ends, and wrenches
+        of different states make a dependent set pass as independent)."""
+        ecc = self.pair.eccentricity(mbs, self.markers)
+        n = self.normal_condition.present_normal(ecc)
+        t = tangents(mbs, self.pair, self.markers, n)[self.tangent]
+        return np.concatenate((t, np.cross(contact_arms(self.pair, n, ecc)[0], t)))
 
 
 class _GroupPair(ImpulseJointHandle):
@@ -223,9 +231,10 @@ class _GroupPair(ImpulseJointHandle):
         self._names: dict[float, str] = {}  # onset time [s] -> the contact's name
         super().__init__(*args)
 
-    def _new_condition(self, mbs: exu.MainSystem, name: str, tangential: bool = False) -> VelocityCondition:
-        kind = _GroupStick if tangential else _GroupCondition
-        return kind(mbs, self.markerNumbers, name, self._contacts, self._pair)
+    def _new_condition(self, mbs: exu.MainSystem, name: str, tangent: int | None = None) -> VelocityCondition:
+        if tangent is None:
+            return _GroupCondition(mbs, self.markerNumbers, name, self._contacts, self._pair)
+        return _GroupStick(mbs, self.markerNumbers, name, self._contacts, self._pair, tangent, self._condition)
 
     def _reset(self) -> None:
         super()._reset()
@@ -237,10 +246,11 @@ class _GroupPair(ImpulseJointHandle):
         return out
 
     def take_back(self, mbs: exu.MainSystem) -> None:
-        """The condition of the step just accepted back (:meth:`_Contacts.decided`): Exudyn
-        computes it again."""
+        """The condition and the friction of the step just accepted back
+        (:meth:`_Contacts.decided`): Exudyn computes it again."""
         if self._saved is not None:
             self._condition.set(mbs, self._saved["plan"])
+            self._friction.restore(mbs, self._saved["friction"])
 
     def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
         name = self._pair.contact_name(mbs, self.markerNumbers)  # at the step's end, in the wall
