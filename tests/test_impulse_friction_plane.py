@@ -1,39 +1,15 @@
 """Coulomb friction in the impulse contact mode where the slip has a tangent plane
 (exuclear.engine.impulse_friction, two sticking conditions and the cone |F_T| <= mu_s F_N):
-a ball in its socket and a box slider's corners on their wall, against Newton's laws."""
-import exudyn as exu
+a ball in its socket and a box slider's corners on their wall, against Newton's laws, on the
+scenes of validation/cost/_friction_scenes.py."""
 import numpy as np
 import pytest
 
 from exuclear.engine.impulse_friction import LOAD_TOLERANCE
-from validation.cost import _joint_type_scenes as balls
-from validation.cost import _translational_scenes as boxes
+from validation.cost import _friction_scenes as scenes
+from validation.cost._translational_scenes import MASS
 
-G = 9.81
-MU = 0.2
-#: A slip direction in the tangent plane at the socket's bottom, or the box's lower wall
-#: (x along the guide, z across the channel): neither along an axis of the frames.
-DIRECTION = np.array([0.6, 0.0, 0.8])
-
-
-def ball_run(velocity, end, step, start_gap=0.0, gravity=G):
-    """The joint-type scenes' steel ball (R 9.9 mm, c = 0.1 mm) at the socket's bottom (or
-    ``start_gap`` above it) moving at ``velocity``, Coulomb friction MU, at fixed steps;
-    returns the joint and the states (t, position, velocity, angular velocity)."""
-    c = balls.SOCKET - balls.BALL
-    mbs, joint, node = balls.ball_in_socket((0.0, -c + start_gap, 0.0), velocity, gravity=gravity,
-                                            friction=f"coulomb:{MU}")
-    states = []
-
-    def record(mbs, t):
-        ov = exu.OutputVariableType
-        states.append((t, *(x for q in (ov.Position, ov.Velocity, ov.AngularVelocity)
-                            for x in mbs.GetNodeOutput(node, q))))
-        return True
-
-    mbs.SetPostStepUserFunction(record)
-    balls.solve(mbs, step, end, adaptive=False)
-    return joint, np.array(states)
+G, MU, DIRECTION = scenes.G, scenes.MU, scenes.DIRECTION
 
 
 def test_a_ball_in_its_socket_slides_straight_at_mu_g_then_rolls():
@@ -45,7 +21,7 @@ def test_a_ball_in_its_socket_slides_straight_at_mu_g_then_rolls():
     # point is kept)
     v0, step = 1e-3, 1e-6
     t_roll = v0 / (3.5 * MU * G)  # 0.15 ms
-    joint, states = ball_run(v0 * DIRECTION, 1.5 * t_roll, step)
+    joint, states, _ = scenes.ball(v0 * DIRECTION, scenes.whole_steps(1.5 * t_roll, step), step)
     t, v = states[:, 0], states[:, 4:7]
     sliding = (t > 2 * step) & (t < t_roll - 2 * step)
     speed = v[:, [0, 2]] @ DIRECTION[[0, 2]]
@@ -75,8 +51,8 @@ def test_a_ball_thrown_at_its_socket_follows_brachs_law(tangential):
     # P = m v_T / 3.5 (the ball's 1/m + R^2/I = 3.5/m) within mu P_n (the ball leaves rolling
     # at 5 v_T / 7), else it slides through with mu P_n along the slip: dv = -mu (1 + e) v_n
     v_n, step = 0.1, 1e-8
-    joint, states = ball_run(tangential * DIRECTION - [0.0, v_n, 0.0], 6 * step, step, start_gap=2.5 * step * v_n,
-                             gravity=0.0)
+    joint, states, _ = scenes.ball(tangential * DIRECTION - [0.0, v_n, 0.0], 6 * step, step,
+                                   start_gap=2.5 * step * v_n, gravity=0.0)
     impacts = joint.impacts()
     assert len(impacts) == 1
     e = impacts[0].restitution
@@ -96,11 +72,8 @@ def test_a_box_flat_on_its_wall_slides_straight_at_mu_g_then_sticks():
     # guide's axis: its four lower corners' friction slows it at mu g along a straight line
     # until it stops at t_s = v0 / (mu g), then it sticks, each corner holding m g / 4
     v0, step = 0.02, 1e-4
-    t_stop = v0 / (MU * G)  # 10 ms; the box moves 8 um across the channel by then, c = 100 um
-    mbs, joint, states = boxes.box(offset=(0.0, -boxes.CLEARANCE, 0.0), velocity=v0 * DIRECTION, gravity=G,
-                                   friction=f"coulomb:{MU}")
-    balls.solve(mbs, step, 1.5 * t_stop, adaptive=False)
-    states = np.array(states)
+    t_stop = v0 / (MU * G)  # 10 ms, inside a step; the box moves 8 um across the channel by then, c = 100 um
+    joint, states, _ = scenes.sliding_box(v0, step)
     t, p, w = states[:, 0], states[:, 1:4], states[:, 7:10]
     along = p[:, [0, 2]] @ DIRECTION[[0, 2]]
     reference = np.where(t < t_stop, v0 * t - 0.5 * MU * G * t**2, 0.5 * v0 * t_stop)
@@ -114,8 +87,8 @@ def test_a_box_flat_on_its_wall_slides_straight_at_mu_g_then_sticks():
     for out in corners:
         assert out["sticking"][-1] == 1.0 and abs(out["slip_velocity"][-1]) < 1e-12
         # bound 1e-12: Newton's tolerance on the held conditions, the least-squares split
-        assert out["normal_force"][-1] == pytest.approx(0.25 * boxes.MASS * G, rel=1e-12)
+        assert out["normal_force"][-1] == pytest.approx(0.25 * MASS * G, rel=1e-12)
     # the corners' friction during the slide sums to mu m g
     slid = (corners[0]["time"] > 3 * step) & (corners[0]["time"] < t_stop - 3 * step)
     total = sum(out["friction_force"][slid] for out in corners)
-    assert np.all(np.abs(total / (MU * boxes.MASS * G) - 1.0) <= LOAD_TOLERANCE)
+    assert np.all(np.abs(total / (MU * MASS * G) - 1.0) <= LOAD_TOLERANCE)

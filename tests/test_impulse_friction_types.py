@@ -1,35 +1,20 @@
 """Coulomb friction in the impulse contact mode on the joint types whose contact slides along
 one tangent (exuclear.engine.impulse_friction): a planar slider's corners, a pin in its slot,
 the spatial revolute joint's slices; each against Newton's laws (sliding at mu F_N against the
-slip, sticking within the friction cone, Brach's impact law)."""
+slip, sticking within the friction cone, Brach's impact law), on the scenes of
+validation/cost/_friction_scenes.py."""
 import math
 
-import exudyn as exu
 import numpy as np
 import pytest
 
 from exuclear.engine.impulse_friction import LOAD_TOLERANCE
 from exuclear.timescales import impact_restitution
+from validation.cost import _friction_scenes as scenes
 from validation.cost import _joint_type_scenes as pins
-from validation.cost import _spatial_scenes as journals
-from validation.cost._translational_scenes import CLEARANCE, MASS, SIDE, slider
+from validation.cost._translational_scenes import CLEARANCE, MASS, SIDE
 
-G = 9.81
-MU = 0.2
-
-
-def slider_run(step, end, **scene):
-    """The planar slider of the translational scenes (0.98 kg, 50 mm square, c = 0.1 mm) with
-    Coulomb friction MU, at fixed steps; returns the joint and its states (t, x, y, angle,
-    their rates)."""
-    mbs, joint, states = slider(friction=f"coulomb:{MU}", **scene)
-    pins.solve(mbs, step, end, adaptive=False)
-    return joint, np.array(states)
-
-
-def lower_corners(joint):
-    pairs = joint.outputs()
-    return pairs["corner rear-lower / lower and upper walls"], pairs["corner front-lower / lower and upper walls"]
+G, MU = scenes.G, scenes.MU
 
 
 def test_a_slider_flat_on_its_wall_slides_at_mu_g_then_sticks():
@@ -38,15 +23,15 @@ def test_a_slider_flat_on_its_wall_slides_at_mu_g_then_sticks():
     # friction mu N at the wall, H/2 below the centre, tilts the split: the moment balance about
     # the centre gives N_front - N_rear = mu m g H / L; at rest each carries m g / 2
     v0, step = 0.05, 1e-4
-    t_stop = v0 / (MU * G)  # 25.5 ms
-    joint, states = slider_run(step, 1.6 * t_stop, y0=-CLEARANCE, velocity=(v0, 0.0, 0.0), gravity=G)
+    t_stop = v0 / (MU * G)  # 25.5 ms, inside a step
+    joint, states, _ = scenes.sliding_slider(v0, step)
     t, x, y, angle = states[:, 0], states[:, 1], states[:, 2], states[:, 3]
     reference = np.where(t < t_stop, v0 * t - 0.5 * MU * G * t**2, 0.5 * v0 * t_stop)
     # bound mu g h^2 (2e-9 m, 2e-5 clearances): the trapezoidal rule integrates the constant
     # friction exactly; the stop falls within one step, which slides and sticks as a whole
     assert np.abs(x - reference).max() <= MU * G * step**2
     assert np.abs(y + CLEARANCE).max() < 1e-12 and np.abs(angle).max() < 1e-12  # flat on the wall, held
-    rear, front = lower_corners(joint)
+    rear, front = scenes.lower_corners(joint)
     sliding = (rear["time"] > 3 * step) & (rear["time"] < t_stop - 3 * step)  # the three-step means settled
     for corner in (rear, front):
         # each corner's friction is mu times its own normal force (signed along t = n x z, the
@@ -55,7 +40,7 @@ def test_a_slider_flat_on_its_wall_slides_at_mu_g_then_sticks():
                       <= LOAD_TOLERANCE)
     # bound: the load tolerance on each corner's friction, whose moment sets the split
     split = front["normal_force"][sliding] - rear["normal_force"][sliding]
-    assert np.abs(split / (MU * MASS * G * SIDE / SIDE) - 1.0).max() <= 2 * LOAD_TOLERANCE
+    assert np.abs(split / (MU * MASS * G * SIDE / SIDE) - 1.0).max() <= 2 * LOAD_TOLERANCE  # H = L = SIDE
     stuck = rear["time"] > t_stop + step
     for corner in (rear, front):
         assert np.all(corner["sticking"][stuck] == 1.0)
@@ -72,10 +57,10 @@ def test_a_slider_on_a_tilted_guide_sticks_below_the_friction_angle_and_slides_a
     # static friction, the friction m g sin a within mu m g cos a), else it slides down at
     # g (sin a - mu cos a).  ``tilt``: tan a over mu
     slope = math.atan(tilt * MU)
-    step, end = 1e-4, 0.02
-    joint, states = slider_run(step, end, y0=-CLEARANCE, gravity=G, slope=slope)
+    joint, states, step = scenes.tilted_slider(tilt)
     t, x = states[:, 0], states[:, 1]
-    rear, front = lower_corners(joint)
+    end = t[-1]
+    rear, front = scenes.lower_corners(joint)
     assert not joint.notes  # Coulomb's law met in every step
     if tilt < 1.0:
         assert np.abs(x).max() < 1e-12  # it does not move (Newton's tolerance on the held slip)
@@ -99,8 +84,8 @@ def test_a_slider_thrown_flat_at_its_wall_follows_brachs_law(tangential):
     # their normal ones while the slider slides through (dv_x = -mu (1 + e) v_n), else what
     # stops the slip (v_x = 0); the corners' conditions keep it flat (no turn), the moment of
     # the friction impulse taken by the split of the normal ones
-    v_n, step = 0.05, 1e-4
-    joint, states = slider_run(step, 6 * step, y0=-CLEARANCE + 2.5 * step * v_n, velocity=(tangential, -v_n, 0.0))
+    v_n = 0.05
+    joint, states, _ = scenes.thrown_slider(tangential, v_n)
     impacts = joint.impacts()
     assert len(impacts) == 2 and impacts[0].onset_time == impacts[1].onset_time
     e = impact_restitution(joint.joint.law, v_n)
@@ -113,24 +98,6 @@ def test_a_slider_thrown_flat_at_its_wall_follows_brachs_law(tangential):
     assert vx == pytest.approx(expected, abs=1e-9 * v_n)
 
 
-def pin_run(v, end, step=1e-5, start_gap=0.0, gravity=G):
-    """The pin of the joint-type scenes (a 40 g solid disc, R 4.9 mm, in a 10 mm slot) on the
-    slot's lower flat side (or ``start_gap`` above it) moving at ``v`` (x, y), MU; returns
-    the joint and the states (t, x, y, angle, their rates)."""
-    c = 0.5 * pins.WIDTH - pins.PIN
-    mbs, joint, node = pins.pin_in_slot((0.0, -c + start_gap), v, gravity=(0.0, -gravity), friction=f"coulomb:{MU}")
-    states = []
-
-    def record(mbs, t):
-        ov = exu.OutputVariableType
-        states.append((t, *mbs.GetNodeOutput(node, ov.Coordinates), *mbs.GetNodeOutput(node, ov.Coordinates_t)))
-        return True
-
-    mbs.SetPostStepUserFunction(record)
-    pins.solve(mbs, step, end, adaptive=False)
-    return joint, np.array(states)
-
-
 def test_a_pin_on_its_slots_flat_side_slides_at_mu_g_then_rolls():
     # a solid disc (I = m R^2 / 2) sliding without spin on a flat wall: dv/dt = -mu g,
     # R dw/dt = -2 mu g (its spin at its radius turns it towards rolling), the slip falls at
@@ -138,7 +105,7 @@ def test_a_pin_on_its_slots_flat_side_slides_at_mu_g_then_rolls():
     # about the contact point is kept: the bowling-ball problem); the slot's side is flat
     v0, step = 0.01, 1e-5
     t_roll = v0 / (3.0 * MU * G)
-    joint, states = pin_run((v0, 0.0), 1.5 * t_roll, step)
+    joint, states, _ = scenes.pin((v0, 0.0), scenes.whole_steps(1.5 * t_roll, step), step)
     t, vx, w = states[:, 0], states[:, 4], states[:, 6]
     sliding = (t > 2 * step) & (t < t_roll - 2 * step)
     # bound 1e-9: the trapezoidal rule integrates the constant friction exactly
@@ -156,7 +123,7 @@ def test_a_pin_thrown_at_its_slots_side_follows_brachs_law(tangential):
     # slip v_x stopped where that needs m v_x / 3 (the disc's 1/m + R^2/I = 3/m) within mu
     # times it, else the disc slides through: dv_x = -mu (1 + e) v_n, R dw = -2 mu (1 + e) v_n
     v_n, step = 0.1, 1e-5
-    joint, states = pin_run((tangential, -v_n), 6 * step, step, start_gap=2.5 * step * v_n, gravity=0.0)
+    joint, states, _ = scenes.pin((tangential, -v_n), 6 * step, step, start_gap=2.5 * step * v_n, gravity=0.0)
     impacts = joint.impacts()
     assert len(impacts) == 1
     e = impacts[0].restitution
@@ -178,10 +145,8 @@ def test_a_spinning_spatial_journal_slides_on_its_slices_then_rolls():
     # mu times its share of the weight; Newton's laws as for the planar journal
     # (tests/test_impulse_friction.py): the slip falls at 3 mu g until it rolls
     slip0, step = 0.01, 1e-5
-    mbs, joint, states = journals.journal(offset=(0.0, -journals.CLEARANCE, 0.0), spin=(0.0, 0.0, -slip0 / journals.JOURNAL),
-                                          gravity=G, friction=f"coulomb:{MU}")
+    joint, _, _ = scenes.spinning_journal(slip0, step)
     t_roll = slip0 / (3.0 * MU * G)
-    pins.solve(mbs, step, 1.5 * t_roll, adaptive=False)
     outputs = joint.outputs()
     assert len(outputs) == 4
     first = outputs["slice 1 at z = -0.01125 m"]
