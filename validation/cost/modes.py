@@ -35,13 +35,15 @@ The issue's target rows:
 ::
 
     python -m validation.cost modes [--models a,b] [--factor 8] [--repeats 3] [--refine 4] [--no-zoo]
-                                    [--no-targets] [--adaptive-step] [--friction LAW]
+                                    [--no-targets] [--adaptive-step] [--friction LAW] [--iterations N]
 
 (``--repeats 0``: steps, impacts and accuracy without timing, for a busy machine;
 ``--adaptive-step``: every zoo run with Exudyn's adaptive step, the one change an example
 whose fixed step stops at its first contact needs; ``--friction``: every zoo model's
 clearance joint with that friction law, in both modes and the reference, for the joint
-types the zoo has no friction variant of.)
+types the zoo has no friction variant of; ``--iterations``: every zoo run with that many of
+Exudyn's discontinuous iterations, where the mode's friction needs more than an example
+allows.)
 """
 from __future__ import annotations
 
@@ -74,11 +76,13 @@ from validation.exudyn_examples._common import REGISTRY, load_models, model_name
 G = 9.81
 
 
-def _build(name: str, clearance: bool, mode: str | None, adaptive: bool = False, **joint: Any) -> Any:
+def _build(name: str, clearance: bool, mode: str | None, adaptive: bool = False, iterations: int = 0,
+           **joint: Any) -> Any:
     """A zoo model, its joint in ``mode`` (through the environment variable, as a user's
     unedited script would get it; None: the default); ``adaptive``: with Exudyn's adaptive
-    step (``timeIntegration.adaptiveStep``) whatever the example sets; ``joint``: options of
-    the clearance joint (``friction``), not given to the ideal model."""
+    step (``timeIntegration.adaptiveStep``) whatever the example sets; ``iterations`` > 0:
+    that many discontinuous iterations; ``joint``: options of the clearance joint
+    (``friction``), not given to the ideal model."""
     previous = os.environ.pop(ENVIRONMENT_VARIABLE, None)
     try:
         if mode is not None:
@@ -89,6 +93,8 @@ def _build(name: str, clearance: bool, mode: str | None, adaptive: bool = False,
         model.fallback = next((str(w.message) for w in caught if "contact_mode='impulse'" in str(w.message)), "")
         if adaptive:
             model.simulation_settings.timeIntegration.adaptiveStep = True
+        if iterations:
+            model.simulation_settings.timeIntegration.discontinuous.maxIterations = iterations
         return model
     finally:
         os.environ.pop(ENVIRONMENT_VARIABLE, None)
@@ -117,35 +123,37 @@ def _run(model: Any, radius: float | None = None, factor: float = 1.0) -> tuple[
 
 
 def _median_wall(name: str, clearance: bool, mode: str | None, repeats: int, radius: float | None,
-                 adaptive: bool = False) -> float:
+                 adaptive: bool = False, iterations: int = 0) -> float:
     if not repeats:
         return math.nan
-    return statistics.median(_run(_build(name, clearance, mode, adaptive), radius)[0] for _ in range(repeats))
+    return statistics.median(_run(_build(name, clearance, mode, adaptive, iterations), radius)[0]
+                             for _ in range(repeats))
 
 
 def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptive: bool = False,
-            **joint: Any) -> list[str]:
+            iterations: int = 0, **joint: Any) -> list[str]:
     """One zoo model's row (module docstring); ``repeats`` 0: no timing (the costs print "-");
     ``refine`` > 1: the impulse run's probe at that many times the steps too (its order in
-    the step), else "-"; ``adaptive``: every run with Exudyn's adaptive step; ``joint``: the
-    clearance joint's options (``friction``)."""
-    ideal = _median_wall(name, False, None, repeats, None, adaptive) if repeats else math.nan
-    compliant = _build(name, True, None, adaptive, **joint)
+    the step), else "-"; ``adaptive``: every run with Exudyn's adaptive step; ``iterations``
+    > 0: every run with that many discontinuous iterations; ``joint``: the clearance joint's
+    options (``friction``)."""
+    ideal = _median_wall(name, False, None, repeats, None, adaptive, iterations) if repeats else math.nan
+    compliant = _build(name, True, None, adaptive, iterations, **joint)
     c = compliant.clearance
     wall_c, steps_c, ok_c, _ = _run(compliant)
     probe_c = np.asarray(compliant.probe(compliant.mbs), dtype=float)
     impacts_c = len(compliant.joint.impacts())
-    reference = _build(name, True, None, adaptive, **joint)
+    reference = _build(name, True, None, adaptive, iterations, **joint)
     _run(reference, factor=factor)
     probe_ref = np.asarray(reference.probe(reference.mbs), dtype=float)
-    wall_c = statistics.median([wall_c] + [_run(_build(name, True, None, adaptive, **joint))[0]
+    wall_c = statistics.median([wall_c] + [_run(_build(name, True, None, adaptive, iterations, **joint))[0]
                                            for _ in range(repeats - 1)])
     row = [name, _ratio(wall_c, ideal), str(steps_c), str(impacts_c),
            f"{np.abs(probe_c - probe_ref).max() / c:.3g}" if ok_c else "failed"]
-    impulse = _build(name, True, "impulse", adaptive, **joint)
+    impulse = _build(name, True, "impulse", adaptive, iterations, **joint)
     if not isinstance(impulse.joint, (ImpulseJointHandle, ImpulsePairsHandle)):
         return row + ["-", "-", "-", "falls back: " + impulse.fallback.split(": ", 2)[-1], "-"]
-    ideal_1 = _median_wall(name, False, None, repeats, 1.0, adaptive)
+    ideal_1 = _median_wall(name, False, None, repeats, 1.0, adaptive, iterations)
     wall_i, steps_i, ok_i, problem = _run(impulse, 1.0)
     if not ok_i:
         # a joint with several contacts (exuclear.engine.impulse_group)
@@ -159,11 +167,11 @@ def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptiv
         impacts_i = len(impulse.joint.impacts())
     except RuntimeError as err:  # Exudyn did not call the mode (impulse.ImpulseJointHandle._check_ran)
         return row + ["-", "-", "-", "stopped: " + str(err).split(": ", 1)[-1], "-"]
-    wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse", adaptive, **joint), 1.0)[0]
+    wall_i = statistics.median([wall_i] + [_run(_build(name, True, "impulse", adaptive, iterations, **joint), 1.0)[0]
                                            for _ in range(repeats - 1)])
     refined = "-"
     if refine > 1.0:
-        finer = _build(name, True, "impulse", adaptive, **joint)
+        finer = _build(name, True, "impulse", adaptive, iterations, **joint)
         ok_f = _run(finer, 1.0, factor=refine)[2]
         refined = f"{np.abs(np.asarray(finer.probe(finer.mbs), dtype=float) - probe_ref).max() / c:.3g}" if ok_f \
             else "stopped"
@@ -311,11 +319,15 @@ def main(argv: list[str] | None = None) -> int:
                                                                  "steps (its order in the step; default: not run)")
     ap.add_argument("--friction", default="", help="every zoo model's clearance joint with this friction law (e.g. "
                                                      "paper, coulomb:0.2; default: each model's own)")
+    ap.add_argument("--iterations", type=int, default=0, help="every zoo run with this many discontinuous iterations "
+                                                               "(default: each example's own)")
     args = ap.parse_args(argv)
     if not args.factor > 1.0:
         ap.error(f"--factor must exceed 1, got {args.factor}")
     if args.repeats < 0:
         ap.error(f"--repeats must be at least 0, got {args.repeats}")
+    if args.iterations < 0:
+        ap.error(f"--iterations must be at least 0, got {args.iterations}")
     if not args.no_zoo:
         load_models()
         try:
@@ -325,7 +337,8 @@ def main(argv: list[str] | None = None) -> int:
         rows = []
         for name in names:
             joint = {"friction": args.friction} if args.friction else {}
-            rows.append(zoo_row(name, args.factor, args.repeats, args.refine, args.adaptive_step, **joint))
+            rows.append(zoo_row(name, args.factor, args.repeats, args.refine, args.adaptive_step, args.iterations,
+                                **joint))
             print(f"{name}: done", flush=True)
         print("\n" + markdown_table(
             ["model", "compliant / ideal", "steps / Newton", "impacts", f"probe off {args.factor:g}x compliant [c]",
