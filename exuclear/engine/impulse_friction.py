@@ -88,8 +88,9 @@ class ContactFriction:
     the sliding loads (module docstring).  The mode calls :meth:`measure` where it sets its
     normal rows, :meth:`hold` and :meth:`release` with its normal condition, :meth:`check`
     after each Newton iteration of a held step and :meth:`accept` at each accepted step.
-    Forces are global vectors on the outer body (the bearing, socket, slot, guide), so that a
-    step's start force carries over to the next step's tangents."""
+    Slips, directions and forces are held as components along the tangents of the last
+    :meth:`measure` (forces on the outer body: the bearing, socket, slot, guide), so that a
+    step measured again in a turned normal keeps them along its new tangents."""
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, markers: Sequence[Any], pair: ContactPair,
                  conditions: Sequence[VelocityCondition]) -> None:
@@ -107,14 +108,15 @@ class ContactFriction:
         self._reset()
 
     def _reset(self) -> None:
+        k = len(self.conditions)
         self._state, self._force = OFF, 0.0  # the sliding load [N] along _direction
-        self._direction = np.zeros(3)  # the slip's direction (global, unit) the sliding load opposes
+        self._direction = np.zeros(k)  # the slip's direction (unit) the sliding load opposes
         self._fresh = True  # the next hold starts a new step (its state decided from the slip)
-        self._slip = np.zeros(3)  # the slip at the state of the last measure (the step's start velocities)
+        self._slip = np.zeros(k)  # the slip at the state of the last measure (the step's start velocities)
         # the normal and the friction force at the step's start as the accelerations carry them
         # into the step (the last accepted step's end forces; 0 after flight, an impact, or the
         # onset of a rest, whose end accelerations the mode replaces by the free computation's)
-        self._normal0, self._friction0 = 0.0, np.zeros(3)
+        self._normal0, self._friction0 = 0.0, np.zeros(k)
         self._normal_sum = 0.0  # start plus end normal force of the last computed step
         self._sums: tuple[float, ...] = ()  # those of the last three accepted held steps
         self._slope = 0.0  # d(target load) / d(load) of the last step the secant measured
@@ -144,7 +146,7 @@ class ContactFriction:
         self._tangents = tangents(mbs, self._pair, self._markers, normal)
         # the rows of the contact points: for a journal t . (w x R n) = -R w . a, eq. (8)
         self._arms = contact_arms(self._pair, normal, ecc)
-        self._slip = sum(c.measure(mbs, t, arms=self._arms) * t for c, t in zip(self.conditions, self._tangents))
+        self._slip = np.array([c.measure(mbs, t, arms=self._arms) for c, t in zip(self.conditions, self._tangents)])
 
     def hold(self, mbs: exu.MainSystem) -> None:
         """The friction of the coming step, in the rows of the last :meth:`measure`: at a new
@@ -177,7 +179,7 @@ class ContactFriction:
     def forget(self) -> None:
         """The last step's end forces are not in the accelerations the next step starts from
         (the mode replaced them by the free computation's)."""
-        self._normal0, self._friction0 = 0.0, np.zeros(3)
+        self._normal0, self._friction0 = 0.0, np.zeros(len(self.conditions))
 
     def check(self, mbs: exu.MainSystem, normal_force: float, left: int) -> bool:
         """After Exudyn's Newton iteration of a step the normal condition held at the end
@@ -197,8 +199,7 @@ class ContactFriction:
         self._normal_sum = self._normal0 + normal_force
         bound = max(self._normal_sum, 0.0)
         if self._state == STICK:
-            # the step's friction force sum in the present tangents (the start's, carried over)
-            stick = self._tangents.T @ (self._tangents @ self._friction0) + self._sticking_force(mbs)
+            stick = self._friction0 + self._sticking_force(mbs)  # the step's start plus end force
             size = float(np.linalg.norm(stick))
             if size <= self._stick_mu * bound * (1.0 + CONE_TOLERANCE) or not self._switch(left):
                 return False
@@ -280,15 +281,15 @@ class ContactFriction:
 
     def setting(self) -> tuple:
         """How the friction's items are set now (:meth:`matches`)."""
-        return self._state, self._force, self._direction, self._arms, [c.plan for c in self.conditions]
+        return self._state, self._load(self._state), self._arms, [c.plan for c in self.conditions]
 
     def matches(self, setting: tuple) -> bool:
         """Whether the items are set as ``setting`` (of :meth:`setting`) says: the same
         sticking conditions, or the same sliding loads, or none."""
-        state, force, direction, arms, plans = setting
+        state, load, arms, plans = setting
         if state != self._state or not all(p.same(c.plan) for p, c in zip(plans, self.conditions)):
             return False
-        return state != SLIDE or (force == self._force and np.array_equal(direction, self._direction)
+        return state != SLIDE or (np.array_equal(load, self._load(state))
                                   and all(np.array_equal(a, b) for a, b in zip(arms, self._arms)))
 
     def outputs(self) -> dict[str, np.ndarray]:
@@ -319,19 +320,21 @@ class ContactFriction:
 
     # -- inside -------------------------------------------------------------------------
     def _rates(self, x: np.ndarray) -> np.ndarray:
-        """The slip (global) for the system's coordinate rates ``x``, through the rows."""
-        return sum(c.rate(x) * t for c, t in zip(self.conditions, self._tangents))
+        """The slip for the system's coordinate rates ``x``, through the rows (components)."""
+        return np.array([c.rate(x) for c in self.conditions])
 
     def _sticking_force(self, mbs: exu.MainSystem) -> np.ndarray:
-        """The sticking conditions' end force (global, on the outer body)."""
-        return sum(c.multiplier(mbs) * t for c, t in zip(self.conditions, self._tangents))
+        """The sticking conditions' end force on the outer body (components)."""
+        return np.array([c.multiplier(mbs) for c in self.conditions])
+
+    def _load(self, state: str) -> np.ndarray:
+        """The sliding load on the outer body (global) in ``state``."""
+        return self._tangents.T @ (self._force * self._direction) if state == SLIDE else np.zeros(3)
 
     def _component(self, vector: np.ndarray) -> float:
-        """What the outputs record of a tangential vector: along one tangent its component
-        (signed), in a tangent plane its length."""
-        if len(self._tangents) == 1:
-            return float(self._tangents[0] @ vector)
-        return float(np.linalg.norm(vector))
+        """What the outputs record of a tangential vector (components): along one tangent
+        its component (signed), in a tangent plane its length."""
+        return float(vector[0]) if len(vector) == 1 else float(np.linalg.norm(vector))
 
     def _sliding_mu(self, speed: float) -> float:
         """``|mu(v_T)|`` of the law, at no less than its smoothing speed."""
@@ -361,7 +364,7 @@ class ContactFriction:
                 condition.hold(mbs, 0.0)
             elif state != STICK and condition.plan.active:
                 condition.release(mbs)
-        force = self._force * self._direction if state == SLIDE else np.zeros(3)
+        force = self._load(state)
         # F_T d on the outer body, -F_T d on the inner one, each at its contact point
         for load, torque, arm, vector in zip(self._forces, self._torques, self._arms, (force, -force)):
             mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])

@@ -23,7 +23,8 @@ material point there).  A joint type is what gives ``e`` and ``S``; the mode's d
 
 A pair also says where its friction acts (:mod:`~exuclear.engine.impulse_friction`):
 ``plane``, the normal (in marker 0's frame) of the plane a planar contact slides in, whose
-tangent is ``t = n x plane`` (None: a ball's, whose slip has a tangent plane), and
+tangent is ``t = n x plane`` (None: a ball's or a box corner's, whose slip has a tangent
+plane), and
 ``radius``, the inner body's radius at the contact (the journal's, the pin's; 0 for a
 corner), which puts the contact point ``radius n`` beyond the inner centre.
 
