@@ -75,6 +75,11 @@ LOAD_TOLERANCE = 1e-3
 #: A sticking multiplier beyond ``mu_s F_N`` by more than this share of it slides: the
 #: multiplier of a contact on its friction cone's edge carries Newton's round-off.
 CONE_TOLERANCE = 1e-9
+#: A tangent carried over from the last measure into a new tangent plane keeps its direction
+#: where its part in the plane is at least this long (the normal turned by less than 60
+#: degrees): the tangents then turn with the normal, and the slip's and the forces'
+#: components along them keep their meaning from step to step.
+CARRY = 0.5
 #: Changes between sliding and sticking within one step after which the contact keeps the
 #: last: each change is a computation of the step, and one slide, one stick and one slide
 #: in the sticking multiplier's direction is Coulomb's law's whole decision.
@@ -143,7 +148,7 @@ class ContactFriction:
         """The sticking conditions' rows at the current state, along the tangents of the
         mode's ``normal`` (``t = n x a``, or two normal to ``n``) at the pair's contact points
         for its eccentricity ``ecc`` there, and the slip at the current velocities."""
-        self._tangents = tangents(mbs, self._pair, self._markers, normal)
+        self._tangents = tangents(mbs, self._pair, self._markers, normal, self._tangents[0])
         # the rows of the contact points: for a journal t . (w x R n) = -R w . a, eq. (8)
         self._arms = contact_arms(self._pair, normal, ecc)
         self._slip = np.array([c.measure(mbs, t, arms=self._arms) for c, t in zip(self.conditions, self._tangents)])
@@ -372,18 +377,29 @@ class ContactFriction:
         self._state = state
 
 
-def tangents(mbs: exu.MainSystem, pair: ContactPair, markers: Sequence[Any], normal: np.ndarray) -> np.ndarray:
+def tangents(mbs: exu.MainSystem, pair: ContactPair, markers: Sequence[Any], normal: np.ndarray,
+             first: np.ndarray | None = None) -> np.ndarray:
     """The tangents (rows, global, unit) along which the contact of ``pair`` between
     ``markers`` slides at the current state for the normal ``normal``: ``n x a`` for a pair
-    with a ``plane`` ``a`` (marker 0's frame), else :func:`tangent_plane`."""
+    with a ``plane`` ``a`` (marker 0's frame), else :func:`tangent_plane` (carrying ``first``
+    over)."""
     if pair.plane is None:
-        return tangent_plane(normal)
+        return tangent_plane(normal, first)
     rotation = np.asarray(mbs.GetMarkerOutput(markers[0], exu.OutputVariableType.RotationMatrix), dtype=float)
     return np.cross(normal, rotation.reshape(3, 3) @ np.asarray(pair.plane, dtype=float))[None, :]
 
 
-def tangent_plane(normal: np.ndarray) -> np.ndarray:
-    """Two unit tangents (rows, global) normal to ``normal`` and to each other."""
+def tangent_plane(normal: np.ndarray, first: np.ndarray | None = None) -> np.ndarray:
+    """Two unit tangents (rows, global) normal to ``normal`` and to each other: the first
+    ``first`` (a tangent of the last measure) with its part along ``normal`` taken out, where
+    that is at least :data:`CARRY` long, else one normal to the axis farthest from ``normal``
+    (which changes with the normal: the tangents would jump)."""
+    if first is not None:
+        carried = first - (first @ normal) * normal
+        size = float(np.linalg.norm(carried))
+        if size >= CARRY:
+            carried /= size
+            return np.array([carried, np.cross(normal, carried)])
     helper = np.zeros(3)
     helper[int(np.argmin(np.abs(normal)))] = 1.0  # the axis farthest from the normal
     first = np.cross(normal, helper)

@@ -218,7 +218,11 @@ class _GroupStick(_GroupCondition):
         of different states make a dependent set pass as independent)."""
         ecc = self.pair.eccentricity(mbs, self.markers)
         n = self.normal_condition.present_normal(ecc)
-        t = tangents(mbs, self.pair, self.markers, n)[self.tangent]
+        if self.pair.plane is None:  # its own tangent, carried into the present tangent plane
+            t = self.normal - (self.normal @ n) * n
+            t = t / float(np.linalg.norm(t))
+        else:
+            t = tangents(mbs, self.pair, self.markers, n)[self.tangent]
         return np.concatenate((t, np.cross(contact_arms(self.pair, n, ecc)[0], t)))
 
 
