@@ -43,7 +43,7 @@ from typing import ClassVar, NamedTuple
 from .checks import check_positive, warn_unit
 from .contact.pair import ContactGeometry
 from .geometry import SIZE_WARN_ABOVE
-from .spatial import V3, cross
+from .vectors import V3, cross
 
 #: The slider's corners in its own frame as signs of (L/2, H/2), counter-clockwise from the
 #: rear-lower corner: rear-lower, front-lower, front-upper, rear-upper.

@@ -26,16 +26,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from .contact import damped_normal_force
-
-V3 = tuple[float, float, float]
-
-
-def cross(a: V3, b: V3) -> V3:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def dot(a: V3, b: V3) -> float:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+from .vectors import V3, cross, dot
 
 
 def slice_centres(length: float, slices: int) -> tuple[float, ...]:

@@ -23,7 +23,7 @@ from typing import ClassVar, NamedTuple
 from .checks import check_positive, warn_unit
 from .contact.pair import ContactGeometry
 from .geometry import SIZE_WARN_ABOVE
-from .spatial import V3, cross
+from .vectors import V3, cross
 
 #: Clearances above this fraction of the ball radius are legal but unusual for a ball joint:
 #: a warning asks whether a unit slipped (as the revolute joint's ``CLEARANCE_WARN_FRACTION``).

@@ -63,8 +63,9 @@ from exudyn.itemInterface import (
 
 from ..timescales import closed_form_impact, impact_restitution
 from ..joint import ClearanceJoint
+from ..vectors import angle, norm
 from .bodies import joint_mass
-from .condition import Plan, VelocityCondition
+from .condition import MarkerState, Plan, VelocityCondition
 from .impulse_friction import contact_friction
 from .impulse_pairs import ContactPair, contact_pair
 from .state import moved_on, start_of_step
@@ -160,6 +161,7 @@ class ImpulseJointHandle:
         self._pair = pair
         self.name, self._joint = name, joint
         self.markerNumbers = list(markers)
+        self._markers = self._marker_state(mbs)
         self._condition = self._new_condition(mbs, name)
         self.objectNumber = self._condition.objectNumber
         # the contact's Coulomb friction (exuclear.engine.impulse_friction), hooked in where the
@@ -184,11 +186,16 @@ class ImpulseJointHandle:
     def joint(self) -> ClearanceJoint:
         return self._joint
 
+    def _marker_state(self, mbs: exu.MainSystem) -> MarkerState:
+        """The markers' poses and velocity maps, read once per state (the contact's conditions
+        share it, and a joint with several contacts shares one among them)."""
+        return MarkerState(mbs, self.markerNumbers)
+
     def _new_condition(self, mbs: exu.MainSystem, name: str, tangent: int | None = None) -> VelocityCondition:
         """The contact's condition, or its friction's sticking condition along its ``tangent``
         (the index of :func:`~exuclear.engine.impulse_friction.tangents`; a joint with several
         contacts gives its own, which knows the others)."""
-        return VelocityCondition(mbs, self.markerNumbers, name)
+        return VelocityCondition(mbs, self._markers, name)
 
     # -- the run ------------------------------------------------------------------------
     def _reset(self) -> None:
@@ -202,8 +209,9 @@ class ImpulseJointHandle:
         self._start: float | None = None  # the start [s] of the step the condition is set for
         self._saved: dict[str, Any] | None = None  # the state before the last accepted step
         self._free_accelerations = np.zeros(0)  # the end accelerations of an impact step computed free
-        # a held step: (e0, h, the normal it is held in, (e0, gap0, rate0))
-        self._held: tuple | None = None
+        # a held step: (its start's eccentricity e0 and gap, h, the normal it is held in)
+        self._held: tuple[np.ndarray, float, float, np.ndarray] | None = None
+        self._markers.forget()
 
     def _post_newton(self, mbs: exu.MainSystem, t: float, item: int, data: Any, *frame: Any) -> list:
         """The carrier's ``postNewtonStepUserFunction``: ``[error, recommended step, data]``."""
@@ -215,7 +223,8 @@ class ImpulseJointHandle:
         """After Exudyn's Newton iteration of the step that ends at ``t_end``: 0 accepts the
         step (and sets the condition for the next one), :data:`REDO_ERROR` has Exudyn compute
         it again from its start with the condition set anew."""
-        h = float(mbs.sys["dynamicSolver"].it.currentStepSize)
+        it = mbs.sys["dynamicSolver"].it
+        h = float(it.currentStepSize)
         t = t_end - h
         tol = REDO_TOLERANCE * max(1.0, abs(t_end))
         if self._start is None or t < self._start - tol:
@@ -241,13 +250,12 @@ class ImpulseJointHandle:
             self._stop(t, "Exudyn took a step the mode did not see")
         force = self._condition.multiplier(mbs)
         e, gap = self._gap(mbs)
-        left = self._iterations - int(mbs.sys["dynamicSolver"].it.discontinuousIteration) - 1  # computations left
+        left = self._iterations - int(it.discontinuousIteration) - 1  # computations left
         redo = left > 0
         if self._state == FREE and gap > 0.0 and redo and self._contact(mbs, t, h, e, gap):
             return REDO_ERROR
         if self._state == REST and self._held is not None:
-            start = self._held[0]
-            turn = math.atan2(float(np.linalg.norm(np.cross(start, e))), float(start @ e))
+            turn = angle(self._held[0], e)
             # the journal slides along the wall faster than the condition's normal can follow
             if turn > MAX_TURN and redo and self._shorten(mbs, h, MAX_TURN / turn):
                 return REDO_ERROR
@@ -279,7 +287,7 @@ class ImpulseJointHandle:
         else:
             reaction = force
         self._force, self._force_before = force, self._force
-        self._records.append((t_end, *(float(x) for x in e), gap, reaction if self._state == REST else 0.0))
+        self._records.append((t_end, *e.tolist(), gap, reaction if self._state == REST else 0.0))
         self._friction.accept(mbs, t_end, self._state == REST)
         if self._state == IMPACT:
             # the impact step ends at v+; its end accelerations carry the impulse over the step
@@ -304,7 +312,7 @@ class ImpulseJointHandle:
             elif gap < -OPEN_GAP * clearance:  # the journal left the wall: a condition would act at a distance
                 self._release(mbs, FREE)
             else:
-                self._hold_resting(mbs, e, h, 2.0 * e - self._held[0])  # the normal's last turn, once more
+                self._hold_resting(mbs, e, gap, h, 2.0 * e - self._held[0])  # the normal's last turn, once more
         self._start, self._step = t_end, h
         return 0.0
 
@@ -333,7 +341,7 @@ class ImpulseJointHandle:
         with start_of_step(mbs):
             # the rows at the step's start, in the normal where it met the wall (the start's
             # points elsewhere where the journal crossed the bearing's centre)
-            start, rate, gap = self._kinematics(mbs, end / float(np.linalg.norm(end)))
+            start, rate, gap = self._kinematics(mbs, end / norm(end))
             if gap >= 0.0 and end_gap <= gap:
                 return False
             accel = self._closing_acceleration(mbs)
@@ -346,26 +354,25 @@ class ImpulseJointHandle:
                 # (a journal in the wall at the step's start is held, which takes its penetration back)
                 self._state, self._resting, restitution = REST, 0, 0.0
                 self._held = None
-                self._hold_resting(mbs, start, h, end)
+                self._hold_resting(mbs, start, gap, h, end)
             else:
                 self._state = IMPACT
                 self._hold(mbs, -rebound)
         self._impacts.append((t, rate, restitution, math.nan))
         return True
 
-    def _hold_resting(self, mbs: exu.MainSystem, e: np.ndarray, h: float, ahead: np.ndarray) -> None:
-        """The condition of a held step that starts at the current state (eccentricity ``e``),
-        in the normal of ``ahead``, the eccentricity expected at its end (:meth:`_aim`)."""
-        _, rate, gap = self._kinematics(mbs)
-        self._aim(mbs, (e, gap, rate), ahead / float(np.linalg.norm(ahead)), h)
+    def _hold_resting(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, h: float, ahead: np.ndarray) -> None:
+        """The condition of a held step that starts at the current state (eccentricity ``e``,
+        gap ``gap``), in the normal of ``ahead``, the eccentricity expected at its end
+        (:meth:`_aim`)."""
+        self._aim(mbs, e, gap, ahead / norm(ahead), h)
 
-    def _aim(self, mbs: exu.MainSystem, start: tuple[np.ndarray, float, float], ahead: np.ndarray, h: float) -> None:
-        """The condition of a held step started at ``start`` (eccentricity, gap, the gap's
-        rate), acting along ``ahead``, the normal expected at the step's end, that holds the
+    def _aim(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, ahead: np.ndarray, h: float) -> None:
+        """The condition of a held step started at eccentricity ``e`` and gap ``gap``, acting
+        along ``ahead``, the normal expected at the step's end, that holds the
         end rate of :meth:`_resting_rate` (from the gap alone: an end rate aimed at a gap,
         ``2 (gap1 - gap) / h - v0``, alternates about the motion, undamped under the
         trapezoidal rule, and so would the multipliers)."""
-        e, gap, _ = start
         # the rows at the step's end: the trapezoidal rule's force there, J(q1)^T lambda1, is
         # the one its end accelerations carry into the next step, whose condition holds
         # J(q1) v1; with rows at the middle the force's lever arms lag the velocities it holds
@@ -373,7 +380,7 @@ class ImpulseJointHandle:
         # half a step, each step (a pendulum's energy then drifts at first order in the step)
         with moved_on(mbs, h):
             self._kinematics(mbs, ahead)
-        self._held = (e, h, ahead, start)
+        self._held = (e, gap, h, ahead)
         self._hold(mbs, self._resting_rate(gap))
 
     def _refine(self, mbs: exu.MainSystem, e: np.ndarray, h: float) -> bool:
@@ -383,12 +390,11 @@ class ImpulseJointHandle:
         compute the step again."""
         if self._held is None:
             return False
-        _, planned, normal, begin = self._held
-        reached = e / float(np.linalg.norm(e))
-        if planned == h and float(np.linalg.norm(np.cross(normal, reached))) <= NORMAL_TOLERANCE:
+        begin, gap, planned, normal = self._held
+        if planned == h and angle(normal, e) <= NORMAL_TOLERANCE:
             return False
-        with start_of_step(mbs):
-            self._aim(mbs, begin, reached, h)
+        with start_of_step(mbs, accelerations=False):  # the rows and the normal read positions and velocities
+            self._aim(mbs, begin, gap, e / norm(e), h)
         return True
 
     def _check_solver(self, mbs: exu.MainSystem) -> None:
@@ -416,21 +422,17 @@ class ImpulseJointHandle:
     def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:
         """The eccentricity ``e`` (global, the joint type's: :mod:`~exuclear.engine.impulse_pairs`)
         and the gap ``|e| - c`` at the current state."""
-        e = self._pair.eccentricity(mbs, self.markerNumbers).e
-        return e, float(np.linalg.norm(e)) - self._pair.reach
+        e = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations)).e
+        return e, norm(e) - self._pair.reach
 
-    def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray | None = None) -> tuple[np.ndarray, float, float]:
-        """The eccentricity, the normal rate and the gap at the current state; sets the rows
-        in ``normal`` (default: the present one, ``e / |e|``), at the outer body's point
-        where ``e`` starts."""
-        ecc = self._pair.eccentricity(mbs, self.markerNumbers)
+    def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray) -> tuple[np.ndarray, float, float]:
+        """The eccentricity, the rate along ``normal`` and the gap at the current state; sets
+        the rows in ``normal``, at the outer body's point where ``e`` starts (and the
+        friction's tangential rows, at the same state)."""
+        ecc = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations))
         e, arm, inner = ecc
-        norm = float(np.linalg.norm(e))
-        gap = norm - self._pair.reach
-        n = normal if normal is not None else e / norm if norm > 0.0 else np.zeros(3)
-        if normal is not None:  # the friction's tangential rows, at the same state
-            self._friction.measure(mbs, n, ecc)
-        return e, self._condition.measure(mbs, n, arms=(arm, inner)), gap
+        self._friction.measure(mbs, normal, ecc)
+        return e, self._condition.measure(mbs, normal, arms=(arm, inner)), norm(e) - self._pair.reach
 
     def _closing_acceleration(self, mbs: exu.MainSystem) -> float:
         """The normal acceleration towards the wall at the current state, ``n^T dv/dq_t q_tt``
@@ -460,16 +462,21 @@ class ImpulseJointHandle:
 
     def _snapshot(self) -> dict[str, Any]:
         """What an accepted step changes, to be taken back where Exudyn computes it again."""
+        # the records and impacts only grow, but for the last impact's impulse, set as its step is accepted
         return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
                 "_force_before": self._force_before, "_resting": self._resting, "_left_pen": self._left_pen,
-                "_start": self._start, "records": len(self._records), "impacts": list(self._impacts),
+                "_start": self._start, "records": len(self._records), "impacts": len(self._impacts),
+                "last_impact": self._impacts[-1] if self._impacts else None,
                 "friction": self._friction.snapshot()}
 
     def _restore(self) -> Plan:
         """The state before the last accepted step back; returns the condition's setting then."""
         saved, self._saved = dict(self._saved or {}), None
         del self._records[saved.pop("records"):]
-        self._impacts = saved.pop("impacts")
+        del self._impacts[saved.pop("impacts"):]
+        last = saved.pop("last_impact")
+        if last is not None:
+            self._impacts[-1] = last
         plan = saved.pop("plan")
         self._friction.restore(self._mbs(), saved.pop("friction"))
         self.__dict__.update(saved)

@@ -25,7 +25,8 @@ import numpy as np
 from ..joint import ClearanceJoint
 from ..spatial import slice_centres
 from ..timescales import closed_form_impact
-from .condition import VelocityCondition
+from ..vectors import cross, norm
+from .condition import MarkerState, VelocityCondition
 from .impulse import ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, SlicePair, contact_arms
@@ -73,7 +74,8 @@ class _Contacts:
     least-squares split (:meth:`reaction`), the one that equally compliant contacts take
     (the analytic split of a box flat on its wall: ``m g / 4`` each)."""
 
-    def __init__(self) -> None:
+    def __init__(self, state: MarkerState) -> None:
+        self.state = state  # the joint's two markers, read once per state for all its contacts
         self.conditions: list[_GroupCondition] = []
         self._sweep: tuple[float, float, int] | None = None  # the Newton solve the contacts last decided after
         self._redo = False  # whether a contact asked for it to be computed again
@@ -152,11 +154,11 @@ class _GroupCondition(VelocityCondition):
     """A contact's condition, on in Exudyn only where the acting contacts do not hold it
     (:class:`_Contacts`)."""
 
-    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, contacts: _Contacts,
-                 pair: ContactPair) -> None:
-        super().__init__(mbs, markers, name)
+    def __init__(self, mbs: exu.MainSystem, name: str, contacts: _Contacts, pair: ContactPair) -> None:
+        super().__init__(mbs, contacts.state, name)
         self.contacts, self.pair, self.acting = contacts, pair, False
         self.normal = np.zeros(3)
+        self._wrench: tuple[Any, Any, np.ndarray] | None = None  # the last wrench, with the poses and normal it is of
         contacts.conditions.append(self)
 
     def measure(self, mbs: exu.MainSystem, normal: np.ndarray, arms: Sequence[Any] = (None, None)) -> float:
@@ -171,14 +173,19 @@ class _GroupCondition(VelocityCondition):
         coordinates by one map for all of a joint's contacts (the inner body's point and
         ``S`` lie along ``n``), so the contacts' conditions are dependent where their
         wrenches are."""
-        ecc = self.pair.eccentricity(mbs, self.markers)
+        poses = self.state.poses(mbs, self.pair.rotations)
+        if self._wrench is not None and self._wrench[0] is poses and self._wrench[1] is self.normal:
+            return self._wrench[2]  # the contacts ask for each other's wrenches several times a state
+        ecc = self.pair.eccentricity(poses)
         n = self.present_normal(ecc)
-        return np.concatenate((n, np.cross(np.zeros(3) if ecc.arm is None else ecc.arm, n)))
+        wrench = np.array((*n, *(cross(ecc.arm, n) if ecc.arm is not None else (0.0, 0.0, 0.0))))
+        self._wrench = (poses, self.normal, wrench)
+        return wrench
 
     def present_normal(self, ecc: Eccentricity) -> np.ndarray:
         """The contact's normal for its eccentricity at the present state (:meth:`wrench`)."""
-        norm = float(np.linalg.norm(ecc.e))
-        return ecc.e / norm if norm > NEAR * self.pair.clearance else self.normal
+        length = norm(ecc.e)
+        return ecc.e / length if length > NEAR * self.pair.clearance else self.normal
 
     def switch(self, mbs: exu.MainSystem, on: bool) -> None:
         """On where the plan holds the contact and the acting contacts do not; off, letting
@@ -206,9 +213,9 @@ class _GroupStick(_GroupCondition):
     axis in one direction, one condition on in Exudyn, the other held by it, the friction
     split as the reactions are (:meth:`_Contacts.reaction`)."""
 
-    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, contacts: _Contacts,
-                 pair: ContactPair, tangent: int, normal: _GroupCondition) -> None:
-        super().__init__(mbs, markers, name, contacts, pair)
+    def __init__(self, mbs: exu.MainSystem, name: str, contacts: _Contacts, pair: ContactPair, tangent: int,
+                 normal: _GroupCondition) -> None:
+        super().__init__(mbs, name, contacts, pair)
         self.tangent, self.normal_condition = tangent, normal
 
     def wrench(self, mbs: exu.MainSystem) -> np.ndarray:
@@ -216,7 +223,7 @@ class _GroupStick(_GroupCondition):
         point ``P`` (from marker 0's point), at the present state as the normal conditions'
         (a sticking condition's rows are measured where its step starts or ends, and wrenches
         of different states make a dependent set pass as independent)."""
-        ecc = self.pair.eccentricity(mbs, self.markers)
+        ecc = self.pair.eccentricity(self.state.poses(mbs, self.pair.rotations))
         n = self.normal_condition.present_normal(ecc)
         if self.pair.plane is None:  # its own tangent, carried into the present tangent plane
             t = self.normal - (self.normal @ n) * n
@@ -235,10 +242,13 @@ class _GroupPair(ImpulseJointHandle):
         self._names: dict[float, str] = {}  # onset time [s] -> the contact's name
         super().__init__(*args)
 
+    def _marker_state(self, mbs: exu.MainSystem) -> MarkerState:
+        return self._contacts.state
+
     def _new_condition(self, mbs: exu.MainSystem, name: str, tangent: int | None = None) -> VelocityCondition:
         if tangent is None:
-            return _GroupCondition(mbs, self.markerNumbers, name, self._contacts, self._pair)
-        return _GroupStick(mbs, self.markerNumbers, name, self._contacts, self._pair, tangent, self._condition)
+            return _GroupCondition(mbs, name, self._contacts, self._pair)
+        return _GroupStick(mbs, name, self._contacts, self._pair, tangent, self._condition)
 
     def _reset(self) -> None:
         super()._reset()
@@ -257,7 +267,7 @@ class _GroupPair(ImpulseJointHandle):
             self._friction.restore(mbs, self._saved["friction"])
 
     def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
-        name = self._pair.contact_name(mbs, self.markerNumbers)  # at the step's end, in the wall
+        name = self._pair.contact_name(self._markers.poses(mbs, self._pair.rotations))  # at the step's end, in the wall
         began = super()._contact(mbs, t, h, end, end_gap)
         if began:
             self._names[t] = name
@@ -316,7 +326,7 @@ class ImpulsePairsHandle:
         self.markerNumbers = list(markers)
         self.constraintNumber: int | None = None
         self.pairs: dict[str, _GroupPair] = {}
-        contacts = _Contacts()
+        contacts = _Contacts(MarkerState(mbs, self.markerNumbers))
         for pair_name, pair in pairs:
             self.pairs[pair_name] = _GroupPair(mbs, joint, f"{name or '(unnamed)'}: {pair_name}", self.markerNumbers,
                                                pair, contacts=contacts)

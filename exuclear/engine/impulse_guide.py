@@ -38,6 +38,7 @@ from ..prismatic import (
     WALL_SIDES,
     GuideGeometry,
 )
+from .condition import Poses
 from .impulse_group import ImpulsePairsHandle
 from .impulse_pairs import Eccentricity
 
@@ -66,30 +67,32 @@ class CornerPair:
     share: ClassVar[float] = 1.0
     #: a corner is a point: its contact point is itself, with no spin term in its slip
     radius: ClassVar[float] = 0.0
+    rotations: ClassVar[tuple[bool, bool]] = (True, True)
 
     @property
     def body(self) -> str:
         return f"corner {self.name}"
 
-    def offset(self, mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The corner's offset ``d`` from the guide's centre point in the guide's frame, the
-        guide's frame (global columns) and the corner's arm from marker 1's point (global)."""
-        ov = exu.OutputVariableType
-        r0, r1 = (np.asarray(mbs.GetMarkerOutput(m, ov.RotationMatrix), dtype=float).reshape(3, 3) for m in markers)
-        p0, p1 = (np.asarray(mbs.GetMarkerOutput(m, ov.Position), dtype=float) for m in markers)
+    def _across(self, poses: Poses) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+        """The corner's offset ``d_a`` across the axis from the guide's centre point, the
+        axis (global), the corner's position from the guide's centre point and its arm from
+        marker 1's point (global)."""
+        (p0, p1), (r0, r1) = poses
         arm = r1 @ self.corner
-        return r0.T @ (p1 + arm - p0), r0, arm
+        relative = p1 + arm - p0
+        axis = r0[:, self.axis]
+        return float(axis @ relative), axis, relative, arm
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        d, frame, arm = self.offset(mbs, markers)
-        foot = d.copy()
-        foot[self.axis] = 0.0  # S: the corner's foot on the mid-plane, a point of the guide's body
-        return Eccentricity(d[self.axis] * frame[:, self.axis], frame @ foot, arm)
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        offset, axis, relative, arm = self._across(poses)
+        e = offset * axis
+        # S: the corner's foot on the mid-plane, a point of the guide's body
+        return Eccentricity(e, relative - e, arm)
 
-    def contact_name(self, mbs: exu.MainSystem, markers: Any) -> str:
+    def contact_name(self, poses: Poses) -> str:
         """The corner and the wall it is nearest (by the sign of its offset across the axis),
         ``"corner front-lower / lower wall"``."""
-        return f"corner {self.name} / {self.walls[bool(self.offset(mbs, markers)[0][self.axis] >= 0.0)]} wall"
+        return f"corner {self.name} / {self.walls[bool(self._across(poses)[0] >= 0.0)]} wall"
 
 
 def corner_pairs(geometry: GuideGeometry) -> list[tuple[str, CornerPair]]:

@@ -29,7 +29,8 @@ plane), and
 corner), which puts the contact point ``radius n`` beyond the inner centre.
 
 The markers' state is read through Exudyn's marker outputs (position and rotation of the
-two rigid markers), so any body with a rigid marker takes the mode.
+two rigid markers, :class:`~exuclear.engine.condition.Poses`), so any body with a rigid
+marker takes the mode.
 """
 from __future__ import annotations
 
@@ -37,11 +38,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple, Protocol
 
-import exudyn as exu
 import numpy as np
 
 from ..contact.pair import ContactGeometry
 from ..slot import segment_point
+from .condition import Poses
 
 
 class Eccentricity(NamedTuple):
@@ -65,13 +66,15 @@ class ContactPair(Protocol):
     reach: float
     clearance: float
     radius: float
+    #: the rotation matrices of markers [outer, inner] it reads
+    rotations: ClassVar[tuple[bool, bool]]
 
     @property
     def plane(self) -> np.ndarray | None:
         """The normal of the plane the contact slides in, in marker 0's frame (None: a tangent plane)."""
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        """At the system's current state, for ``markers`` [outer, inner]."""
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        """At the markers' ``poses`` [outer, inner]."""
 
 
 def contact_arms(pair: ContactPair, normal: np.ndarray, ecc: Eccentricity) -> tuple[np.ndarray, np.ndarray]:
@@ -82,14 +85,6 @@ def contact_arms(pair: ContactPair, normal: np.ndarray, ecc: Eccentricity) -> tu
     outer = (pair.reach + pair.radius) * normal
     inner = pair.radius * normal
     return (outer if ecc.arm is None else ecc.arm + outer), (inner if ecc.inner_arm is None else ecc.inner_arm + inner)
-
-
-def _poses(mbs: exu.MainSystem, markers: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Marker 0's rotation matrix (global), and both markers' positions (global)."""
-    ov = exu.OutputVariableType
-    rotation = np.asarray(mbs.GetMarkerOutput(markers[0], ov.RotationMatrix), dtype=float).reshape(3, 3)
-    p0, p1 = (np.asarray(mbs.GetMarkerOutput(m, ov.Position), dtype=float) for m in markers)
-    return rotation, p0, p1
 
 
 @dataclass(frozen=True)
@@ -110,6 +105,7 @@ class PlanarPair(_CentrePair):
     """A journal in its bearing: ``axis`` the bearing axis (unit) in marker 0's frame."""
 
     body: ClassVar[str] = "journal"
+    rotations: ClassVar[tuple[bool, bool]] = (True, False)
 
     axis: np.ndarray
 
@@ -117,8 +113,8 @@ class PlanarPair(_CentrePair):
     def plane(self) -> np.ndarray:
         return self.axis
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        rotation, p0, p1 = _poses(mbs, markers)
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        (p0, p1), (rotation, _) = poses
         axis = rotation @ self.axis
         e = p1 - p0
         return Eccentricity(e - (e @ axis) * axis, None)
@@ -130,9 +126,10 @@ class BallPair(_CentrePair):
 
     body: ClassVar[str] = "ball"
     plane: ClassVar[None] = None  # a ball slides in its tangent plane
+    rotations: ClassVar[tuple[bool, bool]] = (False, False)
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        _, p0, p1 = _poses(mbs, markers)
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        p0, p1 = poses.positions
         return Eccentricity(p1 - p0, None)
 
 
@@ -143,6 +140,7 @@ class SlotPair(_CentrePair):
     centres."""
 
     body: ClassVar[str] = "pin"
+    rotations: ClassVar[tuple[bool, bool]] = (True, False)
 
     frame: np.ndarray
     half_length: float
@@ -151,8 +149,8 @@ class SlotPair(_CentrePair):
     def plane(self) -> np.ndarray:
         return self.frame[:, 2]
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        rotation, p0, p1 = _poses(mbs, markers)
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        (p0, p1), (rotation, _) = poses
         frame = rotation @ self.frame  # the slot's frame, global
         px, py, _ = frame.T @ (p1 - p0)  # the pin's centre in the slot's frame (its part along z out)
         sx = segment_point(float(px), self.half_length)
@@ -174,23 +172,23 @@ class SlicePair(_CentrePair):
     z: float
     name: str
     share: float
+    rotations: ClassVar[tuple[bool, bool]] = (True, True)
 
     @property
     def plane(self) -> np.ndarray:
         """The bearing's axis: the slice's friction is circumferential, ``t = n x a``."""
         return self.frame[:, 2]
 
-    def eccentricity(self, mbs: exu.MainSystem, markers: Any) -> Eccentricity:
-        rotation, p0, p1 = _poses(mbs, markers)
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        (p0, p1), (rotation, turned) = poses
         axis = rotation @ self.frame[:, 2]
-        u = np.asarray(mbs.GetMarkerOutput(markers[1], exu.OutputVariableType.RotationMatrix),
-                       dtype=float).reshape(3, 3) @ self.journal_axis
+        u = turned @ self.journal_axis
         p = p1 - p0
         s = (self.z - p @ axis) / (u @ axis)
         crossing = p + s * u
         return Eccentricity(crossing - self.z * axis, self.z * axis, s * u)
 
-    def contact_name(self, mbs: exu.MainSystem, markers: Any) -> str:
+    def contact_name(self, poses: Poses) -> str:
         return self.name
 
     @property

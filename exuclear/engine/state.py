@@ -99,20 +99,25 @@ def names(joints: Sequence[ClearanceJointHandle]) -> list[str]:
 
 
 @contextlib.contextmanager
-def start_of_step(mbs: exu.MainSystem) -> Iterator[None]:
+def start_of_step(mbs: exu.MainSystem, accelerations: bool = True) -> Iterator[None]:
     """The state at the start of the step in the current configuration, where marker outputs
-    are read, for the ``with`` block; the step's end state back after it."""
+    are read, for the ``with`` block (its coordinates and velocities, and its accelerations
+    where ``accelerations``); the step's end state back after it.  (The vectors go to Exudyn
+    as lists, which it reads several times faster than arrays.)"""
     data, start = mbs.systemData, exu.ConfigurationType.StartOfStep
-    end = (data.GetODE2Coordinates(), data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt())
-    data.SetODE2Coordinates(data.GetODE2Coordinates(configuration=start))
-    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(configuration=start))
-    data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=start))
+    end = [data.GetODE2Coordinates().tolist(), data.GetODE2Coordinates_t().tolist()]
+    data.SetODE2Coordinates(data.GetODE2Coordinates(configuration=start).tolist())
+    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(configuration=start).tolist())
+    if accelerations:
+        end.append(data.GetODE2Coordinates_tt().tolist())
+        data.SetODE2Coordinates_tt(data.GetODE2Coordinates_tt(configuration=start).tolist())
     try:
         yield
     finally:
         data.SetODE2Coordinates(end[0])
         data.SetODE2Coordinates_t(end[1])
-        data.SetODE2Coordinates_tt(end[2])
+        if accelerations:
+            data.SetODE2Coordinates_tt(end[2])
 
 
 @contextlib.contextmanager
@@ -122,8 +127,8 @@ def moved_on(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
     :mod:`~exuclear.engine.impulse`); the present ones back after it."""
     data = mbs.systemData
     q = data.GetODE2Coordinates()
-    data.SetODE2Coordinates(q + dt * data.GetODE2Coordinates_t())
+    data.SetODE2Coordinates((q + dt * data.GetODE2Coordinates_t()).tolist())
     try:
         yield
     finally:
-        data.SetODE2Coordinates(q)
+        data.SetODE2Coordinates(q.tolist())

@@ -18,7 +18,8 @@ import math
 import numpy as np
 
 from ...geometry import BearingGeometry, ContactKinematics, kinematics_along
-from ...spatial import V3, SliceKinematics, slice_kinematics_along
+from ...spatial import SliceKinematics, slice_kinematics_along
+from ...vectors import V3
 from ...wear.law import Wear
 from ...wear.surface import (
     SurfaceField,
