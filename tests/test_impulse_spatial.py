@@ -66,19 +66,22 @@ def test_a_journal_resting_flat_shares_its_weight_over_its_slices():
         assert np.allclose(out["normal_force"][held], MASS * G / SLICES, rtol=1e-9)
 
 
-def test_an_elastic_tilting_journal_keeps_its_energy_to_second_order_in_the_step():
+def test_an_elastic_tilting_journal_keeps_its_energy():
     # cr 1, no gravity: the journal crosses its bearing while tilting at 20 rad/s, so that its
     # end slices hit one at a time, dozens of times.  Its energy stays within 1 % (the issue's
-    # target); the change is second order in the step (each jump's rows at its step's
-    # start, while the journal tilts): a quarter of the step divides it by about 12
+    # target), and within 1e-4 at this step: each jump conserves the normal velocity exactly,
+    # and the steps after it start from the trapezoidal rule's accelerations and velocities
+    # less their step-to-step alternation (exuclear.engine.settling; with the alternation
+    # left in them the change is 8e-4 here, python -m validation.cost modes); a quarter of
+    # the step does not make it larger
     run, energy = elastic()
     impacts = run.joint.impacts()
     assert len(impacts) >= 40 and all(i.restitution == 1.0 for i in impacts)
     assert {i.pair for i in impacts} == {"slice 1 at z = -0.01125 m", "slice 4 at z = 0.01125 m"}
     drift = np.abs(energy - 1.0).max()
-    assert drift < 0.01
+    assert drift < 1e-4
     _, finer = elastic(step=2.5e-6)
-    assert drift / np.abs(finer - 1.0).max() > 8.0
+    assert np.abs(finer - 1.0).max() < drift
 
 
 @pytest.mark.parametrize("slices", [None, SLICES])

@@ -34,6 +34,10 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   loads and a sticking condition in the steps the condition holds
   (:mod:`~exuclear.engine.impulse_friction`, called where the condition is measured, held,
   released, checked and accepted).
+- **Settling.**  The trapezoidal rule keeps an error in a step's start accelerations,
+  which every jump and onset leaves, alternating from step to step in all multipliers of
+  the model, undamped: each accepted step's end accelerations and velocities lose that
+  alternation (:mod:`~exuclear.engine.settling`; not in a system with friction).
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows
@@ -66,8 +70,9 @@ from ..joint import ClearanceJoint
 from ..vectors import angle, norm
 from .bodies import joint_mass
 from .condition import MarkerState, Plan, VelocityCondition
-from .impulse_friction import contact_friction
+from .impulse_friction import Frictionless, contact_friction
 from .impulse_pairs import ContactPair, contact_pair
+from .settling import settling_of
 from .state import moved_on, start_of_step
 from .steering import explicit_solver
 
@@ -168,6 +173,7 @@ class ImpulseJointHandle:
         # normal condition is measured, held, released, checked and accepted
         self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair,
                                           lambda label, k: self._new_condition(mbs, label, tangent=k))
+        settling_of(mbs).friction |= not isinstance(self._friction, Frictionless)
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -240,6 +246,7 @@ class ImpulseJointHandle:
             else:
                 active = self._condition.plan.active
                 self._reset()  # a new run
+                settling_of(mbs).forget()
                 active = self._friction.reset(mbs) or active
                 self._check_solver(mbs)
                 self._start = t
@@ -274,10 +281,11 @@ class ImpulseJointHandle:
             tk, vk, ek, _ = self._impacts[-1]
             self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
         # the resting multiplier alternates from step to step about the load under the
-        # trapezoidal rule, undamped, and the amplitude of the alternation drifts (with
-        # Newton's residual left in each step and the mechanism's configuration, by orders of
-        # magnitude over a long held contact): a two-step mean keeps half the change of one
-        # step, which lets the contact go where the reaction is still positive; the
+        # trapezoidal rule: in the first steps after a jump, while the settling takes the
+        # alternation out (exuclear.engine.settling), and undamped in a system with friction,
+        # which is not settled, with an amplitude that drifts (with Newton's residual left in
+        # each step and the mechanism's configuration): a two-step mean keeps half the change
+        # of one step, which lets the contact go where the reaction is still positive; the
         # three-step mean with weights 1/4, 1/2, 1/4 also cancels an amplitude that changes
         # linearly from step to step
         if self._state == REST and self._resting > 2:
@@ -289,22 +297,11 @@ class ImpulseJointHandle:
         self._force, self._force_before = force, self._force
         self._records.append((t_end, *e.tolist(), gap, reaction if self._state == REST else 0.0))
         self._friction.accept(mbs, t_end, self._state == REST)
+        self._settle(mbs)
         if self._state == IMPACT:
-            # the impact step ends at v+; its end accelerations carry the impulse over the step
-            # (about 2 (v+ - v-) / h), which the trapezoidal rule would add to the next step's
-            # velocities in proportion to that step's length: the free computation's end
-            # accelerations (the step without the contact) stand in for them, so that the
-            # flight after the jump starts at v+ whatever its steps
-            mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             self._release(mbs, FREE)
         elif self._state == REST:
             if self._resting == 0 and len(self._free_accelerations):
-                # the onset's end accelerations carry the approach's impulse (about 2 m v / h);
-                # carried into the held steps, it alternates from step to step undamped under
-                # the trapezoidal rule, a multiplier hundreds of times the reaction whose
-                # two-step mean scatters about it: the free computation's stand in for them,
-                # as at an impact
-                mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
                 self._friction.forget()
             self._resting += 1
             if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
@@ -315,6 +312,24 @@ class ImpulseJointHandle:
                 self._hold_resting(mbs, e, gap, h, 2.0 * e - self._held[0])  # the normal's last turn, once more
         self._start, self._step = t_end, h
         return 0.0
+
+    def _settle(self, mbs: exu.MainSystem) -> None:
+        """The end state of an accepted step, as the next step starts from it
+        (:mod:`~exuclear.engine.settling`).  An impact step ends at ``v+``; its end
+        accelerations carry the impulse over the step (about ``2 (v+ - v-) / h``), which the
+        trapezoidal rule would add to the next step's velocities in proportion to that
+        step's length: the free computation's end accelerations (the step without the
+        contact) stand in for them, so that the flight after the jump starts at ``v+``
+        whatever its steps.  A resting contact's onset step's carry the approach's impulse
+        (about ``2 m v / h``): the free computation's stand in for them too.  Either is a
+        jump, from which the settling's history starts; any other step's end velocities and
+        accelerations lose the step-to-step alternation the trapezoidal rule leaves in them."""
+        settling = settling_of(mbs)
+        if self._state == IMPACT or (self._state == REST and self._resting == 0 and len(self._free_accelerations)):
+            mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
+            settling.restart(mbs)
+        else:
+            settling.settle(mbs)
 
     def _shorten(self, mbs: exu.MainSystem, h: float, share: float) -> bool:
         """Whether Exudyn can compute the step again at ``share`` of its length (times

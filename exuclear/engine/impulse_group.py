@@ -30,6 +30,7 @@ from .condition import MarkerState, VelocityCondition
 from .impulse import ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, SlicePair, contact_arms
+from .settling import solve_of
 
 #: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
 #: this share of its length is a combination of them: the wrenches at one state of a rigid
@@ -86,13 +87,6 @@ class _Contacts:
         """A new run: nothing of the last one's solves."""
         self._sweep, self._shares = None, (None, {})
 
-    @staticmethod
-    def solve_of(mbs: exu.MainSystem) -> tuple[float, float, int]:
-        """The Newton solve just done: the step's end [s], its length [s] and Exudyn's
-        discontinuous iteration."""
-        it = mbs.sys["dynamicSolver"].it
-        return float(mbs.systemData.GetTime()), float(it.currentStepSize), int(it.discontinuousIteration)
-
     def decided(self, mbs: exu.MainSystem, handle: _GroupPair, error: float) -> None:
         """After ``handle`` decided on a Newton solve (``error`` > 0: compute the step again).
         A contact that accepts a step sets its condition for the next one; where another
@@ -100,7 +94,7 @@ class _Contacts:
         contacts' conditions of this step, or each would ask for it again in turn (two
         corners hitting in one step, the second only after the first's jump): their
         conditions go back to this step's."""
-        sweep = self.solve_of(mbs)
+        sweep = solve_of(mbs)
         if sweep != self._sweep:
             self._sweep, self._redo, self._accepted = sweep, False, []
         if error > 0.0:
@@ -138,7 +132,7 @@ class _Contacts:
         ``lambda_a`` apply (``W`` the contacts' unit wrenches); the acting multipliers
         themselves where none is held by others.  Computed at the first contact's call after
         the solve, before any contact sets its condition for the next computation."""
-        solve = self.solve_of(mbs)
+        solve = solve_of(mbs)
         if self._shares[0] != solve:
             held = [c for c in self.conditions if c.plan.active]
             forces = np.array([c.own_multiplier(mbs) for c in held])

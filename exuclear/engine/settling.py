@@ -1,0 +1,132 @@
+"""The step-to-step alternation the trapezoidal rule leaves in a system's velocities and
+accelerations, taken out at each accepted step of the impulse contact mode
+(:mod:`~exuclear.engine.impulse`).
+
+Under generalized-alpha with spectral radius 1 (the trapezoidal rule, which the mode needs
+for exact jumps) Exudyn integrates ``v1 = v0 + h (a0 + a1) / 2`` and
+``q1 = q0 + h (v0 + v1) / 2``.  An error ``d`` in a step's start accelerations along a
+condition that fixes the step's end (an impact's or a held contact's onset starts the next
+step from accelerations not consistent with the velocities after the jump or with the new
+condition) returns as ``a1 = ... - d``: ``(-1)^n d`` in every later step, undamped, and
+with it in every Lagrange multiplier of the model (a held contact's reaction, a crank
+drive's moment, an ideal pin's force).  A position-level joint keeps ``G q = 0`` at each
+step's end, so ``G (v0 + v1) = 0`` up to the joint's curvature: a velocity across the joint
+(the curvature's share of a jump) also returns with its sign flipped each step, and drives
+an alternation ``2 G v / h`` in the accelerations.  Neither moves the positions; both move
+the multipliers, and the mode's decisions read them.
+
+:class:`Settling` takes both out of the state each step ends at, from the states the steps
+since the last jump ended at (the ones the following steps started from):
+
+- at the first step after a jump, the accelerations are the mean of the jump's and the
+  step's own (the middle of ``d`` and ``-d``; a smooth ``a`` moves by ``h a' / 2``, once a
+  jump);
+- then the accelerations less :data:`ACCELERATION_SHARE` times their second difference
+  (a smooth ``a`` moves by ``h^2 a'' / 9``, the next step's velocities by
+  ``h^3 a'' / 18``: second order kept), and from the fourth step the velocities less
+  :data:`VELOCITY_SHARE` times their third difference (by ``h^3 v''' / 28``).
+
+A jump (an impact, a contact's onset) starts the history anew: the filters never reach
+across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of the mode's
+contacts accepts the step, and the first settles it.  A system with a contact with
+friction is not settled: the friction's sliding loads and its cone check are written for
+alternating multipliers (:mod:`~exuclear.engine.impulse_friction` sums a step's start and
+end forces), and settled ones leave its first held steps off Coulomb's law.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import exudyn as exu
+import numpy as np
+
+#: ``mbs.variables`` key of a system's :class:`Settling`.
+SETTLING_KEY = "exuclear.settling"
+#: The share of the accelerations' second difference taken off.  An error ``e`` in the
+#: accelerations a step starts from returns as ``-e`` at its end; taking off the share ``s``
+#: leaves ``e_n = (3 s - 1) e_(n-1) - s e_(n-2)``, whose roots are smallest, both -1/3, at
+#: ``s = 1/9``: the error shrinks threefold a step without ringing (``s = 1/4``, which
+#: removes a pure alternation at once, leaves complex roots of modulus 1/2: any later error
+#: rings with a period of 3.5 steps).
+ACCELERATION_SHARE = 1.0 / 9.0
+#: The share of the velocities' third difference taken off: the velocities' error then
+#: follows ``e_n = (4 s - 1) e_(n-1) - 3 s e_(n-2) + s e_(n-3)``, whose largest roots are
+#: smallest, -1/2 twice (and 1/7), at ``s = 1/28``.
+VELOCITY_SHARE = 1.0 / 28.0
+#: Two step ends closer than this (relative) are one step, accepted again.
+SAME_END = 1e-12
+
+
+class _End(NamedTuple):
+    """The state a step ended at, as the next step starts from it."""
+
+    solve: tuple[float, float, int]  # the step's end [s], its length [s], Exudyn's discontinuous iteration
+    velocities: np.ndarray
+    accelerations: np.ndarray
+
+
+class Settling:
+    """The ends of a system's accepted steps since the last jump, and the filters applied
+    to a step's end (module docstring)."""
+
+    def __init__(self) -> None:
+        self.friction = False  # a joint with friction was created in the system: no settling (module docstring)
+        self._ends: list[_End] = []
+        self._settled: tuple[tuple[float, float, int], np.ndarray] | None = None  # a settled solve, its own velocities
+
+    def forget(self) -> None:
+        """A new run: no steps yet."""
+        self._ends, self._settled = [], None
+
+    def restart(self, mbs: exu.MainSystem) -> None:
+        """The step just accepted ends in a jump (its end state as the mode set it): the
+        history starts from it."""
+        solve = solve_of(mbs)
+        data = mbs.systemData
+        if self._settled is not None and self._settled[0] == solve:
+            # another contact settled this solve first: its jump's velocities back
+            data.SetODE2Coordinates_t(self._settled[1])
+        self._ends = [_End(solve, np.array(data.GetODE2Coordinates_t()), np.array(data.GetODE2Coordinates_tt()))]
+
+    def settle(self, mbs: exu.MainSystem) -> None:
+        """The step just accepted ends smoothly: its end velocities and accelerations less
+        their alternation (once per Newton solve, whichever contact accepts it first; not
+        at a step that ended in a jump)."""
+        solve = solve_of(mbs)
+        if self.friction or (self._ends and self._ends[-1].solve == solve):
+            return
+        self._drop_from(solve[0])
+        data = mbs.systemData
+        v, a = np.array(data.GetODE2Coordinates_t()), np.array(data.GetODE2Coordinates_tt())
+        self._settled = (solve, v)
+        ends = self._ends
+        if len(ends) == 1:
+            a = 0.5 * (a + ends[-1].accelerations)
+            data.SetODE2Coordinates_tt(a)
+        elif len(ends) >= 2:
+            a = a - ACCELERATION_SHARE * (a - 2.0 * ends[-1].accelerations + ends[-2].accelerations)
+            data.SetODE2Coordinates_tt(a)
+        if len(ends) >= 3:
+            v = v - VELOCITY_SHARE * (v - 3.0 * ends[-1].velocities + 3.0 * ends[-2].velocities - ends[-3].velocities)
+            data.SetODE2Coordinates_t(v)
+        self._ends = [*ends[-2:], _End(solve, v, a)]
+
+    def _drop_from(self, end: float) -> None:
+        """Forget the steps that ended at or after ``end`` [s]: Exudyn computes them again."""
+        limit = end - SAME_END * max(1.0, abs(end))
+        self._ends = [e for e in self._ends if e.solve[0] < limit]
+
+
+def solve_of(mbs: exu.MainSystem) -> tuple[float, float, int]:
+    """The Newton solve just done: the step's end [s], its length [s] and Exudyn's
+    discontinuous iteration."""
+    it = mbs.sys["dynamicSolver"].it
+    return float(mbs.systemData.GetTime()), float(it.currentStepSize), int(it.discontinuousIteration)
+
+
+def settling_of(mbs: exu.MainSystem) -> Settling:
+    """The :class:`Settling` of ``mbs`` (one per system, kept in ``mbs.variables``)."""
+    settling = mbs.variables.get(SETTLING_KEY)
+    if settling is None:
+        settling = mbs.variables[SETTLING_KEY] = Settling()
+    return settling

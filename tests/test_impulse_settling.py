@@ -1,0 +1,84 @@
+"""The impulse mode's settling of the trapezoidal rule's step-to-step alternation
+(exuclear.engine.settling): a held contact and the model's own joints carry their static
+reactions, step after step, checked against the statics of a bar on two supports."""
+import warnings
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import (
+    Force,
+    MarkerBodyPosition,
+    MarkerNodePosition,
+    NodeRigidBody2D,
+    ObjectGround,
+    ObjectJointRevolute2D,
+    ObjectRigidBody2D,
+    SensorObject,
+)
+
+import exuclear
+from exuclear.engine.impulse import ImpulseJointHandle
+
+G = 9.81
+MASS = 1.0  # kg, the bar
+LENGTH = 0.2  # m, pivot to journal
+CLEARANCE = 1e-4  # m
+STEP = 1e-4  # s
+END_TIME = 0.05  # s
+
+
+def bar_on_two_supports():
+    """A uniform bar along x from an ideal pin at the origin to a journal at x = LENGTH, in a
+    ground bearing centred there; gravity -y; the journal starts at the bearing's centre
+    and falls onto its bottom wall, where the mode holds it.  Returns the system, the
+    clearance joint and the pin's force sensor."""
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[LENGTH / 2, 0, 0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=MASS, inertia=MASS * LENGTH**2 / 12))
+    mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)), loadVector=[0, -MASS * G, 0]))
+    pin = mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[
+        mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0, 0, 0])),
+        mbs.AddMarker(MarkerBodyPosition(bodyNumber=body, localPosition=[-LENGTH / 2, 0, 0]))]))
+    sensor = mbs.AddSensor(SensorObject(objectNumber=pin, storeInternal=True, outputVariableType=exu.OutputVariableType.Force))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the clearance ratio's note: chosen here
+        joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[LENGTH, 0, 0],
+                                              bearing_radius=10e-3, journal_radius=10e-3 - CLEARANCE, length=10e-3,
+                                              cr=0.1, contact_mode="impulse")
+    assert isinstance(joint, ImpulseJointHandle)
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = END_TIME
+    ss.timeIntegration.numberOfSteps = int(round(END_TIME / STEP))
+    ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
+    ss.timeIntegration.verboseMode = 0
+    ss.solution.sensors.writePeriod = STEP
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the joint's notes are not what this test checks
+        assert mbs.SolveDynamic(ss)
+    return mbs, joint, sensor
+
+
+def test_a_held_contact_and_an_ideal_pin_carry_half_the_bar_each_step_after_step():
+    # statics of a uniform bar on two supports at its ends: each carries m g / 2.  The bar
+    # droops by c / L = 5e-4 rad and the contact's normal tilts by half that: the lever arms
+    # change at second order, (5e-4)^2, so m g / 2 holds to 1e-6
+    mbs, joint, sensor = bar_on_two_supports()
+    impacts = joint.impacts()
+    # the journal bounces (cr 0.1) and comes to rest: the last onset is the rest's, no chatter after it
+    rest = impacts[-1].onset_time
+    assert impacts[-1].restitution == 0.0 and all(i.restitution > 0.0 for i in impacts[:-1])
+    pin = np.asarray(mbs.GetSensorStoredData(sensor))
+    settled = pin[:, 0] > rest + 40 * STEP  # the onset's alternation decays as n 3^-n
+    assert settled.sum() > 300
+    # Exudyn's joint force is the one on the bar's marker: the pin holds the bar up
+    np.testing.assert_allclose(pin[settled, 2], -MASS * G / 2, rtol=1e-6)
+    # the trapezoidal rule would keep the onset's error in the accelerations, about the
+    # approach's impulse over the step, alternating from step to step in every multiplier
+    # (hundreds of m g); settled, the pin's force changes from step to step by Newton's
+    # tolerance on the step's residual (1e-8 relative, Exudyn's default) times the load
+    assert np.abs(np.diff(pin[settled, 2])).max() < 1e-7 * MASS * G
+    out = joint.outputs()
+    held = out["time"] > rest + 40 * STEP
+    np.testing.assert_allclose(out["normal_force"][held], MASS * G / 2, rtol=1e-6)
