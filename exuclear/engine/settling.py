@@ -31,7 +31,11 @@ across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of
 contacts accepts the step, and the first settles it.  A system with a contact with
 friction is not settled: the friction's sliding loads and its cone check are written for
 alternating multipliers (:mod:`~exuclear.engine.impulse_friction` sums a step's start and
-end forces), and settled ones leave its first held steps off Coulomb's law.
+end forces), and settled ones leave its first held steps off Coulomb's law.  Nor is a
+system with a flexible body (a beam, an ANCF cable: any body not in :data:`RIGID_BODIES`):
+its stiff modes alternate from step to step under the trapezoidal rule of themselves (a
+mode with ``omega h >> 1`` has the factor ``-1`` a step), which the filters would damp, and
+the zoo's beam pendulum then chattered on its wall.
 """
 from __future__ import annotations
 
@@ -53,6 +57,11 @@ ACCELERATION_SHARE = 1.0 / 9.0
 #: follows ``e_n = (4 s - 1) e_(n-1) - 3 s e_(n-2) + s e_(n-3)``, whose largest roots are
 #: smallest, -1/2 twice (and 1/7), at ``s = 1/28``.
 VELOCITY_SHARE = 1.0 / 28.0
+#: Exudyn's rigid bodies (``objectType``): a system whose bodies are all of these is settled.
+RIGID_BODIES = frozenset({"RigidBody", "RigidBody2D", "MassPoint", "MassPoint2D", "Mass1D", "RotationalMass1D",
+                          "KinematicTree"})
+#: The beginnings of the ``objectType`` of Exudyn's objects that are not bodies.
+NOT_BODIES = ("Connector", "Joint", "Contact", "Ground")
 #: Two step ends closer than this (relative) are one step, accepted again.
 SAME_END = 1e-12
 
@@ -71,12 +80,15 @@ class Settling:
 
     def __init__(self) -> None:
         self.friction = False  # a joint with friction was created in the system: no settling (module docstring)
+        self.flexible = False  # the run's system has a flexible body: no settling (module docstring)
         self._ends: list[_End] = []
         self._settled: tuple[tuple[float, float, int], np.ndarray] | None = None  # a settled solve, its own velocities
 
-    def forget(self) -> None:
-        """A new run: no steps yet."""
+    def forget(self, mbs: exu.MainSystem) -> None:
+        """A new run of ``mbs``: no steps yet; whether it has a flexible body."""
         self._ends, self._settled = [], None
+        items = (str(mbs.GetObject(i)["objectType"]) for i in range(mbs.systemData.NumberOfObjects()))
+        self.flexible = any(not kind.startswith(NOT_BODIES) and kind not in RIGID_BODIES for kind in items)
 
     def restart(self, mbs: exu.MainSystem) -> None:
         """The step just accepted ends in a jump (its end state as the mode set it): the
@@ -93,7 +105,7 @@ class Settling:
         their alternation (once per Newton solve, whichever contact accepts it first; not
         at a step that ended in a jump)."""
         solve = solve_of(mbs)
-        if self.friction or (self._ends and self._ends[-1].solve == solve):
+        if self.friction or self.flexible or (self._ends and self._ends[-1].solve == solve):
             return
         self._drop_from(solve[0])
         data = mbs.systemData
