@@ -21,10 +21,10 @@ since the last jump ended at (the ones the following steps started from):
 - at the first step after a jump, the accelerations are the mean of the jump's and the
   step's own (the middle of ``d`` and ``-d``; a smooth ``a`` moves by ``h a' / 2``, once a
   jump);
-- then the accelerations less :data:`ACCELERATION_SHARE` times their second difference
-  (a smooth ``a`` moves by ``h^2 a'' / 9``, the next step's velocities by
-  ``h^3 a'' / 18``: second order kept), and from the fourth step the velocities less
-  :data:`VELOCITY_SHARE` times their third difference (by ``h^3 v''' / 28``).
+- from the fourth step on, the accelerations and the velocities less :data:`SHARE` times
+  their third difference (a smooth motion moves by ``h^3 a''' / 28`` and ``h^3 v''' / 28``:
+  second order kept; a second difference, ``h^2 a'' / 9`` a step, left the zoo's 3D
+  four-bar's path four times as far from the converged run at its example's step).
 
 A jump (an impact, a contact's onset) starts the history anew: the filters never reach
 across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of the mode's
@@ -46,17 +46,13 @@ import numpy as np
 
 #: ``mbs.variables`` key of a system's :class:`Settling`.
 SETTLING_KEY = "exuclear.settling"
-#: The share of the accelerations' second difference taken off.  An error ``e`` in the
-#: accelerations a step starts from returns as ``-e`` at its end; taking off the share ``s``
-#: leaves ``e_n = (3 s - 1) e_(n-1) - s e_(n-2)``, whose roots are smallest, both -1/3, at
-#: ``s = 1/9``: the error shrinks threefold a step without ringing (``s = 1/4``, which
-#: removes a pure alternation at once, leaves complex roots of modulus 1/2: any later error
-#: rings with a period of 3.5 steps).
-ACCELERATION_SHARE = 1.0 / 9.0
-#: The share of the velocities' third difference taken off: the velocities' error then
-#: follows ``e_n = (4 s - 1) e_(n-1) - 3 s e_(n-2) + s e_(n-3)``, whose largest roots are
-#: smallest, -1/2 twice (and 1/7), at ``s = 1/28``.
-VELOCITY_SHARE = 1.0 / 28.0
+#: The share of the accelerations' and velocities' third difference taken off.  An error
+#: ``e`` in the state a step starts from returns as ``-e`` at its end; taking off the share
+#: ``s`` leaves ``e_n = (4 s - 1) e_(n-1) - 3 s e_(n-2) + s e_(n-3)``, whose largest roots
+#: are smallest, -1/2 twice (and 1/7), at ``s = 1/28``: the error halves a step without
+#: ringing (``s = 1/8``, which removes a pure alternation at once, leaves complex roots of
+#: modulus 0.74, which ring).
+SHARE = 1.0 / 28.0
 #: Exudyn's rigid bodies (``objectType``): a system whose bodies are all of these is settled.
 RIGID_BODIES = frozenset({"RigidBody", "RigidBody2D", "MassPoint", "MassPoint2D", "Mass1D", "RotationalMass1D",
                           "KinematicTree"})
@@ -115,11 +111,10 @@ class Settling:
         if len(ends) == 1:
             a = 0.5 * (a + ends[-1].accelerations)
             data.SetODE2Coordinates_tt(a)
-        elif len(ends) >= 2:
-            a = a - ACCELERATION_SHARE * (a - 2.0 * ends[-1].accelerations + ends[-2].accelerations)
+        elif len(ends) >= 3:
+            a = a - SHARE * _third_difference(a, [e.accelerations for e in ends[-3:]])
+            v = v - SHARE * _third_difference(v, [e.velocities for e in ends[-3:]])
             data.SetODE2Coordinates_tt(a)
-        if len(ends) >= 3:
-            v = v - VELOCITY_SHARE * (v - 3.0 * ends[-1].velocities + 3.0 * ends[-2].velocities - ends[-3].velocities)
             data.SetODE2Coordinates_t(v)
         self._ends = [*ends[-2:], _End(solve, v, a)]
 
@@ -127,6 +122,11 @@ class Settling:
         """Forget the steps that ended at or after ``end`` [s]: Exudyn computes them again."""
         limit = end - SAME_END * max(1.0, abs(end))
         self._ends = [e for e in self._ends if e.solve[0] < limit]
+
+
+def _third_difference(x: np.ndarray, before: list[np.ndarray]) -> np.ndarray:
+    """``x_n - 3 x_(n-1) + 3 x_(n-2) - x_(n-3)``, ``before`` = [x_(n-3), x_(n-2), x_(n-1)]."""
+    return x - 3.0 * before[2] + 3.0 * before[1] - before[0]
 
 
 def solve_of(mbs: exu.MainSystem) -> tuple[float, float, int]:
