@@ -70,14 +70,14 @@ def test_a_held_contact_and_an_ideal_pin_carry_half_the_bar_each_step_after_step
     rest = impacts[-1].onset_time
     assert impacts[-1].restitution == 0.0 and all(i.restitution > 0.0 for i in impacts[:-1])
     pin = np.asarray(mbs.GetSensorStoredData(sensor))
-    settled = pin[:, 0] > rest + 40 * STEP  # the onset's alternation decays as n 3^-n
+    settled = pin[:, 0] > rest + 40 * STEP  # the settling halves what the onset left each step (n 2^-n)
     assert settled.sum() > 300
-    # Exudyn's joint force is the one on the bar's marker: the pin holds the bar up
+    # the pin's force as Exudyn reports it, on its first marker's side (the ground's): -m g / 2 along y
     np.testing.assert_allclose(pin[settled, 2], -MASS * G / 2, rtol=1e-6)
-    # the trapezoidal rule would keep the onset's error in the accelerations, about the
-    # approach's impulse over the step, alternating from step to step in every multiplier
-    # (hundreds of m g); settled, the pin's force changes from step to step by Newton's
-    # tolerance on the step's residual (1e-8 relative, Exudyn's default) times the load
+    # the trapezoidal rule would keep the onset's error in the accelerations alternating from
+    # step to step in every multiplier (here the pin's force between 0 and m g, to the end);
+    # settled, the pin's force changes from step to step by Newton's tolerance on the step's
+    # residual (1e-8 relative, Exudyn's default) times the load
     assert np.abs(np.diff(pin[settled, 2])).max() < 1e-7 * MASS * G
     out = joint.outputs()
     held = out["time"] > rest + 40 * STEP
