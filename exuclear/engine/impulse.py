@@ -37,8 +37,8 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
 - **Settling.**  The trapezoidal rule keeps an error in a step's start accelerations,
   which every jump and onset leaves, alternating from step to step in all multipliers of
   the model, undamped: each accepted step's end accelerations and velocities lose that
-  alternation (:mod:`~exuclear.engine.settling`; not in a system with friction or a
-  flexible body).
+  alternation (:mod:`~exuclear.engine.settling`; not in a system with friction, a
+  flexible body or a spring).
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows
