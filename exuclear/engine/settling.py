@@ -94,9 +94,18 @@ class Settling:
         self.flexible = any(force_element(item) or (not str(item["objectType"]).startswith(NOT_BODIES) and
                                                     str(item["objectType"]) not in RIGID_BODIES) for item in items)
 
+    @property
+    def active(self) -> bool:
+        """Whether the run's system is settled (module docstring): no friction, no flexible
+        body, no force element; else the mode's accepted steps leave it as it is, without
+        reading Exudyn's solver or state."""
+        return not (self.friction or self.flexible)
+
     def restart(self, mbs: exu.MainSystem) -> None:
         """The step just accepted ends in a jump (its end state as the mode set it): the
         history starts from it."""
+        if not self.active:
+            return
         solve = solve_of(mbs)
         data = mbs.systemData
         if self._settled is not None and self._settled[0] == solve:
@@ -108,8 +117,10 @@ class Settling:
         """The step just accepted ends smoothly: its end velocities and accelerations less
         their alternation (once per Newton solve, whichever contact accepts it first; not
         at a step that ended in a jump)."""
+        if not self.active:
+            return
         solve = solve_of(mbs)
-        if self.friction or self.flexible or (self._ends and self._ends[-1].solve == solve):
+        if self._ends and self._ends[-1].solve == solve:
             return
         self._drop_from(solve[0])
         data = mbs.systemData
