@@ -118,7 +118,7 @@ class _Contacts:
         share = np.linalg.lstsq(basis.T, wrench, rcond=None)[0]
         return float(np.linalg.norm(basis.T @ share - wrench)) <= DEPENDENT_WRENCHES * float(np.linalg.norm(wrench))
 
-    def settle(self, mbs: exu.MainSystem) -> None:
+    def resume_held(self, mbs: exu.MainSystem) -> None:
         """A held contact whose condition was off because others held it acts again where
         they no longer do."""
         for condition in self.conditions:
@@ -186,7 +186,7 @@ class _GroupCondition(VelocityCondition):
         a contact they held act again where they no longer hold it."""
         self.act(mbs, on and not self.contacts.dependent(mbs, self))
         if not on:
-            self.contacts.settle(mbs)
+            self.contacts.resume_held(mbs)
 
     def act(self, mbs: exu.MainSystem, on: bool) -> None:
         self.acting = on
