@@ -174,16 +174,15 @@ def _slider_body():
                      stiffness=1e9, cr=0.9)
 
 
-@pytest.mark.parametrize("extra, reason", [({"guide_length": 0.2}, "finite guide's end")])
-def test_the_mode_refuses_a_finite_guide_by_name(monkeypatch, extra, reason):
+def test_the_mode_takes_a_finite_guide(monkeypatch):
+    # a finite guide's corners are the mode's pairs with the guide's end (tests/test_impulse_ends.py),
+    # asked for by the argument or by the environment, silently
     mbs, guide = _slider_body()
-    with pytest.raises(ValueError, match=f"joint G: .*{reason}.*use contact_mode='compliant'"):
-        exuclear.CreatePrismaticClearanceJoint(mbs, name="G", contact_mode="impulse", **guide, **extra)
-    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
-    with pytest.warns(UserWarning, match=f"joint P: .*{reason}.*compliant contact"):
-        handle = exuclear.CreatePrismaticClearanceJoint(mbs, name="P", **guide, **extra)
-    assert isinstance(handle, exuclear.ClearanceJointHandle)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # a frictionless joint of infinite guide takes the mode silently
-        handle = exuclear.CreatePrismaticClearanceJoint(mbs, name="Q", **guide)
+    handle = exuclear.CreatePrismaticClearanceJoint(mbs, name="G", contact_mode="impulse", guide_length=0.2, **guide)
     assert isinstance(handle, ImpulseGuideHandle) and len(handle.pairs) == 4
+    assert all(pair._pair.half_guide == 0.1 for pair in handle.pairs.values())
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        handle = exuclear.CreatePrismaticClearanceJoint(mbs, name="P", guide_length=0.2, **guide)
+    assert isinstance(handle, ImpulseGuideHandle)

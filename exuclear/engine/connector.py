@@ -228,8 +228,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     # the journal axis in marker 1's frame: the bearing axis in the reference configuration (eq. (34))
     axis_journal = tuple(float(v) for v in relative[:, 2])
     if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes); the spatial joint's a pair per slice
-        impulse = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices) \
-            if slices else add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
+        impulse = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices,
+                                     shoulders) if slices else add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
         if constrainAxial:
             impulse.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0,
                                                          rotation1)
@@ -389,7 +389,8 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``"impulse"`` (docs/guide/contact_modes.md: velocity jumps, resting contact as a
         condition; returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`, with
         ``slices`` an :class:`~exuclear.engine.impulse_group.ImpulsePairsHandle`, a contact
-        per slice; the end faces of ``axial_clearance`` are refused).
+        per slice and per end face of ``axial_clearance``; end faces with friction are
+        refused).
 
     Returns
     -------

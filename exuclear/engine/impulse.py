@@ -437,16 +437,17 @@ class ImpulseJointHandle:
 
     def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:
         """The eccentricity ``e`` (global, the joint type's: :mod:`~exuclear.engine.impulse_pairs`)
-        and the gap ``|e| - c`` at the current state."""
-        e = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations)).e
-        return e, norm(e) - self._pair.reach
+        and the gap ``|e| - c`` at the current state (``-inf`` where no wall lies under the
+        contact: a corner beyond a finite guide's end, which cannot hold and starts no contact)."""
+        ecc = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations))
+        return ecc.e, norm(ecc.e) - self._pair.reach if ecc.wall else -math.inf  # no wall: open
 
     def _kinematics(self, mbs: exu.MainSystem, normal: np.ndarray) -> tuple[np.ndarray, float, float]:
         """The eccentricity, the rate along ``normal`` and the gap at the current state; sets
         the rows in ``normal``, at the outer body's point where ``e`` starts (and the
         friction's tangential rows, at the same state)."""
         ecc = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations))
-        e, arm, inner = ecc
+        e, arm, inner = ecc.e, ecc.arm, ecc.inner_arm
         self._friction.measure(mbs, normal, ecc)
         return e, self._condition.measure(mbs, normal, arms=(arm, inner)), norm(e) - self._pair.reach
 

@@ -1,6 +1,7 @@
 """A joint with several contacts in the impulse contact mode (:mod:`~exuclear.engine.impulse`):
 the translational joints' corners (:mod:`~exuclear.engine.impulse_guide`) and the spatial
-revolute joint's slices (:class:`~exuclear.engine.impulse_pairs.SlicePair`).
+revolute joint's slices and end faces (:class:`~exuclear.engine.impulse_pairs.SlicePair`,
+:class:`~exuclear.engine.impulse_pairs.FacePair`).
 
 Each contact is a one-contact pair of the mode (:mod:`~exuclear.engine.impulse_pairs`) with
 its own :class:`~exuclear.engine.impulse.ImpulseJointHandle`: its own condition and its own
@@ -23,13 +24,15 @@ import exudyn as exu
 import numpy as np
 
 from ..joint import ClearanceJoint
-from ..spatial import slice_centres
+from ..contact.law import ContactLaw
+from ..contact.stiffness import GivenStiffness
+from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..timescales import closed_form_impact
 from ..vectors import cross, norm
 from .condition import MarkerState, VelocityCondition
 from .impulse import ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
-from .impulse_pairs import ContactPair, Eccentricity, SlicePair, contact_arms
+from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
 from .settling import solve_of
 
 #: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
@@ -274,15 +277,16 @@ class _GroupPair(ImpulseJointHandle):
         """As :meth:`~exuclear.engine.impulse.ImpulseJointHandle.impacts`, for a contact with
         the share ``f`` of the law (a slice's ``w / L``): its force ``f F(delta)`` on its
         share ``m`` of the mass is the whole law's on ``m / f`` times ``f``, the same duration
-        and penetration."""
-        share = self._pair.share
+        and penetration; for a contact with a law of its own (``pair.law``: an end face's flat
+        punch), that law's."""
+        share, law = self._pair.share, self._pair.law
         out = super().impacts()
-        if share == 1.0:
+        if share == 1.0 and law is None:
             return out
         scaled = []
         for impact in out:
             if impact.effective_mass > 0.0 and impact.onset_velocity > 0.0:
-                peak, duration, depth = closed_form_impact(self._joint.law, impact.effective_mass / share,
+                peak, duration, depth = closed_form_impact(law or self._joint.law, impact.effective_mass / share,
                                                            impact.onset_velocity)
                 impact = impact._replace(peak_force=share * peak, duration=duration, max_penetration=depth)
             scaled.append(impact)
@@ -360,15 +364,26 @@ class ImpulsePairsHandle:
 
 
 def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
-                       frame: np.ndarray, journal_axis: np.ndarray, slices: int) -> ImpulsePairsHandle:
+                       frame: np.ndarray, journal_axis: np.ndarray, slices: int,
+                       shoulders: ShoulderGeometry | None = None) -> ImpulsePairsHandle:
     """The impulse mode's items for a spatial revolute joint of ``slices`` slices between
     ``markers`` [bearing, journal]: a condition and a carrier per slice
-    (:class:`~exuclear.engine.impulse_pairs.SlicePair`), ``frame`` the joint frame in
-    marker 0's frame, ``journal_axis`` the journal's axis in marker 1's frame."""
-    pairs = []
-    for k, z in enumerate(slice_centres(joint.geometry.length, slices)):
+    (:class:`~exuclear.engine.impulse_pairs.SlicePair`), then per end face where the joint
+    has ``shoulders`` (:class:`~exuclear.engine.impulse_pairs.FacePair`, the order of the
+    compliant joint's contacts), ``frame`` the joint frame in marker 0's frame,
+    ``journal_axis`` the journal's axis in marker 1's frame."""
+    frame, journal_axis = np.asarray(frame, dtype=float), np.asarray(journal_axis, dtype=float)
+    geometry, pairs = joint.geometry, []
+    for k, z in enumerate(slice_centres(geometry.length, slices)):
         label = f"slice {k + 1} at z = {z:.4g} m"
-        pairs.append((label, SlicePair(joint.geometry.clearance, joint.geometry.journal_radius,
-                                       np.asarray(frame, dtype=float), np.asarray(journal_axis, dtype=float), z, label,
+        pairs.append((label, SlicePair(geometry.clearance, geometry.journal_radius, frame, journal_axis, z, label,
                                        1.0 / slices)))
+    if shoulders is not None:
+        # the face's flat punch with the joint law's damping (docs/physics.md eqs. (52)-(53))
+        law = ContactLaw(GivenStiffness(geometry, 1.0, shoulders.face_stiffness(joint.law.E_star), 1.0),
+                         joint.law.damping_model, joint.law.v_min)
+        for side in FACE_SIDES:
+            label = f"end face at z = {0.5 * side * geometry.length:.4g} m"
+            pairs.append((label, FacePair(frame, journal_axis, geometry.length, shoulders.axial_clearance, side,
+                                          label, law)))
     return ImpulsePairsHandle(mbs, joint, name, markers, pairs)

@@ -13,12 +13,18 @@ it approaches, and its gap's rate is the corner's velocity (a point of the slide
 the mid-plane.  The gap ``|e| - w`` is the compliant joint's penetration of that corner on
 that wall (:func:`exuclear.prismatic.corner_kinematics`).
 
+A finite guide (``guide_length``): a corner beyond the guide's end along its axis has no wall
+under it, as in the compliant joint (:func:`exuclear.prismatic.leave_guide`): its pair is
+open (its gap ``-inf``), a held corner that passes the end lets go after that step, and one
+that comes back inside and meets a wall is an impact (or a resting contact's onset) again.
+
 The corners are held together as a joint's several contacts
 (:mod:`~exuclear.engine.impulse_group`): two corners of a slider thrown flat at a wall hit
 in one step, a slider resting flat holds two corners, a box four.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -54,7 +60,9 @@ class CornerPair:
     [m] the play across ``axis`` (module docstring); ``name`` the corner's, ``walls`` the
     names of the walls at ``-reach`` and ``+reach``; ``plane`` the guide's plane normal
     (marker 0's frame) of a planar slider, whose corners slide along ``n x plane`` (the
-    guide's axis), None for the box, whose corners slide in the wall's plane."""
+    guide's axis), None for the box, whose corners slide in the wall's plane; ``half_guide``
+    [m] half the guide's length (inf: walls without ends), beyond which along the guide's
+    axis the corner has no wall under it."""
 
     corner: np.ndarray
     axis: int
@@ -63,8 +71,11 @@ class CornerPair:
     name: str
     walls: tuple[str, str]
     plane: np.ndarray | None
-    #: the corner's share of the law: its own (each corner carries the whole law)
+    half_guide: float = math.inf
+    #: the corner's share of the law: its own (each corner carries the whole law) ...
     share: ClassVar[float] = 1.0
+    #: ... which is the joint's
+    law: ClassVar[None] = None
     #: a corner is a point: its contact point is itself, with no spin term in its slip
     radius: ClassVar[float] = 0.0
     rotations: ClassVar[tuple[bool, bool]] = (True, True)
@@ -86,8 +97,10 @@ class CornerPair:
     def eccentricity(self, poses: Poses) -> Eccentricity:
         offset, axis, relative, arm = self._across(poses)
         e = offset * axis
-        # S: the corner's foot on the mid-plane, a point of the guide's body
-        return Eccentricity(e, relative - e, arm)
+        # S: the corner's foot on the mid-plane, a point of the guide's body; beyond the
+        # guide's end no wall (exuclear.prismatic.leave_guide)
+        along = float(poses.rotations[0][:, 0] @ relative)
+        return Eccentricity(e, relative - e, arm, abs(along) <= self.half_guide)
 
     def contact_name(self, poses: Poses) -> str:
         """The corner and the wall it is nearest (by the sign of its offset across the axis),
@@ -108,7 +121,7 @@ def corner_pairs(geometry: GuideGeometry) -> list[tuple[str, CornerPair]]:
         axes = [(Y, geometry.outer_radius, geometry.guide_clearance),
                 (Z, geometry.channel_half_width, float(geometry.clearance_width))]
     return [(f"corner {name} / {' and '.join(_walls(geometry, axis))} walls",
-             CornerPair(corner, axis, reach, play, name, _walls(geometry, axis), plane))
+             CornerPair(corner, axis, reach, play, name, _walls(geometry, axis), plane, geometry.half_guide))
             for axis, reach, play in axes for name, corner in corners]
 
 
@@ -126,7 +139,8 @@ class ImpulseGuideHandle(ImpulsePairsHandle):
     across each guide axis (:func:`corner_pairs`; ``"corner front-lower / lower and upper
     walls"``), whose impacts name corner and wall (``"corner front-lower / lower wall"``),
     and whose outputs' ``ecc_x``, ``ecc_y``, ``ecc_z`` are a corner's eccentricity ``d_a a``
-    and ``penetration`` its penetration of the wall it is nearest."""
+    and ``penetration`` its penetration of the wall it is nearest (``-inf`` beyond a finite
+    guide's end, where there is no wall)."""
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any]) -> None:
         super().__init__(mbs, joint, name, markers, corner_pairs(joint.geometry))

@@ -19,7 +19,10 @@ material point there).  A joint type is what gives ``e`` and ``S``; the mode's d
   an end centre while the pin rolls around the end cap and the normal turns;
 - a slice of the spatial revolute joint (:class:`SlicePair`, one of the joint's several
   contacts, :mod:`~exuclear.engine.impulse_group`): ``e`` the journal axis's crossing of the
-  slice's plane minus the bearing axis's point there, ``S``.
+  slice's plane minus the bearing axis's point there, ``S``;
+- an end face of the spatial revolute joint (:class:`FacePair`, two more of its contacts):
+  ``e`` along the face's normal, the bearing axis, whose length less ``reach`` is the
+  shoulder's axial penetration; ``S`` the bearing's point at the shoulder's centre.
 
 A pair also says where its friction acts (:mod:`~exuclear.engine.impulse_friction`):
 ``plane``, the normal (in marker 0's frame) of the plane a planar contact slides in, whose
@@ -40,6 +43,7 @@ from typing import Any, ClassVar, NamedTuple, Protocol
 
 import numpy as np
 
+from ..contact.law import ContactLaw
 from ..contact.pair import ContactGeometry
 from ..slot import segment_point
 from .condition import Poses
@@ -49,11 +53,14 @@ class Eccentricity(NamedTuple):
     """The contact's eccentricity ``e`` [m] (global, 3 components) and the arm [m] (global)
     from marker 0's point to the outer body's point ``S`` that ``e`` starts from (None where
     ``S`` is marker 0's point); ``inner_arm`` the arm from marker 1's point to the inner
-    body's point that touches (None: marker 1's point, the centre of a journal, ball or pin)."""
+    body's point that touches (None: marker 1's point, the centre of a journal, ball or pin);
+    ``wall`` False where no wall lies under that point (a corner beyond a finite guide's end,
+    :mod:`~exuclear.engine.impulse_guide`): the pair is open, whatever ``e``."""
 
     e: np.ndarray
     arm: np.ndarray | None
     inner_arm: np.ndarray | None = None
+    wall: bool = True
 
 
 class ContactPair(Protocol):
@@ -194,6 +201,61 @@ class SlicePair(_CentrePair):
     @property
     def body(self) -> str:
         return f"journal's {self.name}"
+
+    #: the slice's law is the joint's, at its share
+    law: ClassVar[None] = None
+
+
+@dataclass(frozen=True)
+class FacePair:
+    """A shoulder of a spatial journal against the bearing's end face ``side`` (-1: the face
+    at ``z = -L/2``, +1: at ``+L/2``; docs/physics.md section 9.6).  ``frame`` the joint
+    frame in marker 0's frame (z the bearing axis ``a``), ``journal_axis`` ``u`` in marker 1's
+    frame, ``length`` L [m] the bearing's, ``clearance`` g [m] the axial play, ``name`` the
+    face's, ``law`` the face's own: the flat punch ``K_f delta`` (eq. (52)) with the joint
+    law's damping, which gives the joint law's restitution (eq. (53)).
+
+    The shoulder's centre is ``c_f = p + s_f u``, ``s_f = f (L + g) / 2`` (eq. (48)), its
+    penetration ``delta_f = L/2 - f c_f . a`` (eq. (49)); the normal is ``-f a`` (the face's,
+    into the bearing) and ``e = (reach + delta_f) (-f a)``, ``reach`` a length that keeps
+    ``|e|`` positive, so that the mode's gap ``|e| - reach`` is ``delta_f`` and its rate
+    ``-f a . (v_1(c_f) - v_0(c_f))``, eq. (50)'s.  No friction: the compliant face's acts on
+    the journal's spin as a couple (eq. (54)), not at a contact point (the mode refuses a
+    joint with friction and end faces, :func:`~exuclear.engine.modes.impulse_refusal`)."""
+
+    frame: np.ndarray
+    journal_axis: np.ndarray
+    length: float
+    clearance: float
+    side: int
+    name: str
+    law: ContactLaw
+    share: ClassVar[float] = 1.0
+    radius: ClassVar[float] = 0.0
+    plane: ClassVar[None] = None
+    rotations: ClassVar[tuple[bool, bool]] = (True, True)
+
+    @property
+    def reach(self) -> float:
+        """``L + 2 g``: ``|e| = L + 2 g + delta_f`` stays above ``L + g`` (``delta_f >= -g``
+        for an aligned journal), away from 0 where a normal ``e / |e|`` is lost."""
+        return self.length + 2.0 * self.clearance
+
+    def eccentricity(self, poses: Poses) -> Eccentricity:
+        (p0, p1), (rotation, turned) = poses
+        axis = rotation @ self.frame[:, 2]
+        s = self.side * 0.5 * (self.length + self.clearance)        # eq. (48)
+        arm = s * (turned @ self.journal_axis)
+        centre = p1 - p0 + arm                                      # c_f, from the bearing's centre
+        delta = 0.5 * self.length - self.side * float(centre @ axis)  # eq. (49)
+        return Eccentricity((self.reach + delta) * -self.side * axis, centre, arm)
+
+    def contact_name(self, poses: Poses) -> str:
+        return self.name
+
+    @property
+    def body(self) -> str:
+        return f"journal's shoulder at the {self.name}"
 
 
 #: The pair of each joint type the mode holds, from the type's geometry and the joint frame

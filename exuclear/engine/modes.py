@@ -54,18 +54,16 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
     without wear whose contacts are each one point against its clearance
     (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
     pin-in-slot joint; the translational joints' corners and the spatial revolute joint's
-    slices, each a pair of its own, :mod:`~exuclear.engine.impulse_group`), with their
-    friction (:mod:`~exuclear.engine.impulse_friction`); ``faces``: the spatial joint has end
-    faces (``axial_clearance``)."""
-    if joint_type == "prismatic":
-        if joint.geometry.guide_length is not None:
-            return "a corner beyond a finite guide's end (`guide_length`) is not in the mode: leave `guide_length` out"
-    elif joint_type not in PAIRS:
+    slices and end faces, each a pair of its own, :mod:`~exuclear.engine.impulse_group`; a
+    finite guide's), with their friction (:mod:`~exuclear.engine.impulse_friction`) but for
+    the end faces'; ``faces``: the spatial joint has end faces (``axial_clearance``)."""
+    if joint_type != "prismatic" and joint_type not in PAIRS:
         return (f"it covers the planar revolute, spherical, pin-in-slot and translational joints, not the {joint_type} "
                 "joint")
-    if faces:
-        return ("the spatial joint's end faces (`axial_clearance`) are not in the mode: leave `axial_clearance` out "
-                "(hold the journal axially with constrainAxial=True)")
+    if faces and joint.friction.active:
+        return ("the end faces' friction (`axial_clearance`) acts on the journal's spin as a couple at the friction "
+                "radius (docs/physics.md eq. (54)), not at a contact point, which the mode's friction is: give a "
+                "frictionless law, or leave `axial_clearance` out (hold the journal axially with constrainAxial=True)")
     if joint.film is not None:
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:

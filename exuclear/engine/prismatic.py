@@ -102,7 +102,8 @@ def CreatePrismaticClearanceJoint(  # noqa: N802 - Exudyn's naming of item facto
         can turn; its spin moves the walls under the corners; ``contact_mode="impulse"``:
         each corner against the two walls across y, and the box's across z too, a contact
         of its own, :mod:`~exuclear.engine.impulse_guide`, with its friction along the
-        guide's axis, the box's in its wall's plane; the mode refuses ``guide_length``).
+        guide's axis, the box's in its wall's plane; a corner beyond a finite guide's end
+        has no wall).
 
     Returns
     -------
