@@ -14,8 +14,8 @@ def test_the_listing_names_every_script_with_its_summary(capsys):
     # the scripts that moved here from validation/ (each was python -m validation.<old name>), wear's and
     # the contact modes'
     assert set(cost.SCRIPTS) == {"benchmark", "film", "fine_steps", "friction", "jacobian",
-                                 "jacobian_steps", "modes", "modes_friction", "modes_friction_types", "modes_profile", "newton",
-                                 "spectral_radius", "speed_sweep", "study_benchmark", "wear",
+                                 "jacobian_steps", "modes", "modes_ends", "modes_friction", "modes_friction_types",
+                                 "modes_profile", "newton", "spectral_radius", "speed_sweep", "study_benchmark", "wear",
                                  "work_precision"}
 
 

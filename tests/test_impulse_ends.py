@@ -8,8 +8,13 @@ import pytest
 
 from exuclear.contact.law import ContactLaw
 from exuclear.contact.stiffness import GivenStiffness
+from exuclear.engine.impulse_friction import LOAD_TOLERANCE
+from exuclear.spatial import ShoulderGeometry
 from exuclear.timescales import closed_form_impact, impact_restitution
 from validation.cost._end_scenes import (
+    AXIAL_PLAY,
+    AXIAL_SPEED,
+    FACE_MU,
     GUIDE_CLEARANCE,
     SHOULDER,
     SLIDER_INERTIA,
@@ -21,10 +26,12 @@ from validation.cost._end_scenes import (
     rattle,
     rear_leaves,
     resting_on_face,
+    spinning_impact,
+    spinning_on_face,
     thrown_along,
 )
 from validation.cost._joint_type_scenes import G
-from validation.cost._spatial_scenes import MASS
+from validation.cost._spatial_scenes import BEARING, INERTIA, MASS
 from validation.cost._translational_scenes import first_jump
 
 #: Newton's tolerance on the velocity condition bounds a jump's error: the other joint
@@ -85,6 +92,44 @@ def test_an_elastic_axial_rattle_keeps_its_energy():
     assert drift < 1e-4
     _, finer = rattle(step=2.5e-6)
     assert np.abs(finer - 1.0).max() < drift
+
+
+#: The spin's deceleration [rad/s^2] under the end face's friction couple mu m g R_e
+#: (docs/physics.md eq. (51)), R_e the annulus's friction radius.
+FRICTION_RADIUS = ShoulderGeometry(AXIAL_PLAY, SHOULDER, BEARING).friction_radius
+SPIN_DOWN = FACE_MU * MASS * G * FRICTION_RADIUS / np.asarray(INERTIA.inertiaTensor)[2, 2]
+
+
+def test_a_journal_spinning_on_its_end_face_slows_at_the_friction_couple_and_sticks():
+    # gravity -z presses the journal on its face while it spins at 50 rad/s: the face's
+    # friction couple mu m g R_e slows it linearly (the compliant joint's check,
+    # tests/test_axial_clearance.py) until it stops at 0.113 s, then it sticks; each step's
+    # sliding load is accepted within LOAD_TOLERANCE of mu F_N, which bounds the spin's error
+    run = spinning_on_face()
+    t, spin = run.states[:, 0], run.states[:, 9]
+    stop = 50.0 / SPIN_DOWN
+    sliding = t < stop
+    assert np.all(np.abs(spin - (50.0 - SPIN_DOWN * t))[sliding] <= LOAD_TOLERANCE * SPIN_DOWN * t[sliding] + 1e-12)
+    out = run.joint.outputs()[FACES[1]]
+    stuck = out["time"] > stop + run.step
+    assert np.abs(spin[1:][stuck]).max() < 1e-12  # rad/s: held by the sticking condition
+    assert np.all(out["sticking"][stuck] == 1.0) and not out["sticking"][out["time"] < stop - run.step].any()
+    assert len(run.joint.impacts()) == 1 and not run.joint.notes
+
+
+def test_a_spinning_journals_axial_impact_takes_mu_times_its_impulse_from_the_spin():
+    # no gravity: thrown along its axis while spinning at 50 rad/s, the journal's shoulder hits
+    # its face; the spin slides through the impact (its slip R_e w = 0.55 m/s does not stop),
+    # so the friction couple's angular impulse is mu (1 + e) m v R_e (Brach's impact law with
+    # Coulomb's bound), within the sliding load's LOAD_TOLERANCE; the normal jump is the law's
+    run = spinning_impact()
+    impact = run.joint.impacts()[0]
+    k = int(np.argmin(np.abs(run.states[:, 0] - impact.onset_time)))
+    before, after = run.states[k], run.states[k + 1]
+    e = impact.restitution
+    assert -after[6] / before[6] == pytest.approx(e, rel=JUMP_TOLERANCE)
+    change = FACE_MU * (1.0 + e) * MASS * AXIAL_SPEED * FRICTION_RADIUS / np.asarray(INERTIA.inertiaTensor)[2, 2]
+    assert before[9] - after[9] == pytest.approx(change, rel=LOAD_TOLERANCE)
 
 
 def _leaving(step):

@@ -207,8 +207,7 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     check_flags(name, bearingRotates, constrainAxial=constrainAxial, record=record, show=show)
     backend, maxPenetration = kernel_settings(joint, backend, maxPenetration)
     check_wear(joint, slices, backend)
-    mode = choose_mode(contact_mode, joint, slices, backend, name, joint_type=joint.geometry.joint_type,
-                       faces=shoulders is not None)
+    mode = choose_mode(contact_mode, joint, slices, backend, name, joint_type=joint.geometry.joint_type)
     m_bearing, m_journal = markerNumbers
     a_bearing = _marker_rotation(mbs, m_bearing)
     a_journal = _marker_rotation(mbs, m_journal)
@@ -389,8 +388,7 @@ def CreateClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
         ``"impulse"`` (docs/guide/contact_modes.md: velocity jumps, resting contact as a
         condition; returns an :class:`~exuclear.engine.impulse.ImpulseJointHandle`, with
         ``slices`` an :class:`~exuclear.engine.impulse_group.ImpulsePairsHandle`, a contact
-        per slice and per end face of ``axial_clearance``; end faces with friction are
-        refused).
+        per slice and per end face of ``axial_clearance``).
 
     Returns
     -------

@@ -14,7 +14,8 @@ wall): for a journal docs/physics.md eq. (8),
 slot's wall point (docs/physics.md section 14); for a corner its velocity along the guide's
 axis over the wall's point under it (a point: no spin term); for a slice the journal's
 circumferential slip at the slice (its axial slip, eq. (42)'s second part, is not resisted
-in this mode).
+in this mode); for an end face the journal's spin at the annulus's friction radius
+(:class:`SpinFriction`).
 
 - **Sliding**: a force ``F_T = mu(|v_T|) F_N`` along the slip's direction ``d`` at the step's
   start (``sign(v_T) t`` along one tangent) at the contact points, eqs. (24)-(26):
@@ -63,7 +64,7 @@ from exudyn.itemInterface import LoadForceVector, LoadTorqueVector
 from ..friction import FrictionLaw
 from ..joint import ClearanceJoint
 from .condition import VelocityCondition
-from .impulse_pairs import ContactPair, Eccentricity, contact_arms
+from .impulse_pairs import ContactPair, Eccentricity, FacePair, contact_arms
 
 #: A sliding load more than this share of ``mu F_N`` off the step's own ``mu F_N`` has Exudyn
 #: compute the step again with the load set anew.  A steady slide's first load comes from the
@@ -369,12 +370,45 @@ class ContactFriction:
                 condition.hold(mbs, 0.0)
             elif state != STICK and condition.plan.active:
                 condition.release(mbs)
-        force = self._load(state)
-        # F_T d on the outer body, -F_T d on the inner one, each at its contact point
-        for load, torque, arm, vector in zip(self._forces, self._torques, self._arms, (force, -force)):
-            mbs.SetLoadParameter(load, "loadVector", [float(x) for x in vector])
-            mbs.SetLoadParameter(torque, "loadVector", [float(x) for x in np.cross(arm, vector)])
+        for items, loads in zip(zip(self._forces, self._torques), self._loads(self._load(state))):
+            for item, vector in zip(items, loads):
+                mbs.SetLoadParameter(item, "loadVector", [float(x) for x in vector])
         self._state = state
+
+    def _loads(self, force: np.ndarray) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """The force and the moment at the outer and at the inner marker of the friction
+        ``force`` on the outer body: ``F_T d`` on the outer body, ``-F_T d`` on the inner one,
+        each at its contact point."""
+        return tuple((vector, np.cross(arm, vector)) for arm, vector in zip(self._arms, (force, -force)))
+
+
+class SpinFriction(ContactFriction):
+    """The friction of an end face (:class:`~exuclear.engine.impulse_pairs.FacePair`): as the
+    compliant face's (docs/physics.md eqs. (51), (54)), against the relative spin about the
+    journal's axis ``u`` at the annulus's friction radius ``R_e``, ``v_T = R_e u . (w_1 - w_0)``,
+    a couple ``R_e F_T u`` on the bearing and its negative on the journal; the shoulder's
+    sliding across the face is not resisted (section 9.6, approximation (ii)).  One
+    tangent, ``u`` (the couple's axis), whose sticking condition holds the relative spin;
+    sliding, sticking and impacts as :class:`ContactFriction` decides them."""
+
+    def measure(self, mbs: exu.MainSystem, normal: np.ndarray, ecc: Eccentricity) -> None:
+        """The sticking condition's rows ``R_e u^T dw/dq_t`` at the current state, and the slip."""
+        u = self._pair.spin_axis(ecc)
+        self._tangents = u[None, :]
+        self._slip = np.array([spin_rate(mbs, c, self._pair.friction_radius * u) for c in self.conditions])
+
+    def _loads(self, force: np.ndarray) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """No force; the couple ``R_e F_T u`` on the bearing, its negative on the journal."""
+        couple = self._pair.friction_radius * force
+        return (np.zeros(3), couple), (np.zeros(3), -couple)
+
+
+def spin_rate(mbs: exu.MainSystem, condition: VelocityCondition, vector: np.ndarray) -> float:
+    """Sets ``condition``'s rows to ``vector . (w_1 - w_0)``, the markers' angular velocities
+    along ``vector`` (global) at the current state, and returns that rate."""
+    maps = condition.state.maps(mbs, (True, True))
+    condition.rows = tuple((spin @ vector).reshape(1, -1) for _, spin in maps)
+    return condition.rate(mbs.systemData.GetODE2Coordinates_t())
 
 
 def tangents(mbs: exu.MainSystem, pair: ContactPair, markers: Sequence[Any], normal: np.ndarray,
@@ -457,9 +491,12 @@ def contact_friction(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, mark
     ``condition`` (given a name and the index of its tangent in :func:`tangents`; a joint with
     several contacts holds them with the others'),
     one for a pair that slides along one tangent, two for one that slides in a tangent plane
-    (``plane`` None: a ball, a box's corner); else hooks that do nothing."""
+    (``plane`` None: a ball, a box's corner), one against the spin for an end face
+    (:class:`SpinFriction`); else hooks that do nothing."""
     if not joint.friction.active:
         return Frictionless()
     label = f"{name}:stick" if name else ""
-    names = [label] if pair.plane is not None else [f"{label} 1" if name else "", f"{label} 2" if name else ""]
-    return ContactFriction(mbs, joint, markers, pair, [condition(n, k) for k, n in enumerate(names)])
+    spin = isinstance(pair, FacePair)
+    names = [label] if spin or pair.plane is not None else [f"{label} 1" if name else "", f"{label} 2" if name else ""]
+    kind = SpinFriction if spin else ContactFriction
+    return kind(mbs, joint, markers, pair, [condition(n, k) for k, n in enumerate(names)])

@@ -219,8 +219,11 @@ class _GroupStick(_GroupCondition):
         """The unit wrench ``(t, P x t)`` of the friction along the tangent at the contact
         point ``P`` (from marker 0's point), at the present state as the normal conditions'
         (a sticking condition's rows are measured where its step starts or ends, and wrenches
-        of different states make a dependent set pass as independent)."""
+        of different states make a dependent set pass as independent); an end face's, the
+        couple ``(0, u)`` about the journal's axis."""
         ecc = self.pair.eccentricity(self.state.poses(mbs, self.pair.rotations))
+        if isinstance(self.pair, FacePair):  # an end face's friction: a couple about the journal's axis
+            return np.concatenate((np.zeros(3), self.pair.spin_axis(ecc)))
         n = self.normal_condition.present_normal(ecc)
         if self.pair.plane is None:  # its own tangent, carried into the present tangent plane
             t = self.normal - (self.normal @ n) * n
@@ -385,5 +388,5 @@ def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, ma
         for side in FACE_SIDES:
             label = f"end face at z = {0.5 * side * geometry.length:.4g} m"
             pairs.append((label, FacePair(frame, journal_axis, geometry.length, shoulders.axial_clearance, side,
-                                          label, law)))
+                                          label, law, shoulders.friction_radius)))
     return ImpulsePairsHandle(mbs, joint, name, markers, pairs)

@@ -219,9 +219,9 @@ class FacePair:
     penetration ``delta_f = L/2 - f c_f . a`` (eq. (49)); the normal is ``-f a`` (the face's,
     into the bearing) and ``e = (reach + delta_f) (-f a)``, ``reach`` a length that keeps
     ``|e|`` positive, so that the mode's gap ``|e| - reach`` is ``delta_f`` and its rate
-    ``-f a . (v_1(c_f) - v_0(c_f))``, eq. (50)'s.  No friction: the compliant face's acts on
-    the journal's spin as a couple (eq. (54)), not at a contact point (the mode refuses a
-    joint with friction and end faces, :func:`~exuclear.engine.modes.impulse_refusal`)."""
+    ``-f a . (v_1(c_f) - v_0(c_f))``, eq. (50)'s.  Its friction acts on the journal's spin at
+    the friction radius ``friction_radius`` R_e [m] (eq. (51)), a couple
+    (:class:`~exuclear.engine.impulse_friction.SpinFriction`)."""
 
     frame: np.ndarray
     journal_axis: np.ndarray
@@ -230,6 +230,7 @@ class FacePair:
     side: int
     name: str
     law: ContactLaw
+    friction_radius: float
     share: ClassVar[float] = 1.0
     radius: ClassVar[float] = 0.0
     plane: ClassVar[None] = None
@@ -249,6 +250,10 @@ class FacePair:
         centre = p1 - p0 + arm                                      # c_f, from the bearing's centre
         delta = 0.5 * self.length - self.side * float(centre @ axis)  # eq. (49)
         return Eccentricity((self.reach + delta) * -self.side * axis, centre, arm)
+
+    def spin_axis(self, ecc: Eccentricity) -> np.ndarray:
+        """The journal's axis ``u`` (global) at the state of ``ecc`` (its inner arm ``s_f u``)."""
+        return ecc.inner_arm / (self.side * 0.5 * (self.length + self.clearance))
 
     def contact_name(self, poses: Poses) -> str:
         return self.name

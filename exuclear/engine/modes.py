@@ -48,22 +48,16 @@ def resolve_contact_mode(contact_mode: Any) -> str:
     return str(contact_mode)
 
 
-def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str,
-                    faces: bool = False) -> str:
+def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joint_type: str) -> str:
     """Why the impulse mode cannot take a joint ('' where it can): it covers the dry joints
     without wear whose contacts are each one point against its clearance
     (:data:`~exuclear.engine.impulse_pairs.PAIRS`: the planar revolute, the spherical and the
     pin-in-slot joint; the translational joints' corners and the spatial revolute joint's
     slices and end faces, each a pair of its own, :mod:`~exuclear.engine.impulse_group`; a
-    finite guide's), with their friction (:mod:`~exuclear.engine.impulse_friction`) but for
-    the end faces'; ``faces``: the spatial joint has end faces (``axial_clearance``)."""
+    finite guide's), with their friction (:mod:`~exuclear.engine.impulse_friction`)."""
     if joint_type != "prismatic" and joint_type not in PAIRS:
         return (f"it covers the planar revolute, spherical, pin-in-slot and translational joints, not the {joint_type} "
                 "joint")
-    if faces and joint.friction.active:
-        return ("the end faces' friction (`axial_clearance`) acts on the journal's spin as a couple at the friction "
-                "radius (docs/physics.md eq. (54)), not at a contact point, which the mode's friction is: give a "
-                "frictionless law, or leave `axial_clearance` out (hold the journal axially with constrainAxial=True)")
     if joint.film is not None:
         return "a lubricated joint's film acts over the whole approach, not in one step"
     if joint.wear is not None:
@@ -72,13 +66,13 @@ def impulse_refusal(joint: ClearanceJoint, slices: int | None, backend: str, joi
 
 
 def choose_mode(contact_mode: Any, joint: ClearanceJoint, slices: int | None, backend: str, name: str,
-                joint_type: str = "revolute", faces: bool = False) -> str:
+                joint_type: str = "revolute") -> str:
     """The mode a joint gets: :func:`resolve_contact_mode`'s.  Where the impulse mode cannot
     take the joint (:func:`impulse_refusal`), a ``contact_mode="impulse"`` the builder was
     given raises ``ValueError`` naming the joint, the cause and what to use; one that
     :data:`ENVIRONMENT_VARIABLE` asked for falls back to the compliant contact and warns so."""
     mode = resolve_contact_mode(contact_mode)
-    reason = impulse_refusal(joint, slices, backend, joint_type, faces) if mode == IMPULSE else ""
+    reason = impulse_refusal(joint, slices, backend, joint_type) if mode == IMPULSE else ""
     if not reason:
         return mode
     where = f"joint {name or '(unnamed)'}: contact_mode='impulse' cannot take this joint: {reason}"

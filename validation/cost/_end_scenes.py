@@ -10,7 +10,10 @@ Source problems, each with an exact reference:
   (docs/physics.md section 9.6).  Thrown along the axis, a shoulder's impact on its end face
   holds the law's restitution; under a steady axial load (gravity along -z) the face carries
   ``m g``; elastic (cr 1) and thrown along and across the axis while it tilts, it keeps its
-  energy;
+  energy; with Coulomb friction (mu 0.2), spinning on its face under that load it slows at
+  ``mu m g R_e / I_zz`` (eq. (51)) and sticks, and an axial impact takes
+  ``mu (1 + e) m v R_e`` from its spin's angular momentum while the spin slides through
+  (Brach's law);
 - the planar slider of :mod:`validation.cost._translational_scenes` (a 50 mm steel block,
   c = 0.1 mm) resting on its lower wall under gravity and sliding frictionless at 2.5 m/s
   out of a guide 0.15 m long.  While its lower corners are inside, each carries
@@ -29,7 +32,7 @@ from exudyn.itemInterface import Force, MarkerNodePosition, NodeRigidBody2D, Obj
 
 import exuclear
 from validation.cost._joint_type_scenes import G, solve
-from validation.cost._spatial_scenes import BEARING, CLEARANCE, INERTIA, JOURNAL, LAW, LENGTH, SLICES
+from validation.cost._spatial_scenes import CLEARANCE, INERTIA, spatial_journal
 from validation.cost._translational_scenes import CLEARANCE as GUIDE_CLEARANCE
 from validation.cost._translational_scenes import LAW as GUIDE_LAW
 from validation.cost._translational_scenes import MASS as SLIDER_MASS
@@ -39,6 +42,9 @@ from validation.cost._translational_scenes import SIDE
 AXIAL_PLAY, SHOULDER = 2e-4, 12e-3
 #: The speed [m/s] the journal is thrown at along its axis.
 AXIAL_SPEED = 0.2
+#: The end faces' friction: Coulomb's, as the other joint types' friction scenes
+#: (validation/cost/_friction_scenes.py).
+FACE_MU = 0.2
 #: The guide's length [m], and the slider's speed along it [m/s]: its front corner passes the
 #: guide's end at ``(GUIDE / 2 - SIDE / 2) / SLIDE_SPEED`` = 20 ms, its rear one some 20 ms
 #: later, the block tilted by 0.05 rad, its rear corner's reaction still 0.36 m g.
@@ -63,26 +69,8 @@ def journal(velocity: Any = (0.0, 0.0, 0.0), spin: Any = (0.0, 0.0, 0.0), offset
     ``offset`` [m] moving at ``velocity`` [m/s] and turning at ``spin`` [rad/s] under
     ``gravity`` [m/s^2] (global), in contact mode ``mode``.  Returns mbs, the joint and the
     list its states are recorded in."""
-    mbs = exu.SystemContainer().AddSystem()
-    ground = mbs.AddObject(ObjectGround())
-    body = mbs.CreateRigidBody(inertia=INERTIA, referencePosition=[0, 0, 0], initialDisplacement=list(offset),
-                               initialVelocity=list(velocity), initialAngularVelocity=list(spin),
-                               gravity=list(gravity))
-    joint = exuclear.CreateClearanceJoint(mbs, name="journal", itemNumbers=[ground, body], position=[0, 0, 0],
-                                          axis=[0, 0, 1], journal_radius=JOURNAL, bearing_radius=BEARING,
-                                          length=LENGTH, slices=SLICES, axial_clearance=AXIAL_PLAY,
-                                          shoulder_radius=SHOULDER, contact_mode=mode, **{**LAW, **law})
-    mbs.Assemble()
-    node = mbs.GetObject(body)["nodeNumber"]
-    states: list = []  # Exudyn calls the post-step function at the start too
-    ov = exu.OutputVariableType
-
-    def post_step(mbs: exu.MainSystem, t: float) -> bool:
-        states.append((t, *(x for q in (ov.Position, ov.Velocity, ov.AngularVelocity)
-                            for x in mbs.GetNodeOutput(node, q))))
-        return True
-    mbs.SetPostStepUserFunction(post_step)
-    return mbs, joint, states
+    return spatial_journal(velocity, spin, offset, gravity, axial_clearance=AXIAL_PLAY, shoulder_radius=SHOULDER,
+                           contact_mode=mode, **law)
 
 
 def face_period(joint: Any) -> float:
@@ -206,13 +194,27 @@ def axial_bounce(step: float, mode: str = "impulse") -> Run:
     return Run(joint, np.array(states), step)
 
 
+def spinning_bounce(step: float, mode: str = "impulse") -> Run:
+    """The comparison scene of the end faces' friction: no gravity, the journal spinning at
+    50 rad/s thrown along its axis at :data:`AXIAL_SPEED`, bouncing between its end faces
+    (cr 0.9, Coulomb mu :data:`FACE_MU`, each impact taking spin) for 20 ms; the slices never
+    touch."""
+    mbs, joint, states = journal(velocity=(0.0, 0.0, AXIAL_SPEED), spin=(0.0, 0.0, 50.0), mode=mode,
+                                 friction=f"coulomb:{FACE_MU}")
+    solve(mbs, step, 0.02)
+    return Run(joint, np.array(states), step)
+
+
 #: The comparison scenes: name, the run at a step in a mode, the scene's step [s], the
-#: positions compared (the state's columns, each times a length [m]) and the play they are
-#: measured in [m].
+#: positions compared (the state's columns, each times a length [m]), the play they are
+#: measured in [m], and a rate compared as a share of its start (a column, or None).
 COMPARED = (
-    ("journal bouncing between its end faces, 20 ms", axial_bounce, 1e-4, ((1, 1.0), (2, 1.0), (3, 1.0)), CLEARANCE),
+    ("journal bouncing between its end faces, 20 ms", axial_bounce, 1e-4, ((1, 1.0), (2, 1.0), (3, 1.0)),
+     CLEARANCE, None),
+    ("spinning journal bouncing between its end faces with friction, 20 ms", spinning_bounce, 1e-4,
+     ((1, 1.0), (2, 1.0), (3, 1.0)), CLEARANCE, 9),
     ("slider leaving a finite guide, 60 ms", lambda step, mode: past_the_end(step=step, mode=mode), 1e-4,
-     ((1, 1.0), (2, 1.0), (3, 0.5 * SIDE)), GUIDE_CLEARANCE),
+     ((1, 1.0), (2, 1.0), (3, 0.5 * SIDE)), GUIDE_CLEARANCE, None),
 )
 
 
@@ -226,15 +228,24 @@ def compared_rows(refine: tuple[int, ...] = (1, 4), reference: int = 1024, check
     step over ``refine``, against the compliant joint at the step over ``reference`` (its
     distance from the one at the step over ``check`` says it has converged); the largest
     distance of the positions (the slider's turn as its corner's travel, ``L/2`` times the
-    angle) over the run, in plays (c)."""
+    angle) over the run, in plays (c), and of the compared rate, as a share of its start, at
+    the times two steps or more from the converged run's impacts."""
     rows = []
-    for name, scene, step, columns, play in COMPARED:
+    for name, scene, step, columns, play, rate in COMPARED:
         converged = scene(step / reference, "compliant")
         times = converged.states[:: reference, 0]
         target = _positions(converged, columns, times)
+        # the rate jumps at each impact, within the step that ends at or after it: compared in flight
+        onsets = np.array([i.onset_time for i in converged.joint.impacts()])
+        flight = np.array([not np.any(np.abs(t - onsets) <= 2.0 * step) for t in times])
 
         def distance(run: Run) -> str:
-            return f"{np.abs(_positions(run, columns, times) - target).max() / play:.3g}"
+            text = f"{np.abs(_positions(run, columns, times) - target).max() / play:.3g}"
+            if rate is not None:
+                off = np.interp(times, run.states[:, 0], run.states[:, rate]) - \
+                    np.interp(times, converged.states[:, 0], converged.states[:, rate])
+                text += f"; spin {np.abs(off[flight]).max() / abs(converged.states[0, rate]):.2g} of its start"
+            return text
         rows.append([name, f"compliant at step / {reference} (the converged run)",
                      f"{distance(scene(step / check, 'compliant'))} (compliant at step / {check})", "-"])
         for factor in refine:
@@ -244,3 +255,25 @@ def compared_rows(refine: tuple[int, ...] = (1, 4), reference: int = 1024, check
             rows.append([name, f"compliant at step / {factor}" if factor > 1 else f"compliant at {step:g} s",
                          distance(scene(step / factor, "compliant")), "-"])
     return rows
+
+
+def spinning_on_face(spin: float = 50.0, step: float = 1e-4, end: float = 0.15) -> Run:
+    """Gravity along -z: the journal's shoulder on the face at z = +L/2 from t = 0, spinning
+    about the axis at ``spin`` [rad/s], with Coulomb friction :data:`FACE_MU`: the face's
+    couple ``mu m g R_e`` slows it (docs/physics.md eq. (51)) until it sticks."""
+    mbs, joint, states = journal(offset=(0.0, 0.0, -0.5 * AXIAL_PLAY), spin=(0.0, 0.0, spin),
+                                 gravity=(0.0, 0.0, -G), friction=f"coulomb:{FACE_MU}")
+    solve(mbs, step, end)
+    return Run(joint, np.array(states), step)
+
+
+def spinning_impact(spin: float = 50.0, durations: float = 10.0) -> Run:
+    """No gravity: the journal thrown along +z at :data:`AXIAL_SPEED` while spinning at
+    ``spin`` [rad/s], with Coulomb friction :data:`FACE_MU`: its shoulder's impact on the face
+    at z = -L/2 takes ``mu (1 + e) m v R_e`` out of its spin's angular momentum (the spin
+    slides through the impact), until the next impact."""
+    mbs, joint, states = journal(velocity=(0.0, 0.0, AXIAL_SPEED), spin=(0.0, 0.0, spin),
+                                 friction=f"coulomb:{FACE_MU}")
+    step = durations * face_period(joint)
+    solve(mbs, step, 1.5 * AXIAL_PLAY / AXIAL_SPEED)
+    return Run(joint, np.array(states), step)

@@ -49,18 +49,29 @@ def journal(velocity: Any = (0.0, 0.0, 0.0), spin: Any = (0.0, 0.0, 0.0), offset
             gravity: float = 0.0, **law: Any) -> tuple[exu.MainSystem, ImpulsePairsHandle, list]:
     """The journal in its bearing along z (centred at the origin), its centre at ``offset``
     [m] moving at ``velocity`` [m/s] and turning at ``spin`` [rad/s], gravity ``-gravity``
-    along y.  Returns mbs, the joint and the list its states are recorded in."""
+    along y, held axially, in the impulse mode.  Returns mbs, the joint and the list its
+    states are recorded in."""
+    mbs, joint, states = spatial_journal(velocity, spin, offset, (0.0, -gravity, 0.0), constrainAxial=True,
+                                         contact_mode="impulse", **law)
+    if not isinstance(joint, ImpulsePairsHandle):
+        raise RuntimeError(f"the joint is not in the impulse mode: {type(joint).__name__}")
+    return mbs, joint, states
+
+
+def spatial_journal(velocity: Any, spin: Any, offset: Any, gravity: Any,
+                    **joint: Any) -> tuple[exu.MainSystem, Any, list]:
+    """The journal of :func:`journal` under ``gravity`` [m/s^2] (global), with the joint's
+    options ``joint`` (the law's over :data:`LAW`; ``constrainAxial``, ``contact_mode``,
+    ``axial_clearance``, ...).  Returns mbs, the joint and the list its states (t, position
+    (3), velocity (3), angular velocity (3)) are recorded in."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
     body = mbs.CreateRigidBody(inertia=INERTIA, referencePosition=[0, 0, 0], initialDisplacement=list(offset),
                                initialVelocity=list(velocity), initialAngularVelocity=list(spin),
-                               gravity=[0, -gravity, 0])
-    joint = exuclear.CreateClearanceJoint(mbs, name="journal", itemNumbers=[ground, body], position=[0, 0, 0],
-                                          axis=[0, 0, 1], journal_radius=JOURNAL, bearing_radius=BEARING,
-                                          length=LENGTH, slices=SLICES, constrainAxial=True, contact_mode="impulse",
-                                          **{**LAW, **law})
-    if not isinstance(joint, ImpulsePairsHandle):
-        raise RuntimeError(f"the joint is not in the impulse mode: {type(joint).__name__}")
+                               gravity=list(gravity))
+    handle = exuclear.CreateClearanceJoint(mbs, name="journal", itemNumbers=[ground, body], position=[0, 0, 0],
+                                           axis=[0, 0, 1], journal_radius=JOURNAL, bearing_radius=BEARING,
+                                           length=LENGTH, slices=SLICES, **{**LAW, **joint})
     mbs.Assemble()
     node = mbs.GetObject(body)["nodeNumber"]
     states: list = []  # Exudyn calls the post-step function at the start too
@@ -71,7 +82,7 @@ def journal(velocity: Any = (0.0, 0.0, 0.0), spin: Any = (0.0, 0.0, 0.0), offset
                             for x in mbs.GetNodeOutput(node, q))))
         return True
     mbs.SetPostStepUserFunction(post_step)
-    return mbs, joint, states
+    return mbs, handle, states
 
 
 def thrown_flat(durations: float = 10.0) -> Run:
