@@ -22,6 +22,7 @@ from validation.cost._end_scenes import (
     SIDE,
     front_leaves,
     one_corner,
+    entering,
     past_the_end,
     rattle,
     rear_leaves,
@@ -32,7 +33,7 @@ from validation.cost._end_scenes import (
 )
 from validation.cost._joint_type_scenes import G
 from validation.cost._spatial_scenes import BEARING, INERTIA, MASS
-from validation.cost._translational_scenes import first_jump
+from validation.cost._translational_scenes import first_jump, jumps
 
 #: Newton's tolerance on the velocity condition bounds a jump's error: the other joint
 #: types' restitution tests hold it to the same relative 1e-9.
@@ -184,3 +185,19 @@ def test_a_slider_leaving_a_finite_guide_tilts_on_its_last_corner_then_flies():
     free = t > left + 60 * h
     assert np.diff(states[free, 2], 2) == pytest.approx(-G * h * h, rel=1e-9)
     assert np.abs(np.diff(states[free, 3], 2)).max() < 1e-14  # rad: the spin stays
+
+
+def test_a_corner_that_comes_back_inside_the_guide_is_caught_as_an_impact():
+    # no gravity: the slider flies from beyond the guide's end into it while it drops; its
+    # rear-lower corner, inside since 1 ms, hits the lower wall at 2 ms, an impact with the
+    # law's restitution (its normal rate jumps to -e(v) v, in the rows of the step's start),
+    # while the front-lower corner, beyond the end, has no wall (its penetration -inf)
+    run = entering()
+    impacts = run.joint.impacts()
+    assert impacts[0].pair == "corner rear-lower / lower wall"
+    assert impacts[0].onset_time == pytest.approx(2e-3, abs=run.step)
+    impact, before, after, restitution = jumps(run)[0]
+    assert impact.restitution == restitution
+    assert -after / before == pytest.approx(restitution, rel=JUMP_TOLERANCE)
+    front = run.joint.outputs()[FRONT]
+    assert np.all(front["penetration"] == -np.inf)  # beyond the end for the whole run

@@ -110,16 +110,19 @@ def rattle(step: float = 1e-5, end: float = 0.02, mode: str = "impulse") -> tupl
     return Run(joint, s, step), energy / energy[0]
 
 
-def past_the_end(step: float = 1e-4, end: float = 0.06, mode: str = "impulse") -> Run:
-    """Gravity -y: the planar slider on its guide's lower wall at t = 0, sliding frictionless
-    along +x at :data:`SLIDE_SPEED` out of a guide :data:`GUIDE` long (module docstring)."""
+def guide_slider(x0: float, y0: float, velocity: Any, gravity: float,
+                 mode: str = "impulse") -> tuple[exu.MainSystem, Any, list]:
+    """The planar slider in a ground guide :data:`GUIDE` long along x (centred at the origin),
+    its centre at ``(x0, y0)`` moving at ``velocity`` (vx, vy, omega), gravity ``-gravity``
+    along y, in contact mode ``mode``.  Returns mbs, the joint and the list its states (t, x,
+    y, angle, their rates) are recorded in."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, -GUIDE_CLEARANCE, 0],
-                                       initialVelocities=[SLIDE_SPEED, 0, 0]))
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[x0, y0, 0],
+                                       initialVelocities=list(velocity)))
     body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=SLIDER_MASS, inertia=SLIDER_INERTIA))
     mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)),
-                      loadVector=[0, -SLIDER_MASS * G, 0]))
+                      loadVector=[0, -SLIDER_MASS * gravity, 0]))
     joint = exuclear.CreatePrismaticClearanceJoint(mbs, name="guide", itemNumbers=[ground, body], position=[0, 0, 0],
                                                    slider_length=SIDE, slider_height=SIDE, clearance=GUIDE_CLEARANCE,
                                                    guide_length=GUIDE, contact_mode=mode, **GUIDE_LAW)
@@ -131,6 +134,23 @@ def past_the_end(step: float = 1e-4, end: float = 0.06, mode: str = "impulse") -
         states.append((t, *mbs.GetNodeOutput(node, ov.Coordinates), *mbs.GetNodeOutput(node, ov.Coordinates_t)))
         return True
     mbs.SetPostStepUserFunction(post_step)
+    return mbs, joint, states
+
+
+def past_the_end(step: float = 1e-4, end: float = 0.06, mode: str = "impulse") -> Run:
+    """Gravity -y: the planar slider on its guide's lower wall at t = 0, sliding frictionless
+    along +x at :data:`SLIDE_SPEED` out of a guide :data:`GUIDE` long (module docstring)."""
+    mbs, joint, states = guide_slider(0.0, -GUIDE_CLEARANCE, (SLIDE_SPEED, 0.0, 0.0), G, mode)
+    solve(mbs, step, end)
+    return Run(joint, np.array(states), step)
+
+
+def entering(step: float = 1e-4, end: float = 0.005) -> Run:
+    """No gravity: the slider, wholly beyond the guide's end (1 mm past it), flies into the
+    guide at 1 m/s while it drops at 0.05 m/s: its rear corners enter at 1 ms, and at 2 ms its
+    rear-lower corner, inside, hits the lower wall, while the front-lower corner, still
+    beyond the end, has no wall."""
+    mbs, joint, states = guide_slider(0.5 * GUIDE + 0.5 * SIDE + 1e-3, 0.0, (-1.0, -0.05, 0.0), 0.0)
     solve(mbs, step, end)
     return Run(joint, np.array(states), step)
 
