@@ -163,10 +163,12 @@ def test_a_slider_leaving_a_finite_guide_tilts_on_its_last_corner_then_flies():
     assert np.all(front["normal_force"][rear["time"] > front_leaves() + 0.5 * h] == 0.0)
     assert reaction[0] == pytest.approx(SLIDER_MASS * G / (1.0 + SLIDER_MASS * (SIDE / 2) ** 2 / SLIDER_INERTIA),
                                         rel=1e-3)  # the reference's first state is one step after the leaving
-    # the one-corner phase: the step in which the support ends keeps its start's
-    # accelerations (the trapezoidal rule's), which leaves the tilt's rate off by at most
-    # h |theta''| / 2 (theta'' = 235 rad/s^2 at the start) and the angle by that times the
-    # phase's 20 ms; twice that bound, and first order: half the error at half the step
+    # the one-corner phase: the step in which the front corner passes the end is computed
+    # free, but starts from accelerations that carry the corner's support (the trapezoidal
+    # rule's), which leaves the tilt's rate off by at most h |theta''| / 2 (theta'' = 235
+    # rad/s^2 at the start; the passing falls on a step's end here, the worst case) and the
+    # angle by that times the phase's 20 ms; twice that bound (the tilting motion lets a
+    # rate's error grow), and first order: half the error at half the step
     alpha = 235.0
     error = np.abs(states[phase, 3] - theta).max()
     assert error < h * alpha * 0.0205

@@ -214,6 +214,7 @@ class ImpulseJointHandle:
         self._problem = ""
         self._left_pen = 0.0
         self._start: float | None = None  # the start [s] of the step the condition is set for
+        self._open_at: float | None = None  # the start [s] of a step computed again free: its contact had no wall
         self._saved: dict[str, Any] | None = None  # the state before the last accepted step
         self._free_accelerations = np.zeros(0)  # the end accelerations of an impact step computed free
         # a held step: (its start's eccentricity e0 and gap, h, the normal it is held in)
@@ -260,7 +261,15 @@ class ImpulseJointHandle:
         e, gap = self._gap(mbs)
         left = self._iterations - int(it.discontinuousIteration) - 1  # computations left
         redo = left > 0
-        if self._state == FREE and gap > 0.0 and redo and self._contact(mbs, t, h, e, gap):
+        if self._state == FREE and gap > 0.0 and redo and t != self._open_at and self._contact(mbs, t, h, e, gap):
+            return REDO_ERROR
+        if self._state == REST and gap == -math.inf and redo:
+            # no wall under the held contact at the step's end (a corner past a finite guide's
+            # end): the step computed again free, its impulse then the start's force over h / 2
+            # (held, the end's force would act a step too long); no contact starts in it again
+            # (a corner at the end within round-off would be caught in the wall it left)
+            self._release(mbs, FREE)
+            self._open_at = t
             return REDO_ERROR
         if self._state == REST and self._held is not None:
             turn = angle(self._held[0], e)

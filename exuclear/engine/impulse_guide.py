@@ -15,8 +15,9 @@ that wall (:func:`exuclear.prismatic.corner_kinematics`).
 
 A finite guide (``guide_length``): a corner beyond the guide's end along its axis has no wall
 under it, as in the compliant joint (:func:`exuclear.prismatic.leave_guide`): its pair is
-open (its gap ``-inf``), a held corner that passes the end lets go after that step, and one
-that comes back inside and meets a wall is an impact (or a resting contact's onset) again.
+open (its gap ``-inf``), the step in which a held corner passes the end is computed again
+without its condition, and a corner that comes back inside and meets a wall is an impact (or
+a resting contact's onset) again.
 
 The corners are held together as a joint's several contacts
 (:mod:`~exuclear.engine.impulse_group`): two corners of a slider thrown flat at a wall hit
