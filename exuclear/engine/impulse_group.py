@@ -300,13 +300,14 @@ class ImpulsePairsHandle:
     """A clearance joint with several contacts in the impulse mode: returned by
     :func:`exuclear.CreatePrismaticClearanceJoint` (as its
     :class:`~exuclear.engine.impulse_guide.ImpulseGuideHandle`) and by
-    :func:`exuclear.CreateClearanceJoint` with ``slices`` and ``contact_mode="impulse"``.
+    :func:`exuclear.CreateClearanceJoint` with ``slices`` (and ``axial_clearance``: its end
+    faces) and ``contact_mode="impulse"``.
 
     Attributes
     ----------
     pairs : dict
         The contacts by name (``"corner front-lower / lower and upper walls"``,
-        ``"slice 1 at z = -0.005 m"``), each an
+        ``"slice 1 at z = -0.005 m"``, ``"end face at z = 0.0075 m"``), each an
         :class:`~exuclear.engine.impulse.ImpulseJointHandle` with its condition
         (``objectNumber``) and carrier (``carrierNumber``).
     objectNumbers, carrierNumbers : list

@@ -19,7 +19,9 @@ Source problems, each with an exact reference:
   out of a guide 0.15 m long.  While its lower corners are inside, each carries
   ``m g / 2``; once its front corner has passed the end, the block rests on its rear corner
   alone, a rigid body on one frictionless point (the reference: :func:`one_corner`, Newton's
-  laws integrated by SciPy); once both have passed it, it flies free: a parabola.
+  laws integrated by SciPy); once both have passed it, it flies free: a parabola.  Flying
+  back into the guide, a corner inside hits its wall at the law's restitution while one
+  beyond the end has none.
 """
 from __future__ import annotations
 
