@@ -15,6 +15,7 @@ from validation.cost._end_scenes import (
     AXIAL_PLAY,
     AXIAL_SPEED,
     FACE_MU,
+    GUIDE,
     GUIDE_CLEARANCE,
     SHOULDER,
     SLIDER_INERTIA,
@@ -23,6 +24,7 @@ from validation.cost._end_scenes import (
     front_leaves,
     one_corner,
     entering,
+    guide_slider,
     past_the_end,
     rattle,
     rear_leaves,
@@ -31,7 +33,7 @@ from validation.cost._end_scenes import (
     spinning_on_face,
     thrown_along,
 )
-from validation.cost._joint_type_scenes import G
+from validation.cost._joint_type_scenes import G, solve
 from validation.cost._spatial_scenes import BEARING, INERTIA, MASS
 from validation.cost._translational_scenes import first_jump, jumps
 
@@ -203,3 +205,14 @@ def test_a_corner_that_comes_back_inside_the_guide_is_caught_as_an_impact():
     assert -after / before == pytest.approx(restitution, rel=JUMP_TOLERANCE)
     front = run.joint.outputs()[FRONT]
     assert np.all(front["penetration"] == -np.inf)  # beyond the end for the whole run
+
+
+def test_a_corner_that_comes_back_below_the_walls_level_stops_the_run_naming_the_guides_end():
+    # the slider, 0.6 mm below the guide's mid-plane (its lower corners 0.5 mm below the lower
+    # wall's level), flies back into the guide: its rear-lower corner would enter 5 clearances
+    # into the wall, striking the guide's end, which the joint does not model; no step is
+    # short enough, so the run stops and says so (the compliant joint warns of the penetration)
+    mbs, joint, _ = guide_slider(0.5 * GUIDE + 0.5 * SIDE + 1e-3, -6e-4, (-1.0, 0.0, 0.0), 0.0)
+    with pytest.raises(ValueError, match="corner rear-lower came back into the guide 0.0005 m into its wall: it "
+                                         "struck the guide's end"):
+        solve(mbs, 1e-4, 0.005)

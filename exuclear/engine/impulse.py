@@ -264,10 +264,9 @@ class ImpulseJointHandle:
         if self._state == FREE and gap > 0.0 and redo and t != self._open_at and self._contact(mbs, t, h, e, gap):
             return REDO_ERROR
         if self._state == REST and gap == -math.inf and redo:
-            # no wall under the held contact at the step's end (a corner past a finite guide's
-            # end): the step computed again free, its impulse then the start's force over h / 2
-            # (held, the end's force would act a step too long); no contact starts in it again
-            # (a corner at the end within round-off would be caught in the wall it left)
+            # no wall under the held contact at the step's end (a corner past a finite guide's end):
+            # the step computed again free (held, the end's force would act a step too long), and no
+            # contact starts in it again (a corner at the end within round-off: caught in the wall it left)
             self._release(mbs, FREE)
             self._open_at = t
             return REDO_ERROR

@@ -23,17 +23,18 @@ from typing import Any, NamedTuple, get_type_hints
 import exudyn as exu
 import numpy as np
 
-from ..joint import ClearanceJoint
 from ..contact.law import ContactLaw
 from ..contact.stiffness import GivenStiffness
+from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..timescales import closed_form_impact
 from ..vectors import cross, norm
 from .condition import MarkerState, VelocityCondition
-from .impulse import ClosedFormImpact, ImpulseJointHandle
+from .impulse import CROSSING, ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
 from .settling import solve_of
+from .state import start_of_step
 
 #: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
 #: this share of its length is a combination of them: the wrenches at one state of a rigid
@@ -267,6 +268,12 @@ class _GroupPair(ImpulseJointHandle):
             self._friction.restore(mbs, self._saved["friction"])
 
     def _contact(self, mbs: exu.MainSystem, t: float, h: float, end: np.ndarray, end_gap: float) -> bool:
+        if end_gap > CROSSING * self._pair.clearance:
+            with start_of_step(mbs, accelerations=False):
+                before = self._pair.eccentricity(self._markers.poses(mbs, self._pair.rotations))
+            if not before.wall and norm(before.e) > self._pair.reach:  # beyond a guide's end, below its wall's level
+                self._stop(t, f"the {self._pair.body} came back into the guide {end_gap:.3g} m into its wall: it "
+                              "struck the guide's end, which the joint does not model (its walls end there)")
         name = self._pair.contact_name(self._markers.poses(mbs, self._pair.rotations))  # at the step's end, in the wall
         began = super()._contact(mbs, t, h, end, end_gap)
         if began:
