@@ -20,16 +20,18 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
   which carry the impulse, are replaced by its start's, so that the flight after the jump
   starts at ``v+`` whatever the length of its steps.
 - **Resting contact.**  Where the rebound would land within :data:`REST_STEPS` steps under
-  the normal acceleration at the step's start, the journal stays on the wall: the condition
-  is held from step to step (its onset step's end accelerations, which carry the approach's
-  impulse, replaced by the free computation's, as at an impact) at an end rate that takes
-  back a share of the penetration,
-  along the normal predicted for the step's end, with its rows at the step's end; a
-  step held in a normal more than :data:`NORMAL_TOLERANCE` off the one it reached is
-  computed again in the normal reached (the journal slides along the wall), and one whose
-  normal turns by more than :data:`MAX_TURN` is computed again shorter where Exudyn's steps
-  are adaptive.  The condition lets go where its reaction pulls or the journal left the
-  wall.
+  the normal acceleration at the step's start, the journal stays on the wall: the onset
+  step is held by the condition (its end accelerations, which carry the approach's impulse,
+  replaced by the free computation's, as at an impact), and the steps after it, where the
+  contact is a centre distance and the joint has no friction, by a native Exudyn distance
+  constraint whose Jacobian Exudyn forms at the step's end (:mod:`~exuclear.engine.impulse_hold`;
+  no rows probed, no step computed again).  Elsewhere the condition is held from step to
+  step at an end rate that takes back a share of the penetration, along the normal
+  predicted for the step's end, with its rows there; a step held in a normal more than
+  :data:`NORMAL_TOLERANCE` off the one it reached is computed again in the normal reached,
+  and one whose normal turns by more than :data:`MAX_TURN` is computed again shorter where
+  Exudyn's steps are adaptive.  Either lets go where its reaction pulls or the journal
+  left the wall.
 - **Friction** of a joint that has it, along the tangent its pair gives: Coulomb's, sliding
   loads and a sticking condition in the steps the condition holds
   (:mod:`~exuclear.engine.impulse_friction`, called where the condition is measured, held,
@@ -71,11 +73,12 @@ from ..joint import ClearanceJoint
 from ..vectors import angle, norm
 from .bodies import joint_mass
 from .condition import MarkerState, Plan, VelocityCondition
+from .impulse_checks import check_ran, run_settings
 from .impulse_friction import Frictionless, contact_friction
+from .impulse_hold import AXIAL_SHARE, DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
 from .settling import settling_of
 from .state import moved_on, start_of_step
-from .steering import explicit_solver
 
 #: A held step aims its end rate at taking back this share of the gap per step.
 RATE_GAIN = 0.5
@@ -102,9 +105,6 @@ OPEN_GAP = 0.05
 #: journal on its wall would otherwise shrink geometrically, one impact a step (a Zeno
 #: sequence the steps cannot resolve).
 REST_STEPS = 2.0
-#: Spectral radius of generalized-alpha the mode needs: 1 (module docstring).  Exudyn keeps
-#: the radius to round-off; the tolerance only absorbs that.
-SPECTRAL_RADIUS_TOLERANCE = 1e-12
 #: A penetration beyond this many clearances stops the run: the positions are then off by
 #: the journal's travel across the clearance (steps too long for it), or the condition lost
 #: the contact.  The restitution of each jump stays the law's, the path does not.
@@ -156,6 +156,10 @@ class ImpulseJointHandle:
         ``"impulse"``.
     constraintNumber : int or None
         The ``ObjectJointGeneric`` of ``constrainAxial=True`` (the revolute joint), else None.
+    holdNumber : int or None
+        The ``ObjectConnectorDistance`` that holds a resting or sliding contact where the
+        contact is a centre distance and the joint has no friction
+        (:mod:`~exuclear.engine.impulse_hold`), else None.
     """
 
     contact_mode = "impulse"
@@ -174,7 +178,12 @@ class ImpulseJointHandle:
         # normal condition is measured, held, released, checked and accepted
         self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair,
                                           lambda label, k: self._new_condition(mbs, label, tangent=k))
-        settling_of(mbs).friction |= not isinstance(self._friction, Frictionless)
+        frictionless = isinstance(self._friction, Frictionless)
+        settling_of(mbs).friction |= not frictionless
+        # held by a native Exudyn constraint where it fits (exuclear.engine.impulse_hold)
+        self._native = DistanceHold(mbs, self.markerNumbers, name, pair.clearance) \
+            if native_hold_fits(pair, frictionless) else None
+        self.holdNumber = None if self._native is None else self._native.objectNumber
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
         # function, set before or after the joint, leaves it in place)
@@ -241,12 +250,13 @@ class ImpulseJointHandle:
                 # the state before that step; computed once more where the condition or the
                 # friction it had is not the one this computation had
                 applied, rubbing = self._condition.plan, self._friction.setting()
-                plan = self._restore()
-                if not plan.same(applied) or not self._friction.matches(rubbing):
+                plan, moved = self._restore(mbs)
+                if moved or not plan.same(applied) or not self._friction.matches(rubbing):
                     self._condition.set(mbs, plan)
                     return REDO_ERROR
             else:
                 active = self._condition.plan.active
+                active = (self._native is not None and self._native.release(mbs)) or active
                 self._reset()  # a new run
                 settling_of(mbs).forget(mbs)
                 active = self._friction.reset(mbs) or active
@@ -257,11 +267,13 @@ class ImpulseJointHandle:
                     return REDO_ERROR
         elif t > self._start + tol:
             self._stop(t, "Exudyn took a step the mode did not see")
-        force = self._condition.multiplier(mbs)
-        e, gap = self._gap(mbs)
+        # (the condition and the native hold are never on together: one of the two is 0)
+        force = self._condition.multiplier(mbs) + (self._native.multiplier(mbs) if self._native else 0.0)
+        e, gap, axial = self._end_gap(mbs)
         left = self._iterations - int(it.discontinuousIteration) - 1  # computations left
         redo = left > 0
-        if self._state == FREE and gap > 0.0 and redo and t != self._open_at and self._contact(mbs, t, h, e, gap):
+        if self._state == FREE and gap > 0.0 and redo and t != self._open_at and \
+                self._contact(mbs, t, h, np.asarray(e, dtype=float), gap):
             return REDO_ERROR
         if self._state == REST and gap == -math.inf and redo:
             # no wall under the held contact at the step's end (a corner past a finite guide's end):
@@ -271,6 +283,7 @@ class ImpulseJointHandle:
             self._open_at = t
             return REDO_ERROR
         if self._state == REST and self._held is not None:
+            e = np.asarray(e, dtype=float)
             turn = angle(self._held[0], e)
             # the journal slides along the wall faster than the condition's normal can follow
             if turn > MAX_TURN and redo and self._shorten(mbs, h, MAX_TURN / turn):
@@ -304,7 +317,7 @@ class ImpulseJointHandle:
         else:
             reaction = force
         self._force, self._force_before = force, self._force
-        self._records.append((t_end, *e.tolist(), gap, reaction if self._state == REST else 0.0))
+        self._records.append((t_end, *e, gap, reaction if self._state == REST else 0.0))
         self._friction.accept(mbs, t_end, self._state == REST)
         self._settle(mbs)
         if self._state == IMPACT:
@@ -313,32 +326,48 @@ class ImpulseJointHandle:
             if self._resting == 0 and len(self._free_accelerations):
                 self._friction.forget()
             self._resting += 1
-            if self._resting > 2 and reaction < 0.0:  # the condition pulls the journal onto the wall
-                self._release(mbs, FREE)
-            elif gap < -OPEN_GAP * clearance:  # the journal left the wall: a condition would act at a distance
+            # the condition pulls the journal onto the wall, or the journal left the wall (a
+            # condition would act at a distance)
+            if (self._resting > 2 and reaction < 0.0) or gap < -OPEN_GAP * clearance:
                 self._release(mbs, FREE)
             else:
-                self._hold_resting(mbs, e, gap, h, 2.0 * e - self._held[0])  # the normal's last turn, once more
+                self._hold_on(mbs, e, gap, h, axial)
         self._start, self._step = t_end, h
         return 0.0
 
+    def _hold_on(self, mbs: exu.MainSystem, e: Sequence[float], gap: float, h: float, axial: float) -> None:
+        """The held contact for the coming step, from an accepted held step that ended at
+        eccentricity ``e``, gap ``gap`` and axial offset ``axial``: the native constraint
+        where it fits (:mod:`~exuclear.engine.impulse_hold`), else the velocity-level condition
+        along the normal's last turn, once more."""
+        native = self._native
+        if native is not None and abs(axial) <= AXIAL_SHARE * self._pair.clearance:
+            if not native.active:  # from the onset step's velocity-level condition
+                native.start(mbs, distance_of(e, axial), self._condition.plan.rate)
+                self._condition.release(mbs)
+            self._held = None
+            native.advance(mbs, self._resting_rate(gap), h)
+            return
+        if native is not None:
+            native.release(mbs)
+        e = np.asarray(e, dtype=float)
+        ahead = e if self._held is None else 2.0 * e - self._held[0]
+        self._aim(mbs, e, gap, ahead / norm(ahead), h)
+
     def _settle(self, mbs: exu.MainSystem) -> None:
         """The end state of an accepted step, as the next step starts from it
-        (:mod:`~exuclear.engine.settling`).  An impact step ends at ``v+``; its end
-        accelerations carry the impulse over the step (about ``2 (v+ - v-) / h``), which the
-        trapezoidal rule would add to the next step's velocities in proportion to that
-        step's length: the free computation's end accelerations (the step without the
-        contact) stand in for them, so that the flight after the jump starts at ``v+``
-        whatever its steps.  A resting contact's onset step's carry the approach's impulse
-        (about ``2 m v / h``): the free computation's stand in for them too.  Either is a
-        jump, from which the settling's history starts; any other step's end velocities and
-        accelerations lose the step-to-step alternation the trapezoidal rule leaves in them."""
+        (:mod:`~exuclear.engine.settling`).  An impact step's end accelerations carry the
+        impulse (about ``2 (v+ - v-) / h``), a resting onset step's the approach's: the free
+        computation's stand in for them, so that the flight after the jump starts at ``v+``
+        whatever its steps, and the settling's history starts there.  Any other step loses
+        the trapezoidal rule's alternation (a free one only in the settling's steps after a
+        jump or a release)."""
         settling = settling_of(mbs)
         if self._state == IMPACT or (self._state == REST and self._resting == 0 and len(self._free_accelerations)):
             mbs.systemData.SetODE2Coordinates_tt(self._free_accelerations)
             settling.restart(mbs)
         else:
-            settling.settle(mbs)
+            settling.settle(mbs, held=self._state == REST)
 
     def _shorten(self, mbs: exu.MainSystem, h: float, share: float) -> bool:
         """Whether Exudyn can compute the step again at ``share`` of its length (times
@@ -378,18 +407,12 @@ class ImpulseJointHandle:
                 # (a journal in the wall at the step's start is held, which takes its penetration back)
                 self._state, self._resting, restitution = REST, 0, 0.0
                 self._held = None
-                self._hold_resting(mbs, start, gap, h, end)
+                self._aim(mbs, start, gap, end / norm(end), h)
             else:
                 self._state = IMPACT
                 self._hold(mbs, -rebound)
         self._impacts.append((t, rate, restitution, math.nan))
         return True
-
-    def _hold_resting(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, h: float, ahead: np.ndarray) -> None:
-        """The condition of a held step that starts at the current state (eccentricity ``e``,
-        gap ``gap``), in the normal of ``ahead``, the eccentricity expected at its end
-        (:meth:`_aim`)."""
-        self._aim(mbs, e, gap, ahead / norm(ahead), h)
 
     def _aim(self, mbs: exu.MainSystem, e: np.ndarray, gap: float, ahead: np.ndarray, h: float) -> None:
         """The condition of a held step started at eccentricity ``e`` and gap ``gap``, acting
@@ -422,26 +445,25 @@ class ImpulseJointHandle:
         return True
 
     def _check_solver(self, mbs: exu.MainSystem) -> None:
-        solver = getattr(mbs, "sys", {}).get("dynamicSolver")
-        problem = ""
-        if solver is None or explicit_solver(solver):
-            problem = "an explicit solver (or a run not started by SolveDynamic) has no condition to hold the contact"
-        elif abs(float(solver.spectralRadius) - 1.0) > SPECTRAL_RADIUS_TOLERANCE:
-            problem = (f"generalized-alpha's spectral radius is {float(solver.spectralRadius):g}: under numerical "
-                       "damping the velocity jump leaks into the following steps; set "
-                       "timeIntegration.generalizedAlpha.spectralRadius = 1")
-        if not problem:
-            settings = getattr(mbs, "sys", {}).get("simulationSettings")
-            self._iterations = int(settings.timeIntegration.discontinuous.maxIterations) if settings else 2
-            ti = settings.timeIntegration if settings else None
-            self._nominal = (ti.endTime - ti.startTime) / max(1, ti.numberOfSteps) if ti else solver.it.currentStepSize
-            if self._iterations < 2:
-                problem = ("it computes a step again where an impact begins, which needs "
-                           "timeIntegration.discontinuous.maxIterations of at least 2 (Exudyn's default is 5)")
-        if problem:
+        """The run's solver the mode needs (:func:`~exuclear.engine.impulse_checks.run_settings`)."""
+        try:
+            self._iterations, self._nominal = run_settings(mbs)
+        except ValueError as problem:
             self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' refuses this run: {problem}; "
                              "or use contact_mode='compliant'")
-            raise ValueError(self._problem)
+            raise ValueError(self._problem) from None
+
+    def _end_gap(self, mbs: exu.MainSystem) -> tuple[Sequence[float], float, float]:
+        """The eccentricity, the gap and the axial offset (0: not measured) at a step's end;
+        a natively held pair's from the markers' positions (and the outer one's rotation), on
+        floats: all a free step's decision reads."""
+        if self._native is None:
+            return (*self._gap(mbs), 0.0)
+        ov, (outer, inner) = exu.OutputVariableType, self.markerNumbers
+        rotation = mbs.GetMarkerOutput(outer, ov.RotationMatrix).tolist() if self._pair.rotations[0] else None
+        e, axial = self._pair.centre_offset(mbs.GetMarkerOutput(outer, ov.Position).tolist(),
+                                            mbs.GetMarkerOutput(inner, ov.Position).tolist(), rotation)
+        return e, norm(e) - self._pair.reach, axial
 
     def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:
         """The eccentricity ``e`` (global, the joint type's: :mod:`~exuclear.engine.impulse_pairs`)
@@ -466,12 +488,9 @@ class ImpulseJointHandle:
         return self._condition.rate(np.asarray(mbs.systemData.GetODE2Coordinates_tt(), dtype=float))
 
     def _resting_rate(self, gap: float) -> float:
-        """The end rate [m/s] a held step aims at: ``-RATE_GAIN gap / h`` at the run's own step
-        ``h`` (not a step Exudyn shortened, whose rate would pull the journal back at any
-        speed), which takes back a share of the penetration each step and leaves no
-        step-to-step alternation of the rate (an end rate set from the position alone,
-        ``2 (gap1 - gap) / h - v0``, alternates about the motion, undamped under the
-        trapezoidal rule, and so do the multipliers)."""
+        """The end rate [m/s] a held step aims at (:meth:`_aim`): ``-RATE_GAIN gap / h`` at the
+        run's own step ``h`` (not a step Exudyn shortened, whose rate would pull the journal
+        back at any speed)."""
         return -RATE_GAIN * gap / self._nominal
 
     def _hold(self, mbs: exu.MainSystem, end_rate: float) -> None:
@@ -481,7 +500,11 @@ class ImpulseJointHandle:
         self._friction.hold(mbs)
 
     def _release(self, mbs: exu.MainSystem, state: str) -> None:
+        if self._state == REST:
+            settling_of(mbs).reopen()
         self._condition.release(mbs)
+        if self._native is not None:
+            self._native.release(mbs)
         self._friction.release(mbs)
         self._state = state
 
@@ -492,11 +515,14 @@ class ImpulseJointHandle:
                 "_force_before": self._force_before, "_resting": self._resting, "_left_pen": self._left_pen,
                 "_start": self._start, "records": len(self._records), "impacts": len(self._impacts),
                 "last_impact": self._impacts[-1] if self._impacts else None,
-                "friction": self._friction.snapshot()}
+                "friction": self._friction.snapshot(), "native": self._native and self._native.setting()}
 
-    def _restore(self) -> Plan:
-        """The state before the last accepted step back; returns the condition's setting then."""
+    def _restore(self, mbs: exu.MainSystem) -> tuple[Plan, bool]:
+        """The state before the last accepted step back; returns the condition's setting then,
+        and whether the native hold's differed (and was set back)."""
         saved, self._saved = dict(self._saved or {}), None
+        held = saved.pop("native")
+        moved = self._native is not None and self._native.restore(mbs, held)
         del self._records[saved.pop("records"):]
         del self._impacts[saved.pop("impacts"):]
         last = saved.pop("last_impact")
@@ -505,7 +531,7 @@ class ImpulseJointHandle:
         plan = saved.pop("plan")
         self._friction.restore(self._mbs(), saved.pop("friction"))
         self.__dict__.update(saved)
-        return plan
+        return plan, moved
 
     def _too_long(self) -> str:
         return (f"more than {LOST_CONTACT:g} times the clearance ({self._pair.clearance:.3g} m): the steps "
@@ -521,23 +547,7 @@ class ImpulseJointHandle:
     def _check_ran(self) -> None:
         if self._problem:
             raise ValueError(self._problem)
-        mbs = self._mbs()
-        if mbs is None:
-            return
-        solver = getattr(mbs, "sys", {}).get("dynamicSolver")
-        if not self._records and solver is not None and explicit_solver(solver):
-            # Exudyn's explicit solvers abort at their start on the mode's condition (a
-            # constraint), before any step: its message names an object, not the joint
-            raise ValueError(f"joint {self.name or '(unnamed)'}: contact_mode='impulse' cannot run under an explicit "
-                             "solver: its condition is a constraint, which explicit solvers refuse; use "
-                             "generalized-alpha (spectral radius 1), or contact_mode='compliant'")
-        end = float(mbs.systemData.GetTime())
-        last = self._records[-1][0] if self._records else 0.0
-        if end > last + 1e-12 * max(1.0, end):
-            raise RuntimeError(f"joint {self.name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
-                               f"last step ended at {last:g} s): Exudyn did not call its post-Newton function (an "
-                               "explicit solver, or timeIntegration.discontinuous.maxIterations = 0); use "
-                               "generalized-alpha with its discontinuous iteration, or contact_mode='compliant'")
+        check_ran(self._mbs(), self.name, self._records[-1][0] if self._records else None)
 
     def impacts(self) -> list[ClosedFormImpact]:
         """The impacts of the last run, resting contacts' onsets included (restitution 0), with

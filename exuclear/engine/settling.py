@@ -66,6 +66,10 @@ NOT_BODIES = ("Connector", "Joint", "Contact", "Ground")
 FORCE_FUNCTIONS = ("springForceUserFunction", "springForceTorqueUserFunction", "springTorqueUserFunction")
 #: Two step ends closer than this (relative) are one step, accepted again.
 SAME_END = 1e-12
+#: Steps after a jump that are settled while no contact is held: the filters leave ``n 2^-n``
+#: of a jump's alternation after ``n`` steps, below 1e-17 after this many; a free flight after
+#: them reads nothing.
+SETTLING_STEPS = 64
 
 
 class _End(NamedTuple):
@@ -84,12 +88,13 @@ class Settling:
         self.friction = False  # a joint with friction was created in the system: no settling (module docstring)
         self.flexible = False  # a flexible body or a force element in the run's system: no settling (module docstring)
         self._ends: list[_End] = []
+        self._count = 0  # the steps settled since the last jump
         self._settled: tuple[tuple[float, float, int], np.ndarray] | None = None  # a settled solve, its own velocities
 
     def forget(self, mbs: exu.MainSystem) -> None:
         """A new run of ``mbs``: no steps yet; whether it has a flexible body or a force
         element (module docstring)."""
-        self._ends, self._settled = [], None
+        self._ends, self._settled, self._count = [], None, 0
         items = [mbs.GetObject(i) for i in range(mbs.systemData.NumberOfObjects())]
         self.flexible = any(force_element(item) or (not str(item["objectType"]).startswith(NOT_BODIES) and
                                                     str(item["objectType"]) not in RIGID_BODIES) for item in items)
@@ -112,12 +117,20 @@ class Settling:
             # another contact settled this solve first: its jump's velocities back
             data.SetODE2Coordinates_t(self._settled[1])
         self._ends = [_End(solve, np.array(data.GetODE2Coordinates_t()), np.array(data.GetODE2Coordinates_tt()))]
+        self._count = 0
 
-    def settle(self, mbs: exu.MainSystem) -> None:
+    def reopen(self) -> None:
+        """A held contact let go: the steps after it are settled as after a jump (its
+        multiplier leaves the step's start accelerations), on the history so far."""
+        self._count = 0
+
+    def settle(self, mbs: exu.MainSystem, held: bool = True) -> None:
         """The step just accepted ends smoothly: its end velocities and accelerations less
         their alternation (once per Newton solve, whichever contact accepts it first; not
-        at a step that ended in a jump)."""
-        if not self.active:
+        at a step that ended in a jump).  A contact not ``held`` in the step asks for it only
+        within :data:`SETTLING_STEPS` of the last jump (every jump, a contact's onset
+        included, starts the history anew, so a held contact's steps find it current)."""
+        if not self.active or (not held and self._count >= SETTLING_STEPS):
             return
         solve = solve_of(mbs)
         if self._ends and self._ends[-1].solve == solve:
@@ -136,6 +149,7 @@ class Settling:
             data.SetODE2Coordinates_tt(a)
             data.SetODE2Coordinates_t(v)
         self._ends = [*ends[-2:], _End(solve, v, a)]
+        self._count += 1
 
     def _drop_from(self, end: float) -> None:
         """Forget the steps that ended at or after ``end`` [s]: Exudyn computes them again."""

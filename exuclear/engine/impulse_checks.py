@@ -1,0 +1,55 @@
+"""What the impulse contact mode (:mod:`~exuclear.engine.impulse`) needs of a run, checked
+at its start, and the check that its decisions ran to the run's end."""
+from __future__ import annotations
+
+import exudyn as exu
+
+from .steering import explicit_solver
+
+#: Spectral radius of generalized-alpha the mode needs: 1 (the trapezoidal rule, under which
+#: a velocity jump is exact).  Exudyn keeps the radius to round-off; the tolerance only
+#: absorbs that.
+SPECTRAL_RADIUS_TOLERANCE = 1e-12
+
+
+def run_settings(mbs: exu.MainSystem) -> tuple[int, float]:
+    """Exudyn's discontinuous iterations per step and the run's own step [s], read at a run's
+    start; ``ValueError`` saying what to set where the run cannot hold the mode's conditions
+    (an explicit solver, numerical damping, fewer than two computations of a step)."""
+    solver = getattr(mbs, "sys", {}).get("dynamicSolver")
+    if solver is None or explicit_solver(solver):
+        raise ValueError("an explicit solver (or a run not started by SolveDynamic) has no condition to hold the "
+                         "contact")
+    if abs(float(solver.spectralRadius) - 1.0) > SPECTRAL_RADIUS_TOLERANCE:
+        raise ValueError(f"generalized-alpha's spectral radius is {float(solver.spectralRadius):g}: under numerical "
+                         "damping the velocity jump leaks into the following steps; set "
+                         "timeIntegration.generalizedAlpha.spectralRadius = 1")
+    settings = getattr(mbs, "sys", {}).get("simulationSettings")
+    iterations = int(settings.timeIntegration.discontinuous.maxIterations) if settings else 2
+    ti = settings.timeIntegration if settings else None
+    nominal = (ti.endTime - ti.startTime) / max(1, ti.numberOfSteps) if ti else solver.it.currentStepSize
+    if iterations < 2:
+        raise ValueError("it computes a step again where an impact begins, which needs "
+                         "timeIntegration.discontinuous.maxIterations of at least 2 (Exudyn's default is 5)")
+    return iterations, nominal
+
+
+def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None) -> None:
+    """That the joint ``name``'s decisions ran to the end of the last run of ``mbs`` (its last
+    accepted step ended at ``last`` [s], None: none): ``ValueError`` under an explicit solver,
+    ``RuntimeError`` where Exudyn did not call them."""
+    if mbs is None:
+        return
+    solver = getattr(mbs, "sys", {}).get("dynamicSolver")
+    if last is None and solver is not None and explicit_solver(solver):
+        # Exudyn's explicit solvers abort at their start on the mode's condition (a
+        # constraint), before any step: its message names an object, not the joint
+        raise ValueError(f"joint {name or '(unnamed)'}: contact_mode='impulse' cannot run under an explicit "
+                         "solver: its condition is a constraint, which explicit solvers refuse; use "
+                         "generalized-alpha (spectral radius 1), or contact_mode='compliant'")
+    end = float(mbs.systemData.GetTime())
+    if end > (last or 0.0) + 1e-12 * max(1.0, end):
+        raise RuntimeError(f"joint {name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
+                           f"last step ended at {last or 0.0:g} s): Exudyn did not call its post-Newton function (an "
+                           "explicit solver, or timeIntegration.discontinuous.maxIterations = 0); use "
+                           "generalized-alpha with its discontinuous iteration, or contact_mode='compliant'")

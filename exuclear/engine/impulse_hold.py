@@ -1,0 +1,136 @@
+"""A held contact of the impulse contact mode through a native Exudyn constraint
+(:mod:`~exuclear.engine.impulse`): where the contact is a centre distance (the planar
+revolute joint's journal, the spherical joint's ball: :data:`NATIVE_PAIRS`) and the joint has
+no friction, a resting or sliding contact is an ``ObjectConnectorDistance`` between the two
+markers, ``|p_1 - p_0| = d``, switched on with ``activeConnector``.
+
+Exudyn forms its Jacobian in C++ at each Newton iterate, at the step's end: the rows the
+velocity-level condition (:mod:`~exuclear.engine.condition`) has to probe coordinate by
+coordinate and predict for the step's end, and compute again where the journal slid further
+than predicted, come at no cost from Python.  The constraint is at position level (index 3):
+under generalized-alpha with spectral radius 1 it keeps ``|e|`` at ``d`` at each step's end,
+which with the trapezoidal rule keeps the normal rate's mean over each step at
+``(d_1 - d_0) / h``; a normal rate at the hold's start alternates in sign from step to step
+after it, and with it the multiplier (docs/design/native_hold.md).
+
+The distance starts at the eccentricity the hold's onset step reached (the velocity-level
+condition holds the onset step, which carries the approach's impulse), not at the clearance:
+that would push out in one step the penetration the onset left.  From then on it takes back
+:data:`~exuclear.engine.impulse.RATE_GAIN` of what is left of that penetration each step, the
+velocity-level hold's share, so the journal ends on its wall.
+
+The planar journal's eccentricity is in the bearing's plane and the constraint's distance is
+in 3D: the hold applies while the axial offset of the markers is below :data:`AXIAL_SHARE` of
+the clearance (a planar model's, or one held axially), else the velocity-level condition
+holds the contact.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import exudyn as exu
+from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
+
+from .condition import request_jacobian
+
+#: The pair types (:mod:`~exuclear.engine.impulse_pairs`) whose contact is a centre distance.
+NATIVE_PAIRS = frozenset({"PlanarPair", "BallPair"})
+#: The largest axial offset, as a share of the clearance, at which the 3D distance holds a
+#: planar journal: the in-plane gap then differs from the distance's by at most half its
+#: square (5e-13 of the clearance), and the constraint's axial force is that share of its
+#: normal force.
+AXIAL_SHARE = 1e-6
+
+
+def native_hold_fits(pair: Any, frictionless: bool) -> bool:
+    """Whether a contact ``pair`` of a joint without (``frictionless``) friction is held by
+    :class:`DistanceHold`."""
+    return frictionless and type(pair).__name__ in NATIVE_PAIRS
+
+
+class DistanceHold:
+    """``|p_1 - p_0| = d`` between ``markers`` [outer, inner] (any markers with a position:
+    rigid bodies, beams' and ANCF cables' rigid markers), off until :meth:`hold`.
+
+    Attributes
+    ----------
+    objectNumber : int
+        The ``ObjectConnectorDistance``.
+    distance : float
+        The distance it holds [m] (0 where off).
+    rate : float
+        The normal rate [m/s] the last step it set ends at.
+    """
+
+    def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, clearance: float) -> None:
+        # (its distance a placeholder while off: Exudyn wants one greater than zero)
+        self.objectNumber = mbs.AddObject(ObjectConnectorDistance(
+            name=f"{name}:hold" if name else "", markerNumbers=list(markers), distance=clearance,
+            activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
+        self.distance = self.rate = 0.0
+
+    @property
+    def active(self) -> bool:
+        return self.distance > 0.0
+
+    def setting(self) -> tuple[float, float]:
+        """What the hold acts with (:meth:`restore` takes it back)."""
+        return self.distance, self.rate
+
+    def start(self, mbs: exu.MainSystem, distance: float, rate: float) -> None:
+        """On, from a state at ``distance`` [m] whose normal rate is ``rate`` [m/s] (what the
+        onset step's velocity-level condition held); :meth:`advance` sets its first step."""
+        self.distance, self.rate = distance, rate
+        mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
+        request_jacobian(mbs)
+
+    def advance(self, mbs: exu.MainSystem, end_rate: float, h: float) -> None:
+        """The distance at the coming step's end (length ``h`` [s]) at which the trapezoidal
+        rule ends it at the normal rate ``end_rate`` [m/s]: ``d + h (v0 + v1) / 2``, from the
+        rate the step before ended at (an unchanged distance would end it at ``-v0``, and
+        the rate and the multiplier would alternate from step to step after it).  No call
+        where the distance stays as it is."""
+        distance = self.distance + 0.5 * h * (self.rate + end_rate)
+        self.rate = end_rate
+        if distance != self.distance:
+            self.distance = distance
+            mbs.SetObjectParameter(self.objectNumber, "distance", distance)
+
+    def release(self, mbs: exu.MainSystem) -> bool:
+        """Off for the coming step; whether it was on."""
+        if not self.active:
+            return False
+        self.distance = self.rate = 0.0
+        mbs.SetObjectParameter(self.objectNumber, "activeConnector", False)
+        request_jacobian(mbs)
+        return True
+
+    def restore(self, mbs: exu.MainSystem, setting: tuple[float, float]) -> bool:
+        """The setting of :meth:`setting` back; whether it differs from the present one."""
+        if setting == self.setting():
+            return False
+        if setting[0] <= 0.0:
+            return self.release(mbs)
+        was = self.active
+        self.distance, self.rate = setting
+        mbs.SetObjectParameter(self.objectNumber, "distance", self.distance)
+        if not was:
+            mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
+        request_jacobian(mbs)
+        return True
+
+    def multiplier(self, mbs: exu.MainSystem) -> float:
+        """The constraint's multiplier [N] (0 where off): Exudyn's, whose force on the inner
+        marker is ``-lambda (p_1 - p_0) / |p_1 - p_0|``, positive where the wall pushes the
+        inner body back towards the centre, as the velocity-level condition's."""
+        if not self.active:
+            return 0.0
+        force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
+        return force if isinstance(force, float) else float(force[0])
+
+
+def distance_of(e: Sequence[float], axial: float) -> float:
+    """The 3D distance of two markers whose in-plane eccentricity is ``e`` and axial offset ``axial``."""
+    return math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + axial * axial)
