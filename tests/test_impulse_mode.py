@@ -19,6 +19,7 @@ from exudyn.utilities import InertiaCuboid
 from scipy.integrate import solve_ivp
 
 import exuclear
+from exuclear.engine.condition import MarkerState
 from exuclear.engine.impulse import ImpulseJointHandle
 from exuclear.engine.impulse_group import ImpulsePairsHandle
 from exuclear.timescales import closed_form_impact, impact_restitution
@@ -141,6 +142,25 @@ def test_a_resting_journal_has_one_impact_and_the_ideal_joints_reaction(monkeypa
     # first held steps' travel adds to it; below 2 g h^2, against the law's static 0.1 um
     assert np.abs(out["penetration"]).max() < 2.0 * G * 1e-4**2
     assert np.abs(out["penetration"][held]).max() < 1e-16  # round-off of |e| at the radii (ulp of 1e-2 m: 1.7e-18)
+
+
+def test_a_resting_journal_is_held_by_exudyns_distance_constraint_without_probing(monkeypatch):
+    # the frictionless journal's held contact is the native ObjectConnectorDistance
+    # (exuclear.engine.impulse_hold): Exudyn forms its rows, so the rows are probed only for
+    # the onset step (at its start, at its predicted end, and once more where it is computed
+    # again in the normal it reached), never in the 499 held steps after it
+    probes = []
+    original = MarkerState._probe
+    monkeypatch.setattr(MarkerState, "_probe", lambda self, *a: probes.append(1) or original(self, *a))
+    s, joint = scene(monkeypatch, gravity=G, impact_velocity=0.0)
+    assert solve(s, 1e-4, 0.05)
+    assert len(joint.impacts()) == 1 and len(probes) <= 3
+    # the constraint is on at the end, holding the journal on its wall (|e| = c to round-off:
+    # the ulp of 1e-2 m radii) with the ideal joint's reaction m g as its own multiplier
+    assert s.mbs.GetObject(joint.holdNumber)["activeConnector"]
+    assert s.mbs.GetObject(joint.holdNumber)["distance"] == pytest.approx(joint.joint.geometry.clearance, abs=1e-17)
+    force = float(np.ravel(s.mbs.GetObjectOutput(joint.holdNumber, exu.OutputVariableType.Force))[0])
+    assert force == pytest.approx(0.04 * G, rel=1e-9)  # Newton's tolerance on the step's residual
 
 
 def test_an_elastic_journal_keeps_its_energy(monkeypatch):

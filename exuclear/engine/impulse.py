@@ -75,7 +75,7 @@ from .bodies import joint_mass
 from .condition import MarkerState, Plan, VelocityCondition
 from .impulse_checks import check_ran, run_settings
 from .impulse_friction import Frictionless, contact_friction
-from .impulse_hold import AXIAL_SHARE, DistanceHold, distance_of, native_hold_fits
+from .impulse_hold import DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
 from .settling import settling_of
 from .state import moved_on, start_of_step
@@ -182,7 +182,7 @@ class ImpulseJointHandle:
         settling_of(mbs).friction |= not frictionless
         # held by a native Exudyn constraint where it fits (exuclear.engine.impulse_hold)
         self._native = DistanceHold(mbs, self.markerNumbers, name, pair.clearance) \
-            if native_hold_fits(pair, frictionless) else None
+            if native_hold_fits(mbs, self.markerNumbers, pair, frictionless) else None
         self.holdNumber = None if self._native is None else self._native.objectNumber
         # the carrier: a connector without force between two ground markers, whose post-Newton
         # function is the mode's (an item's own function: a user's pre-step or post-Newton
@@ -331,25 +331,24 @@ class ImpulseJointHandle:
             if (self._resting > 2 and reaction < 0.0) or gap < -OPEN_GAP * clearance:
                 self._release(mbs, FREE)
             else:
-                self._hold_on(mbs, e, gap, h, axial)
+                self._hold_on(mbs, e, gap, h, axial, force)
         self._start, self._step = t_end, h
         return 0.0
 
-    def _hold_on(self, mbs: exu.MainSystem, e: Sequence[float], gap: float, h: float, axial: float) -> None:
+    def _hold_on(self, mbs: exu.MainSystem, e: Sequence[float], gap: float, h: float, axial: float,
+                 force: float) -> None:
         """The held contact for the coming step, from an accepted held step that ended at
-        eccentricity ``e``, gap ``gap`` and axial offset ``axial``: the native constraint
-        where it fits (:mod:`~exuclear.engine.impulse_hold`), else the velocity-level condition
-        along the normal's last turn, once more."""
+        eccentricity ``e``, gap ``gap`` and axial offset ``axial`` with the multiplier ``force``:
+        the native constraint where it takes it (:meth:`~exuclear.engine.impulse_hold.DistanceHold.takes`),
+        else the velocity-level condition along the normal's last turn, once more."""
         native = self._native
-        if native is not None and abs(axial) <= AXIAL_SHARE * self._pair.clearance:
+        if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force):
             if not native.active:  # from the onset step's velocity-level condition
                 native.start(mbs, distance_of(e, axial), self._condition.plan.rate)
                 self._condition.release(mbs)
             self._held = None
             native.advance(mbs, self._resting_rate(gap), h)
             return
-        if native is not None:
-            native.release(mbs)
         e = np.asarray(e, dtype=float)
         ahead = e if self._held is None else 2.0 * e - self._held[0]
         self._aim(mbs, e, gap, ahead / norm(ahead), h)
@@ -504,7 +503,7 @@ class ImpulseJointHandle:
             settling_of(mbs).reopen()
         self._condition.release(mbs)
         if self._native is not None:
-            self._native.release(mbs)
+            self._native.release(mbs, hand_over=False)
         self._friction.release(mbs)
         self._state = state
 

@@ -33,7 +33,9 @@ from typing import Any
 import exudyn as exu
 from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
 
+from .bodies import coordinate_owner
 from .condition import request_jacobian
+from .settling import RIGID_BODIES
 
 #: The pair types (:mod:`~exuclear.engine.impulse_pairs`) whose contact is a centre distance.
 NATIVE_PAIRS = frozenset({"PlanarPair", "BallPair"})
@@ -44,10 +46,19 @@ NATIVE_PAIRS = frozenset({"PlanarPair", "BallPair"})
 AXIAL_SHARE = 1e-6
 
 
-def native_hold_fits(pair: Any, frictionless: bool) -> bool:
-    """Whether a contact ``pair`` of a joint without (``frictionless``) friction is held by
-    :class:`DistanceHold`."""
-    return frictionless and type(pair).__name__ in NATIVE_PAIRS
+def native_hold_fits(mbs: exu.MainSystem, markers: Sequence[Any], pair: Any, frictionless: bool) -> bool:
+    """Whether a contact ``pair`` between ``markers`` of a joint without (``frictionless``)
+    friction may be held by :class:`DistanceHold`: a centre distance between two rigid
+    bodies (or a rigid body and the ground).  A flexible body's system is not settled, where
+    the hold stays off (:meth:`DistanceHold.takes`), and its item is not added there: even
+    off, a constraint's equation (its multiplier held at 0) changes Newton's iterates at
+    round-off, and the paths of a contact that chatters with them (the zoo's ANCF pendulum:
+    2579 impacts with the item, 1507 without, both off the converged compliant run)."""
+    if not frictionless or type(pair).__name__ not in NATIVE_PAIRS:
+        return False
+    owners = [coordinate_owner(mbs, m) for m in markers]
+    return all(kind == "object" and str(mbs.GetObject(k)["objectType"]) in RIGID_BODIES | {"Ground"}
+               for kind, k in owners)
 
 
 class DistanceHold:
@@ -69,15 +80,31 @@ class DistanceHold:
         self.objectNumber = mbs.AddObject(ObjectConnectorDistance(
             name=f"{name}:hold" if name else "", markerNumbers=list(markers), distance=clearance,
             activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
+        self.clearance = clearance
         self.distance = self.rate = 0.0
+        self.handed = False  # the contact handed to the velocity-level condition (:meth:`takes`)
 
     @property
     def active(self) -> bool:
         return self.distance > 0.0
 
-    def setting(self) -> tuple[float, float]:
+    def setting(self) -> tuple[float, float, bool]:
         """What the hold acts with (:meth:`restore` takes it back)."""
-        return self.distance, self.rate
+        return self.distance, self.rate, self.handed
+
+    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float) -> bool:
+        """Whether it holds the coming step of a held contact whose last step ended at the
+        axial offset ``axial`` [m] with the multiplier ``force`` [N] (its own, where on), in a
+        system ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling
+        leaves as it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its own
+        multiplier pulled (it alternated about the reaction by more than the reaction:
+        docs/design/native_hold.md), not until the contact is let go; off where it does not."""
+        if self.active and force < 0.0:
+            self.handed = True
+        fits = settled and not self.handed and abs(axial) <= AXIAL_SHARE * self.clearance
+        if not fits:
+            self.release(mbs, hand_over=self.handed)
+        return fits
 
     def start(self, mbs: exu.MainSystem, distance: float, rate: float) -> None:
         """On, from a state at ``distance`` [m] whose normal rate is ``rate`` [m/s] (what the
@@ -98,8 +125,10 @@ class DistanceHold:
             self.distance = distance
             mbs.SetObjectParameter(self.objectNumber, "distance", distance)
 
-    def release(self, mbs: exu.MainSystem) -> bool:
-        """Off for the coming step; whether it was on."""
+    def release(self, mbs: exu.MainSystem, hand_over: bool = False) -> bool:
+        """Off for the coming step (``hand_over``: the velocity-level condition holds the
+        contact until it is let go); whether it was on."""
+        self.handed = hand_over
         if not self.active:
             return False
         self.distance = self.rate = 0.0
@@ -107,14 +136,15 @@ class DistanceHold:
         request_jacobian(mbs)
         return True
 
-    def restore(self, mbs: exu.MainSystem, setting: tuple[float, float]) -> bool:
+    def restore(self, mbs: exu.MainSystem, setting: tuple[float, float, bool]) -> bool:
         """The setting of :meth:`setting` back; whether it differs from the present one."""
         if setting == self.setting():
             return False
         if setting[0] <= 0.0:
-            return self.release(mbs)
+            self.release(mbs, hand_over=setting[2])
+            return True
         was = self.active
-        self.distance, self.rate = setting
+        self.distance, self.rate, self.handed = setting
         mbs.SetObjectParameter(self.objectNumber, "distance", self.distance)
         if not was:
             mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
