@@ -77,7 +77,7 @@ from .impulse_checks import check_ran, run_settings
 from .impulse_friction import Frictionless, contact_friction
 from .impulse_hold import DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
-from .settling import settling_of
+from .settling import SETTLING_STEPS, settling_of
 from .state import moved_on, start_of_step
 
 #: A held step aims its end rate at taking back this share of the gap per step.
@@ -331,18 +331,20 @@ class ImpulseJointHandle:
             if (self._resting > 2 and reaction < 0.0) or gap < -OPEN_GAP * clearance:
                 self._release(mbs, FREE)
             else:
-                self._hold_on(mbs, e, gap, h, axial, force)
+                self._hold_on(mbs, e, gap, h, axial, force, reaction if self._resting > SETTLING_STEPS else force)
         self._start, self._step = t_end, h
         return 0.0
 
     def _hold_on(self, mbs: exu.MainSystem, e: Sequence[float], gap: float, h: float, axial: float,
-                 force: float) -> None:
+                 force: float, reaction: float) -> None:
         """The held contact for the coming step, from an accepted held step that ended at
-        eccentricity ``e``, gap ``gap`` and axial offset ``axial`` with the multiplier ``force``:
+        eccentricity ``e``, gap ``gap`` and axial offset ``axial`` with the multiplier ``force``
+        (its three-step mean ``reaction``; ``force`` in the onset's settling steps, whose
+        multiplier settles from the onset's impulse):
         the native constraint where it takes it (:meth:`~exuclear.engine.impulse_hold.DistanceHold.takes`),
         else the velocity-level condition along the normal's last turn, once more."""
         native = self._native
-        if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force):
+        if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force, reaction):
             if not native.active:  # from the onset step's velocity-level condition
                 native.start(mbs, distance_of(e, axial), self._condition.plan.rate)
                 self._condition.release(mbs)

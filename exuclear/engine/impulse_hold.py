@@ -46,6 +46,16 @@ NATIVE_PAIRS = frozenset({"PlanarPair", "BallPair"})
 AXIAL_SHARE = 1e-6
 
 
+#: A hold whose multiplier leaves its mean over the last steps by more than this share of it
+#: hands the contact to the velocity-level condition: an oscillation the trapezoidal rule
+#: keeps undamped (in the zoo's 3D four-bar, whose clearance joint closes the loop, one of
+#: five to six steps a period grew from about 1 % to more than the reaction over 400 held
+#: steps, and the contact was let go; docs/design/native_hold.md).  Settled, a sliding held
+#: journal's multiplier alternates by less than 2e-5 m g (``python -m validation.cost
+#: native_hold``).
+HAND_OVER = 0.25
+
+
 def native_hold_fits(mbs: exu.MainSystem, markers: Sequence[Any], pair: Any, frictionless: bool) -> bool:
     """Whether a contact ``pair`` between ``markers`` of a joint without (``frictionless``)
     friction may be held by :class:`DistanceHold`: a centre distance between two rigid
@@ -92,14 +102,15 @@ class DistanceHold:
         """What the hold acts with (:meth:`restore` takes it back)."""
         return self.distance, self.rate, self.handed
 
-    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float) -> bool:
+    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float) -> bool:
         """Whether it holds the coming step of a held contact whose last step ended at the
-        axial offset ``axial`` [m] with the multiplier ``force`` [N] (its own, where on), in a
-        system ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling
-        leaves as it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its own
-        multiplier pulled (it alternated about the reaction by more than the reaction:
-        docs/design/native_hold.md), not until the contact is let go; off where it does not."""
-        if self.active and force < 0.0:
+        axial offset ``axial`` [m] with the multiplier ``force`` [N] (its own, where on) and
+        the reaction ``reaction`` [N] (the multiplier's mean over the last steps), in a system
+        ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling leaves as
+        it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its multiplier
+        left the reaction by more than :data:`HAND_OVER` of it, not until the contact is let
+        go; off where it does not."""
+        if self.active and abs(force - reaction) > HAND_OVER * abs(reaction):
             self.handed = True
         fits = settled and not self.handed and abs(axial) <= AXIAL_SHARE * self.clearance
         if not fits:
