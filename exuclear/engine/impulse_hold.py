@@ -22,7 +22,10 @@ velocity-level hold's share, so the journal ends on its wall.
 The planar journal's eccentricity is in the bearing's plane and the constraint's distance is
 in 3D: the hold applies while the axial offset of the markers is below :data:`AXIAL_SHARE` of
 the clearance (a planar model's, or one held axially), else the velocity-level condition
-holds the contact.
+holds the contact.  It applies between rigid bodies in a system the settling acts on, every
+step of it settled (unsettled, its multiplier alternates by more than the reaction), and
+hands the contact to the velocity-level condition where its multiplier rings
+(:data:`HAND_OVER`).
 """
 from __future__ import annotations
 
