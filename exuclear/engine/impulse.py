@@ -349,7 +349,8 @@ class ImpulseJointHandle:
                 native.start(mbs, distance_of(e, axial), self._condition.plan.rate)
                 self._condition.release(mbs)
             self._held = None
-            native.advance(mbs, self._resting_rate(gap), h)
+            # the gap it holds (a measured one moves the distance by Newton's residual each step)
+            native.advance(mbs, self._resting_rate(native.distance - self._pair.reach), h)
             return
         e = np.asarray(e, dtype=float)
         ahead = e if self._held is None else 2.0 * e - self._held[0]
