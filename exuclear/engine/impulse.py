@@ -55,7 +55,7 @@ from __future__ import annotations
 import math
 import weakref
 from collections.abc import Sequence
-from typing import Any, NamedTuple
+from typing import Any
 
 import exudyn as exu
 import numpy as np
@@ -68,15 +68,15 @@ from exudyn.itemInterface import (
     VObjectGround,
 )
 
-from ..timescales import closed_form_impact, impact_restitution
+from ..timescales import impact_restitution
 from ..joint import ClearanceJoint
 from ..vectors import angle, norm
 from .bodies import joint_mass
 from .condition import MarkerState, Plan, VelocityCondition
-from .impulse_checks import check_ran, run_settings
 from .impulse_friction import Frictionless, contact_friction
 from .impulse_hold import DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
+from .impulse_run import ClosedFormImpact, check_ran, closed_form_impacts, run_settings
 from .settling import SETTLING_STEPS, settling_of
 from .state import moved_on, start_of_step
 
@@ -121,22 +121,6 @@ REDO_ERROR = 1e3
 
 #: The states of the condition between steps.
 FREE, IMPACT, REST = "free", "impact", "rest"
-
-
-class ClosedFormImpact(NamedTuple):
-    """One impact of the impulse mode (SI units): its time and velocity, with the peak force,
-    the duration and the largest penetration the joint's law gives at that velocity in
-    closed form (``closed_form`` is True: no force pulse was integrated), and the
-    restitution the step applied."""
-
-    onset_time: float
-    onset_velocity: float
-    peak_force: float
-    duration: float
-    max_penetration: float
-    restitution: float
-    effective_mass: float
-    closed_form: bool = True
 
 
 class ImpulseJointHandle:
@@ -447,7 +431,7 @@ class ImpulseJointHandle:
         return True
 
     def _check_solver(self, mbs: exu.MainSystem) -> None:
-        """The run's solver the mode needs (:func:`~exuclear.engine.impulse_checks.run_settings`)."""
+        """The run's solver the mode needs (:func:`~exuclear.engine.impulse_run.run_settings`)."""
         try:
             self._iterations, self._nominal = run_settings(mbs)
         except ValueError as problem:
@@ -555,20 +539,10 @@ class ImpulseJointHandle:
         """The impacts of the last run, resting contacts' onsets included (restitution 0), with
         the closed-form peak force, duration and largest penetration (:class:`ClosedFormImpact`)."""
         self._check_ran()
-        law = self._joint.law
-        out = []
-        for t, v, restitution, impulse in self._impacts:
-            # the solver's own effective mass at the contact (closed loops included): the impact
-            # step's impulse over the velocity change; a resting contact's first step also
-            # carries the load, so there the bodies' reduced mass (joint_mass) stands in
-            mbs = self._mbs()
-            if restitution > 0.0 and math.isfinite(impulse):
-                mass = abs(impulse) / (v * (1.0 + restitution))
-            else:
-                mass = joint_mass(mbs, self) if mbs is not None else math.nan
-            peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 and v > 0.0 else (math.nan,) * 3
-            out.append(ClosedFormImpact(t, v, peak, duration, depth, restitution, mass))
-        return out
+        mbs = self._mbs()
+        # where the impact step's impulse does not give the effective mass, the bodies' reduced mass
+        return closed_form_impacts(self._joint.law, self._impacts,
+                                   lambda: joint_mass(mbs, self) if mbs is not None else math.nan)
 
     def outputs(self) -> dict[str, np.ndarray]:
         """At the end of each step of the last run: ``time``, ``ecc_x``, ``ecc_y``, ``ecc_z``

@@ -1,9 +1,16 @@
 """What the impulse contact mode (:mod:`~exuclear.engine.impulse`) needs of a run, checked
-at its start, and the check that its decisions ran to the run's end."""
+at its start, and what a run leaves: the check that its decisions ran to the run's end, and
+its impacts in closed form."""
 from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import NamedTuple
 
 import exudyn as exu
 
+from ..contact.law import ContactLaw
+from ..timescales import closed_form_impact
 from .steering import explicit_solver
 
 #: Spectral radius of generalized-alpha the mode needs: 1 (the trapezoidal rule, under which
@@ -53,3 +60,37 @@ def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None) -> None
                            f"last step ended at {last or 0.0:g} s): Exudyn did not call its post-Newton function (an "
                            "explicit solver, or timeIntegration.discontinuous.maxIterations = 0); use "
                            "generalized-alpha with its discontinuous iteration, or contact_mode='compliant'")
+
+
+class ClosedFormImpact(NamedTuple):
+    """One impact of the impulse mode (SI units): its time and velocity, with the peak force,
+    the duration and the largest penetration the joint's law gives at that velocity in
+    closed form (``closed_form`` is True: no force pulse was integrated), and the
+    restitution the step applied."""
+
+    onset_time: float
+    onset_velocity: float
+    peak_force: float
+    duration: float
+    max_penetration: float
+    restitution: float
+    effective_mass: float
+    closed_form: bool = True
+
+
+def closed_form_impacts(law: ContactLaw, records: Sequence[tuple[float, float, float, float]],
+                        bodies_mass: Callable[[], float]) -> list[ClosedFormImpact]:
+    """The impacts ``records`` (time, normal velocity, restitution, the impact step's impulse)
+    of a contact whose law is ``law``, in closed form (:class:`ClosedFormImpact`)."""
+    out = []
+    for t, v, restitution, impulse in records:
+        # the solver's own effective mass at the contact (closed loops included): the impact
+        # step's impulse over the velocity change; a resting contact's first step also
+        # carries the load, so there the bodies' reduced mass stands in
+        if restitution > 0.0 and math.isfinite(impulse):
+            mass = abs(impulse) / (v * (1.0 + restitution))
+        else:
+            mass = bodies_mass()
+        peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 and v > 0.0 else (math.nan,) * 3
+        out.append(ClosedFormImpact(t, v, peak, duration, depth, restitution, mass))
+    return out
