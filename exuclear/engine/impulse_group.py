@@ -29,21 +29,29 @@ from ..joint import ClearanceJoint
 from ..spatial import FACE_SIDES, ShoulderGeometry, slice_centres
 from ..timescales import closed_form_impact
 from ..vectors import cross, norm
-from .condition import MarkerState, VelocityCondition
+from .condition import MarkerState, VelocityCondition, request_jacobian
 from .impulse import CROSSING, ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
 from .settling import solve_of
 from .state import start_of_step
 
-#: A contact's wrench whose distance from the span of the acting contacts' wrenches is below
-#: this share of its length is a combination of them: the wrenches at one state of a rigid
-#: body's contacts on a face (a box's corners on a wall, a journal's slices on its bearing
-#: along a line) are exactly dependent (round-off), and an independent one's distance is of
-#: the order of its own terms over the body's size.  (The conditions' rows are not compared:
-#: each is measured where its step is predicted to end, and rows a step apart are
-#: independent to about the turn of a step, a near-singular matrix for Newton.)
-DEPENDENT_WRENCHES = 1e-9
+#: A held contact whose wrench lies closer than this share of its length to the span of the
+#: wrenches chosen to act (:meth:`_Contacts.select`, moments over the contacts' longest arm)
+#: is held by them and its condition stays off.  The wrenches at one state of a rigid body's
+#: contacts on a face or a line (a box's corners on a wall, a journal's slices along its
+#: bearing) are exactly dependent; a journal tilted within its clearance turns its slices'
+#: normals apart by its tilt over the clearance, so that three slices are nearly dependent,
+#: their distance about that turn.  Held together, their conditions give Newton's matrix
+#: ``G M^-1 G^T`` an eigenvalue of the order of the distance squared, and the end rates each
+#: contact aims at (from its own gap) are never exactly a rigid motion's: the multipliers
+#: grow as that mismatch over the eigenvalue, with opposite signs, until Newton diverges.
+#: Left off, a nearly dependent contact's rate is its holders' combined, off by at most this
+#: share of the twist: it is followed, and it acts again as soon as it is independent.
+#: (The conditions' rows are not compared: each is
+#: measured where its step is predicted to end, and rows a step apart are independent to
+#: about the turn of a step.)
+DEPENDENT_WRENCHES = 1e-2
 #: A contact whose eccentricity is longer than this share of the play takes its normal
 #: from the present state (:meth:`_GroupCondition.wrench`): near the wall ``e`` points along
 #: the normal, and so does a corner's always (its ``e`` is half the slider's height); a
@@ -72,8 +80,8 @@ class _Contacts:
     across the wall and the two turns about the wall's axes), three held corners of a
     planar slider span its two, and a journal resting flat touches at every slice, which
     span two.  Exudyn's Newton iteration cannot solve dependent conditions (a singular
-    matrix).  A contact whose wrench is a combination of the acting contacts' is held by
-    them (its rate is then theirs combined: the contacts of a rigid face or line are affine
+    matrix), nor nearly dependent ones (:data:`DEPENDENT_WRENCHES`).  A contact whose
+    wrench is a combination of the acting contacts' is held by them (its rate is then theirs combined: the contacts of a rigid face or line are affine
     in its motion, and so are their rates and gaps) and its condition stays off in Exudyn.
     The reactions of such a set are statically indeterminate; the mode reports the
     least-squares split (:meth:`reaction`), the one that equally compliant contacts take
@@ -111,23 +119,39 @@ class _Contacts:
         else:
             self._accepted.append(handle)
 
-    def dependent(self, mbs: exu.MainSystem, condition: _GroupCondition) -> bool:
-        """Whether ``condition``'s contact's wrench is a combination of the wrenches of the
-        other contacts acting now (:meth:`_GroupCondition.wrench`, all at the present state)."""
-        others = [c.wrench(mbs) for c in self.conditions if c is not condition and c.acting]
-        if not others:
-            return False
-        wrench = condition.wrench(mbs)
-        basis = np.array(others)
-        share = np.linalg.lstsq(basis.T, wrench, rcond=None)[0]
-        return float(np.linalg.norm(basis.T @ share - wrench)) <= DEPENDENT_WRENCHES * float(np.linalg.norm(wrench))
-
-    def resume_held(self, mbs: exu.MainSystem) -> None:
-        """A held contact whose condition was off because others held it acts again where
-        they no longer do."""
+    def select(self, mbs: exu.MainSystem) -> None:
+        """The held contacts whose conditions act in Exudyn: a rank-revealing choice of their
+        wrenches (:meth:`_GroupCondition.wrench`, all at the present state; Gram-Schmidt
+        with pivoting), the moments over the held contacts' longest arm (force and moment
+        parts of one size, whatever the body's size: unscaled, two slices 7.5 mm apart would
+        differ by 7.5e-3 of a length 1).  Each pick is the contact whose wrench lies
+        farthest, as a share of its length, from the span of those picked, while that share
+        exceeds :data:`DEPENDENT_WRENCHES`: the first an acting one (a contact stays on while
+        it is independent), then the best spread (a journal's end slices, not two
+        neighbours that would hold its tilt with a short lever).  One choice over the whole
+        set: switched on one at a time against those acting then, a contact checked while
+        its holders were off would stay on beside them, and a nearly dependent set act."""
+        held = sorted((c for c in self.conditions if c.plan.active), key=lambda c: not c.acting)
+        picked: set[int] = set()
+        if held:
+            wrenches = np.array([c.wrench(mbs) for c in held])
+            wrenches[:, 3:] /= max(float(np.linalg.norm(w[3:])) for w in wrenches) or 1.0
+            sizes = np.linalg.norm(wrenches, axis=1)
+            rest = wrenches.copy()  # each wrench's part off the span of those picked
+            while True:
+                shares = np.linalg.norm(rest, axis=1) / sizes
+                k = int(np.argmax(shares))  # the first of equals: an acting one
+                if shares[k] <= DEPENDENT_WRENCHES:
+                    break
+                picked.add(k)
+                unit = rest[k] / float(np.linalg.norm(rest[k]))
+                rest -= np.outer(rest @ unit, unit)
+        for k, condition in enumerate(held):
+            if (k in picked) != condition.acting:
+                condition.act(mbs, k in picked)
         for condition in self.conditions:
-            if condition.plan.active and not condition.acting and not self.dependent(mbs, condition):
-                condition.act(mbs, True)
+            if condition.acting and not condition.plan.active:
+                condition.act(mbs, False)
 
     def reaction(self, mbs: exu.MainSystem, condition: _GroupCondition) -> float:
         """``condition``'s share [N] of the held contacts' load in the Newton solve just done:
@@ -186,11 +210,13 @@ class _GroupCondition(VelocityCondition):
         return ecc.e / length if length > NEAR * self.pair.clearance else self.normal
 
     def switch(self, mbs: exu.MainSystem, on: bool) -> None:
-        """On where the plan holds the contact and the acting contacts do not; off, letting
-        a contact they held act again where they no longer hold it."""
-        self.act(mbs, on and not self.contacts.dependent(mbs, self))
-        if not on:
-            self.contacts.resume_held(mbs)
+        """On where the plan holds the contact and the acting contacts do not
+        (:meth:`_Contacts.select`, which lets a contact they held act again where they no
+        longer hold it)."""
+        if not on and self.acting:
+            self.act(mbs, False)
+        self.contacts.select(mbs)
+        request_jacobian(mbs)  # its rows or rate changed where it stays on
 
     def act(self, mbs: exu.MainSystem, on: bool) -> None:
         self.acting = on
