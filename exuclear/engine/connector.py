@@ -228,7 +228,8 @@ def AddClearanceJoint(  # noqa: N802 - Exudyn's naming of item factories
     axis_journal = tuple(float(v) for v in relative[:, 2])
     if mode == IMPULSE:  # the mode's own items (exuclear.engine.modes); the spatial joint's a pair per slice
         impulse = add_impulse_slices(mbs, joint, name, [m_bearing, m_journal], frame, relative[:, 2], slices,
-                                     shoulders) if slices else add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
+                                     shoulders, axial=not constrainAxial) if slices else \
+            add_impulse_joint(mbs, joint, name, [m_bearing, m_journal], frame)
         if constrainAxial:
             impulse.constraintNumber = _axial_constraint(mbs, name, [m_bearing, m_journal], slices, rotation0,
                                                          rotation1)

@@ -402,19 +402,20 @@ class ImpulsePairsHandle:
 
 def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
                        frame: np.ndarray, journal_axis: np.ndarray, slices: int,
-                       shoulders: ShoulderGeometry | None = None) -> ImpulsePairsHandle:
+                       shoulders: ShoulderGeometry | None = None, axial: bool = True) -> ImpulsePairsHandle:
     """The impulse mode's items for a spatial revolute joint of ``slices`` slices between
     ``markers`` [bearing, journal]: a condition and a carrier per slice
     (:class:`~exuclear.engine.impulse_pairs.SlicePair`), then per end face where the joint
     has ``shoulders`` (:class:`~exuclear.engine.impulse_pairs.FacePair`, the order of the
     compliant joint's contacts), ``frame`` the joint frame in marker 0's frame,
-    ``journal_axis`` the journal's axis in marker 1's frame."""
+    ``journal_axis`` the journal's axis in marker 1's frame; ``axial`` False where the model
+    holds the journal axially (``constrainAxial``: the slices' friction only circumferential)."""
     frame, journal_axis = np.asarray(frame, dtype=float), np.asarray(journal_axis, dtype=float)
     geometry, pairs = joint.geometry, []
     for k, z in enumerate(slice_centres(geometry.length, slices)):
         label = f"slice {k + 1} at z = {z:.4g} m"
         pairs.append((label, SlicePair(geometry.clearance, geometry.journal_radius, frame, journal_axis, z, label,
-                                       1.0 / slices)))
+                                       1.0 / slices, axial)))
     if shoulders is not None:
         # the face's flat punch with the joint law's damping (docs/physics.md eqs. (52)-(53))
         law = ContactLaw(GivenStiffness(geometry, 1.0, shoulders.face_stiffness(joint.law.E_star), 1.0),

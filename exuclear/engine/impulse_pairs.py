@@ -185,7 +185,8 @@ class SlicePair(_CentrePair):
     axis where it crosses the slice's plane ``z`` [m] along the bearing axis, against the
     bearing axis's point there.  ``frame`` the joint frame in marker 0's frame (z the bearing
     axis), ``journal_axis`` the journal's axis in marker 1's frame, ``name`` the slice's,
-    ``share`` its share ``w / L`` of the law (eq. (41));
+    ``share`` its share ``w / L`` of the law (eq. (41)), ``axial`` whether its friction
+    acts along the axis too (:attr:`plane`);
     ``S`` the bearing axis's point at ``z``, the inner body's point the crossing, at ``s u``
     from marker 1's point (eq. (35): ``s = (z - p . a) / (u . a)``)."""
 
@@ -194,12 +195,18 @@ class SlicePair(_CentrePair):
     z: float
     name: str
     share: float
+    axial: bool = True
     rotations: ClassVar[tuple[bool, bool]] = (True, True)
 
     @property
-    def plane(self) -> np.ndarray:
-        """The bearing's axis: the slice's friction is circumferential, ``t = n x a``."""
-        return self.frame[:, 2]
+    def plane(self) -> np.ndarray | None:
+        """None: the slice slides in its tangent plane, around and along the axis, as the
+        compliant slice's friction acts against both (docs/physics.md eq. (42)); the
+        bearing's axis where the model holds the journal axially (``axial`` False:
+        ``constrainAxial``), whose friction is then circumferential, ``t = n x a`` (a
+        sticking condition along the axis would repeat the model's constraint, a singular
+        matrix for Newton)."""
+        return None if self.axial else self.frame[:, 2]
 
     def eccentricity(self, poses: Poses) -> Eccentricity:
         (p0, p1), (rotation, turned) = poses
