@@ -167,3 +167,37 @@ def test_a_spinning_spatial_journal_slides_on_its_slices_then_rolls():
     # the change to rolling within 3 % of t_s: the wall's curvature above slows the slip's fall
     assert t[first["sticking"] == 1.0][0] == pytest.approx(t_roll, rel=0.03)
 
+
+
+def test_a_journal_free_along_its_axis_slides_along_it_at_mu_g_and_stops():
+    # the spatial journal (four slices) free along its axis, flat on its bearing's bottom,
+    # sliding along the axis: the slices' friction acts along it (the compliant slice's eq. (42))
+    # and the journal slows at mu g, stops at v0 / (mu g) (25.5 ms) and stays
+    v0 = 0.05
+    run = scenes.gliding_journal(v0, 0.0)
+    t, v = run.states[:, 0], run.states[:, 6]
+    # bound mu g h (2e-4 m/s): the trapezoidal rule integrates the constant friction exactly;
+    # the stop falls within one step, which slides and sticks as a whole
+    assert np.abs(v - np.maximum(v0 - MU * G * t, 0.0)).max() <= MU * G * run.step
+    # stuck, held by the sticking conditions: 0 to Newton's round-off (1e-20 m/s)
+    assert np.abs(v[t > v0 / (MU * G) + run.step]).max() < 1e-15
+    # the friction along the axis, at the contact line under the axis: nothing turns or lifts it
+    assert np.abs(run.states[:, [4, 5, 7, 8, 9]]).max() < 1e-12
+
+
+def test_a_spinning_journal_sliding_along_its_axis_slows_as_coulombs_law_says():
+    # the issue's scene: the journal free along its axis slides at 0.2 m/s and spins at
+    # 50 rad/s (R w = 0.495 m/s) on its slices.  Coulomb's law against the contact's whole slip
+    # (v_a, R w): both components slow along the slip's direction, R w twice as fast as v_a
+    # (m R^2 / I = 2), against SciPy's solution of those two equations
+    axial, spin = 0.2, 50.0
+    run = scenes.gliding_journal(axial, spin)
+    t = run.states[:, 0]
+    reference = scenes.gliding_reference(axial, spin, t)
+    # bound 3 % of the change mu g t (2 mu g t for R w): the reference holds the centre at the
+    # bottom; the circumferential friction rolls it up the wall to where tan(phi) = mu, the
+    # normal force m g cos(phi) up to 1.9 % below m g, and it swings about that angle (period
+    # 2 pi sqrt(c / g) = 20 ms), the centripetal v^2 / c adding to the normal force
+    assert np.all(np.abs(run.states[:, 6] - reference[0]) <= 0.03 * MU * G * t + 1e-12)
+    assert np.all(scenes.journals.JOURNAL * np.abs(run.states[:, 9] - reference[1]) <= 0.06 * MU * G * t + 1e-12)
+    assert run.states[-1, 0] == pytest.approx(0.05)  # to the end, no stop

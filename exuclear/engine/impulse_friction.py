@@ -13,8 +13,8 @@ wall): for a journal docs/physics.md eq. (8),
 ``v_T = t . (v_J - v_B) - R_J w_J + R_B w_B``; for a pin the same in the slot's frame at the
 slot's wall point (docs/physics.md section 14); for a corner its velocity along the guide's
 axis over the wall's point under it (a point: no spin term); for a slice the journal's
-circumferential slip at the slice (its axial slip, eq. (42)'s second part, is not resisted
-in this mode); for an end face the journal's spin at the annulus's friction radius
+slip at the slice in its tangent plane, around and along the axis (eq. (42)), only around
+it where ``constrainAxial`` holds the axis; for an end face the journal's spin at the annulus's friction radius
 (:class:`SpinFriction`).
 
 - **Sliding**: a force ``F_T = mu(|v_T|) F_N`` along the slip's direction ``d`` at the step's
