@@ -108,3 +108,31 @@ def test_constrain_axial_holds_the_journal_along_its_axis_in_the_mode(slices):
     if slices is None:  # the planar joint's constraint holds the tilts too
         assert np.abs(mbs.GetObjectOutputBody(body, exu.OutputVariableType.AngularVelocity,
                                               localPosition=[0, 0, 0])[:2]).max() < 1e-12
+
+
+def test_a_spinning_journal_gliding_on_its_slices_runs_and_a_failed_newton_iteration_is_told(monkeypatch):
+    # the issue's scene: a journal free along its axis gliding at 0.2 m/s and spinning at
+    # 50 rad/s on its slices with friction.  A tilt within the clearance turns the slices'
+    # normals apart and makes three slices nearly dependent; the mode holds an independent set
+    # (impulse_group.DEPENDENT_WRENCHES) and runs to the end at the example's step
+    from exuclear.engine import impulse_group
+    from validation.cost._spatial_scenes import spatial_journal
+
+    def gliding():
+        return spatial_journal((0.0, 0.0, 0.2), (0.0, 0.0, 50.0), (0.0, -CLEARANCE, 0.0), (0.0, -G, 0.0),
+                               contact_mode="impulse", friction="coulomb:0.2")
+    mbs, joint, states = gliding()
+    solve(mbs, 1e-4, 0.02, adaptive=False)
+    assert states[-1][0] == pytest.approx(0.02)
+    # with every nearly dependent slice acting (a tolerance at round-off), the multipliers of
+    # three nearly dependent slices grow with opposite signs and Exudyn's Newton iteration
+    # fails: the joint says where, which contacts it held with which forces, and what to use
+    monkeypatch.setattr(impulse_group, "DEPENDENT_WRENCHES", 1e-12)
+    mbs, joint, states = gliding()
+    with pytest.raises(exu.SolverError):
+        solve(mbs, 1e-4, 0.02, adaptive=False)
+    with pytest.raises(RuntimeError, match="Newton iteration failed") as told:
+        joint.notes
+    message = str(told.value)
+    assert message.startswith("joint journal: slice 1") and "contact_mode='compliant'" in message
+    assert "slice 2 at z = -0.00375 m" in message and "against their resultant" in message

@@ -33,6 +33,7 @@ from .condition import MarkerState, VelocityCondition, request_jacobian
 from .impulse import CROSSING, ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
+from .impulse_run import check_ran
 from .settling import solve_of
 from .state import start_of_step
 
@@ -59,6 +60,9 @@ DEPENDENT_WRENCHES = 1e-2
 #: normal its rows hold.  (Normals held since different steps differ by the bodies' turn over
 #: a step, and contacts that are dependent at one state would pass as independent.)
 NEAR = 0.5
+#: Two held contacts whose normals' cosine is below this are on opposite walls (a box
+#: across its guide, a journal across its bearing): a body wedged between them.
+OPPOSITE = -0.5
 
 
 class ClosedFormPairImpact(NamedTuple("_ClosedFormPairImpactFields",
@@ -94,10 +98,11 @@ class _Contacts:
         self._redo = False  # whether a contact asked for it to be computed again
         self._accepted: list[_GroupPair] = []  # the contacts that accepted it
         self._shares: tuple[Any, dict[int, float]] = (None, {})  # the reactions of a Newton solve, by condition
+        self.last_held: _Held | None = None  # the held contacts of the last Newton solve
 
     def forget(self) -> None:
         """A new run: nothing of the last one's solves."""
-        self._sweep, self._shares = None, (None, {})
+        self._sweep, self._shares, self.last_held = None, (None, {}), None
 
     def decided(self, mbs: exu.MainSystem, handle: _GroupPair, error: float) -> None:
         """After ``handle`` decided on a Newton solve (``error`` > 0: compute the step again).
@@ -169,7 +174,28 @@ class _Contacts:
                 load = wrenches.T @ forces  # the off conditions' multipliers are 0
                 forces = np.linalg.lstsq(wrenches.T, load, rcond=None)[0]
             self._shares = (solve, {id(c): float(f) for c, f in zip(held, forces)})
+            self.last_held = _held(mbs, held, forces)
         return self._shares[1].get(id(condition), 0.0)
+
+
+class _Held(NamedTuple):
+    """The held contacts of a Newton solve, for the notes of a run that ends there."""
+
+    time: float  # the end of the step [s]
+    names: list[str]
+    largest: float  # the largest held force [N]
+    net: float  # the size of their resultant force [N]
+    wedged: bool  # two normal conditions on opposite walls
+
+
+def _held(mbs: exu.MainSystem, held: Sequence[_GroupCondition], forces: np.ndarray) -> _Held:
+    """The record of the contacts ``held`` in the Newton solve just done, with their forces."""
+    directions = np.array([c.wrench(mbs)[:3] for c in held]).reshape(-1, 3)
+    normals = directions[[not isinstance(c, _GroupStick) for c in held]]
+    wedged = bool(len(normals)) and float((normals @ normals.T).min()) < OPPOSITE
+    names = [c.label.split(": ", 1)[-1] for c in held]  # without the joint's name
+    return _Held(float(mbs.systemData.GetTime()), names, float(np.abs(forces).max(initial=0.0)),
+                 float(np.linalg.norm(directions.T @ forces)), wedged)
 
 
 class _GroupCondition(VelocityCondition):
@@ -178,7 +204,7 @@ class _GroupCondition(VelocityCondition):
 
     def __init__(self, mbs: exu.MainSystem, name: str, contacts: _Contacts, pair: ContactPair) -> None:
         super().__init__(mbs, contacts.state, name)
-        self.contacts, self.pair, self.acting = contacts, pair, False
+        self.contacts, self.pair, self.acting, self.label = contacts, pair, False, name
         self.normal = np.zeros(3)
         self._wrench: tuple[Any, Any, np.ndarray] | None = None  # the last wrench, with the poses and normal it is of
         contacts.conditions.append(self)
@@ -308,6 +334,26 @@ class _GroupPair(ImpulseJointHandle):
 
     def contact_name(self, onset_time: float) -> str:
         return self._names.get(onset_time, "")
+
+    def _check_ran(self) -> None:
+        """As the mode's; where Exudyn's Newton iteration failed, the error names the contacts
+        held in its last solve and their forces, and a body wedged between opposite walls."""
+        if not self._problem:
+            check_ran(self._mbs(), self.name, self._records[-1][0] if self._records else None,
+                      self._held_contacts)
+        super()._check_ran()
+
+    def _held_contacts(self) -> str:
+        """What the joint held in the last Newton solve, for :meth:`_check_ran`."""
+        held = self._contacts.last_held
+        if held is None or not held.names:
+            return ""
+        note = (f"; the contacts held in its last solve (t = {held.time:.6g} s): {', '.join(held.names)}, with forces "
+                f"up to {held.largest:.3g} N against their resultant {held.net:.3g} N")
+        if held.wedged:
+            note += (": the body is wedged between opposite walls, held on both, where rigid contacts with friction "
+                     "need not have a unique solution (Painleve's paradox)")
+        return note
 
     def impacts(self) -> list[ClosedFormImpact]:
         """As :meth:`~exuclear.engine.impulse.ImpulseJointHandle.impacts`, for a contact with

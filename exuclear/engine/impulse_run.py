@@ -41,10 +41,12 @@ def run_settings(mbs: exu.MainSystem) -> tuple[int, float]:
     return iterations, nominal
 
 
-def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None) -> None:
+def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None,
+              held: Callable[[], str] = lambda: "") -> None:
     """That the joint ``name``'s decisions ran to the end of the last run of ``mbs`` (its last
     accepted step ended at ``last`` [s], None: none): ``ValueError`` under an explicit solver,
-    ``RuntimeError`` where Exudyn did not call them."""
+    ``RuntimeError`` where Exudyn's Newton iteration failed (``held()`` says what the joint
+    held in its last solve) or Exudyn did not call them."""
     if mbs is None:
         return
     solver = getattr(mbs, "sys", {}).get("dynamicSolver")
@@ -55,6 +57,10 @@ def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None) -> None
                          "solver: its condition is a constraint, which explicit solvers refuse; use "
                          "generalized-alpha (spectral radius 1), or contact_mode='compliant'")
     end = float(mbs.systemData.GetTime())
+    if end > (last or 0.0) + 1e-12 * max(1.0, end) and solver is not None and not explicit_solver(solver) \
+            and not solver.conv.newtonConverged:
+        raise RuntimeError(f"joint {name or '(unnamed)'}: the run ended at t = {last or 0.0:.6g} s, where Exudyn's Newton "
+                           f"iteration failed{held()}; take shorter steps, or use contact_mode='compliant'")
     if end > (last or 0.0) + 1e-12 * max(1.0, end):
         raise RuntimeError(f"joint {name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
                            f"last step ended at {last or 0.0:g} s): Exudyn did not call its post-Newton function (an "
