@@ -15,8 +15,8 @@ def test_the_listing_names_every_script_with_its_summary(capsys):
     # the contact modes' (and the impulse mode's native hold)
     assert set(cost.SCRIPTS) == {"benchmark", "film", "fine_steps", "friction", "jacobian",
                                  "jacobian_steps", "modes", "modes_ends", "modes_friction", "modes_friction_types",
-                                 "modes_gliding", "modes_profile", "native_hold", "newton", "spectral_radius", "speed_sweep", "study_benchmark", "wear",
-                                 "work_precision"}
+                                 "modes_gliding", "modes_profile", "native_hold", "newton", "spectral_radius", "speed_sweep",
+                                 "study_benchmark", "wear", "work_precision"}
 
 
 def test_an_unknown_script_is_refused_with_the_known_ones(capsys):

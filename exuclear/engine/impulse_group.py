@@ -85,8 +85,9 @@ class _Contacts:
     planar slider span its two, and a journal resting flat touches at every slice, which
     span two.  Exudyn's Newton iteration cannot solve dependent conditions (a singular
     matrix), nor nearly dependent ones (:data:`DEPENDENT_WRENCHES`).  A contact whose
-    wrench is a combination of the acting contacts' is held by them (its rate is then theirs combined: the contacts of a rigid face or line are affine
-    in its motion, and so are their rates and gaps) and its condition stays off in Exudyn.
+    wrench is a combination of the acting contacts' is held by them (its rate is then
+    theirs combined: the contacts of a rigid face or line are affine in its motion, and so
+    are their rates and gaps) and its condition stays off in Exudyn.
     The reactions of such a set are statically indeterminate; the mode reports the
     least-squares split (:meth:`reaction`), the one that equally compliant contacts take
     (the analytic split of a box flat on its wall: ``m g / 4`` each)."""
