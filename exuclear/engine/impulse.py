@@ -326,7 +326,7 @@ class ImpulseJointHandle:
         (its three-step mean ``reaction``; ``force`` in the onset's settling steps, whose
         multiplier settles from the onset's impulse):
         the native constraint where it takes it (:meth:`~exuclear.engine.impulse_hold.DistanceHold.takes`),
-        else the velocity-level condition along the normal's last turn, once more."""
+        else the velocity-level condition along the normal predicted for the step's end."""
         native = self._native
         if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force, reaction):
             if not native.active:  # from the onset step's velocity-level condition
@@ -337,7 +337,14 @@ class ImpulseJointHandle:
             native.advance(mbs, self._resting_rate(native.distance - self._pair.reach), h)
             return
         e = np.asarray(e, dtype=float)
-        ahead = e if self._held is None else 2.0 * e - self._held[0]
+        if settling_of(mbs).active:
+            # the step's end predicted from the settled end state, whose accelerations carry no
+            # alternation (exuclear.engine.settling): the normal reached follows to third
+            # order in the step, and a step is computed again in it less often
+            with moved_on(mbs, h, accelerations=True):
+                ahead = self._gap(mbs)[0]
+        else:  # (accelerations that alternate from step to step: from the positions)
+            ahead = e if self._held is None else 2.0 * e - self._held[0]
         self._aim(mbs, e, gap, ahead / norm(ahead), h)
 
     def _settle(self, mbs: exu.MainSystem) -> None:

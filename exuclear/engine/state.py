@@ -121,13 +121,20 @@ def start_of_step(mbs: exu.MainSystem, accelerations: bool = True) -> Iterator[N
 
 
 @contextlib.contextmanager
-def moved_on(mbs: exu.MainSystem, dt: float) -> Iterator[None]:
+def moved_on(mbs: exu.MainSystem, dt: float, accelerations: bool = False) -> Iterator[None]:
     """The coordinates moved on by ``dt`` [s] at their present velocities, for the ``with``
-    block (the impulse mode's held step reads its condition's rows there,
-    :mod:`~exuclear.engine.impulse`); the present ones back after it."""
+    block (the impulse mode's held step reads its condition's rows there, and predicts its
+    normal there, :mod:`~exuclear.engine.impulse`); the present ones back after it.  With
+    ``accelerations``: ``q + dt v + dt^2 (3 a - a_0) / 4``, ``a_0`` the accelerations at the
+    step's start, the trapezoidal rule's step of length ``dt`` under accelerations that go
+    on changing as they did over the last step of that length."""
     data = mbs.systemData
     q = data.GetODE2Coordinates()
-    data.SetODE2Coordinates((q + dt * data.GetODE2Coordinates_t()).tolist())
+    moved = q + dt * data.GetODE2Coordinates_t()
+    if accelerations:
+        start = data.GetODE2Coordinates_tt(configuration=exu.ConfigurationType.StartOfStep)
+        moved += 0.25 * dt * dt * (3.0 * data.GetODE2Coordinates_tt() - start)
+    data.SetODE2Coordinates(moved.tolist())
     try:
         yield
     finally:
