@@ -21,10 +21,20 @@ since the last jump ended at (the ones the following steps started from):
 - at the first step after a jump, the accelerations are the mean of the jump's and the
   step's own (the middle of ``d`` and ``-d``; a smooth ``a`` moves by ``h a' / 2``, once a
   jump);
-- from the fourth step on, the accelerations and the velocities less :data:`SHARE` times
-  their third difference (a smooth motion moves by ``h^3 a''' / 28`` and ``h^3 v''' / 28``:
+- from the fourth step on, the accelerations and, within :data:`SETTLING_STEPS` of the
+  jump (or of a held contact's release), the velocities less :data:`SHARE` times their
+  third difference (a smooth motion moves by ``h^3 a''' / 28`` and ``h^3 v''' / 28``:
   second order kept; a second difference, ``h^2 a'' / 9`` a step, left the zoo's 3D
   four-bar's path four times as far from the converged run at its example's step).
+
+The velocities' alternation is the jump's (its share across the joints' curvature), gone
+after those steps; the accelerations' is seeded again each step (Newton's residual, a held
+contact's multiplier).  The filter is causal and its phase lags: on an undamped
+oscillation of 3 to 12 steps a period, which the trapezoidal rule keeps, it acts as a
+negative damping, up to 6.3 % a step at 4 steps (the largest root of its recursion).
+Filtering the velocities in every held step grew such an oscillation in the multiplier of
+a contact held by :mod:`~exuclear.engine.impulse_hold` (in the zoo's planar double pendulum
+and generic joint chain, until the hold handed the contact over: docs/design/native_hold.md).
 
 A jump (an impact, a contact's onset) starts the history anew: the filters never reach
 across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of the mode's
@@ -66,9 +76,10 @@ NOT_BODIES = ("Connector", "Joint", "Contact", "Ground")
 FORCE_FUNCTIONS = ("springForceUserFunction", "springForceTorqueUserFunction", "springTorqueUserFunction")
 #: Two step ends closer than this (relative) are one step, accepted again.
 SAME_END = 1e-12
-#: Steps after a jump that are settled while no contact is held: the filters leave ``n 2^-n``
-#: of a jump's alternation after ``n`` steps, below 1e-17 after this many; a free flight after
-#: them reads nothing.
+#: Steps after a jump (or a held contact's release) whose velocities are settled, and that are
+#: settled at all while no contact is held: the filters leave ``n 2^-n`` of a jump's
+#: alternation after ``n`` steps, below 1e-17 after this many; a free flight after them reads
+#: nothing.
 SETTLING_STEPS = 64
 
 
@@ -145,9 +156,10 @@ class Settling:
             data.SetODE2Coordinates_tt(a)
         elif len(ends) >= 3:
             a = a - SHARE * _third_difference(a, [e.accelerations for e in ends[-3:]])
-            v = v - SHARE * _third_difference(v, [e.velocities for e in ends[-3:]])
             data.SetODE2Coordinates_tt(a)
-            data.SetODE2Coordinates_t(v)
+            if self._count < SETTLING_STEPS:  # a jump's velocities across the joints (module docstring)
+                v = v - SHARE * _third_difference(v, [e.velocities for e in ends[-3:]])
+                data.SetODE2Coordinates_t(v)
         self._ends = [*ends[-2:], _End(solve, v, a)]
         self._count += 1
 
