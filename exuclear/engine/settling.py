@@ -21,20 +21,23 @@ since the last jump ended at (the ones the following steps started from):
 - at the first step after a jump, the accelerations are the mean of the jump's and the
   step's own (the middle of ``d`` and ``-d``; a smooth ``a`` moves by ``h a' / 2``, once a
   jump);
-- from the fourth step on, the accelerations and, within :data:`SETTLING_STEPS` of the
-  jump (or of a held contact's release), the velocities less :data:`SHARE` times their
-  third difference (a smooth motion moves by ``h^3 a''' / 28`` and ``h^3 v''' / 28``:
+- from the fourth step on, the accelerations and the velocities less :data:`SHARE` times
+  their third difference (a smooth motion moves by ``h^3 a''' / 28`` and ``h^3 v''' / 28``:
   second order kept; a second difference, ``h^2 a'' / 9`` a step, left the zoo's 3D
-  four-bar's path four times as far from the converged run at its example's step).
+  four-bar's path four times as far from the converged run at its example's step); the
+  velocities, in the held steps more than :data:`SETTLING_STEPS` after the jump (or a held
+  contact's release), :data:`HELD_SHARE` times theirs.
 
-The velocities' alternation is the jump's (its share across the joints' curvature), gone
-after those steps; the accelerations' is seeded again each step (Newton's residual, a held
-contact's multiplier).  The filter is causal and its phase lags: on an undamped
-oscillation of 3 to 12 steps a period, which the trapezoidal rule keeps, it acts as a
-negative damping, up to 6.3 % a step at 4 steps (the largest root of its recursion).
-Filtering the velocities in every held step grew such an oscillation in the multiplier of
-a contact held by :mod:`~exuclear.engine.impulse_hold` (in the zoo's planar double pendulum
-and generic joint chain, until the hold handed the contact over: docs/design/native_hold.md).
+The filter is causal and its phase lags: on an undamped oscillation of 3 to 12 steps a
+period, which the trapezoidal rule keeps, it acts as a negative damping, up to 6.3 % a step
+at 4 steps at :data:`SHARE` (the largest root of its recursion).  On the velocities of every
+held step it grew such an oscillation in the multiplier of a contact held by
+:mod:`~exuclear.engine.impulse_hold` until the hold handed the contact over (the zoo's planar
+double pendulum, generic joint chain and 3D four-bar; docs/design/native_hold.md).  Long
+after a jump, the velocities' alternation is what each held step adds (a position-level
+joint's curvature), which a small share keeps down (without any, the 3D double pendulum's
+held contact rang as well); the accelerations keep the full share, their alternation comes
+back each step (Newton's residual, the multipliers).
 
 A jump (an impact, a contact's onset) starts the history anew: the filters never reach
 across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of the mode's
@@ -67,6 +70,11 @@ SETTLING_KEY = "exuclear.settling"
 #: ringing (``s = 1/8``, which removes a pure alternation at once, leaves complex roots of
 #: modulus 0.74, which ring).
 SHARE = 1.0 / 28.0
+#: The share of the velocities' third difference taken off in a held step more than
+#: :data:`SETTLING_STEPS` after the last jump: the filter's recursion then grows an undamped
+#: oscillation of 3 to 12 steps a period by at most 0.44 % a step (:data:`SHARE`: 6.3 %) and
+#: damps a velocity alternation by 1.8 % a step (module docstring).
+HELD_SHARE = SHARE / 16.0
 #: Exudyn's rigid bodies (``objectType``): a system whose bodies are all of these is settled.
 RIGID_BODIES = frozenset({"RigidBody", "RigidBody2D", "MassPoint", "MassPoint2D", "Mass1D", "RotationalMass1D",
                           "KinematicTree"})
@@ -76,8 +84,8 @@ NOT_BODIES = ("Connector", "Joint", "Contact", "Ground")
 FORCE_FUNCTIONS = ("springForceUserFunction", "springForceTorqueUserFunction", "springTorqueUserFunction")
 #: Two step ends closer than this (relative) are one step, accepted again.
 SAME_END = 1e-12
-#: Steps after a jump (or a held contact's release) whose velocities are settled, and that are
-#: settled at all while no contact is held: the filters leave ``n 2^-n`` of a jump's
+#: Steps after a jump that are settled while no contact is held, and whose velocities lose
+#: :data:`SHARE` of their third difference: the filters leave ``n 2^-n`` of a jump's
 #: alternation after ``n`` steps, below 1e-17 after this many; a free flight after them reads
 #: nothing.
 SETTLING_STEPS = 64
@@ -157,9 +165,10 @@ class Settling:
         elif len(ends) >= 3:
             a = a - SHARE * _third_difference(a, [e.accelerations for e in ends[-3:]])
             data.SetODE2Coordinates_tt(a)
-            if self._count < SETTLING_STEPS:  # a jump's velocities across the joints (module docstring)
-                v = v - SHARE * _third_difference(v, [e.velocities for e in ends[-3:]])
-                data.SetODE2Coordinates_t(v)
+            # a jump's velocities across the joints, then what each held step adds (module docstring)
+            share = SHARE if self._count < SETTLING_STEPS else HELD_SHARE
+            v = v - share * _third_difference(v, [e.velocities for e in ends[-3:]])
+            data.SetODE2Coordinates_t(v)
         self._ends = [*ends[-2:], _End(solve, v, a)]
         self._count += 1
 
