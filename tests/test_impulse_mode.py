@@ -390,3 +390,24 @@ def test_a_held_journal_sliding_along_its_wall_keeps_the_pendulum_s_energy():
     assert max(i.onset_time for i in joint.impacts()) < 0.1
     swing = 1.0 * G * 0.5
     assert np.abs(ideal[rest, 3] - ideal[rest, 3][0]).max() < 1e-6 * swing
+
+
+def test_a_run_that_exudyn_ends_on_a_failed_newton_iteration_is_told_by_the_joint(monkeypatch):
+    """The IFToMM four-bar of the zoo (validation/exudyn_examples/four_bar_iftomm.py) reaches
+    a position where Exudyn's Newton iteration fails at the minimum step in either mode (the
+    compliant run at 0.712 s): Exudyn's time then stays at the last accepted step, and the
+    joint's results say that the run ended there and why, not that the run went to its end."""
+    from validation.exudyn_examples import four_bar_iftomm
+
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "impulse")
+    model = four_bar_iftomm.build(True)
+    assert isinstance(model.joint, ImpulseJointHandle)
+    ss = model.simulation_settings
+    ss.timeIntegration.generalizedAlpha.spectralRadius = 1.0
+    with pytest.raises(Exception):  # Exudyn's own "SolveDynamic terminated"
+        model.mbs.SolveDynamic(ss, solverType=model.solver_type)
+    end = float(model.mbs.systemData.GetTime())
+    assert end < ss.timeIntegration.endTime
+    with pytest.raises(RuntimeError, match=f"joint {model.joint.name}: the run ended at t = {end:.6g} s, where "
+                                           "Exudyn's Newton iteration failed"):
+        model.joint.impacts()

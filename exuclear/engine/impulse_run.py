@@ -57,9 +57,10 @@ def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None,
                          "solver: its condition is a constraint, which explicit solvers refuse; use "
                          "generalized-alpha (spectral radius 1), or contact_mode='compliant'")
     end = float(mbs.systemData.GetTime())
-    if end > (last or 0.0) + 1e-12 * max(1.0, end) and solver is not None and not explicit_solver(solver) \
-            and not solver.conv.newtonConverged:
-        raise RuntimeError(f"joint {name or '(unnamed)'}: the run ended at t = {last or 0.0:.6g} s, where Exudyn's Newton "
+    if solver is not None and not explicit_solver(solver) and not solver.conv.newtonConverged:
+        # a failed Newton iteration ends the run whether or not the solver's time moved past
+        # the last accepted step (at the minimum step it stays there)
+        raise RuntimeError(f"joint {name or '(unnamed)'}: the run ended at t = {max(end, last or 0.0):.6g} s, where Exudyn's Newton "
                            f"iteration failed{held()}; take shorter steps, or use contact_mode='compliant'")
     if end > (last or 0.0) + 1e-12 * max(1.0, end):
         raise RuntimeError(f"joint {name or '(unnamed)'}: the impulse mode did not run to t = {end:g} s (its "
