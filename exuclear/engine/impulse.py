@@ -540,7 +540,13 @@ class ImpulseJointHandle:
     def _check_ran(self) -> None:
         if self._problem:
             raise ValueError(self._problem)
-        check_ran(self._mbs(), self.name, self._records[-1][0] if self._records else None)
+        check_ran(self._mbs(), self.name, self._records[-1][0] if self._records else None, self._held_contacts)
+
+    def _held_contacts(self) -> str:
+        """What the joint held in its last Newton solve, for the error of a run whose Newton
+        iteration failed there ('': nothing beyond the joint's name; a joint of several
+        contacts names them)."""
+        return ""
 
     def impacts(self) -> list[ClosedFormImpact]:
         """The impacts of the last run, resting contacts' onsets included (restitution 0), with

@@ -33,7 +33,6 @@ from .condition import MarkerState, VelocityCondition, request_jacobian
 from .impulse import CROSSING, ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
-from .impulse_run import check_ran
 from .settling import solve_of
 from .state import start_of_step
 
@@ -336,16 +335,9 @@ class _GroupPair(ImpulseJointHandle):
     def contact_name(self, onset_time: float) -> str:
         return self._names.get(onset_time, "")
 
-    def _check_ran(self) -> None:
-        """As the mode's; where Exudyn's Newton iteration failed, the error names the contacts
-        held in its last solve and their forces, and a body wedged between opposite walls."""
-        if not self._problem:
-            check_ran(self._mbs(), self.name, self._records[-1][0] if self._records else None,
-                      self._held_contacts)
-        super()._check_ran()
-
     def _held_contacts(self) -> str:
-        """What the joint held in the last Newton solve, for :meth:`_check_ran`."""
+        """The contacts held in the last Newton solve and their forces, and a body wedged
+        between opposite walls, for the error of a run whose Newton iteration failed there."""
         held = self._contacts.last_held
         if held is None or not held.names:
             return ""
