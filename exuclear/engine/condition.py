@@ -211,10 +211,7 @@ class VelocityCondition:
 
     def multiplier(self, mbs: exu.MainSystem) -> float:
         """The condition's multiplier [N] (0 where it is off)."""
-        if not self.plan.active:
-            return 0.0
-        force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
-        return force if isinstance(force, float) else float(np.ravel(force)[0])
+        return scalar_force(mbs, self.objectNumber) if self.plan.active else 0.0
 
     def hold(self, mbs: exu.MainSystem, end_rate: float) -> None:
         """On for the coming step, in the rows of the last :meth:`measure`, holding the
@@ -238,6 +235,13 @@ class VelocityCondition:
         """The condition on or off in Exudyn, with a fresh Jacobian."""
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", on)
         request_jacobian(mbs)
+
+
+def scalar_force(mbs: exu.MainSystem, number: int) -> float:
+    """The ``Force`` output [N] of a one-equation Exudyn constraint (its multiplier), which
+    Exudyn gives as a float or a one-element array."""
+    force = mbs.GetObjectOutput(number, exu.OutputVariableType.Force)
+    return force if isinstance(force, float) else float(np.ravel(force)[0])
 
 
 def request_jacobian(mbs: exu.MainSystem) -> None:

@@ -37,7 +37,7 @@ import exudyn as exu
 from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
 
 from .bodies import coordinate_owner
-from .condition import request_jacobian
+from .condition import request_jacobian, scalar_force
 from .settling import RIGID_BODIES
 
 #: The pair types (:mod:`~exuclear.engine.impulse_pairs`) whose contact is a centre distance.
@@ -169,10 +169,7 @@ class DistanceHold:
         """The constraint's multiplier [N] (0 where off): Exudyn's, whose force on the inner
         marker is ``-lambda (p_1 - p_0) / |p_1 - p_0|``, positive where the wall pushes the
         inner body back towards the centre, as the velocity-level condition's."""
-        if not self.active:
-            return 0.0
-        force = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Force)
-        return force if isinstance(force, float) else float(force[0])
+        return scalar_force(mbs, self.objectNumber) if self.active else 0.0
 
 
 def distance_of(e: Sequence[float], axial: float) -> float:
