@@ -239,7 +239,7 @@ class ContactFriction:
         miss = target - self._force
         slope = self._slope
         if self._secant is not None and self._force != self._secant[0]:
-            slope = 1.0 - (miss - self._secant[1]) / (self._force - self._secant[0])
+            slope = 1.0 + (miss - self._secant[1]) / (self._force - self._secant[0])
             self._slope = slope
         load = self._force + miss / (1.0 - slope) if slope < 1.0 else target
         if not 0.0 <= load / (self._stick_mu * normal_force or math.inf) <= 1.0:
