@@ -107,8 +107,10 @@ def test_a_pin_on_its_slots_flat_side_slides_at_mu_g_then_rolls():
     t_roll = v0 / (3.0 * MU * G)
     joint, states, _ = scenes.pin((v0, 0.0), scenes.whole_steps(1.5 * t_roll, step), step)
     t, vx, w = states[:, 0], states[:, 4], states[:, 6]
-    sliding = (t > 2 * step) & (t < t_roll - 2 * step)
-    # bound 1e-9: the trapezoidal rule integrates the constant friction exactly
+    # after the settling's first 40 steps (it halves what the onset left each step, n 2^-n;
+    # exuclear.engine.settling), while which the sliding loads are mu F_N to the mode's
+    # LOAD_TOLERANCE; bound 1e-9: the trapezoidal rule integrates the constant friction exactly
+    sliding = (t > 40 * step) & (t < t_roll - 2 * step)
     assert -np.polyfit(t[sliding], vx[sliding], 1)[0] == pytest.approx(MU * G, rel=1e-9)
     assert vx[-1] == pytest.approx(2.0 * v0 / 3.0, rel=1e-9)  # the kept angular momentum, to round-off
     assert abs(vx[-1] + pins.PIN * w[-1]) < 1e-12  # rolls: no slip

@@ -39,8 +39,8 @@ Moreau-Jean time stepping inside Exudyn's generalized-alpha solver, at the user'
 - **Settling.**  The trapezoidal rule keeps an error in a step's start accelerations,
   which every jump and onset leaves, alternating from step to step in all multipliers of
   the model, undamped: each accepted step's end accelerations and velocities lose that
-  alternation (:mod:`~exuclear.engine.settling`; not in a system with friction, a
-  flexible body or a spring).
+  alternation (:mod:`~exuclear.engine.settling`; not in a system with a flexible body, a
+  spring, or a joint of several contacts with friction).
 - **What is not computed**: the force pulse.  Each impact's peak force, duration and
   largest penetration follow from the law's closed form at the impact velocity and the
   effective mass the solver's impulse shows
@@ -77,7 +77,7 @@ from .impulse_friction import Frictionless, contact_friction
 from .impulse_hold import DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
 from .impulse_run import ClosedFormImpact, check_ran, closed_form_impacts, run_settings
-from .settling import SETTLING_STEPS, settling_of
+from .settling import SETTLING_STEPS, held_mean, settling_of
 from .state import moved_on, start_of_step
 
 #: A held step aims its end rate at taking back this share of the gap per step.
@@ -148,6 +148,7 @@ class ImpulseJointHandle:
 
     contact_mode = "impulse"
     constraintNumber: int | None = None
+    settled_with_friction = True  # a system with this contact's friction is settled (exuclear.engine.settling)
 
     def __init__(self, mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],
                  pair: ContactPair) -> None:
@@ -163,7 +164,7 @@ class ImpulseJointHandle:
         self._friction = contact_friction(mbs, joint, name, self.markerNumbers, pair,
                                           lambda label, k: self._new_condition(mbs, label, tangent=k))
         frictionless = isinstance(self._friction, Frictionless)
-        settling_of(mbs).friction |= not frictionless
+        settling_of(mbs).friction_groups |= not (frictionless or self.settled_with_friction)
         # held by a native Exudyn constraint where it fits (exuclear.engine.impulse_hold)
         self._native = DistanceHold(mbs, self.markerNumbers, name, pair.clearance) \
             if native_hold_fits(mbs, self.markerNumbers, pair, frictionless) else None
@@ -288,18 +289,10 @@ class ImpulseJointHandle:
             self._impacts[-1] = (tk, vk, ek, 0.5 * force * h)
         # the resting multiplier alternates from step to step about the load under the
         # trapezoidal rule: in the first steps after a jump, while the settling takes the
-        # alternation out (exuclear.engine.settling), and undamped in a system with friction,
-        # which is not settled, with an amplitude that drifts (with Newton's residual left in
-        # each step and the mechanism's configuration): a two-step mean keeps half the change
-        # of one step, which lets the contact go where the reaction is still positive; the
-        # three-step mean with weights 1/4, 1/2, 1/4 also cancels an amplitude that changes
-        # linearly from step to step
-        if self._state == REST and self._resting > 2:
-            reaction = 0.25 * (force + 2.0 * self._force + self._force_before)
-        elif self._state == REST and self._resting > 1:
-            reaction = 0.5 * (force + self._force)
-        else:
-            reaction = force
+        # alternation out (exuclear.engine.settling), and undamped in a system the settling
+        # leaves as it is: the held steps' mean (settling.held_mean), from the first after the onset
+        ends = (self._force_before, self._force, force)[3 - min(max(self._resting, 1), 3):]
+        reaction = held_mean(ends) if self._state == REST else force
         self._force, self._force_before = force, self._force
         self._records.append((t_end, *e, gap, reaction if self._state == REST else 0.0))
         self._friction.accept(mbs, t_end, self._state == REST)

@@ -30,6 +30,10 @@ it where ``constrainAxial`` holds the axis; for an end face the journal's spin a
   iteration: along the slope of load against its target that the step before measured, then
   along the secant through the step's last two computations; the plain iteration, load =
   target, converges slowly where the load moves the multiplier about as much as itself).
+  In a settled system (:mod:`~exuclear.engine.settling`: every system of rigid bodies whose
+  joints with friction have one contact each) Exudyn's Newton iteration runs to at most
+  :data:`NEWTON_RELATIVE_TOLERANCE` in the steps that hold a contact with friction, which
+  the loop needs of the multiplier (:func:`steer_newton`).
 - **Sticking**: where the step's end slip points against the slip the load opposed (the slip
   would reverse within the step), or the contact stuck in the step before, velocity-level
   conditions hold the end slip at 0, one per tangent (their rows those of the contact points,
@@ -65,6 +69,8 @@ from ..friction import FrictionLaw
 from ..joint import ClearanceJoint
 from .condition import VelocityCondition
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, contact_arms
+from .settling import held_mean, settling_of
+from .steering import explicit_solver
 
 #: A sliding load more than this share of ``mu F_N`` off the step's own ``mu F_N`` has Exudyn
 #: compute the step again with the load set anew.  A steady slide's first load comes from the
@@ -81,6 +87,19 @@ CONE_TOLERANCE = 1e-9
 #: degrees): the tangents then turn with the normal, and the slip's and the forces'
 #: components along them keep their meaning from step to step.
 CARRY = 0.5
+#: The largest ``newton.relativeTolerance`` of a settled system's steps in which a contact
+#: with friction is held (the solver's copy of the settings; the user's are not changed, and
+#: are the other steps').  The sliding loads are ``mu`` times the normal condition's end
+#: multiplier, which Exudyn's Newton iteration leaves off by its residual; at Exudyn's default
+#: (1e-8) that error changed a mechanism's normal multiplier by some percent between
+#: computations of one step at the same load, the loads did not converge within the
+#: discontinuous iterations, and their error grew from step to step into an alternation that
+#: let the contact go (the zoo's 3D double pendulum with friction, at 1e-9 still at four
+#: times its steps; docs/design/settling.md).  An impact step keeps the user's: at 1e-10,
+#: Newton did not converge in a ball's impact step of 1e-8 s.
+NEWTON_RELATIVE_TOLERANCE = 1e-10
+#: ``mbs.variables`` key of the contacts with friction held in the coming step (their ids).
+HELD_KEY = "exuclear.friction_held"
 #: Changes between sliding and sticking within one step after which the contact keeps the
 #: last: each change is a computation of the step, and one slide, one stick and one slide
 #: in the sticking multiplier's direction is Coulomb's law's whole decision.
@@ -119,12 +138,15 @@ class ContactFriction:
         self._direction = np.zeros(k)  # the slip's direction (unit) the sliding load opposes
         self._fresh = True  # the next hold starts a new step (its state decided from the slip)
         self._slip = np.zeros(k)  # the slip at the state of the last measure (the step's start velocities)
-        # the normal and the friction force at the step's start as the accelerations carry them
-        # into the step (the last accepted step's end forces; 0 after flight, an impact, or the
-        # onset of a rest, whose end accelerations the mode replaces by the free computation's)
+        # the normal and the friction force at the step's start that Coulomb's law adds to the
+        # end's (an unsettled system's last accepted step's end forces, which its accelerations
+        # carry into the step; 0 after flight, an impact, or the onset of a rest, whose end
+        # accelerations the mode replaces by the free computation's, and in a settled system,
+        # whose law holds per end force: ContactFriction.check)
         self._normal0, self._friction0 = 0.0, np.zeros(k)
         self._normal_sum = 0.0  # start plus end normal force of the last computed step
         self._sums: tuple[float, ...] = ()  # those of the last three accepted held steps
+        self._ends: tuple[np.ndarray, ...] = ()  # the end forces of the held steps since the onset (its own first)
         self._slope = 0.0  # d(target load) / d(load) of the last step the secant measured
         self._switches = 0
         self._secant: tuple[float, float] | None = None  # the last (load, its miss) of this step
@@ -143,6 +165,7 @@ class ContactFriction:
         acted = self._state != OFF
         self._reset()
         self._apply(mbs, OFF)
+        steer_newton(mbs, self, held=False)
         return acted
 
     def measure(self, mbs: exu.MainSystem, normal: np.ndarray, ecc: Eccentricity) -> None:
@@ -181,6 +204,8 @@ class ContactFriction:
         self._fresh = True
         self.forget()
         self._normal_sum, self._sums, self._slope = 0.0, (), 0.0  # the next contact's first guess: no friction
+        self._ends = ()
+        steer_newton(mbs, self, held=False)
 
     def forget(self) -> None:
         """The last step's end forces are not in the accelerations the next step starts from
@@ -195,13 +220,17 @@ class ContactFriction:
         load's refinement not: a slip that reverses under a refined load must still stick.
 
         Under the trapezoidal rule a step's impulses are ``h / 2`` times its start and end
-        forces, and a held condition's end multipliers alternate about the load from step to
-        step (:mod:`~exuclear.engine.impulse`), through 0 and below: the friction cone holds
-        for the sums of start and end forces, not for each end force.  A sliding load is
-        ``mu`` times the end normal force, so that over steps that slide alike the step's
-        friction impulse is ``mu`` times its normal one and the loads alternate with the
-        normal force (a load set to make up the step before's miss, ``mu (N_0 + N_1) - F_0``,
-        keeps that miss alternating, and the two alternations can grow into each other)."""
+        forces.  In a system the settling leaves as it is, a held condition's end multipliers
+        alternate about the load from step to step (:mod:`~exuclear.engine.impulse`), through
+        0 and below: the friction cone holds for the sums of start and end forces, not for each
+        end force.  In a settled one (:mod:`~exuclear.engine.settling`) an end multiplier is
+        the contact's force, and the accelerations the next step starts from carry the end
+        forces filtered alike (the filters are linear): the cone holds per end force (the start
+        forces are 0 here, :meth:`forget`).  Either way a sliding load is ``mu`` times the end
+        normal force, so that over steps that slide alike the step's friction impulse is
+        ``mu`` times its normal one (a load set to make up the step before's miss,
+        ``mu (N_0 + N_1) - F_0``, keeps that miss alternating, and the two alternations can
+        grow into each other)."""
         self._normal_sum = self._normal0 + normal_force
         bound = max(self._normal_sum, 0.0)
         if self._state == STICK:
@@ -259,11 +288,20 @@ class ContactFriction:
             return
         slip = self._rates(np.asarray(mbs.systemData.GetODE2Coordinates_t(), dtype=float))
         force = self._sticking_force(mbs) if self._state == STICK else self._force * self._direction
-        # the step's friction impulse over h: the mean of its start and end forces
-        self._records.append((t_end, self._component(slip),
-                              self._component(0.5 * (self._friction0 + force)) if held else 0.0,
+        self._ends = (*self._ends[-3:], force) if held else ()
+        if settling_of(mbs).active:
+            # the end forces are the contact's own (the settling takes the alternation out of
+            # the accelerations the next step starts from): the next step's law holds for its
+            # end forces alone, and the record is the held steps' mean the normal force's is
+            recorded = held_mean(self._ends[1:]) if len(self._ends) > 1 else force
+            self.forget()
+            steer_newton(mbs, self, held)
+        else:
+            # the step's friction impulse over h: the mean of its start and end forces
+            recorded = 0.5 * (self._friction0 + force)
+            self._normal0, self._friction0 = self._normal_sum - self._normal0, force
+        self._records.append((t_end, self._component(slip), self._component(recorded) if held else 0.0,
                               float(self._state == STICK)))
-        self._normal0, self._friction0 = self._normal_sum - self._normal0, force
         self._sums = (self._sums + (self._normal_sum,))[-3:] if held else ()
 
     def snapshot(self) -> dict[str, Any]:
@@ -271,7 +309,8 @@ class ContactFriction:
         again (:meth:`restore`)."""
         return {"_state": self._state, "_force": self._force, "_direction": self._direction,
                 "_tangents": self._tangents, "_arms": self._arms, "rows": [c.rows for c in self.conditions],
-                "_normal0": self._normal0, "_friction0": self._friction0, "records": len(self._records)}
+                "_normal0": self._normal0, "_friction0": self._friction0, "_ends": self._ends,
+                "records": len(self._records)}
 
     def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
         """The setting of :meth:`snapshot` back, applied for Exudyn's computation of the step."""
@@ -301,11 +340,12 @@ class ContactFriction:
     def outputs(self) -> dict[str, np.ndarray]:
         """At the end of each step: ``slip_velocity`` (eq. (8), the held or hit contact's; 0
         in flight), ``friction_force`` (``F_T`` of eqs. (24)-(26): the sliding load or the
-        sticking multiplier, as a two-step mean while held; 0 in flight and at impacts) and
-        ``sticking`` (1 where the contact stuck).  Along one tangent both are signed along
-        ``t = n x a``; in a tangent plane they are the slip's speed ``|v_T|`` and the
-        friction's size ``|F_T|``.  The friction force is the step's friction impulse over
-        the step (the mean of its start and end forces), as the mode's normal force is."""
+        sticking multiplier; 0 in flight and at impacts) and ``sticking`` (1 where the contact
+        stuck).  Along one tangent both are signed along ``t = n x a``; in a tangent plane
+        they are the slip's speed ``|v_T|`` and the friction's size ``|F_T|``.  The friction
+        force is the step's friction impulse over the step (the mean of its start and end
+        forces), in a settled system the mean of the held steps' end forces the mode's
+        normal force is (:func:`~exuclear.engine.settling.held_mean`)."""
         data = np.array(self._records, dtype=float).reshape(-1, 4)
         return {"slip_velocity": data[:, 1], "friction_force": data[:, 2], "sticking": data[:, 3]}
 
@@ -401,6 +441,19 @@ class SpinFriction(ContactFriction):
         """No force; the couple ``R_e F_T u`` on the bearing, its negative on the journal."""
         couple = self._pair.friction_radius * force
         return (np.zeros(3), couple), (np.zeros(3), -couple)
+
+
+def steer_newton(mbs: exu.MainSystem, contact: ContactFriction, held: bool) -> None:
+    """Exudyn's Newton tolerance for the coming step of a settled run (its solver's copy):
+    at most :data:`NEWTON_RELATIVE_TOLERANCE` while ``contact`` or another contact with
+    friction of ``mbs`` is ``held``, else the user's."""
+    solver = getattr(mbs, "sys", {}).get("dynamicSolver")
+    if solver is None or explicit_solver(solver) or not settling_of(mbs).active:
+        return
+    contacts = mbs.variables.setdefault(HELD_KEY, set())
+    (contacts.add if held else contacts.discard)(id(contact))
+    user = float(mbs.sys["simulationSettings"].timeIntegration.newton.relativeTolerance)
+    solver.newton.relativeTolerance = min(user, NEWTON_RELATIVE_TOLERANCE) if contacts else user
 
 
 def spin_rate(mbs: exu.MainSystem, condition: VelocityCondition, vector: np.ndarray) -> float:

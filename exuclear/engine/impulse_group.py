@@ -290,6 +290,8 @@ class _GroupPair(ImpulseJointHandle):
     """One contact of a joint with several in the mode; remembers the name of each of its
     contacts' onsets (``pair.contact_name``: a corner's wall)."""
 
+    settled_with_friction = False  # the contacts share the load indeterminately (exuclear.engine.settling)
+
     def __init__(self, *args: Any, contacts: _Contacts) -> None:
         self._contacts = contacts
         self._names: dict[float, str] = {}  # onset time [s] -> the contact's name

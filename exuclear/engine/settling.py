@@ -41,10 +41,15 @@ back each step (Newton's residual, the multipliers).
 
 A jump (an impact, a contact's onset) starts the history anew: the filters never reach
 across it.  One :class:`Settling` serves a system (:func:`settling_of`): each of the mode's
-contacts accepts the step, and the first settles it.  A system with a contact with
-friction is not settled: the friction's sliding loads and its cone check are written for
-alternating multipliers (:mod:`~exuclear.engine.impulse_friction` sums a step's start and
-end forces), and settled ones leave its first held steps off Coulomb's law.  Nor is a
+contacts accepts the step, and the first settles it.  With friction
+(:mod:`~exuclear.engine.impulse_friction`), a settled end multiplier is the contact's
+force, and the filters, linear in the accelerations, carry the end forces into the next
+step alike: the sliding load is ``mu`` times the end normal multiplier and the friction
+cone holds per end force.  A system with a joint of several contacts with friction (a
+box's corners, a slider's, a spatial journal's slices: :mod:`~exuclear.engine.impulse_group`)
+is not settled: its contacts share the load indeterminately, their end multipliers split it
+differently from one computation of a step to the next, settled, and the sliding loads did
+not converge (a box sliding on its four corners slowed at ``mu g`` only to 4e-4).  Nor is a
 system with a flexible body (a beam, an ANCF cable: any body not in :data:`RIGID_BODIES`):
 its stiff modes alternate from step to step under the trapezoidal rule of themselves (a
 mode with ``omega h >> 1`` has the factor ``-1`` a step), which the filters would damp, and
@@ -56,10 +61,13 @@ in 0.2 s against none).
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from collections.abc import Sequence
+from typing import NamedTuple, TypeVar
 
 import exudyn as exu
 import numpy as np
+
+T = TypeVar("T", float, np.ndarray)
 
 #: ``mbs.variables`` key of a system's :class:`Settling`.
 SETTLING_KEY = "exuclear.settling"
@@ -104,7 +112,7 @@ class Settling:
     to a step's end (module docstring)."""
 
     def __init__(self) -> None:
-        self.friction = False  # a joint with friction was created in the system: no settling (module docstring)
+        self.friction_groups = False  # a joint of several contacts with friction: no settling (module docstring)
         self.flexible = False  # a flexible body or a force element in the run's system: no settling (module docstring)
         self._ends: list[_End] = []
         self._count = 0  # the steps settled since the last jump
@@ -120,10 +128,10 @@ class Settling:
 
     @property
     def active(self) -> bool:
-        """Whether the run's system is settled (module docstring): no friction, no flexible
-        body, no force element; else the mode's accepted steps leave it as it is, without
-        reading Exudyn's solver or state."""
-        return not (self.friction or self.flexible)
+        """Whether the run's system is settled (module docstring): no joint of several
+        contacts with friction, no flexible body, no force element; else the mode's accepted
+        steps leave it as it is, without reading Exudyn's solver or state."""
+        return not (self.friction_groups or self.flexible)
 
     def restart(self, mbs: exu.MainSystem) -> None:
         """The step just accepted ends in a jump (its end state as the mode set it): the
@@ -181,6 +189,20 @@ class Settling:
 def _third_difference(x: np.ndarray, before: list[np.ndarray]) -> np.ndarray:
     """``x_n - 3 x_(n-1) + 3 x_(n-2) - x_(n-3)``, ``before`` = [x_(n-3), x_(n-2), x_(n-1)]."""
     return x - 3.0 * before[2] + 3.0 * before[1] - before[0]
+
+
+def held_mean(ends: Sequence[T]) -> T:
+    """What a held contact's end multipliers (or its friction's end forces) ``ends`` say of
+    its force, the last end last, from the first held step after the onset: the last alone,
+    the mean of two, or of the last three with weights 1/4, 1/2, 1/4.  The multiplier
+    alternates about the force in the first steps after a jump (while the settling takes the
+    alternation out), and undamped where the system is not settled, with an amplitude that
+    drifts (with Newton's residual and the mechanism's configuration): a two-step mean keeps
+    half the change of one step, the three-step mean also cancels an amplitude that changes
+    linearly from step to step."""
+    if len(ends) >= 3:
+        return 0.25 * (ends[-3] + 2.0 * ends[-2] + ends[-1])
+    return 0.5 * (ends[0] + ends[1]) if len(ends) == 2 else ends[-1]
 
 
 def force_element(item: dict) -> bool:
