@@ -174,7 +174,7 @@ def zoo_row(name: str, factor: float, repeats: int, refine: float = 0.0, adaptiv
         if not stopped:  # Exudyn's Newton failed: the joint's results say where (impulse_run.check_ran)
             try:
                 impulse.joint.impacts()
-            except RuntimeError as err:
+            except (RuntimeError, ValueError) as err:  # ValueError: a solver the mode refuses (an explicit one)
                 stopped = str(err)
         reason = stopped.split(": ", 1)[-1].replace("contact_mode='impulse' ", "") or problem
         return row + ["-", steps_i, str(sum(len(c._impacts) for c in contacts)), reason, "-"]
