@@ -38,7 +38,6 @@ def angle(a: Sequence[float], b: Sequence[float]) -> float:
     return math.atan2(norm(cross(a, b)), dot(a, b))
 
 
-
 def secant_normal(held0: Sequence[float], reached0: Sequence[float], held1: Sequence[float],
                   reached1: Sequence[float]) -> V3 | None:
     """The unit normal at which a step held in a normal would reach that same normal, from
