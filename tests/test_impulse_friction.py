@@ -2,6 +2,7 @@
 at mu F_N against the slip, sticking within the friction cone, and Brach's impact law, each
 against Newton's laws for a disc-shaped journal on its bearing's wall."""
 import math
+import re
 import warnings
 
 import exudyn as exu
@@ -33,17 +34,19 @@ RADIUS = BEARING - CLEARANCE
 INERTIA = 0.5 * MASS * RADIUS**2
 
 
-def journal(*, y=-CLEARANCE, velocity=(0.0, 0.0), spin=0.0, gravity=(0.0, -G), cr=0.9, hold_spin=False):
+def journal(*, y=-CLEARANCE, velocity=(0.0, 0.0), spin=0.0, gravity=(0.0, -G), cr=0.9, hold_spin=False,
+            mass=MASS, inertia=INERTIA, offset=(0.0, 0.0), mu=MU):
     """A journal at (0, y) in a ground bearing centred at the origin (touching its bottom
-    wall at the default y), Coulomb friction MU; ``hold_spin``: its rotation held by a
-    coordinate constraint.  Returns (mbs, node, joint, energy records)."""
+    wall at the default y), Coulomb friction ``mu``; ``hold_spin``: its rotation held by a
+    coordinate constraint; its body's centre of mass ``offset`` from the journal's centre
+    (the velocities are the centre of mass's).  Returns (mbs, node, joint, energy records)."""
     mbs = exu.SystemContainer().AddSystem()
     ground = mbs.AddObject(ObjectGround())
-    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, y, 0],
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[*offset, 0], initialCoordinates=[0, y, 0],
                                        initialVelocities=[velocity[0], velocity[1], spin]))
-    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=MASS, inertia=INERTIA))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=inertia))
     mbs.AddLoad(Force(markerNumber=mbs.AddMarker(MarkerNodePosition(nodeNumber=node)),
-                      loadVector=[MASS * gravity[0], MASS * gravity[1], 0]))
+                      loadVector=[mass * gravity[0], mass * gravity[1], 0]))
     if hold_spin:
         fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
         mbs.AddObject(CoordinateConstraint(markerNumbers=[fixed, mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node,
@@ -52,7 +55,7 @@ def journal(*, y=-CLEARANCE, velocity=(0.0, 0.0), spin=0.0, gravity=(0.0, -G), c
         warnings.simplefilter("ignore")  # a 10 % clearance ratio warns: chosen here (module constants)
         joint = exuclear.CreateClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0],
                                               bearing_radius=BEARING, journal_radius=RADIUS, length=10e-3, cr=cr,
-                                              friction=f"coulomb:{MU}", contact_mode="impulse")
+                                              friction=f"coulomb:{mu}", contact_mode="impulse")
     assert isinstance(joint, ImpulseJointHandle)
     mbs.Assemble()
     energy = []
@@ -61,8 +64,8 @@ def journal(*, y=-CLEARANCE, velocity=(0.0, 0.0), spin=0.0, gravity=(0.0, -G), c
         p = mbs.GetNodeOutput(node, exu.OutputVariableType.Position)
         v = mbs.GetNodeOutput(node, exu.OutputVariableType.Velocity)
         w = mbs.GetNodeOutput(node, exu.OutputVariableType.AngularVelocity)[2]
-        energy.append(0.5 * MASS * (v[0]**2 + v[1]**2) + 0.5 * INERTIA * w * w
-                      - MASS * (gravity[0] * p[0] + gravity[1] * p[1]))
+        energy.append(0.5 * mass * (v[0]**2 + v[1]**2) + 0.5 * inertia * w * w
+                      - mass * (gravity[0] * p[0] + gravity[1] * p[1]))
         return True
 
     mbs.SetPostStepUserFunction(record)
@@ -244,6 +247,8 @@ def test_friction_never_adds_energy():
     energy = np.array(energy)
     assert np.diff(energy).max() <= 1e-12 * energy[0]
     assert energy[-1] < 0.9 * energy[0]  # and it does dissipate
+    # the disc's contact point lies on the normal through its centre of mass: no coupling
+    assert not any("Kane and Levinson" in note for note in joint.notes)
 
 
 def test_a_frictionless_joint_has_no_friction_items_or_outputs():
@@ -289,3 +294,41 @@ def test_a_swinging_bar_loses_the_friction_work_at_its_pin():
     assert lost > 0.05  # J: the friction takes a share of the swing's m g L / 2 = 4.9 J
     assert lost == pytest.approx(work, rel=0.01)
     assert np.diff(energy).max() < 1e-8
+
+
+def test_an_impact_that_adds_energy_is_told():
+    # Kane and Levinson's paradox: a 0.5 kg rod of 0.2 m (I = m l^2 / 12) carries the journal
+    # 0.1 m off its centre of mass, at 45 degrees up the rod; with cr 1 and friction it hits
+    # the bottom wall moving at (0.1, -0.3) m/s without spin, elastic (e = 1 at any velocity).
+    # At the contact point P (the journal's centre plus R n) the inverse mass in (n, t),
+    # t = n x z, is W = I/m + k k^T / I_z with k = z x (P - centre of mass): its coupling
+    # W_nt moves the slip under the normal impulse.  Brach's law: the stop u+ = (-e u_n, 0)
+    # needs p = W^-1 (-(1 + e) u_n, -u_t); along the slip (p_t u_t > 0) and within mu |p_n|,
+    # the contact sticks and the impulses' work p . (u- + u+) / 2 is a gain.  No gravity;
+    # the journal starts 1e-8 m off the wall
+    mass, length, arm, angle, mu = 0.5, 0.2, 0.1, math.radians(45.0), 0.6
+    inertia = mass * length**2 / 12
+    offset = arm * np.array([math.cos(angle), math.sin(angle)])  # centre of mass from the journal's centre
+    velocity = np.array([0.1, -0.3])
+    mbs, node, joint, energy = journal(y=-CLEARANCE + 1e-8, velocity=velocity, gravity=(0.0, 0.0), cr=1.0, mass=mass,
+                                       inertia=inertia, offset=offset, mu=mu)
+    solve(mbs, 1e-7, 1e-5)
+    [impact] = joint.impacts()
+    e = impact.restitution
+    assert e == pytest.approx(1.0, abs=1e-12)
+    n, t = np.array([0.0, -1.0]), np.array([-1.0, 0.0])
+    r = RADIUS * n - offset  # the contact point from the centre of mass
+    k = np.array([-r[1], r[0]])
+    basis = np.array([n, t])
+    w = np.eye(2) / mass + np.outer(basis @ k, basis @ k) / inertia
+    u = basis @ velocity  # (u_n, u_t) before: the body does not spin
+    p = np.linalg.solve(w, [-(1.0 + e) * u[0], -u[1]])
+    assert p[0] < 0.0 and p[1] * u[1] > 0.0 and abs(p[1]) <= mu * abs(p[0])  # a stop along the slip, in the cone
+    gain = 0.5 * (p[0] * (1.0 - e) * u[0] + p[1] * u[1])
+    [note] = [note for note in joint.notes if "Kane and Levinson" in note]
+    assert note.startswith("1 impacts added energy") and "contact_mode='compliant'" in note
+    told = float(re.search(r"up to (\S+) J", note).group(1))
+    # bounds: the note's 3 digits; the body's own energy gain, measured 2e-5 off the closed
+    # form (the impact's normal is where the step met the wall, turned by the journal's travel)
+    assert told == pytest.approx(gain, rel=5e-3)
+    assert energy[-1] - 0.5 * mass * velocity @ velocity == pytest.approx(gain, rel=1e-3)

@@ -297,7 +297,8 @@ class ImpulseJointHandle:
         reaction = held_mean(ends) if self._state == REST else force
         self._force, self._force_before = force, self._force
         self._records.append((t_end, *e, gap, reaction if self._state == REST else 0.0))
-        self._friction.accept(mbs, t_end, self._state == REST)
+        jump = self._state == IMPACT or (self._state == REST and self._resting == 0)  # an impact or a rest's onset
+        self._friction.accept(mbs, t_end, self._state == REST, (self._condition, force, h) if jump else None)
         self._settle(mbs)
         if self._state == IMPACT:
             self._release(mbs, FREE)

@@ -48,7 +48,12 @@ it where ``constrainAxial`` holds the axis; for an end face the journal's spin a
   restitution with Coulomb's bound on the tangential impulse, the algebraic impact law of
   R. M. Brach, "Rigid body collisions", J. Appl. Mech. 56 (1989) 133-138, and the impulse law
   of Moreau-Jean time stepping (Acary and Brogliato, *Numerical Methods for Nonsmooth
-  Dynamical Systems*, 2008, section 10.1).
+  Dynamical Systems*, 2008, section 10.1).  Where the contact point's normal and tangential
+  inverse masses are coupled (its arm to the centre of mass off the normal), stopping the
+  slip can need a tangential impulse along it, which does positive work: with a restitution
+  near 1 the impact adds energy (T. R. Kane and D. A. Levinson, *Dynamics: Theory and
+  Applications*, 1985; Kane's paradox).  The work of the contact's impulses over each impact
+  step is computed and a gain told in the notes (:meth:`ContactFriction.accept`).
 
 The friction coefficient is the joint's law's: ``mu(v_T)`` at the step's end slip while
 sliding (at least at the law's smoothing speed, below which the law's regularisation would
@@ -69,6 +74,7 @@ from ..friction import FrictionLaw
 from ..joint import ClearanceJoint
 from .condition import VelocityCondition
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, contact_arms
+from .impulse_run import gains_note
 from .settling import held_mean, settling_of
 from .steering import explicit_solver
 
@@ -130,6 +136,7 @@ class ContactFriction:
         self._tangents = np.zeros((len(self.conditions), 3))  # the rows' tangents (global, unit)
         self._arms = (np.zeros(3), np.zeros(3))  # marker 0's and marker 1's to the contact points (global)
         self._stick_mu = abs(self._law.coefficient(self._law.smoothing_speed))
+        self.tell_gains = True  # the notes tell this contact's energy gains (a joint of several: its own, together)
         self._reset()
 
     def _reset(self) -> None:
@@ -153,6 +160,7 @@ class ContactFriction:
         self._off_by = 0.0  # the largest mismatch of an accepted sliding load, in shares of mu F_N
         self._reversed = 0  # accepted sliding steps whose slip reversed, with no computation left to stick
         self._records: list[tuple[float, float, float, float]] = []  # t, slip, friction force, sticking
+        self.jumps: list[tuple[float, float, float]] = []  # of impact steps: t, work [J], its terms' sizes
 
     # -- the mode's hooks ---------------------------------------------------------------
     @property
@@ -278,11 +286,16 @@ class ContactFriction:
         self._apply(mbs, SLIDE)
         return True
 
-    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool) -> None:
+    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool,
+               jump: tuple[VelocityCondition, float, float] | None = None) -> None:
         """An accepted step that ended at ``t_end``: its record (``held``: a resting step; an
         impact's friction is an impulse, recorded as 0 as its normal force is), its end
-        forces as the next step's start, and the next hold starts a new step."""
+        forces as the next step's start, and the next hold starts a new step.  ``jump``: an
+        impact step or a held contact's onset, (its normal condition, that condition's end
+        multiplier, the step [s]), whose impulses' work is checked (:meth:`_jump_work`)."""
         self._fresh = True
+        if jump is not None and self._state != OFF:
+            self.jumps.append((t_end, *self._jump_work(mbs, *jump)))
         if self._state == OFF:
             self._records.append((t_end, 0.0, 0.0, 0.0))
             return
@@ -310,12 +323,13 @@ class ContactFriction:
         return {"_state": self._state, "_force": self._force, "_direction": self._direction,
                 "_tangents": self._tangents, "_arms": self._arms, "rows": [c.rows for c in self.conditions],
                 "_normal0": self._normal0, "_friction0": self._friction0, "_ends": self._ends,
-                "records": len(self._records)}
+                "records": len(self._records), "jumps": len(self.jumps)}
 
     def restore(self, mbs: exu.MainSystem | None, saved: dict[str, Any]) -> None:
         """The setting of :meth:`snapshot` back, applied for Exudyn's computation of the step."""
         saved = dict(saved)
         del self._records[saved.pop("records"):]
+        del self.jumps[saved.pop("jumps"):]
         for condition, rows in zip(self.conditions, saved.pop("rows")):
             condition.rows = rows
         state = saved.pop("_state")
@@ -351,8 +365,9 @@ class ContactFriction:
 
     @property
     def notes(self) -> list[str]:
-        """Where Exudyn's discontinuous iterations ran out before Coulomb's law was met: a
-        sliding load off ``mu F_N``, or a slip that reversed under its load."""
+        """Where Exudyn's discontinuous iterations ran out before Coulomb's law was met (a
+        sliding load off ``mu F_N``, or a slip that reversed under its load), and impacts
+        whose impulses added energy (Kane and Levinson's paradox)."""
         notes = []
         if self._off_by > 0.0:
             notes.append(f"the sliding friction of some steps was up to {self._off_by:.3g} of mu F_N off Coulomb's")
@@ -362,9 +377,26 @@ class ContactFriction:
         if notes:
             notes[-1] += ("; Exudyn's discontinuous iterations ran out first: raise "
                           "timeIntegration.discontinuous.maxIterations")
-        return notes
+        return notes + (gains_note(self.jumps) if self.tell_gains else [])
 
     # -- inside -------------------------------------------------------------------------
+    def _jump_work(self, mbs: exu.MainSystem, normal: VelocityCondition, normal_force: float,
+                   h: float) -> tuple[float, float]:
+        """The work [J] of the contact's impulses over an impact step of length ``h``, and the
+        sum of its terms' sizes: for each row (the ``normal`` condition's, the tangents')
+        ``P (v_0 + v_1) / 2``, exact for an impulsive jump (``dT = dv^T M (v_0 + v_1) / 2`` with
+        ``M dv = J^T P``), the rates ``v`` at the step's start and end.  ``P`` is the impulse on
+        the inner body's rates, ``-(h/2)`` times the end force on the outer body (the
+        trapezoidal rule from the start's free flight): the normal multiplier
+        ``normal_force``, the sticking multipliers or the sliding load."""
+        data = mbs.systemData
+        rates = [np.asarray(data.GetODE2Coordinates_t(configuration=c), dtype=float)
+                 for c in (exu.ConfigurationType.StartOfStep, exu.ConfigurationType.Current)]
+        force = self._sticking_force(mbs) if self._state == STICK else self._force * self._direction
+        impulses = -0.5 * h * np.concatenate(([normal_force], force))
+        start, end = (np.concatenate(([normal.rate(x)], self._rates(x))) for x in rates)
+        return 0.5 * float(impulses @ (start + end)), 0.5 * float(np.abs(impulses) @ (np.abs(start) + np.abs(end)))
+
     def _rates(self, x: np.ndarray) -> np.ndarray:
         """The slip for the system's coordinate rates ``x``, through the rows (components)."""
         return np.array([c.rate(x) for c in self.conditions])
@@ -498,7 +530,9 @@ class Frictionless:
     """The hooks of :class:`ContactFriction` for a frictionless joint: nothing to do."""
 
     notes: list[str] = []
+    jumps: list[tuple[float, float, float]] = []
     acting = False
+    tell_gains = False
 
     def reset(self, mbs: exu.MainSystem) -> bool:
         return False
@@ -518,7 +552,7 @@ class Frictionless:
     def check(self, mbs: exu.MainSystem, normal_force: float, left: int) -> bool:
         return False
 
-    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool) -> None:
+    def accept(self, mbs: exu.MainSystem, t_end: float, held: bool, jump: Any = None) -> None:
         pass
 
     def snapshot(self) -> dict[str, Any]:

@@ -33,6 +33,7 @@ from .condition import MarkerState, VelocityCondition, request_jacobian
 from .impulse import CROSSING, ClosedFormImpact, ImpulseJointHandle
 from .impulse_friction import tangents
 from .impulse_pairs import ContactPair, Eccentricity, FacePair, SlicePair, contact_arms
+from .impulse_run import gains_note
 from .settling import solve_of
 from .state import start_of_step
 
@@ -406,6 +407,7 @@ class ImpulsePairsHandle:
         for pair_name, pair in pairs:
             self.pairs[pair_name] = _GroupPair(mbs, joint, f"{name or '(unnamed)'}: {pair_name}", self.markerNumbers,
                                                pair, contacts=contacts)
+            self.pairs[pair_name]._friction.tell_gains = False  # told for the pairs together (notes)
         self.objectNumbers = [p.objectNumber for p in self.pairs.values()]
         self.carrierNumbers = [p.carrierNumber for p in self.pairs.values()]
 
@@ -437,8 +439,10 @@ class ImpulsePairsHandle:
     @property
     def notes(self) -> list[str]:
         """The pairs' notes (:attr:`~exuclear.engine.impulse.ImpulseJointHandle.notes`), each
-        headed by its pair's name."""
-        return [f"{name}: {note}" for name, pair in self.pairs.items() for note in pair.notes]
+        headed by its pair's name, and the impacts whose impulses added energy, the pairs' together."""
+        own = [f"{name}: {note}" for name, pair in self.pairs.items() for note in pair.notes]
+        # the energy the contacts' impulses added in a step, summed over them (impulse_run.gains_note)
+        return own + gains_note([jump for pair in self.pairs.values() for jump in pair._friction.jumps])
 
 
 def add_impulse_slices(mbs: exu.MainSystem, joint: ClearanceJoint, name: str, markers: Sequence[Any],

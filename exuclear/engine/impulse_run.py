@@ -1,6 +1,6 @@
 """What the impulse contact mode (:mod:`~exuclear.engine.impulse`) needs of a run, checked
-at its start, and what a run leaves: the check that its decisions ran to the run's end, and
-its impacts in closed form."""
+at its start, and what a run leaves: the check that its decisions ran to the run's end,
+its impacts in closed form, and the note on impacts whose impulses added energy."""
 from __future__ import annotations
 
 import math
@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import exudyn as exu
+import numpy as np
 
 from ..contact.law import ContactLaw
 from ..timescales import closed_form_impact
@@ -17,6 +18,11 @@ from .steering import explicit_solver
 #: a velocity jump is exact).  Exudyn keeps the radius to round-off; the tolerance only
 #: absorbs that.
 SPECTRAL_RADIUS_TOLERANCE = 1e-12
+#: An impact step whose impulses' work is more than this share of the sum of its terms'
+#: sizes (``|P| (|v_before| + |v_after|) / 2`` of each row) added energy: below it the work
+#: is round-off of the multipliers and rates (Exudyn's Newton iteration leaves them some
+#: 1e-10 off), about a frictionless elastic jump's, whose exact work is 0.
+GAIN_TOLERANCE = 1e-9
 
 
 def run_settings(mbs: exu.MainSystem) -> tuple[int, float]:
@@ -101,3 +107,19 @@ def closed_form_impacts(law: ContactLaw, records: Sequence[tuple[float, float, f
         peak, duration, depth = closed_form_impact(law, mass, v) if mass > 0.0 and v > 0.0 else (math.nan,) * 3
         out.append(ClosedFormImpact(t, v, peak, duration, depth, restitution, mass))
     return out
+
+
+def gains_note(jumps: Sequence[tuple[float, float, float]]) -> list[str]:
+    """The note on the impact steps ``jumps`` (time, work of the impulses [J], the sum of its
+    terms' sizes; a joint's contacts' together, summed per step) whose impulses added energy:
+    how many, the largest gain and its time (none: no note)."""
+    steps: dict[float, np.ndarray] = {}
+    for t, work, size in jumps:
+        steps[t] = steps.get(t, np.zeros(2)) + (work, size)
+    gains = [(t, work) for t, (work, size) in steps.items() if work > GAIN_TOLERANCE * size]
+    if not gains:
+        return []
+    t, gain = max(gains, key=lambda g: g[1])
+    return [f"{len(gains)} impacts added energy, up to {gain:.3g} J (at t = {t:.6g} s): Newton's restitution with "
+            "Coulomb's bound stopped a slip coupled to the normal by a friction impulse along it (Kane and "
+            "Levinson's paradox); contact_mode='compliant' integrates the pulse and dissipates"]
