@@ -2,17 +2,23 @@
 one tangent (exuclear.engine.impulse_friction): a planar slider's corners, a pin in its slot,
 the spatial revolute joint's slices; each against Newton's laws (sliding at mu F_N against the
 slip, sticking within the friction cone, Brach's impact law), on the scenes of
-validation/cost/_friction_scenes.py."""
+validation/cost/_friction_scenes.py; and an impact whose friction adds energy (Kane and
+Levinson's paradox) on a tilted bar in its guide."""
 import math
+import re
 
+import exudyn as exu
 import numpy as np
 import pytest
+from exudyn.itemInterface import NodeRigidBody2D, ObjectGround, ObjectRigidBody2D
 
+import exuclear
 from exuclear.engine.impulse_friction import LOAD_TOLERANCE
+from exuclear.engine.impulse_guide import ImpulseGuideHandle
 from exuclear.timescales import impact_restitution
 from validation.cost import _friction_scenes as scenes
 from validation.cost import _joint_type_scenes as pins
-from validation.cost._translational_scenes import CLEARANCE, MASS, SIDE
+from validation.cost._translational_scenes import CLEARANCE, LAW, MASS, SIDE
 
 G, MU = scenes.G, scenes.MU
 
@@ -203,3 +209,79 @@ def test_a_spinning_journal_sliding_along_its_axis_slows_as_coulombs_law_says():
     assert np.all(np.abs(run.states[:, 6] - reference[0]) <= 0.03 * MU * G * t + 1e-12)
     assert np.all(scenes.journals.JOURNAL * np.abs(run.states[:, 9] - reference[1]) <= 0.06 * MU * G * t + 1e-12)
     assert run.states[-1, 0] == pytest.approx(0.05)  # to the end, no stop
+
+
+#: The tilted bar's mass [kg], length and height [m], and its turn [rad] (the rear-lower
+#: corner the lowest, 40 um below the front-lower one; the upper ones 0.16 mm and more below their wall).
+BAR, TILT = (1.0, 0.2, 0.04), 2e-4
+
+
+def bar_inertia() -> float:
+    return BAR[0] * (BAR[1] ** 2 + BAR[2] ** 2) / 12.0
+
+
+def _tilted_bar(vx: float) -> tuple[ImpulseGuideHandle, np.ndarray, np.ndarray]:
+    """No gravity: a planar slider of 1 kg, 0.2 m by 0.04 m (I = m (L^2 + H^2) / 12), cr 1,
+    ``coulomb:0.6``, turned by TILT so that its rear-lower corner is 1e-8 m above the lower
+    wall (the other corners far from theirs), moving at (``vx``, -0.3) m/s without spin;
+    1e-5 s at steps of 1e-7 s: that corner's one impact.  Returns the joint, the corner
+    from the centre of mass at the start (the lever of its impulses) and the states."""
+    half_length, half_height = 0.5 * BAR[1], 0.5 * BAR[2]
+    lever = np.array([[math.cos(TILT), -math.sin(TILT)], [math.sin(TILT), math.cos(TILT)]]) @ [-half_length,
+                                                                                               -half_height]
+    y0 = -(half_height + CLEARANCE) - lever[1] + 1e-8
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0, 0, 0], initialCoordinates=[0, y0, TILT],
+                                       initialVelocities=[vx, -0.3, 0.0]))
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=BAR[0], inertia=bar_inertia()))
+    joint = exuclear.CreatePrismaticClearanceJoint(mbs, itemNumbers=[ground, body], position=[0, 0, 0],
+                                                   slider_length=BAR[1], slider_height=BAR[2], clearance=CLEARANCE,
+                                                   contact_mode="impulse", friction="coulomb:0.6",
+                                                   **{**LAW, "cr": 1.0})
+    assert isinstance(joint, ImpulseGuideHandle)
+    mbs.Assemble()
+    states = scenes._recorded(mbs, node, planar=True)
+    pins.solve(mbs, 1e-7, 1e-5)
+    return joint, lever, np.array(states)
+
+
+@pytest.mark.parametrize("vx", [0.05, 0.0])
+def test_a_tilted_bar_whose_corner_stops_its_slip_along_it_gains_energy_and_is_told(vx):
+    # Kane and Levinson's paradox on a joint of several contacts (the guide's corners, their
+    # impulses' work summed per step): the rear-lower corner strikes alone.  At the corner,
+    # r from the centre of mass, the inverse mass in (n, t) (n = (0, -1) into the wall,
+    # t = n x z) is W = I/m + k k^T / I_z with k = z x r; its coupling W_nt = -r_x r_y / I_z
+    # (0.1 m by 0.02 m of lever) moves the slip under the normal impulse.  Brach's law with
+    # e = 1: the stop u+ = (-u_n, 0) needs p = W^-1 (-2 u_n, -u_t).  Slipping at 0.05 m/s the
+    # stop is along the slip (p_t u_t > 0), at 0.24 of p_n, inside mu = 0.6: the impact adds
+    # p_t u_t / 2.  Not slipping (vx 0) the stop holds the slip at 0 (p_t at 0.52 of p_n, in
+    # the cone), and the work p_t (0 + 0) / 2 + p_n (u_n - u_n) / 2 is 0: no note
+    joint, lever, states = _tilted_bar(vx)
+    impacts = joint.impacts()
+    assert [i.pair for i in impacts] == ["corner rear-lower / lower wall"] and impacts[0].restitution == 1.0
+    n, t = np.array([0.0, -1.0]), np.array([-1.0, 0.0])
+    basis = np.array([n, t])
+    k = basis @ [-lever[1], lever[0]]
+    w = np.eye(2) / BAR[0] + np.outer(k, k) / bar_inertia()
+    u = basis @ [vx, -0.3]  # (u_n, u_t) before: the bar does not spin
+    p = np.linalg.solve(w, [-2.0 * u[0], -u[1]])
+    assert p[0] < 0.0 and abs(p[1]) <= 0.6 * abs(p[0])  # the stop is inside the cone: the corner sticks
+    gain = 0.5 * p[1] * u[1]
+    vx1, vy1, spin = states[-1, 4:7]
+    energy = 0.5 * BAR[0] * (vx1**2 + vy1**2) + 0.5 * bar_inertia() * spin**2 - 0.5 * BAR[0] * (vx**2 + 0.3**2)
+    told = [note for note in joint.notes if "Kane and Levinson" in note]
+    if vx == 0.0:
+        assert not told
+        # bound: the exact work is 0; Newton's tolerance on the jump's rates (1e-9 of 0.3 m/s)
+        # times the impulse, as the mode's round-off bound on a step's work
+        assert abs(energy) < 1e-9 * abs(p[0]) * 0.3
+        return
+    assert p[1] * u[1] > 0.0  # along the slip: a gain
+    [note] = told
+    assert note.startswith("1 impacts added energy") and "contact_mode='compliant'" in note
+    # bounds: the note's 3 digits; the bar's own gain to Newton's tolerance on the jump's
+    # rates (1e-9; the wall's normal is fixed and the bar hits without spin, so the lever is
+    # the start's)
+    assert float(re.search(r"up to (\S+) J", note).group(1)) == pytest.approx(gain, rel=5e-3)
+    assert energy == pytest.approx(gain, rel=1e-9)
