@@ -83,6 +83,11 @@ SHARE = 1.0 / 28.0
 #: oscillation of 3 to 12 steps a period by at most 0.44 % a step (:data:`SHARE`: 6.3 %) and
 #: damps a velocity alternation by 1.8 % a step (module docstring).
 HELD_SHARE = SHARE / 16.0
+#: The shares of the third difference taken off the velocities (first row) and the
+#: accelerations (second) of a step's end state, within :data:`SETTLING_STEPS` of the last
+#: jump and after.
+_SHARES = np.array([[SHARE], [SHARE]])
+_HELD_SHARES = np.array([[HELD_SHARE], [SHARE]])
 #: Exudyn's rigid bodies (``objectType``): a system whose bodies are all of these is settled.
 RIGID_BODIES = frozenset({"RigidBody", "RigidBody2D", "MassPoint", "MassPoint2D", "Mass1D", "RotationalMass1D",
                           "KinematicTree"})
@@ -103,8 +108,7 @@ class _End(NamedTuple):
     """The state a step ended at, as the next step starts from it."""
 
     solve: tuple[float, float, int]  # the step's end [s], its length [s], Exudyn's discontinuous iteration
-    velocities: np.ndarray
-    accelerations: np.ndarray
+    state: np.ndarray  # two rows: the velocities and the accelerations (one filter acts on both at once)
 
 
 class Settling:
@@ -143,7 +147,7 @@ class Settling:
         if self._settled is not None and self._settled[0] == solve:
             # another contact settled this solve first: its jump's velocities back
             data.SetODE2Coordinates_t(self._settled[1])
-        self._ends = [_End(solve, np.array(data.GetODE2Coordinates_t()), np.array(data.GetODE2Coordinates_tt()))]
+        self._ends = [_End(solve, np.array((data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt())))]
         self._count = 0
 
     def reopen(self) -> None:
@@ -160,24 +164,27 @@ class Settling:
         if not self.active or (not held and self._count >= SETTLING_STEPS):
             return
         solve = solve_of(mbs)
-        if self._ends and self._ends[-1].solve == solve:
-            return
-        self._drop_from(solve[0])
-        data = mbs.systemData
-        v, a = np.array(data.GetODE2Coordinates_t()), np.array(data.GetODE2Coordinates_tt())
-        self._settled = (solve, v)
         ends = self._ends
+        if ends and ends[-1].solve == solve:
+            return
+        if ends and ends[-1].solve[0] >= solve[0] - SAME_END * max(1.0, abs(solve[0])):
+            self._drop_from(solve[0])
+            ends = self._ends
+        data = mbs.systemData
+        y = np.array((data.GetODE2Coordinates_t(), data.GetODE2Coordinates_tt()))
+        self._settled = (solve, y[0])
         if len(ends) == 1:
-            a = 0.5 * (a + ends[-1].accelerations)
-            data.SetODE2Coordinates_tt(a)
+            y[1] = 0.5 * (y[1] + ends[-1].state[1])
+            data.SetODE2Coordinates_tt(y[1])
         elif len(ends) >= 3:
-            a = a - SHARE * _third_difference(a, [e.accelerations for e in ends[-3:]])
-            data.SetODE2Coordinates_tt(a)
-            # a jump's velocities across the joints, then what each held step adds (module docstring)
-            share = SHARE if self._count < SETTLING_STEPS else HELD_SHARE
-            v = v - share * _third_difference(v, [e.velocities for e in ends[-3:]])
-            data.SetODE2Coordinates_t(v)
-        self._ends = [*ends[-2:], _End(solve, v, a)]
+            # the accelerations less SHARE times their third difference, the velocities less
+            # SHARE or HELD_SHARE times theirs (a jump's velocities across the joints, then what
+            # each held step adds: module docstring)
+            shares = _SHARES if self._count < SETTLING_STEPS else _HELD_SHARES
+            y = y - shares * _third_difference(y, [e.state for e in ends[-3:]])
+            data.SetODE2Coordinates_t(y[0])
+            data.SetODE2Coordinates_tt(y[1])
+        self._ends = [*ends[-2:], _End(solve, y)]
         self._count += 1
 
     def _drop_from(self, end: float) -> None:
