@@ -12,16 +12,36 @@ take them on a quiet machine.  ``--calls N``: per model, the ``N`` functions wit
 time of their own, with their calls per accepted step (deterministic, unlike the times:
 comparable on a busy machine).
 
+``--budget R``: without the profiler, the median of ``R`` runs of each model three ways, all
+at spectral radius 1: the ideal model; the ideal model with one post-Newton function that
+decides nothing (a connector of the impulse mode's carrier type whose function returns at
+once: the floor any decision in Python after each Newton solve pays, Exudyn's call into
+Python); and the impulse mode, its post-Newton functions timed from Python (wall clock
+around each call), the rest its Exudyn solve with the mode's items.  Each over the ideal
+model's wall time, and the decisions per accepted step [us] next to the ideal model's
+whole step [us].  One run in the mode before, not timed: a process's first run in the
+mode imports modules.
+
 ::
 
-    python -m validation.cost modes_profile [--models a,b] [--calls N]
+    python -m validation.cost modes_profile [--models a,b] [--calls N] [--budget R]
 """
 from __future__ import annotations
 
 import argparse
 import cProfile
 import pstats
+import statistics
+import time
 import warnings
+from typing import Any
+
+from exudyn.itemInterface import (
+    MarkerBodyRigid,
+    NodeGenericData,
+    ObjectConnectorRigidBodySpringDamper,
+    ObjectGround,
+)
 
 from validation._tables import markdown_table
 from validation.cost.modes import _build, _run
@@ -70,6 +90,70 @@ def calls_rows(stats: dict, steps: str, count: int) -> list[list[str]]:
             for (path, line, function), v in top]
 
 
+def _decide_nothing(mbs: Any, t: float, item: int, data: Any, *frame: Any) -> list:
+    """A post-Newton function that accepts every Newton solve at once."""
+    return [0.0, -1.0, *data]
+
+
+def _add_empty_carrier(mbs: Any) -> None:
+    """A connector without force between two ground markers whose post-Newton function
+    decides nothing (the impulse mode's carrier, :mod:`exuclear.engine.impulse`, without
+    the mode)."""
+    ground = mbs.AddObject(ObjectGround())
+    ends = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground)) for _ in range(2)]
+    mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
+        markerNumbers=ends, nodeNumber=mbs.AddNode(NodeGenericData(initialCoordinates=[0.0], numberOfDataCoordinates=1)),
+        postNewtonStepUserFunction=_decide_nothing))
+    mbs.Assemble()
+
+
+def _timed_decisions(mbs: Any) -> list[float]:
+    """Every Python post-Newton function of ``mbs`` wrapped to add its wall time [s] to the
+    one-element list returned."""
+    spent = [0.0]
+
+    def timed(function: Any) -> Any:
+        def call(*args: Any) -> list:
+            start = time.perf_counter()
+            try:
+                return function(*args)
+            finally:
+                spent[0] += time.perf_counter() - start
+        return call
+
+    for item in range(mbs.systemData.NumberOfObjects()):
+        function = mbs.GetObject(item).get("postNewtonStepUserFunction", 0)
+        if isinstance(function, dict) and function.get("type") == "Python":
+            mbs.SetObjectParameter(item, "postNewtonStepUserFunction", timed(function["function"]))
+    return spent
+
+
+def budget_row(name: str, repeats: int) -> list[str]:
+    """One model's budget (module docstring): the ideal model's wall [s] and step [us], the
+    empty decision's and the impulse mode's wall over it, the mode's decisions and the rest
+    over it, the decisions per accepted step [us]."""
+    walls: dict[str, list[float]] = {"ideal": [], "empty": [], "impulse": [], "decisions": []}
+    steps = {}
+    _run(_build(name, True, "impulse"), 1.0)  # not timed: the imports of a process's first run in the mode
+    for _ in range(repeats):
+        for way in ("ideal", "empty", "impulse"):
+            model = _build(name, way == "impulse", "impulse" if way == "impulse" else None)
+            if way == "empty":
+                _add_empty_carrier(model.mbs)
+            spent = _timed_decisions(model.mbs) if way == "impulse" else [0.0]
+            wall, steps[way], ok, problem = _run(model, 1.0)
+            if not ok:
+                return [name, f"{way} stopped: {problem[:60]}"] + ["-"] * 6
+            walls[way].append(wall)
+            if way == "impulse":
+                walls["decisions"].append(spent[0])
+    ideal, empty, impulse, decisions = (statistics.median(walls[k]) for k in ("ideal", "empty", "impulse", "decisions"))
+    accepted = {way: max(int(s.split("/")[0]), 1) for way, s in steps.items()}
+    return [name, f"{ideal:.3g} ({1e6 * ideal / accepted['ideal']:.0f})", f"{empty / ideal:.2f}x",
+            f"{impulse / ideal:.2f}x", f"{decisions / ideal:.2f}x", f"{(impulse - decisions) / ideal:.2f}x",
+            steps["impulse"], f"{1e6 * decisions / accepted['impulse']:.0f}"]
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(prog="python -m validation.cost modes_profile",
                                  description=__doc__.split("\n\n")[0])
@@ -77,10 +161,21 @@ def main(argv: list[str] | None = None) -> None:
                     help="zoo models, comma-separated (default: %(default)s)")
     ap.add_argument("--calls", type=int, default=0,
                     help="also list each model's N functions with the most time of their own (default: none)")
+    ap.add_argument("--budget", type=int, default=0, metavar="R",
+                    help="instead of the profile, the unprofiled budget over the ideal model, median of R runs "
+                         "(module docstring; default: no budget)")
     args = ap.parse_args(argv)
     if args.calls < 0:
         ap.error(f"--calls must be at least 0, got {args.calls}")
+    if args.budget < 0:
+        ap.error(f"--budget must be at least 0, got {args.budget}")
     load_models(None)
+    if args.budget:
+        rows = [budget_row(name, args.budget) for name in args.models.split(",") if name]
+        print(markdown_table(["model", "ideal [s] (per step [us])", "empty decision / ideal", "impulse / ideal",
+                              "decisions / ideal", "the rest / ideal", "impulse steps / Newton",
+                              "decisions per step [us]"], rows))
+        return
     rows = []
     for name in (n for n in args.models.split(",") if n):
         wall, steps, ok, problem, stats = _profile(name)
