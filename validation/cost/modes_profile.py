@@ -16,7 +16,9 @@ comparable on a busy machine).
 at spectral radius 1: the ideal model; the ideal model with one post-Newton function that
 decides nothing (a connector of the impulse mode's carrier type whose function returns at
 once: the floor any decision in Python after each Newton solve pays, Exudyn's call into
-Python); and the impulse mode, its post-Newton functions timed from Python (wall clock
+Python); the same function after the reads and writes through Exudyn's Python interface a
+natively held step of the mode makes (the floor of the mode's steadiest step in Python);
+and the impulse mode, its post-Newton functions timed from Python (wall clock
 around each call), the rest its Exudyn solve with the mode's items.  Each over the ideal
 model's wall time, and the decisions per accepted step [us] next to the ideal model's
 whole step [us].  One run in the mode before, not timed: a process's first run in the
@@ -36,6 +38,8 @@ import time
 import warnings
 from typing import Any
 
+import exudyn as exu
+import numpy as np
 from exudyn.itemInterface import (
     MarkerBodyRigid,
     NodeGenericData,
@@ -95,15 +99,39 @@ def _decide_nothing(mbs: Any, t: float, item: int, data: Any, *frame: Any) -> li
     return [0.0, -1.0, *data]
 
 
-def _add_empty_carrier(mbs: Any) -> None:
-    """A connector without force between two ground markers whose post-Newton function
-    decides nothing (the impulse mode's carrier, :mod:`exuclear.engine.impulse`, without
-    the mode)."""
+def _exchange(markers: list[int], carrier: int) -> Any:
+    """A post-Newton function that accepts every Newton solve after the reads and writes
+    through Exudyn's Python interface that the impulse mode's natively held step makes
+    (:mod:`exuclear.engine.impulse_hold`, :mod:`exuclear.engine.settling`): the step, two
+    marker positions and a rotation matrix, a multiplier, the velocities and accelerations
+    read and written (back unchanged) and one parameter written (unchanged)."""
+    ov = exu.OutputVariableType
+
+    def exchange(mbs: Any, t: float, item: int, data: Any, *frame: Any) -> list:
+        step = mbs.sys["dynamicSolver"].it.currentStepSize, mbs.systemData.GetTime()
+        poses = [mbs.GetMarkerOutput(m, ov.Position) for m in markers], mbs.GetMarkerOutput(markers[0], ov.RotationMatrix)
+        mbs.GetObjectOutput(carrier, ov.ForceLocal)
+        state = mbs.systemData
+        velocities, accelerations = np.array(state.GetODE2Coordinates_t()), np.array(state.GetODE2Coordinates_tt())
+        state.SetODE2Coordinates_t(velocities)
+        state.SetODE2Coordinates_tt(accelerations)
+        mbs.SetObjectParameter(carrier, "activeConnector", True)
+        del step, poses
+        return [0.0, -1.0, *data]
+    return exchange
+
+
+def _add_carrier(mbs: Any, exchange: bool) -> None:
+    """A connector without force between two ground markers (the impulse mode's carrier,
+    :mod:`exuclear.engine.impulse`, without the mode) whose post-Newton function decides
+    nothing, after the mode's reads and writes where ``exchange`` (:func:`_exchange`)."""
     ground = mbs.AddObject(ObjectGround())
     ends = [mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground)) for _ in range(2)]
-    mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
+    carrier = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
         markerNumbers=ends, nodeNumber=mbs.AddNode(NodeGenericData(initialCoordinates=[0.0], numberOfDataCoordinates=1)),
         postNewtonStepUserFunction=_decide_nothing))
+    if exchange:
+        mbs.SetObjectParameter(carrier, "postNewtonStepUserFunction", _exchange(ends, carrier))
     mbs.Assemble()
 
 
@@ -130,26 +158,26 @@ def _timed_decisions(mbs: Any) -> list[float]:
 
 def budget_row(name: str, repeats: int) -> list[str]:
     """One model's budget (module docstring): the ideal model's wall [s] and step [us], the
-    empty decision's and the impulse mode's wall over it, the mode's decisions and the rest
+    empty decision's, the hold's exchange's and the impulse mode's wall over it, the mode's decisions and the rest
     over it, the decisions per accepted step [us]."""
-    walls: dict[str, list[float]] = {"ideal": [], "empty": [], "impulse": [], "decisions": []}
+    walls: dict[str, list[float]] = {"ideal": [], "empty": [], "exchange": [], "impulse": [], "decisions": []}
     steps = {}
     _run(_build(name, True, "impulse"), 1.0)  # not timed: the imports of a process's first run in the mode
     for _ in range(repeats):
-        for way in ("ideal", "empty", "impulse"):
+        for way in ("ideal", "empty", "exchange", "impulse"):
             model = _build(name, way == "impulse", "impulse" if way == "impulse" else None)
-            if way == "empty":
-                _add_empty_carrier(model.mbs)
+            if way in ("empty", "exchange"):
+                _add_carrier(model.mbs, way == "exchange")
             spent = _timed_decisions(model.mbs) if way == "impulse" else [0.0]
             wall, steps[way], ok, problem = _run(model, 1.0)
             if not ok:
-                return [name, f"{way} stopped: {problem[:60]}"] + ["-"] * 6
+                return [name, f"{way} stopped: {problem[:60]}"] + ["-"] * 7
             walls[way].append(wall)
             if way == "impulse":
                 walls["decisions"].append(spent[0])
-    ideal, empty, impulse, decisions = (statistics.median(walls[k]) for k in ("ideal", "empty", "impulse", "decisions"))
+    ideal, empty, exchange, impulse, decisions = (statistics.median(walls[k]) for k in walls)
     accepted = {way: max(int(s.split("/")[0]), 1) for way, s in steps.items()}
-    return [name, f"{ideal:.3g} ({1e6 * ideal / accepted['ideal']:.0f})", f"{empty / ideal:.2f}x",
+    return [name, f"{ideal:.3g} ({1e6 * ideal / accepted['ideal']:.0f})", f"{empty / ideal:.2f}x", f"{exchange / ideal:.2f}x",
             f"{impulse / ideal:.2f}x", f"{decisions / ideal:.2f}x", f"{(impulse - decisions) / ideal:.2f}x",
             steps["impulse"], f"{1e6 * decisions / accepted['impulse']:.0f}"]
 
@@ -172,7 +200,8 @@ def main(argv: list[str] | None = None) -> None:
     load_models(None)
     if args.budget:
         rows = [budget_row(name, args.budget) for name in args.models.split(",") if name]
-        print(markdown_table(["model", "ideal [s] (per step [us])", "empty decision / ideal", "impulse / ideal",
+        print(markdown_table(["model", "ideal [s] (per step [us])", "empty decision / ideal", "the hold's exchange / ideal",
+                              "impulse / ideal",
                               "decisions / ideal", "the rest / ideal", "impulse steps / Newton",
                               "decisions per step [us]"], rows))
         return
