@@ -12,13 +12,13 @@ take them on a quiet machine.  ``--calls N``: per model, the ``N`` functions wit
 time of their own, with their calls per accepted step (deterministic, unlike the times:
 comparable on a busy machine).
 
-``--budget R``: without the profiler, the median of ``R`` runs of each model three ways, all
+``--budget R``: without the profiler, the median of ``R`` runs of each model four ways, all
 at spectral radius 1: the ideal model; the ideal model with one post-Newton function that
 decides nothing (a connector of the impulse mode's carrier type whose function returns at
 once: the floor any decision in Python after each Newton solve pays, Exudyn's call into
-Python); the same function after the reads and writes through Exudyn's Python interface a
-natively held step of the mode makes (the floor of the mode's steadiest step in Python);
-and the impulse mode, its post-Newton functions timed from Python (wall clock
+Python); the same function after the reads and writes through Exudyn's Python interface
+that a natively held step of the mode makes (the floor of the mode's steadiest step in
+Python); and the impulse mode, its post-Newton functions timed from Python (wall clock
 around each call), the rest its Exudyn solve with the mode's items.  Each over the ideal
 model's wall time, and the decisions per accepted step [us] next to the ideal model's
 whole step [us].  One run in the mode before, not timed: a process's first run in the
