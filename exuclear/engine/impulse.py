@@ -77,7 +77,8 @@ from .condition import MarkerState, Plan, VelocityCondition
 from .impulse_friction import Frictionless, contact_friction
 from .impulse_hold import DistanceHold, distance_of, native_hold_fits
 from .impulse_pairs import ContactPair, contact_pair
-from .impulse_run import ClosedFormImpact, check_ran, closed_form_impacts, run_settings
+from .impulse_run import (ALTERNATING_STEPS, LOST_THE_CONTACT, ClosedFormImpact, check_ran, closed_form_impacts,
+                          run_settings, stopped)
 from .settling import SETTLING_STEPS, held_mean, settling_of
 from .state import moved_on, start_of_step
 
@@ -204,6 +205,7 @@ class ImpulseJointHandle:
         self._state = FREE
         self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
         self._records: list[tuple[float, ...]] = []  # t, ecc_x, ecc_y, ecc_z, gap, force
+        self._held_ends: tuple[tuple[float, float], ...] = ()  # (t, end multiplier) of the last held steps
         self._step = self._force = self._force_before = 0.0
         self._resting = 0
         self._problem = ""
@@ -283,7 +285,8 @@ class ImpulseJointHandle:
         if gap > LOST_CONTACT * clearance:
             if redo and self._shorten(mbs, h, LOST_CONTACT * clearance / gap):
                 return REDO_ERROR
-            self._stop(t_end, f"the {self._pair.body} is {gap:.3g} m into the wall, {self._too_long()}")
+            self._stop(t_end, f"the {self._pair.body} is {gap:.3g} m into the wall, more than {LOST_CONTACT:g} times the "
+                              f"clearance ({clearance:.3g} m)", LOST_THE_CONTACT)
         self._saved = self._snapshot()
         self._left_pen = max(self._left_pen, gap)
         if self._state == IMPACT:  # the impact step's impulse (the trapezoid of 0 and its multiplier): the effective mass
@@ -297,6 +300,8 @@ class ImpulseJointHandle:
         reaction = held_mean(ends) if self._state == REST else force
         self._force, self._force_before = force, self._force
         self._records.append((t_end, *e, gap, reaction if self._state == REST else 0.0))
+        if self._state == REST:  # (what a stop says: impulse_run.stopped)
+            self._held_ends = (*self._held_ends[1 - ALTERNATING_STEPS:], (t_end, force))
         jump = self._state == IMPACT or (self._state == REST and self._resting == 0)  # an impact or a rest's onset
         self._friction.accept(mbs, t_end, self._state == REST, (self._condition, force, h) if jump else None)
         self._settle(mbs)
@@ -378,8 +383,8 @@ class ImpulseJointHandle:
         if end_gap > CROSSING * self._pair.clearance:
             if self._shorten(mbs, h, self._pair.clearance / end_gap):
                 return True
-            self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter: the "
-                          f"steps are longer than the {self._pair.body}'s flight across the clearance; take shorter steps")
+            self._stop(t, f"a free step ended {end_gap:.3g} m into the wall, more than the clearance's diameter",
+                       f"the steps are longer than the {self._pair.body}'s flight across the clearance; take shorter steps")
         with start_of_step(mbs):
             # the rows at the step's start, in the normal where it met the wall (the start's
             # points elsewhere where the journal crossed the bearing's centre)
@@ -510,7 +515,7 @@ class ImpulseJointHandle:
         return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
                 "_force_before": self._force_before, "_resting": self._resting, "_left_pen": self._left_pen,
                 "_start": self._start, "records": len(self._records), "impacts": len(self._impacts),
-                "last_impact": self._impacts[-1] if self._impacts else None,
+                "last_impact": self._impacts[-1] if self._impacts else None, "_held_ends": self._held_ends,
                 "friction": self._friction.snapshot(), "native": self._native and self._native.setting()}
 
     def _restore(self, mbs: exu.MainSystem) -> tuple[Plan, bool]:
@@ -529,14 +534,9 @@ class ImpulseJointHandle:
         self.__dict__.update(saved)
         return plan, moved
 
-    def _too_long(self) -> str:
-        return (f"more than {LOST_CONTACT:g} times the clearance ({self._pair.clearance:.3g} m): the steps "
-                "are too long for the motion across the clearance, or the condition could not follow the contact; "
-                "take shorter steps")
-
-    def _stop(self, t: float, reason: str) -> None:
-        self._problem = (f"joint {self.name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: "
-                         f"{reason}; or use contact_mode='compliant'")
+    def _stop(self, t: float, reason: str, steps: str = "") -> None:
+        ends = () if settling_of(self._mbs()).active else self._held_ends  # settled, the multipliers do not alternate
+        self._problem = stopped(self.name, t, reason, steps, ends, self._nominal)
         raise ValueError(self._problem)
 
     # -- what a run leaves ----------------------------------------------------------------

@@ -23,6 +23,13 @@ SPECTRAL_RADIUS_TOLERANCE = 1e-12
 #: is round-off of the multipliers and rates (Exudyn's Newton iteration leaves them some
 #: 1e-10 off), about a frictionless elastic jump's, whose exact work is 0.
 GAIN_TOLERANCE = 1e-9
+#: What a stop for a held contact's penetration says of the steps (:func:`stopped`).
+LOST_THE_CONTACT = ("the steps are too long for the motion across the clearance, or the condition could not follow the "
+                    "contact; take shorter steps")
+#: A penetration's stop is laid to the trapezoidal rule's alternation (:func:`stopped`) where the
+#: held contact's end multipliers changed sign at each of its last this many held steps: a load
+#: that turns changes sign once, the alternation at every step.
+ALTERNATING_STEPS = 4
 
 
 def run_settings(mbs: exu.MainSystem) -> tuple[int, float]:
@@ -45,6 +52,30 @@ def run_settings(mbs: exu.MainSystem) -> tuple[int, float]:
         raise ValueError("it computes a step again where an impact begins, which needs "
                          "timeIntegration.discontinuous.maxIterations of at least 2 (Exudyn's default is 5)")
     return iterations, nominal
+
+
+def stopped(name: str, t: float, reason: str, steps: str = "", held: Sequence[tuple[float, float]] = (),
+            step: float = 0.0) -> str:
+    """The message of a run the joint ``name`` stops at ``t`` [s] for ``reason``.  A stop for a
+    penetration says ``steps``, what the steps' length did, unless the end multipliers ``held``
+    ((time [s], multiplier [N]) of the held steps, the last last; none in a system the mode
+    settles: :mod:`~exuclear.engine.settling`) changed sign at each of the last
+    :data:`ALTERNATING_STEPS`, the last of them within the run's own ``step`` [s] before the
+    stop: then the trapezoidal rule's alternation asked the contact to pull, and shorter steps
+    do not take it out."""
+    head = f"joint {name or '(unnamed)'}: contact_mode='impulse' stops the run at t = {t:.6g} s: {reason}"
+    forces = [force for _, force in held[-ALTERNATING_STEPS:]]
+    if len(forces) < ALTERNATING_STEPS or not steps or t - held[-1][0] > step or \
+            any(a * b >= 0.0 for a, b in zip(forces, forces[1:])):
+        return f"{head}{': ' + steps if steps else ''}; or use contact_mode='compliant'"
+    return (f"{head}: its held contact's multiplier changed sign at each of its last {len(forces)} held steps (between "
+            f"{min(forces):.3g} and {max(forces):.3g} N, the last at t = {held[-1][0]:.6g} s): under the trapezoidal "
+            "rule (spectral radius 1) a system the mode does not settle (a flexible body, a force element) keeps a "
+            "step-to-step alternation in every multiplier, undamped (a stiff mode with omega h >> 1 alternates of "
+            "itself, a jump's error returns at each step, a position-level prescribed coordinate whose rate jumps "
+            "alternates about that rate; an ideal joint's reaction alternates alike), here larger than the contact's "
+            "load, and a clearance joint cannot pull; shorter steps do not take it out: use contact_mode='compliant', "
+            "under numerical damping (spectral radius below 1)")
 
 
 def check_ran(mbs: exu.MainSystem | None, name: str, last: float | None,
