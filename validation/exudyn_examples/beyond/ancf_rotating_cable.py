@@ -35,7 +35,11 @@ The journal is the 1 g hub, whose contact period is microseconds, carrying a 1.5
 cable through a clamp.  At 2 s the drive's jump in rate drives the journal into its wall
 within one step: a contact the example's 2 ms step cannot resolve and the joint's
 shortest step (ten times Exudyn's minimum step) not either, which the joint's
-AccuracyWarning says.
+AccuracyWarning says.  The impulse contact mode needs the trapezoidal rule (spectral radius
+1), under which the angle's kink leaves the hub's rate alternating about pi^2 rad/s from step
+to step for good, and the pin's force changing sign each step (the ideal pin's too): a
+clearance joint cannot pull, and the mode stops the run at the strike, saying so
+(tests/test_impulse_strike.py).
 """
 from __future__ import annotations
 
