@@ -316,26 +316,26 @@ class ImpulseJointHandle:
             if (self._resting > 2 and reaction < 0.0) or gap < -OPEN_GAP * clearance:
                 self._release(mbs, FREE)
             else:
-                self._hold_on(mbs, e, gap, h, axial, force, reaction if self._resting > SETTLING_STEPS else force)
+                self._hold_on(mbs, e, gap, h, axial, force, reaction if self._resting > SETTLING_STEPS else None)
         self._start, self._step = t_end, h
         return 0.0
 
     def _hold_on(self, mbs: exu.MainSystem, e: Sequence[float], gap: float, h: float, axial: float,
-                 force: float, reaction: float) -> None:
+                 force: float, reaction: float | None) -> None:
         """The held contact for the coming step, from an accepted held step that ended at
         eccentricity ``e``, gap ``gap`` and axial offset ``axial`` with the multiplier ``force``
-        (its three-step mean ``reaction``; ``force`` in the onset's settling steps, whose
+        (its three-step mean ``reaction``; None in the onset's settling steps, whose
         multiplier settles from the onset's impulse):
         the native constraint where it takes it (:meth:`~exuclear.engine.impulse_hold.DistanceHold.takes`),
         else the velocity-level condition along the normal predicted for the step's end."""
         native = self._native
         if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force, reaction):
             if not native.active:  # from the onset step's velocity-level condition
-                native.start(mbs, distance_of(e, axial), self._condition.plan.rate)
+                native.start(mbs, distance_of(e, axial))
                 self._condition.release(mbs)
             self._held = None
             # the gap it holds (a measured one moves the distance by Newton's residual each step)
-            native.advance(mbs, self._resting_rate(native.distance - self._pair.reach), h)
+            native.advance(mbs, e, self._resting_rate(native.distance - self._pair.reach), h)
             return
         e = np.asarray(e, dtype=float)
         if settling_of(mbs).active:

@@ -17,7 +17,11 @@ The distance starts at the eccentricity the hold's onset step reached (the veloc
 condition holds the onset step, which carries the approach's impulse), not at the clearance:
 that would push out in one step the penetration the onset left.  From then on it takes back
 :data:`~exuclear.engine.impulse.RATE_GAIN` of what is left of that penetration each step, the
-velocity-level hold's share, so the journal ends on its wall.
+velocity-level hold's share, so the journal ends on its wall.  Each step's distance is set
+from the normal rate the step before ended at, measured: a normal rate the state carries
+(a step-size change, the settling's filters, a joint's curvature) is then taken out in the
+next step, as the velocity-level condition does, instead of alternating from step to step
+(docs/design/native_hold.md).
 
 The planar journal's eccentricity is in the bearing's plane and the constraint's distance is
 in 3D: the hold applies while the axial offset of the markers is below :data:`AXIAL_SHARE` of
@@ -49,14 +53,31 @@ NATIVE_PAIRS = frozenset({"PlanarPair", "BallPair"})
 AXIAL_SHARE = 1e-6
 
 
-#: A hold whose multiplier leaves its mean over the last steps by more than this share of it
-#: hands the contact to the velocity-level condition: an oscillation the trapezoidal rule
-#: keeps undamped (in the zoo's 3D four-bar, whose clearance joint closes the loop, one of
-#: five to six steps a period grew from about 1 % to more than the reaction over 400 held
-#: steps, and the contact was let go; docs/design/native_hold.md).  Settled, a sliding held
-#: journal's multiplier alternates by less than 2e-5 m g (``python -m validation.cost
-#: native_hold``).
+#: A hold whose multiplier rings, its ring (a quarter of its second difference from step to
+#: step where that changes sign: the amplitude of an alternation) growing
+#: (:data:`RING_GROWTH`) beyond this share of its three-step mean, hands the contact to the
+#: velocity-level condition: an oscillation the trapezoidal rule keeps undamped (in the zoo's
+#: 3D four-bar, whose clearance joint closes the loop, one of five to six steps a period grew
+#: from about 1 % to more than the reaction over 400 held steps, and the contact was let go;
+#: docs/design/native_hold.md).  Settled, a sliding held journal's multiplier alternates by
+#: less than 2e-5 m g (``python -m validation.cost native_hold``).
 HAND_OVER = 0.25
+#: The held steps over which the ring's size is its largest.  A journal rocking on its wall
+#: rings its multiplier without growing (the four-bar kinematic tree beyond the zoo: by up to
+#: 0.9 of a mean of 50 N from the three-step mean, some six steps a period); a window of
+#: several such periods keeps their size.
+RING_STEPS = 32
+#: The factor by which a window's largest ring exceeds the one before where the ring grows
+#: (the 3D four-bar's grew by 1.45 a window of :data:`RING_STEPS` over 400 steps).
+RING_GROWTH = 1.25
+#: The windows in a row over which a ring grows before the hold hands the contact over: the
+#: surges of a load (a journal's sliding along its wall speeding up and stopping, as the
+#: zoo's piston engine's once a turn) rang up over four windows in a row, the 3D four-bar's
+#: ring grew over twelve.
+RING_WINDOWS = 5
+#: The windows' rings before any: this window's largest, the last one's (none grows from an
+#: infinite ring), the windows in a row before this one that grew, this window's steps.
+_NO_RING = (0.0, math.inf, 0, 0)
 
 
 def native_hold_fits(mbs: exu.MainSystem, markers: Sequence[Any], pair: Any, frictionless: bool) -> bool:
@@ -84,8 +105,6 @@ class DistanceHold:
         The ``ObjectConnectorDistance``.
     distance : float
         The distance it holds [m] (0 where off).
-    rate : float
-        The normal rate [m/s] the last step it set ends at.
     """
 
     def __init__(self, mbs: exu.MainSystem, markers: Sequence[Any], name: str, clearance: float) -> None:
@@ -94,47 +113,75 @@ class DistanceHold:
             name=f"{name}:hold" if name else "", markerNumbers=list(markers), distance=clearance,
             activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
         self.clearance = clearance
-        self.distance = self.rate = 0.0
+        self.markers = list(markers)
+        self.distance = 0.0
         self.handed = False  # the contact handed to the velocity-level condition (:meth:`takes`)
+        self._forces: list[float] = []  # the last four multipliers
+        self._window = _NO_RING
 
     @property
     def active(self) -> bool:
         return self.distance > 0.0
 
-    def setting(self) -> tuple[float, float, bool]:
+    def setting(self) -> tuple[float, bool]:
         """What the hold acts with (:meth:`restore` takes it back)."""
-        return self.distance, self.rate, self.handed
+        return self.distance, self.handed
 
-    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float) -> bool:
+    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float | None) -> bool:
         """Whether it holds the coming step of a held contact whose last step ended at the
         axial offset ``axial`` [m] with the multiplier ``force`` [N] (its own, where on) and
-        the reaction ``reaction`` [N] (the multiplier's mean over the last steps), in a system
-        ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling leaves as
-        it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its multiplier
-        left the reaction by more than :data:`HAND_OVER` of it, not until the contact is let
-        go; off where it does not."""
-        if self.active and abs(force - reaction) > HAND_OVER * abs(reaction):
+        the reaction ``reaction`` [N] (the multiplier's mean over the last steps; None in the
+        onset's settling steps, whose multiplier settles from the onset's impulse), in a
+        system ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling
+        leaves as it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its
+        multiplier rang (:meth:`_rings_up`), not until the contact is let go; off where it
+        does not."""
+        if self.active and self._rings_up(force, reaction):
             self.handed = True
         fits = settled and not self.handed and abs(axial) <= AXIAL_SHARE * self.clearance
         if not fits:
             self.release(mbs, hand_over=self.handed)
         return fits
 
-    def start(self, mbs: exu.MainSystem, distance: float, rate: float) -> None:
-        """On, from a state at ``distance`` [m] whose normal rate is ``rate`` [m/s] (what the
-        onset step's velocity-level condition held); :meth:`advance` sets its first step."""
-        self.distance, self.rate = distance, rate
+    def _rings_up(self, force: float, reaction: float | None) -> bool:
+        """Whether the multiplier, ``force`` [N] at the last step's end, rings: its ring (a
+        quarter of its second difference over the last three steps, where that changed sign
+        from the step before: a load that changes smoothly has almost none, one that grows
+        or falls fast, as a journal's sliding along its wall speeds up, none) beyond
+        :data:`HAND_OVER` of the reaction ``reaction`` [N], and the largest ring in the last
+        :data:`RING_STEPS` steps more than :data:`RING_GROWTH` times the largest in the
+        window before, in the last :data:`RING_WINDOWS` windows in a row (a journal rocking on
+        its wall rings as much without growing).  Not judged while ``reaction`` is None."""
+        self._forces = [*self._forces[-3:], force]
+        if reaction is None or len(self._forces) < 4:
+            return False
+        f3, f2, f1, f0 = self._forces
+        second, last_second = f0 - 2.0 * f1 + f2, f1 - 2.0 * f2 + f3
+        ring = 0.25 * abs(second) if second * last_second < 0.0 else 0.0
+        last, before, grown, steps = self._window
+        last, steps = max(last, ring), steps + 1
+        grows = last > RING_GROWTH * before
+        self._window = (0.0, last, grown + 1 if grows else 0, 0) if steps == RING_STEPS else (last, before, grown, steps)
+        return ring > HAND_OVER * abs(reaction) and grows and grown >= RING_WINDOWS - 1
+
+    def start(self, mbs: exu.MainSystem, distance: float) -> None:
+        """On, from a state at ``distance`` [m]; :meth:`advance` sets its first step."""
+        self.distance, self._forces, self._window = distance, [], _NO_RING
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
         request_jacobian(mbs)
 
-    def advance(self, mbs: exu.MainSystem, end_rate: float, h: float) -> None:
+    def advance(self, mbs: exu.MainSystem, e: Sequence[float], end_rate: float, h: float) -> None:
         """The distance at the coming step's end (length ``h`` [s]) at which the trapezoidal
         rule ends it at the normal rate ``end_rate`` [m/s]: ``d + h (v0 + v1) / 2``, from the
-        rate the step before ended at (an unchanged distance would end it at ``-v0``, and
-        the rate and the multiplier would alternate from step to step after it).  No call
-        where the distance stays as it is."""
-        distance = self.distance + 0.5 * h * (self.rate + end_rate)
-        self.rate = end_rate
+        rate ``v0`` the step before ended at, measured along the eccentricity ``e`` it ended
+        at (an unchanged distance would end it at ``-v0``, and the rate and the multiplier
+        would alternate from step to step after it; a rate the hold only planned leaves any
+        other rate the state carries to alternate so).  No call where the distance stays as
+        it is."""
+        velocity = exu.OutputVariableType.Velocity
+        v0, v1 = (mbs.GetMarkerOutput(m, velocity).tolist() for m in self.markers)
+        start_rate = sum(x * (b - a) for x, a, b in zip(e, v0, v1)) / math.sqrt(sum(x * x for x in e))
+        distance = self.distance + 0.5 * h * (start_rate + end_rate)
         if distance != self.distance:
             self.distance = distance
             mbs.SetObjectParameter(self.objectNumber, "distance", distance)
@@ -145,20 +192,20 @@ class DistanceHold:
         self.handed = hand_over
         if not self.active:
             return False
-        self.distance = self.rate = 0.0
+        self.distance = 0.0
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", False)
         request_jacobian(mbs)
         return True
 
-    def restore(self, mbs: exu.MainSystem, setting: tuple[float, float, bool]) -> bool:
+    def restore(self, mbs: exu.MainSystem, setting: tuple[float, bool]) -> bool:
         """The setting of :meth:`setting` back; whether it differs from the present one."""
         if setting == self.setting():
             return False
         if setting[0] <= 0.0:
-            self.release(mbs, hand_over=setting[2])
+            self.release(mbs, hand_over=setting[1])
             return True
         was = self.active
-        self.distance, self.rate, self.handed = setting
+        self.distance, self.handed = setting
         mbs.SetObjectParameter(self.objectNumber, "distance", self.distance)
         if not was:
             mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
