@@ -1,7 +1,8 @@
 """The native hold's hand-over (exuclear.engine.impulse_hold): a multiplier whose ring grows
-window after window is handed to the velocity-level condition; one that rocks on its wall as
-much without growing, or that surges smoothly, stays held.  Multiplier sequences fed to
-:meth:`DistanceHold._rings_up`, whose rings are known in closed form."""
+window after window, or rings beyond the share at a step Exudyn shortened, is handed to the
+velocity-level condition; one that rocks on its wall as much without growing, or that
+surges smoothly, stays held.  Multiplier sequences fed to :meth:`DistanceHold._rings_up`,
+whose rings are known in closed form."""
 import math
 from types import SimpleNamespace
 
@@ -9,13 +10,15 @@ from exuclear.engine import impulse_hold
 from exuclear.engine.impulse_hold import HAND_OVER, RING_STEPS, RING_WINDOWS, DistanceHold
 
 REACTION = 100.0  # N, the load the multiplier rings about
+STEP = 1e-3  # s, the held steps' length
 
 
-def first_hand_over(forces):
-    """The index of the first multiplier at which the hold hands over (None: never)."""
-    hold = SimpleNamespace(_forces=[], _window=impulse_hold._NO_RING)
+def first_hand_over(forces, steps=None):
+    """The index of the first multiplier at which the hold hands over (None: never); the
+    steps' lengths ``steps`` [s] (default: all STEP)."""
+    hold = SimpleNamespace(_forces=[], _window=impulse_hold._NO_RING, _step=math.inf)
     for n, force in enumerate(forces):
-        if DistanceHold._rings_up(hold, force, REACTION):
+        if DistanceHold._rings_up(hold, force, REACTION, STEP if steps is None else steps[n]):
             return n
     return None
 
@@ -44,3 +47,17 @@ def test_a_journal_rocking_on_its_wall_and_a_smooth_surge_stay_held():
     assert first_hand_over(rocking) is None
     surge = [REACTION * (1.0 + 9.0 * math.exp(-(((n % 400) - 200) / 20.0) ** 2)) for n in range(2000)]
     assert first_hand_over(surge) is None
+
+
+def test_a_ring_beyond_the_share_is_handed_over_where_exudyn_shortens_the_step():
+    # an alternation of 0.3 R, f_n = R (1 + 0.3 (-1)^n): its ring 0.3 R, beyond HAND_OVER
+    # of R but not growing, stays held at a steady step; where Exudyn halves the step (after
+    # a failed Newton, which the ring's 4 m v / h doubles at each halving) it is handed over
+    # at the shortened step
+    forces = [REACTION * (1.0 + 0.3 * (-1) ** n) for n in range(1000)]
+    assert first_hand_over(forces) is None
+    steps = [STEP if n < 600 else 0.5 * STEP for n in range(1000)]
+    assert first_hand_over(forces, steps) == 600
+    # below the share, a halving leaves the hold on
+    calm = [REACTION * (1.0 + 0.2 * (-1) ** n) for n in range(1000)]
+    assert first_hand_over(calm, steps) is None

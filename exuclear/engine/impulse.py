@@ -329,7 +329,7 @@ class ImpulseJointHandle:
         the native constraint where it takes it (:meth:`~exuclear.engine.impulse_hold.DistanceHold.takes`),
         else the velocity-level condition along the normal predicted for the step's end."""
         native = self._native
-        if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force, reaction):
+        if native is not None and native.takes(mbs, settling_of(mbs).active, axial, force, reaction, h):
             if not native.active:  # from the onset step's velocity-level condition
                 native.start(mbs, distance_of(e, axial))
                 self._condition.release(mbs)

@@ -54,13 +54,13 @@ AXIAL_SHARE = 1e-6
 
 
 #: A hold whose multiplier rings, its ring (a quarter of its second difference from step to
-#: step where that changes sign: the amplitude of an alternation) growing
-#: (:data:`RING_GROWTH`) beyond this share of its three-step mean, hands the contact to the
-#: velocity-level condition: an oscillation the trapezoidal rule keeps undamped (in the zoo's
-#: 3D four-bar, whose clearance joint closes the loop, one of five to six steps a period grew
-#: from about 1 % to more than the reaction over 400 held steps, and the contact was let go;
-#: docs/design/native_hold.md).  Settled, a sliding held journal's multiplier alternates by
-#: less than 2e-5 m g (``python -m validation.cost native_hold``).
+#: step where that changes sign: the amplitude of an alternation) beyond this share of its
+#: three-step mean at a step Exudyn shortened or after growing (:data:`RING_GROWTH`), hands
+#: the contact to the velocity-level condition: an oscillation the trapezoidal rule keeps
+#: undamped (in the zoo's 3D four-bar, whose clearance joint closes the loop, one of five to
+#: six steps a period grew from about 1 % to more than the reaction over 400 held steps, and
+#: the contact was let go; docs/design/native_hold.md).  Settled, a sliding held journal's
+#: multiplier alternates by less than 2e-5 m g (``python -m validation.cost native_hold``).
 HAND_OVER = 0.25
 #: The held steps over which the ring's size is its largest.  A journal rocking on its wall
 #: rings its multiplier without growing (the four-bar kinematic tree beyond the zoo: by up to
@@ -118,6 +118,7 @@ class DistanceHold:
         self.handed = False  # the contact handed to the velocity-level condition (:meth:`takes`)
         self._forces: list[float] = []  # the last four multipliers
         self._window = _NO_RING
+        self._step = math.inf  # the length of the last held step [s]
 
     @property
     def active(self) -> bool:
@@ -127,32 +128,37 @@ class DistanceHold:
         """What the hold acts with (:meth:`restore` takes it back)."""
         return self.distance, self.handed
 
-    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float | None) -> bool:
-        """Whether it holds the coming step of a held contact whose last step ended at the
-        axial offset ``axial`` [m] with the multiplier ``force`` [N] (its own, where on) and
-        the reaction ``reaction`` [N] (the multiplier's mean over the last steps; None in the
-        onset's settling steps, whose multiplier settles from the onset's impulse), in a
-        system ``settled`` (:mod:`~exuclear.engine.settling`): not in a system the settling
-        leaves as it is, not at an axial offset beyond :data:`AXIAL_SHARE`, and, once its
-        multiplier rang (:meth:`_rings_up`), not until the contact is let go; off where it
-        does not."""
-        if self.active and self._rings_up(force, reaction):
+    def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float | None,
+              h: float) -> bool:
+        """Whether it holds the coming step of a held contact whose last step (of length
+        ``h`` [s]) ended at the axial offset ``axial`` [m] with the multiplier ``force`` [N]
+        (its own, where on) and the reaction ``reaction`` [N] (the multiplier's mean over the
+        last steps; None in the onset's settling steps, whose multiplier settles from the
+        onset's impulse), in a system ``settled`` (:mod:`~exuclear.engine.settling`): not in
+        a system the settling leaves as it is, not at an axial offset beyond
+        :data:`AXIAL_SHARE`, and, once its multiplier rang (:meth:`_rings_up`), not until the
+        contact is let go; off where it does not."""
+        if self.active and self._rings_up(force, reaction, h):
             self.handed = True
         fits = settled and not self.handed and abs(axial) <= AXIAL_SHARE * self.clearance
         if not fits:
             self.release(mbs, hand_over=self.handed)
         return fits
 
-    def _rings_up(self, force: float, reaction: float | None) -> bool:
-        """Whether the multiplier, ``force`` [N] at the last step's end, rings: its ring (a
-        quarter of its second difference over the last three steps, where that changed sign
-        from the step before: a load that changes smoothly has almost none, one that grows
-        or falls fast, as a journal's sliding along its wall speeds up, none) beyond
-        :data:`HAND_OVER` of the reaction ``reaction`` [N], and the largest ring in the last
-        :data:`RING_STEPS` steps more than :data:`RING_GROWTH` times the largest in the
+    def _rings_up(self, force: float, reaction: float | None, h: float) -> bool:
+        """Whether the multiplier, ``force`` [N] at the end of the last step (of length ``h``
+        [s]), rings: its ring (a quarter of its second difference over the last three steps,
+        where that changed sign from the step before: a load that changes smoothly has
+        almost none, one that grows or falls fast, as a journal's sliding along its wall
+        speeds up, none) beyond :data:`HAND_OVER` of the reaction ``reaction`` [N], at a step
+        shorter than the one before (a velocity alternation across any position-level
+        constraint drives the multipliers by about ``4 m v / h``: each halving after a failed
+        Newton doubles it, and Newton fails again) or where the largest ring in the last
+        :data:`RING_STEPS` steps was more than :data:`RING_GROWTH` times the largest in the
         window before, in the last :data:`RING_WINDOWS` windows in a row (a journal rocking on
         its wall rings as much without growing).  Not judged while ``reaction`` is None."""
         self._forces = [*self._forces[-3:], force]
+        shortened, self._step = h < self._step, h
         if reaction is None or len(self._forces) < 4:
             return False
         f3, f2, f1, f0 = self._forces
@@ -162,11 +168,11 @@ class DistanceHold:
         last, steps = max(last, ring), steps + 1
         grows = last > RING_GROWTH * before
         self._window = (0.0, last, grown + 1 if grows else 0, 0) if steps == RING_STEPS else (last, before, grown, steps)
-        return ring > HAND_OVER * abs(reaction) and grows and grown >= RING_WINDOWS - 1
+        return ring > HAND_OVER * abs(reaction) and (shortened or (grows and grown >= RING_WINDOWS - 1))
 
     def start(self, mbs: exu.MainSystem, distance: float) -> None:
         """On, from a state at ``distance`` [m]; :meth:`advance` sets its first step."""
-        self.distance, self._forces, self._window = distance, [], _NO_RING
+        self.distance, self._forces, self._window, self._step = distance, [], _NO_RING, math.inf
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
         request_jacobian(mbs)
 
