@@ -40,6 +40,7 @@ from typing import Any
 import exudyn as exu
 from exudyn.itemInterface import ObjectConnectorDistance, VObjectConnectorDistance
 
+from ..vectors import norm
 from .bodies import coordinate_owner
 from .condition import request_jacobian, scalar_force
 from .settling import RIGID_BODIES
@@ -184,9 +185,9 @@ class DistanceHold:
         would alternate from step to step after it; a rate the hold only planned leaves any
         other rate the state carries to alternate so).  No call where the distance stays as
         it is."""
-        velocity = exu.OutputVariableType.Velocity
-        v0, v1 = (mbs.GetMarkerOutput(m, velocity).tolist() for m in self.markers)
-        start_rate = sum(x * (b - a) for x, a, b in zip(e, v0, v1)) / math.sqrt(sum(x * x for x in e))
+        velocity, (outer, inner) = exu.OutputVariableType.Velocity, self.markers
+        v0, v1 = mbs.GetMarkerOutput(outer, velocity).tolist(), mbs.GetMarkerOutput(inner, velocity).tolist()
+        start_rate = (e[0] * (v1[0] - v0[0]) + e[1] * (v1[1] - v0[1]) + e[2] * (v1[2] - v0[2])) / norm(e)
         distance = self.distance + 0.5 * h * (start_rate + end_rate)
         if distance != self.distance:
             self.distance = distance
