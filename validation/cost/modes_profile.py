@@ -20,8 +20,9 @@ Python); the same function after the reads and writes through Exudyn's Python in
 that a natively held step of the mode makes (the floor of the mode's steadiest step in
 Python); and the impulse mode, its post-Newton functions timed from Python (wall clock
 around each call), the rest its Exudyn solve with the mode's items.  Each over the ideal
-model's wall time, and the decisions per accepted step [us] next to the ideal model's
-whole step [us].  One run in the mode before, not timed: a process's first run in the
+model's wall time, the Jacobians Exudyn's Newton formed in the mode's run and in the ideal
+model's (``newtonJacobiCount``), and the decisions per accepted step [us] next to the ideal
+model's whole step [us].  One run in the mode before, not timed: a process's first run in the
 mode imports modules.
 
 ::
@@ -157,11 +158,13 @@ def _timed_decisions(mbs: Any) -> list[float]:
 
 
 def budget_row(name: str, repeats: int) -> list[str]:
-    """One model's budget (module docstring): the ideal model's wall [s] and step [us], the
-    empty decision's, the hold's exchange's and the impulse mode's wall over it, the mode's decisions and the rest
-    over it, the decisions per accepted step [us]."""
+    """One model's budget (module docstring): the ideal model's wall [s] and step [us]; the
+    empty decision's, the hold's exchange's and the impulse mode's wall over it; the mode's
+    decisions and the rest over it; the mode's steps and Newton iterations; the Jacobians
+    Exudyn's Newton formed in the mode's run and in the ideal model's; the decisions per
+    accepted step [us]."""
     walls: dict[str, list[float]] = {"ideal": [], "empty": [], "exchange": [], "impulse": [], "decisions": []}
-    steps = {}
+    steps, jacobians = {}, {}
     _run(_build(name, True, "impulse"), 1.0)  # not timed: the imports of a process's first run in the mode
     for _ in range(repeats):
         for way in ("ideal", "empty", "exchange", "impulse"):
@@ -171,15 +174,16 @@ def budget_row(name: str, repeats: int) -> list[str]:
             spent = _timed_decisions(model.mbs) if way == "impulse" else [0.0]
             wall, steps[way], ok, problem = _run(model, 1.0)
             if not ok:
-                return [name, f"{way} stopped: {problem[:60]}"] + ["-"] * 7
+                return [name, f"{way} stopped: {problem[:60]}"] + ["-"] * 8
             walls[way].append(wall)
+            jacobians[way] = model.mbs.sys["dynamicSolver"].it.newtonJacobiCount
             if way == "impulse":
                 walls["decisions"].append(spent[0])
     ideal, empty, exchange, impulse, decisions = (statistics.median(walls[k]) for k in walls)
     accepted = {way: max(int(s.split("/")[0]), 1) for way, s in steps.items()}
     return [name, f"{ideal:.3g} ({1e6 * ideal / accepted['ideal']:.0f})", f"{empty / ideal:.2f}x", f"{exchange / ideal:.2f}x",
             f"{impulse / ideal:.2f}x", f"{decisions / ideal:.2f}x", f"{(impulse - decisions) / ideal:.2f}x",
-            steps["impulse"], f"{1e6 * decisions / accepted['impulse']:.0f}"]
+            steps["impulse"], f"{jacobians['impulse']} / {jacobians['ideal']}", f"{1e6 * decisions / accepted['impulse']:.0f}"]
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -202,7 +206,7 @@ def main(argv: list[str] | None = None) -> None:
         rows = [budget_row(name, args.budget) for name in args.models.split(",") if name]
         print(markdown_table(["model", "ideal [s] (per step [us])", "empty decision / ideal", "the hold's exchange / ideal",
                               "impulse / ideal",
-                              "decisions / ideal", "the rest / ideal", "impulse steps / Newton",
+                              "decisions / ideal", "the rest / ideal", "impulse steps / Newton", "Jacobians impulse / ideal",
                               "decisions per step [us]"], rows))
         return
     rows = []
