@@ -456,14 +456,13 @@ class ImpulseJointHandle:
 
     def _end_gap(self, mbs: exu.MainSystem) -> tuple[Sequence[float], float, float]:
         """The eccentricity, the gap and the axial offset (0: not measured) at a step's end;
-        a natively held pair's from the markers' positions (and the outer one's rotation), on
-        floats: all a free step's decision reads."""
+        a natively held pair's from the hold's displacement of the markers (on or off, its
+        ``p1 - p0``) and the outer one's rotation, on floats: all a free step's decision reads."""
         if self._native is None:
             return (*self._gap(mbs), 0.0)
-        ov, (outer, inner) = exu.OutputVariableType, self.markerNumbers
-        rotation = mbs.GetMarkerOutput(outer, ov.RotationMatrix).tolist() if self._pair.rotations[0] else None
-        e, axial = self._pair.centre_offset(mbs.GetMarkerOutput(outer, ov.Position).tolist(),
-                                            mbs.GetMarkerOutput(inner, ov.Position).tolist(), rotation)
+        ov = exu.OutputVariableType
+        rotation = mbs.GetMarkerOutput(self.markerNumbers[0], ov.RotationMatrix).tolist() if self._pair.rotations[0] else None
+        e, axial = self._pair.centre_offset(mbs.GetObjectOutput(self._native.objectNumber, ov.Displacement).tolist(), rotation)
         return e, norm(e) - self._pair.reach, axial
 
     def _gap(self, mbs: exu.MainSystem) -> tuple[np.ndarray, float]:

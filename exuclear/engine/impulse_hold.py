@@ -114,7 +114,6 @@ class DistanceHold:
             name=f"{name}:hold" if name else "", markerNumbers=list(markers), distance=clearance,
             activeConnector=False, visualization=VObjectConnectorDistance(show=False)))
         self.clearance = clearance
-        self.markers = list(markers)
         self.distance = 0.0
         self.handed = False  # the contact handed to the velocity-level condition (:meth:`takes`)
         self._forces: list[float] = []  # the last four multipliers
@@ -185,9 +184,8 @@ class DistanceHold:
         would alternate from step to step after it; a rate the hold only planned leaves any
         other rate the state carries to alternate so).  No call where the distance stays as
         it is."""
-        velocity, (outer, inner) = exu.OutputVariableType.Velocity, self.markers
-        v0, v1 = mbs.GetMarkerOutput(outer, velocity).tolist(), mbs.GetMarkerOutput(inner, velocity).tolist()
-        start_rate = (e[0] * (v1[0] - v0[0]) + e[1] * (v1[1] - v0[1]) + e[2] * (v1[2] - v0[2])) / norm(e)
+        v = mbs.GetObjectOutput(self.objectNumber, exu.OutputVariableType.Velocity).tolist()  # v1 - v0 of its markers
+        start_rate = (e[0] * v[0] + e[1] * v[1] + e[2] * v[2]) / norm(e)
         distance = self.distance + 0.5 * h * (start_rate + end_rate)
         if distance != self.distance:
             self.distance = distance

@@ -127,13 +127,13 @@ class PlanarPair(_CentrePair):
         e = p1 - p0
         return Eccentricity(e - (e @ axis) * axis, None)
 
-    def centre_offset(self, p0: list[float], p1: list[float], rotation: list[float] | None) -> tuple[V3, float]:
-        """``e`` (as :meth:`eccentricity`) and the axial offset ``(p1 - p0) . axis`` [m] from
-        the markers' positions and marker 0's rotation matrix (9 numbers, by rows), on floats."""
+    def centre_offset(self, d: list[float], rotation: list[float] | None) -> tuple[V3, float]:
+        """``e`` (as :meth:`eccentricity`) and the axial offset ``d . axis`` [m] from the
+        markers' relative position ``d = p1 - p0`` and marker 0's rotation matrix (9 numbers,
+        by rows), on floats."""
         a, r = self.axis, rotation
         axis = (r[0] * a[0] + r[1] * a[1] + r[2] * a[2], r[3] * a[0] + r[4] * a[1] + r[5] * a[2],
                 r[6] * a[0] + r[7] * a[1] + r[8] * a[2])
-        d = (p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2])
         axial = dot(d, axis)
         return (d[0] - axial * axis[0], d[1] - axial * axis[1], d[2] - axial * axis[2]), axial
 
@@ -150,9 +150,10 @@ class BallPair(_CentrePair):
         p0, p1 = poses.positions
         return Eccentricity(p1 - p0, None)
 
-    def centre_offset(self, p0: list[float], p1: list[float], rotation: None) -> tuple[V3, float]:
-        """``e`` (as :meth:`eccentricity`) from the markers' positions, on floats; no axial offset."""
-        return (p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]), 0.0
+    def centre_offset(self, d: list[float], rotation: None) -> tuple[V3, float]:
+        """``e`` (as :meth:`eccentricity`) from the markers' relative position ``d = p1 - p0``;
+        no axial offset."""
+        return (d[0], d[1], d[2]), 0.0
 
 
 @dataclass(frozen=True)
