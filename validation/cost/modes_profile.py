@@ -103,21 +103,23 @@ def _decide_nothing(mbs: Any, t: float, item: int, data: Any, *frame: Any) -> li
 def _exchange(markers: list[int], carrier: int) -> Any:
     """A post-Newton function that accepts every Newton solve after the reads and writes
     through Exudyn's Python interface that the impulse mode's natively held step makes
-    (:mod:`exuclear.engine.impulse_hold`, :mod:`exuclear.engine.settling`): the step, two
-    marker positions and a rotation matrix, a multiplier, the velocities and accelerations
-    read and written (back unchanged) and one parameter written (unchanged)."""
+    (:mod:`exuclear.engine.impulse_hold`, :mod:`exuclear.engine.settling`): the step, a
+    connector's displacement and velocity of its markers, a marker's rotation matrix, a
+    multiplier, the velocities and accelerations read and written (back unchanged) and one
+    parameter written (unchanged)."""
     ov = exu.OutputVariableType
 
     def exchange(mbs: Any, t: float, item: int, data: Any, *frame: Any) -> list:
         step = mbs.sys["dynamicSolver"].it.currentStepSize, mbs.systemData.GetTime()
-        poses = [mbs.GetMarkerOutput(m, ov.Position) for m in markers], mbs.GetMarkerOutput(markers[0], ov.RotationMatrix)
+        poses = [mbs.GetObjectOutput(carrier, output) for output in (ov.DisplacementLocal, ov.VelocityLocal)]
+        rotation = mbs.GetMarkerOutput(markers[0], ov.RotationMatrix)
         mbs.GetObjectOutput(carrier, ov.ForceLocal)
         state = mbs.systemData
         velocities, accelerations = np.array(state.GetODE2Coordinates_t()), np.array(state.GetODE2Coordinates_tt())
         state.SetODE2Coordinates_t(velocities)
         state.SetODE2Coordinates_tt(accelerations)
         mbs.SetObjectParameter(carrier, "activeConnector", True)
-        del step, poses
+        del step, poses, rotation
         return [0.0, -1.0, *data]
     return exchange
 
