@@ -205,8 +205,9 @@ class ImpulseJointHandle:
         self._state = FREE
         self._impacts: list[tuple[float, float, float, float]] = []  # (t, v-, e, impulse of the step)
         self._records: list[tuple[float, ...]] = []  # t, ecc_x, ecc_y, ecc_z, gap, force
-        self._held_ends: tuple[tuple[float, float], ...] = ()  # (t, end multiplier) of the last held steps
-        self._step = self._force = self._force_before = 0.0
+        # (t, end multiplier) of the last held steps: the reaction's mean and what a stop says
+        self._held_ends: tuple[tuple[float, float], ...] = ()
+        self._step = 0.0
         self._resting = 0
         self._problem = ""
         self._left_pen = 0.0
@@ -295,12 +296,12 @@ class ImpulseJointHandle:
         # the resting multiplier alternates from step to step about the load under the
         # trapezoidal rule: in the first steps after a jump, while the settling takes the
         # alternation out (exuclear.engine.settling), and undamped in a system the settling
-        # leaves as it is: the held steps' mean (settling.held_mean), from the first after the onset
-        ends = (self._force_before, self._force, force)[3 - min(max(self._resting, 1), 3):]
-        reaction = held_mean(ends) if self._state == REST else force
-        self._force, self._force_before = force, self._force
+        # leaves as it is: the held steps' mean (settling.held_mean) with this rest's held steps
+        # before (up to two), from the first after the onset
+        before = self._held_ends[len(self._held_ends) + 1 - min(max(self._resting, 1), 3):]
+        reaction = held_mean((*(f for _, f in before), force)) if self._state == REST else force
         self._records.append((t_end, *e, gap, reaction if self._state == REST else 0.0))
-        if self._state == REST:  # (what a stop says: impulse_run.stopped)
+        if self._state == REST:  # (the last ALTERNATING_STEPS, at least the mean's three; impulse_run.stopped)
             self._held_ends = (*self._held_ends[1 - ALTERNATING_STEPS:], (t_end, force))
         jump = self._state == IMPACT or (self._state == REST and self._resting == 0)  # an impact or a rest's onset
         self._friction.accept(mbs, t_end, self._state == REST, (self._condition, force, h) if jump else None)
@@ -511,8 +512,8 @@ class ImpulseJointHandle:
     def _snapshot(self) -> dict[str, Any]:
         """What an accepted step changes, to be taken back where Exudyn computes it again."""
         # the records and impacts only grow, but for the last impact's impulse, set as its step is accepted
-        return {"_state": self._state, "plan": self._condition.plan, "_step": self._step, "_force": self._force,
-                "_force_before": self._force_before, "_resting": self._resting, "_left_pen": self._left_pen,
+        return {"_state": self._state, "plan": self._condition.plan, "_step": self._step,
+                "_resting": self._resting, "_left_pen": self._left_pen,
                 "_start": self._start, "records": len(self._records), "impacts": len(self._impacts),
                 "last_impact": self._impacts[-1] if self._impacts else None, "_held_ends": self._held_ends,
                 "friction": self._friction.snapshot(), "native": self._native and self._native.setting()}
