@@ -116,7 +116,7 @@ class DistanceHold:
         self.clearance = clearance
         self.distance = 0.0
         self.handed = False  # the contact handed to the velocity-level condition (:meth:`takes`)
-        self._forces: list[float] = []  # the last four multipliers
+        self._forces: tuple[float, ...] = ()  # the last four multipliers
         self._window = _NO_RING
         self._step = math.inf  # the length of the last held step [s]
 
@@ -124,9 +124,10 @@ class DistanceHold:
     def active(self) -> bool:
         return self.distance > 0.0
 
-    def setting(self) -> tuple[float, bool]:
-        """What the hold acts with (:meth:`restore` takes it back)."""
-        return self.distance, self.handed
+    def setting(self) -> tuple[float, bool, tuple[Any, ...]]:
+        """What the hold acts with, and its multiplier's history (:meth:`_rings_up`):
+        :meth:`restore` takes both back."""
+        return self.distance, self.handed, (self._forces, self._window, self._step)
 
     def takes(self, mbs: exu.MainSystem, settled: bool, axial: float, force: float, reaction: float | None,
               h: float) -> bool:
@@ -157,7 +158,7 @@ class DistanceHold:
         :data:`RING_STEPS` steps was more than :data:`RING_GROWTH` times the largest in the
         window before, in the last :data:`RING_WINDOWS` windows in a row (a journal rocking on
         its wall rings as much without growing).  Not judged while ``reaction`` is None."""
-        self._forces = [*self._forces[-3:], force]
+        self._forces = (*self._forces[-3:], force)
         shortened, self._step = h < self._step, h
         if reaction is None or len(self._forces) < 4:
             return False
@@ -172,7 +173,7 @@ class DistanceHold:
 
     def start(self, mbs: exu.MainSystem, distance: float) -> None:
         """On, from a state at ``distance`` [m]; :meth:`advance` sets its first step."""
-        self.distance, self._forces, self._window, self._step = distance, [], _NO_RING, math.inf
+        self.distance, self._forces, self._window, self._step = distance, (), _NO_RING, math.inf
         mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
         request_jacobian(mbs)
 
@@ -202,15 +203,17 @@ class DistanceHold:
         request_jacobian(mbs)
         return True
 
-    def restore(self, mbs: exu.MainSystem, setting: tuple[float, bool]) -> bool:
-        """The setting of :meth:`setting` back; whether it differs from the present one."""
-        if setting == self.setting():
+    def restore(self, mbs: exu.MainSystem, setting: tuple[float, bool, tuple[Any, ...]]) -> bool:
+        """The setting of :meth:`setting` back (the history always: a step computed again
+        is judged once); whether what the hold acts with differs from the present one."""
+        distance, handed, (self._forces, self._window, self._step) = setting
+        if (distance, handed) == (self.distance, self.handed):
             return False
-        if setting[0] <= 0.0:
-            self.release(mbs, hand_over=setting[1])
+        if distance <= 0.0:
+            self.release(mbs, hand_over=handed)
             return True
         was = self.active
-        self.distance, self.handed = setting
+        self.distance, self.handed = distance, handed
         mbs.SetObjectParameter(self.objectNumber, "distance", self.distance)
         if not was:
             mbs.SetObjectParameter(self.objectNumber, "activeConnector", True)
